@@ -1,0 +1,112 @@
+# qorient - the one build entry point.
+#
+#   make            core library (build/libqorient.a), ports and the command (build/qorient)
+#   make test       host tests under AddressSanitizer + UndefinedBehaviorSanitizer
+#   make core-check the core alone with -Werror on gcc, clang and arm-none-eabi-gcc, plus the
+#                   no-heap / no-float-in-fixed-core checks (what .ci/run calls)
+#   make clean
+#
+# Layout of sources (new files are picked up by the wildcards, no edit here needed):
+#   lib/src/*.c            portable core; *_fx.c files are the fixed-point core (no float at all)
+#   ports/mock/*.c         recording sink (host only)
+#   ports/linux/*.c        Linux ports (libmodbus, libgpiod, streamer, simulator)
+#   ports/linux/cli/*.c    the `qorient` command
+#   tests/test_*.c         one cmocka program each; tests/common/*.c linked into all of them
+#   tests/test_*.sh        shell tests of the command, run with build/qorient
+
+CC      ?= cc
+BUILD   ?= build
+PKG_CONFIG ?= pkg-config
+
+STD      := -std=c99
+WARN     := -Wall -Wextra -Wpedantic -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
+# float32 results must not depend on whether the compiler fuses a*b+c: contraction off everywhere.
+FPFLAGS  := -ffp-contract=off
+OPT      ?= -O2 -g
+CORE_WARN := $(WARN) -Wdouble-promotion -Wcast-align -Wconversion -Wno-sign-conversion
+CPPFLAGS_CORE := -Ilib/include
+
+SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+
+PKGS       := libmodbus libgpiod inih
+PKG_CFLAGS := $(shell $(PKG_CONFIG) --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS   := $(shell $(PKG_CONFIG) --libs $(PKGS) 2>/dev/null)
+CMOCKA_LIBS := $(shell $(PKG_CONFIG) --libs cmocka 2>/dev/null || echo -lcmocka)
+PORT_DEFS  := -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
+
+CORE_SRC  := $(sort $(wildcard lib/src/*.c))
+FX_SRC    := $(sort $(wildcard lib/src/*_fx.c))
+PORT_SRC  := $(sort $(wildcard ports/mock/*.c ports/linux/*.c))
+CLI_SRC   := $(sort $(wildcard ports/linux/cli/*.c))
+TEST_SRC  := $(sort $(wildcard tests/test_*.c))
+TEST_COMMON := $(sort $(wildcard tests/common/*.c))
+TEST_SH   := $(sort $(wildcard tests/test_*.sh))
+
+CORE_OBJ  := $(CORE_SRC:%.c=$(BUILD)/obj/%.o)
+PORT_OBJ  := $(PORT_SRC:%.c=$(BUILD)/obj/%.o)
+CLI_OBJ   := $(CLI_SRC:%.c=$(BUILD)/obj/%.o)
+
+SCORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/san/%.o)
+SPORT_OBJ := $(PORT_SRC:%.c=$(BUILD)/san/%.o)
+SCOMMON_OBJ := $(TEST_COMMON:%.c=$(BUILD)/san/%.o)
+TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
+
+.PHONY: all lib test core-check clean tests-build
+# Keep the sanitizer objects between runs (they are intermediates of the test pattern rule).
+.SECONDARY:
+all: $(BUILD)/libqorient.a $(BUILD)/libqorient_ports.a $(BUILD)/qorient
+
+lib: $(BUILD)/libqorient.a
+
+# ---- normal build ----
+$(BUILD)/obj/lib/%.o: lib/%.c
+	@mkdir -p $(@D)
+	$(CC) -MMD -MP $(STD) $(CORE_WARN) $(FPFLAGS) $(OPT) $(CPPFLAGS_CORE) -c $< -o $@
+
+$(BUILD)/obj/ports/%.o: ports/%.c
+	@mkdir -p $(@D)
+	$(CC) -MMD -MP $(STD) $(WARN) $(FPFLAGS) $(OPT) $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports $(PKG_CFLAGS) -c $< -o $@
+
+$(BUILD)/libqorient.a: $(CORE_OBJ)
+	@mkdir -p $(@D)
+	rm -f $@ && ar rcs $@ $^
+
+$(BUILD)/libqorient_ports.a: $(PORT_OBJ)
+	@mkdir -p $(@D)
+	rm -f $@ && ar rcs $@ $^
+
+$(BUILD)/qorient: $(CLI_OBJ) $(BUILD)/libqorient_ports.a $(BUILD)/libqorient.a
+	$(CC) $(OPT) -o $@ $(CLI_OBJ) $(BUILD)/libqorient_ports.a $(BUILD)/libqorient.a $(PKG_LIBS) -lm -pthread -lutil
+
+# ---- sanitizer build for tests ----
+$(BUILD)/san/lib/%.o: lib/%.c
+	@mkdir -p $(@D)
+	$(CC) -MMD -MP $(STD) $(CORE_WARN) $(FPFLAGS) -O1 -g $(SAN) $(CPPFLAGS_CORE) -c $< -o $@
+
+$(BUILD)/san/ports/%.o: ports/%.c
+	@mkdir -p $(@D)
+	$(CC) -MMD -MP $(STD) $(WARN) $(FPFLAGS) -O1 -g $(SAN) $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports $(PKG_CFLAGS) -c $< -o $@
+
+$(BUILD)/san/tests/%.o: tests/%.c
+	@mkdir -p $(@D)
+	$(CC) -MMD -MP $(STD) $(WARN) -Wno-double-promotion $(FPFLAGS) -O1 -g $(SAN) $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports -Itests $(PKG_CFLAGS) -c $< -o $@
+
+$(BUILD)/tests/%: $(BUILD)/san/tests/%.o $(SCOMMON_OBJ) $(SPORT_OBJ) $(SCORE_OBJ)
+	@mkdir -p $(@D)
+	$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(PKG_LIBS) -lm -pthread -lutil
+
+tests-build: $(TEST_BIN) $(BUILD)/qorient
+
+# Runs every cmocka program and every shell test; tests/run.sh prints the totals and fails on
+# any failure.
+test: tests-build
+	@QORIENT=$(BUILD)/qorient sh tests/run.sh $(TEST_BIN) -- $(TEST_SH)
+
+# ---- core portability and hygiene (also run by .ci/run) ----
+core-check:
+	sh tools/core-check.sh
+
+clean:
+	rm -rf $(BUILD)
+
+-include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

@@ -1,0 +1,209 @@
+/* Quaternion algebra, float32. See qorient/quat.h for the contract of each function. */
+#include "qorient/quat.h"
+
+#include <math.h>
+
+qo_quat_f32 qo_quat_identity_f32(void)
+{
+    qo_quat_f32 q = { 1.0f, 0.0f, 0.0f, 0.0f };
+    return q;
+}
+
+qo_quat_f32 qo_quat_mul_f32(qo_quat_f32 a, qo_quat_f32 b)
+{
+    qo_quat_f32 r;
+    r.w = a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z;
+    r.x = a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y;
+    r.y = a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x;
+    r.z = a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w;
+    return r;
+}
+
+qo_quat_f32 qo_quat_conj_f32(qo_quat_f32 q)
+{
+    qo_quat_f32 r = { q.w, -q.x, -q.y, -q.z };
+    return r;
+}
+
+float qo_quat_dot_f32(qo_quat_f32 a, qo_quat_f32 b)
+{
+    return a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+int qo_quat_is_finite_f32(qo_quat_f32 q)
+{
+    return isfinite(q.w) && isfinite(q.x) && isfinite(q.y) && isfinite(q.z);
+}
+
+float qo_quat_norm_f32(qo_quat_f32 q)
+{
+    /* Scale by the largest magnitude so that the sum of squares neither overflows (components
+     * near FLT_MAX) nor underflows (components near FLT_MIN): the naive form returns Inf or 0
+     * for quaternions that are perfectly normalisable. */
+    float m = fabsf(q.w);
+    float s, w, x, y, z;
+    if (fabsf(q.x) > m) m = fabsf(q.x);
+    if (fabsf(q.y) > m) m = fabsf(q.y);
+    if (fabsf(q.z) > m) m = fabsf(q.z);
+    if (!(m > 0.0f)) {
+        /* m is 0, or NaN (comparisons with NaN are false): propagate NaN, else 0. */
+        return (isnan(q.w) || isnan(q.x) || isnan(q.y) || isnan(q.z)) ? NAN : 0.0f;
+    }
+    if (isinf(m)) return INFINITY;
+    if (isnan(q.w) || isnan(q.x) || isnan(q.y) || isnan(q.z)) return NAN;
+    /* Fast path: no risk of overflow or harmful underflow. */
+    if (m > 1e-18f && m < 1e18f) {
+        return sqrtf(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+    }
+    s = 1.0f / m;
+    if (isinf(s)) { /* m is subnormal: 1/m overflows, scale in two steps */
+        w = (q.w * 0x1p60f) / (m * 0x1p60f);
+        x = (q.x * 0x1p60f) / (m * 0x1p60f);
+        y = (q.y * 0x1p60f) / (m * 0x1p60f);
+        z = (q.z * 0x1p60f) / (m * 0x1p60f);
+    } else {
+        w = q.w * s; x = q.x * s; y = q.y * s; z = q.z * s;
+    }
+    return m * sqrtf(w * w + x * x + y * y + z * z);
+}
+
+qo_status qo_quat_normalize_f32(qo_quat_f32 q, qo_quat_f32 *out)
+{
+    float n, inv;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_f32();
+    if (!qo_quat_is_finite_f32(q)) return QO_E_NONFINITE;
+    n = qo_quat_norm_f32(q);
+    if (!(n > 0.0f) || isinf(n)) return QO_E_DEGENERATE;
+    inv = 1.0f / n;
+    if (isinf(inv)) {
+        /* n is subnormal: divide instead of multiplying by an overflowing reciprocal. */
+        out->w = q.w / n; out->x = q.x / n; out->y = q.y / n; out->z = q.z / n;
+    } else {
+        out->w = q.w * inv; out->x = q.x * inv; out->y = q.y * inv; out->z = q.z * inv;
+    }
+    return QO_OK;
+}
+
+qo_status qo_quat_inverse_f32(qo_quat_f32 q, qo_quat_f32 *out)
+{
+    float n, inv;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_f32();
+    if (!qo_quat_is_finite_f32(q)) return QO_E_NONFINITE;
+    n = qo_quat_norm_f32(q);
+    if (!(n > 0.0f) || isinf(n)) return QO_E_DEGENERATE;
+    /* conj(q)/|q|^2 computed as (conj(q)/|q|)/|q| so |q|^2 never over- or underflows. */
+    inv = 1.0f / n;
+    if (isinf(inv) || inv == 0.0f) {
+        out->w = (q.w / n) / n; out->x = (-q.x / n) / n;
+        out->y = (-q.y / n) / n; out->z = (-q.z / n) / n;
+    } else {
+        out->w = q.w * inv * inv; out->x = -q.x * inv * inv;
+        out->y = -q.y * inv * inv; out->z = -q.z * inv * inv;
+    }
+    if (!qo_quat_is_finite_f32(*out)) {
+        *out = qo_quat_identity_f32();
+        return QO_E_DEGENERATE;
+    }
+    return QO_OK;
+}
+
+qo_quat_f32 qo_quat_canonical_f32(qo_quat_f32 q)
+{
+    int flip;
+    if (q.w != 0.0f) flip = q.w < 0.0f;
+    else if (q.x != 0.0f) flip = q.x < 0.0f;
+    else if (q.y != 0.0f) flip = q.y < 0.0f;
+    else flip = q.z < 0.0f;
+    if (flip) { q.w = -q.w; q.x = -q.x; q.y = -q.y; q.z = -q.z; }
+    /* -0.0 becomes +0.0 so canonical quaternions compare equal bitwise. */
+    q.w += 0.0f; q.x += 0.0f; q.y += 0.0f; q.z += 0.0f;
+    return q;
+}
+
+qo_vec3_f32 qo_quat_rotate_f32(qo_quat_f32 q, qo_vec3_f32 v)
+{
+    /* t = 2 u x v; v' = v + w t + u x t  (15 multiplies, 15 adds). */
+    float tx = 2.0f * (q.y * v.z - q.z * v.y);
+    float ty = 2.0f * (q.z * v.x - q.x * v.z);
+    float tz = 2.0f * (q.x * v.y - q.y * v.x);
+    qo_vec3_f32 r;
+    r.x = v.x + q.w * tx + (q.y * tz - q.z * ty);
+    r.y = v.y + q.w * ty + (q.z * tx - q.x * tz);
+    r.z = v.z + q.w * tz + (q.x * ty - q.y * tx);
+    return r;
+}
+
+float qo_quat_angle_between_f32(qo_quat_f32 a, qo_quat_f32 b)
+{
+    qo_quat_f32 d = qo_quat_mul_f32(qo_quat_conj_f32(a), b);
+    float vn = sqrtf(d.x * d.x + d.y * d.y + d.z * d.z);
+    return 2.0f * atan2f(vn, fabsf(d.w));
+}
+
+/* sin(r)/r, accurate also for r -> 0 where the quotient loses all digits. */
+static float sinc_f32(float r)
+{
+    if (r < 1e-2f) {
+        float r2 = r * r;
+        return 1.0f - r2 * (1.0f / 6.0f) * (1.0f - r2 * (1.0f / 20.0f));
+    }
+    return sinf(r) / r;
+}
+
+qo_status qo_quat_exp_f32(qo_quat_f32 q, qo_quat_f32 *out)
+{
+    float r, ew, k;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_f32();
+    if (!qo_quat_is_finite_f32(q)) return QO_E_NONFINITE;
+    r = sqrtf(q.x * q.x + q.y * q.y + q.z * q.z);
+    if (isinf(r)) return QO_E_NONFINITE;
+    ew = expf(q.w);
+    if (isinf(ew)) return QO_E_NONFINITE;
+    k = ew * sinc_f32(r);
+    out->w = ew * cosf(r);
+    out->x = k * q.x; out->y = k * q.y; out->z = k * q.z;
+    return QO_OK;
+}
+
+qo_status qo_quat_log_f32(qo_quat_f32 q, qo_quat_f32 *out)
+{
+    float n, vn, ang, k;
+    if (out == NULL) return QO_E_NULL;
+    out->w = out->x = out->y = out->z = 0.0f;
+    if (!qo_quat_is_finite_f32(q)) return QO_E_NONFINITE;
+    n = qo_quat_norm_f32(q);
+    if (!(n > 0.0f)) return QO_E_DEGENERATE;
+    vn = sqrtf(q.x * q.x + q.y * q.y + q.z * q.z);
+    out->w = logf(n);
+    if (vn == 0.0f) {
+        /* Real quaternion: log of a positive real is real; of a negative real the angle is pi
+         * about an arbitrary axis - we take x and say so in the header. */
+        if (q.w < 0.0f) out->x = 3.14159265358979f;
+        return QO_OK;
+    }
+    ang = atan2f(vn, q.w);
+    /* atan2(vn, w)/vn, stable as vn -> 0 with w > 0: ang/vn -> 1/w. */
+    k = ang / vn;
+    out->x = k * q.x; out->y = k * q.y; out->z = k * q.z;
+    return QO_OK;
+}
+
+qo_status qo_quat_integrate_f32(qo_quat_f32 q, qo_vec3_f32 omega, float dt, qo_quat_f32 *out)
+{
+    qo_quat_f32 half, dq, qn;
+    qo_status st;
+    if (out == NULL) return QO_E_NULL;
+    st = qo_quat_normalize_f32(q, &qn);
+    *out = qn;
+    if (st != QO_OK) return st;
+    if (!isfinite(omega.x) || !isfinite(omega.y) || !isfinite(omega.z) || !isfinite(dt))
+        return QO_E_NONFINITE;
+    half.w = 0.0f;
+    half.x = 0.5f * omega.x * dt; half.y = 0.5f * omega.y * dt; half.z = 0.5f * omega.z * dt;
+    st = qo_quat_exp_f32(half, &dq);
+    if (st != QO_OK) return st;
+    return qo_quat_normalize_f32(qo_quat_mul_f32(qn, dq), out);
+}

@@ -1,0 +1,49 @@
+/* qorient: the command-line front end over the core and the ports. */
+#include "cli.h"
+
+#include <stdio.h>
+#include <string.h>
+
+struct qo_cli_cmd {
+    const char *name;
+    int (*fn)(int argc, char **argv);
+    const char *summary;
+};
+
+/* One line per subcommand; keep sorted by the order a newcomer meets them. */
+static const struct qo_cli_cmd cmds[] = {
+    { "version", qo_cli_version, "print the version" },
+};
+
+static void usage(FILE *f)
+{
+    size_t i;
+    fputs("usage: qorient COMMAND [OPTIONS] [ARGS]\n\n"
+          "Orientation math and smooth joint motion from the shell.\n"
+          "Numbers in, one record per line; errors name the line.\n\ncommands:\n", f);
+    for (i = 0; i < sizeof cmds / sizeof cmds[0]; i++)
+        fprintf(f, "  %-9s %s\n", cmds[i].name, cmds[i].summary);
+    fputs("\n'qorient COMMAND --help' describes each command.\n", f);
+}
+
+int main(int argc, char **argv)
+{
+    size_t i;
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "help") == 0) {
+        usage(stdout);
+        return 0;
+    }
+    for (i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
+        if (strcmp(argv[1], cmds[i].name) == 0) {
+            qo_cli_reset_getopt();
+            return cmds[i].fn(argc - 1, argv + 1);
+        }
+    }
+    fprintf(stderr, "qorient: unknown command '%s'\n", argv[1]);
+    usage(stderr);
+    return 2;
+}

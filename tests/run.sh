@@ -1,0 +1,29 @@
+#!/bin/sh
+# Runs the cmocka test programs and the shell tests given on the command line
+# (programs first, then `--`, then shell scripts), adds up what each reports and prints
+# one closing line "N passed, M failed". Exit status 1 if anything failed or a program
+# crashed (a crash counts as one failure even if cmocka had no chance to report it).
+passed=0; failed=0; crashed=""
+tmp=${TMPDIR:-/tmp}/qorient-run.$$
+trap 'rm -f "$tmp"' EXIT INT TERM
+mode=bin
+for t in "$@"; do
+    if [ "$t" = "--" ]; then mode=sh; continue; fi
+    if [ "$mode" = bin ]; then "$t" >"$tmp" 2>&1; rc=$?; else sh "$t" >"$tmp" 2>&1; rc=$?; fi
+    cat "$tmp"
+    if [ "$mode" = bin ]; then
+        p=$(sed -n 's/^\[  PASSED  \] \([0-9]*\) test.*/\1/p' "$tmp" | tail -1)
+        f=$(sed -n 's/^\[  FAILED  \] \([0-9]*\) test.*/\1/p' "$tmp" | tail -1)
+    else
+        p=$(sed -n 's/^\([0-9]*\) passed, \([0-9]*\) failed.*/\1/p' "$tmp" | tail -1)
+        f=$(sed -n 's/^\([0-9]*\) passed, \([0-9]*\) failed.*/\2/p' "$tmp" | tail -1)
+    fi
+    p=${p:-0}; f=${f:-0}
+    passed=$((passed + p)); failed=$((failed + f))
+    if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
+        failed=$((failed + 1)); crashed="$crashed $t(rc=$rc)"
+    fi
+done
+[ -n "$crashed" ] && echo "crashed or exited non-zero without a report:$crashed"
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ] && [ "$passed" -gt 0 ]
