@@ -13,6 +13,7 @@
 #   ports/linux/cli/*.c    the `qorient` command
 #   tests/test_*.c         one cmocka program each; tests/common/*.c linked into all of them
 #   tests/test_*.sh        shell tests of the command, run with build/qorient
+#   bench/*.c              figure programs (accuracy_*.c run by `make figures`)
 
 CC      ?= cc
 BUILD   ?= build
@@ -51,7 +52,7 @@ SPORT_OBJ := $(PORT_SRC:%.c=$(BUILD)/san/%.o)
 SCOMMON_OBJ := $(TEST_COMMON:%.c=$(BUILD)/san/%.o)
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all lib test core-check clean tests-build
+.PHONY: all lib test core-check clean tests-build figures
 # Keep the sanitizer objects between runs (they are intermediates of the test pattern rule).
 .SECONDARY:
 all: $(BUILD)/libqorient.a $(BUILD)/libqorient_ports.a $(BUILD)/qorient
@@ -94,6 +95,18 @@ $(BUILD)/san/tests/%.o: tests/%.c
 $(BUILD)/tests/%: $(BUILD)/san/tests/%.o $(SCOMMON_OBJ) $(SPORT_OBJ) $(SCORE_OBJ)
 	@mkdir -p $(@D)
 	$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(PKG_LIBS) -lm -pthread -lutil
+
+# ---- figures: accuracy and speed programs in bench/ (optimised, no sanitizers) ----
+BENCH_SRC := $(sort $(wildcard bench/*.c))
+BENCH_BIN := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
+$(BUILD)/bench/%: bench/%.c $(BUILD)/libqorient_ports.a $(BUILD)/libqorient.a
+	@mkdir -p $(@D)
+	$(CC) $(STD) $(WARN) $(FPFLAGS) -O2 -g $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports -Itests $(PKG_CFLAGS) $< \
+	    $(BUILD)/libqorient_ports.a $(BUILD)/libqorient.a $(PKG_LIBS) -lm -pthread -lutil -o $@
+
+# Builds every bench/ program and runs the accuracy_* ones (each prints its figures).
+figures: $(BENCH_BIN)
+	@for b in $(filter $(BUILD)/bench/accuracy_%,$(BENCH_BIN)); do echo "== $$b"; $$b || exit 1; done
 
 tests-build: $(TEST_BIN) $(BUILD)/qorient
 
