@@ -69,10 +69,19 @@ float qo_quat_norm_f32(qo_quat_f32 q)
 
 qo_status qo_quat_normalize_f32(qo_quat_f32 q, qo_quat_f32 *out)
 {
-    float n, inv;
+    float n, inv, m;
     if (out == NULL) return QO_E_NULL;
     *out = qo_quat_identity_f32();
     if (!qo_quat_is_finite_f32(q)) return QO_E_NONFINITE;
+    /* |q| itself overflows float for components near FLT_MAX although q/|q| is perfectly
+     * representable: bring the largest component to 1 first when it is far from 1. */
+    m = fabsf(q.w);
+    if (fabsf(q.x) > m) m = fabsf(q.x);
+    if (fabsf(q.y) > m) m = fabsf(q.y);
+    if (fabsf(q.z) > m) m = fabsf(q.z);
+    if (m > 1e18f || (m > 0.0f && m < 1e-18f)) {
+        q.w /= m; q.x /= m; q.y /= m; q.z /= m;
+    }
     n = qo_quat_norm_f32(q);
     if (!(n > 0.0f) || isinf(n)) return QO_E_DEGENERATE;
     inv = 1.0f / n;

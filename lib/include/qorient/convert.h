@@ -1,0 +1,163 @@
+/*
+ * qorient/convert.h - float32 conversions between rotation representations, and the small
+ * 3x3 matrix helpers they need.
+ *
+ * Conventions: see qorient/types.h (quaternions scalar-first, Hamilton, active rotations,
+ * right-handed frames; matrices row-major m[row][col] acting on column vectors v' = M v).
+ * For every q, qo_quat_to_mat3_f32(q) rotates a vector exactly as qo_quat_rotate_f32(q, .).
+ * Angles are radians.
+ *
+ * Index:
+ *   QO_MAT3_ROTATION_TOL_F32      tolerance of the "is this a rotation matrix" test
+ *   qo_quat_from_axis_angle_f32   axis (any length) + angle -> unit quaternion
+ *   qo_quat_to_axis_angle_f32     quaternion -> unit axis + angle in [0, pi]
+ *   qo_quat_from_rotvec_f32       rotation vector (axis * angle) -> unit quaternion
+ *   qo_quat_to_rotvec_f32         quaternion -> rotation vector, |rv| in [0, pi]
+ *   qo_quat_to_mat3_f32           quaternion -> rotation matrix
+ *   qo_quat_from_mat3_f32         rotation matrix -> canonical unit quaternion (strict check)
+ *   qo_mat3_orthonormalize_f32    nearest rotation matrix (orthogonal polar factor)
+ *   qo_quat_from_mat3_ortho_f32   orthonormalise, then convert (for drifted matrices)
+ *   qo_mat3_mul_vec3_f32          M v
+ *   qo_mat3_mul_f32               A B
+ *   qo_mat3_transpose_f32         M^T
+ *   qo_mat3_identity_f32          I
+ *   qo_mat3_det_f32               det M
+ *
+ * Sign of returned quaternions: qo_quat_from_mat3_f32 / _ortho_f32 return the canonical sign
+ * (w >= 0, ties as qo_quat_canonical_f32). qo_quat_from_axis_angle_f32 and
+ * qo_quat_from_rotvec_f32 return (cos(angle/2), sin(angle/2) * unit axis) exactly as the
+ * formula gives it, so an angle beyond pi gives w < 0 (the same rotation; canonicalise with
+ * qo_quat_canonical_f32 if you need the short representative).
+ */
+#ifndef QORIENT_CONVERT_H
+#define QORIENT_CONVERT_H
+
+#include "qorient/status.h"
+#include "qorient/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/*
+ * A matrix is accepted as a rotation by qo_quat_from_mat3_f32 when every entry of M^T M - I
+ * is at most this in magnitude and det M > 0. 1e-4 is ~800 float32 ulps of 1: it accepts a
+ * rotation matrix that went through a few dozen float32 products (each adds ~1e-7 of
+ * non-orthogonality) or was printed with 5-6 significant digits, and still rejects anything
+ * visibly scaled or sheared (a 1e-4 error in M^T M is a ~5e-5 scale or shear). Matrices
+ * further off must be repaired explicitly with qo_mat3_orthonormalize_f32 /
+ * qo_quat_from_mat3_ortho_f32 - we never silently guess.
+ */
+#define QO_MAT3_ROTATION_TOL_F32 1e-4f
+
+/*
+ * Unit quaternion of the rotation by `angle` radians about `axis` (right-hand rule), in the
+ * frame of axis: q = (cos(angle/2), sin(angle/2) * axis/|axis|). axis need not be unit; any
+ * finite non-zero length works (the length is computed overflow/underflow-safe, so components
+ * near FLT_MAX or subnormal are fine). angle may be any finite value (negative turns the other
+ * way; |angle| > pi gives w < 0, see the header note on signs).
+ * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_NONFINITE if a component of axis or angle is
+ * NaN/Inf; QO_E_DEGENERATE if axis is (0,0,0) (whatever the angle). *out is the identity on
+ * every error.
+ */
+qo_status qo_quat_from_axis_angle_f32(qo_vec3_f32 axis, float angle, qo_quat_f32 *out);
+
+/*
+ * Axis and angle of the rotation q (q need not be unit: it is normalised first). The short
+ * way is returned: angle in [0, pi] (q and -q give the same answer), *axis a unit vector.
+ * For the identity (and any q with zero vector part) the axis is undefined: we return
+ * axis (1, 0, 0) and angle 0. At exactly pi the axis sign follows qo_quat_canonical_f32
+ * (its first non-zero component is positive).
+ * Returns QO_OK; QO_E_NULL if axis or angle is NULL (the other is still written if non-NULL);
+ * QO_E_NONFINITE for a NaN/Inf component; QO_E_DEGENERATE for q == 0. On every error
+ * *axis = (1, 0, 0) and *angle = 0.
+ */
+qo_status qo_quat_to_axis_angle_f32(qo_quat_f32 q, qo_vec3_f32 *axis, float *angle);
+
+/*
+ * Unit quaternion of the rotation vector rv (axis * angle, radians: |rv| is the angle, its
+ * direction the axis). q = (cos(|rv|/2), sin(|rv|/2)/|rv| * rv). Near zero the coefficients
+ * use a Taylor series, so a tiny rv gives exactly (1, rv/2) - no digits lost, no 0/0 - and
+ * rv = 0 gives the identity with QO_OK. |rv| > pi gives w < 0 (see the header note on signs).
+ * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_NONFINITE for a NaN/Inf component;
+ * QO_E_RANGE if |rv| overflows float (components near FLT_MAX; such an angle has no
+ * meaningful float32 rotation). *out is the identity on every error.
+ */
+qo_status qo_quat_from_rotvec_f32(qo_vec3_f32 rv, qo_quat_f32 *out);
+
+/*
+ * Rotation vector (unit axis * angle, radians) of q. q is normalised, then the canonical sign
+ * (w >= 0) is taken, so |*out| is in [0, pi]. The angle is 2*atan2(|v|, w): accurate at 0
+ * (a tiny rotation gives 2*v/w to full relative precision, also for subnormal v) and at pi
+ * (no acos / asin blow-up). At exactly pi the sign follows qo_quat_canonical_f32.
+ * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_NONFINITE for a NaN/Inf component;
+ * QO_E_DEGENERATE for q == 0. *out is (0, 0, 0) on every error.
+ */
+qo_status qo_quat_to_rotvec_f32(qo_quat_f32 q, qo_vec3_f32 *out);
+
+/*
+ * Rotation matrix of q (row-major, v' = M v, the same rotation as qo_quat_rotate_f32).
+ * q is normalised first, so any non-zero finite q (and q or -q) gives a proper rotation.
+ * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_NONFINITE for a NaN/Inf component;
+ * QO_E_DEGENERATE for q == 0. *out is the identity matrix on every error.
+ */
+qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out);
+
+/*
+ * Canonical unit quaternion (w >= 0) of the rotation matrix *m (row-major, v' = M v).
+ * The matrix must already be a rotation within QO_MAT3_ROTATION_TOL_F32 (max entry of
+ * |M^T M - I|) with det M > 0; small residual non-orthogonality is absorbed. Robust at every
+ * angle: the pivot is the largest of trace, m00, m11, m22 (Shepperd), so 180-degree rotations,
+ * where the trace is -1, lose no precision; square-root arguments are clamped at 0 and the
+ * result is normalised.
+ * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NONFINITE for a NaN/Inf entry;
+ * QO_E_NOT_ROTATION for a matrix that is scaled, sheared, a reflection (det < 0) or singular.
+ * *out is the identity on every error.
+ */
+qo_status qo_quat_from_mat3_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
+
+/*
+ * The rotation matrix nearest *m in the Frobenius norm: the orthogonal factor R of the polar
+ * decomposition M = R S (S symmetric positive definite). Computed by scaled Newton iteration
+ * R <- (g R + R^-T / g) / 2 (Higham), after scaling M by its largest entry so no
+ * intermediate overflows; converges in a handful of steps for any well-conditioned M and
+ * gives a matrix orthonormal to float32 round-off. A uniformly scaled rotation gives that
+ * rotation back. m and out may point to the same matrix.
+ * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NONFINITE for a NaN/Inf entry;
+ * QO_E_NOT_ROTATION if det M <= 0 (a reflection, whose nearest orthogonal matrix is not a
+ * rotation) or M is numerically rank-deficient (smallest/largest singular value below ~1e-5,
+ * where the nearest rotation is not well determined in float32), or the iteration fails to
+ * converge. *out is the identity matrix on every error.
+ */
+qo_status qo_mat3_orthonormalize_f32(const qo_mat3_f32 *m, qo_mat3_f32 *out);
+
+/*
+ * Canonical unit quaternion of the rotation nearest *m: qo_mat3_orthonormalize_f32 followed by
+ * qo_quat_from_mat3_f32. Use it when the caller KNOWS the matrix is a drifted or noisy
+ * rotation (integrated, filtered, read from a sensor); qo_quat_from_mat3_f32 refuses such
+ * matrices instead of guessing.
+ * Returns QO_OK, QO_E_NULL, QO_E_NONFINITE, QO_E_NOT_ROTATION (as for
+ * qo_mat3_orthonormalize_f32). *out is the identity on every error.
+ */
+qo_status qo_quat_from_mat3_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
+
+/* M v (no checks; NaN propagates). */
+qo_vec3_f32 qo_mat3_mul_vec3_f32(const qo_mat3_f32 *m, qo_vec3_f32 v);
+
+/* A B: as rotations, applies B first, then A (same order as qo_quat_mul_f32). */
+qo_mat3_f32 qo_mat3_mul_f32(const qo_mat3_f32 *a, const qo_mat3_f32 *b);
+
+/* M^T: the inverse of a rotation matrix. */
+qo_mat3_f32 qo_mat3_transpose_f32(const qo_mat3_f32 *m);
+
+/* The identity matrix. */
+qo_mat3_f32 qo_mat3_identity_f32(void);
+
+/* Determinant (cofactor expansion along the first row): +1 for a rotation, -1 for a
+ * reflection. */
+float qo_mat3_det_f32(const qo_mat3_f32 *m);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* QORIENT_CONVERT_H */

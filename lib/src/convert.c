@@ -1,0 +1,383 @@
+/* float32 rotation conversions. See qorient/convert.h for the contract of each function. */
+#include "qorient/convert.h"
+#include "qorient/quat.h"
+
+#include <float.h>
+#include <math.h>
+
+/* Newton polar iteration: at most this many steps (scaled Newton needs < 10 for any matrix we
+ * accept; the cap only stops a pathological input from looping). */
+#define CONV_NEWTON_MAX_ITER 30
+/* Stop when no entry moved more than this: the iteration is quadratic, so the remaining error
+ * is ~ the square of it, far below float32 round-off. */
+#define CONV_NEWTON_STEP_TOL 1e-6f
+/* Below this step size Higham's scale factor no longer helps and only adds rounding. */
+#define CONV_NEWTON_SCALE_UNTIL 1e-2f
+/* Frobenius condition number |A|_F |A^-1|_F above which a matrix counts as rank-deficient:
+ * float32 inversion would leave more than ~1e-2 relative error in the first step. */
+#define CONV_COND_MAX 1e5f
+
+static qo_vec3_f32 vec3(float x, float y, float z)
+{
+    qo_vec3_f32 v;
+    v.x = x; v.y = y; v.z = z;
+    return v;
+}
+
+static int vec3_is_finite(qo_vec3_f32 v)
+{
+    return isfinite(v.x) && isfinite(v.y) && isfinite(v.z);
+}
+
+static int mat3_is_finite(const qo_mat3_f32 *m)
+{
+    int i, j;
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++)
+            if (!isfinite(m->m[i][j])) return 0;
+    return 1;
+}
+
+/* Overflow/underflow-safe length of a 3-vector (reuses the scaled quaternion norm). */
+static float vec3_norm(qo_vec3_f32 v)
+{
+    qo_quat_f32 q;
+    q.w = 0.0f; q.x = v.x; q.y = v.y; q.z = v.z;
+    return qo_quat_norm_f32(q);
+}
+
+qo_mat3_f32 qo_mat3_identity_f32(void)
+{
+    qo_mat3_f32 r = { { { 1.0f, 0.0f, 0.0f }, { 0.0f, 1.0f, 0.0f }, { 0.0f, 0.0f, 1.0f } } };
+    return r;
+}
+
+qo_vec3_f32 qo_mat3_mul_vec3_f32(const qo_mat3_f32 *m, qo_vec3_f32 v)
+{
+    return vec3(m->m[0][0] * v.x + m->m[0][1] * v.y + m->m[0][2] * v.z,
+                m->m[1][0] * v.x + m->m[1][1] * v.y + m->m[1][2] * v.z,
+                m->m[2][0] * v.x + m->m[2][1] * v.y + m->m[2][2] * v.z);
+}
+
+qo_mat3_f32 qo_mat3_mul_f32(const qo_mat3_f32 *a, const qo_mat3_f32 *b)
+{
+    qo_mat3_f32 r;
+    int i, j;
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++)
+            r.m[i][j] = a->m[i][0] * b->m[0][j] + a->m[i][1] * b->m[1][j] + a->m[i][2] * b->m[2][j];
+    return r;
+}
+
+qo_mat3_f32 qo_mat3_transpose_f32(const qo_mat3_f32 *m)
+{
+    qo_mat3_f32 r;
+    int i, j;
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++) r.m[i][j] = m->m[j][i];
+    return r;
+}
+
+/* Cofactor matrix: C[i][j] = (-1)^(i+j) minor(i, j). det M = row0 . C row0, and
+ * M^-T = C / det M (which is exactly what the polar iteration needs, no transpose). */
+static qo_mat3_f32 mat3_cofactor(const qo_mat3_f32 *m)
+{
+    const float (*a)[3] = m->m;
+    qo_mat3_f32 c;
+    c.m[0][0] = a[1][1] * a[2][2] - a[1][2] * a[2][1];
+    c.m[0][1] = a[1][2] * a[2][0] - a[1][0] * a[2][2];
+    c.m[0][2] = a[1][0] * a[2][1] - a[1][1] * a[2][0];
+    c.m[1][0] = a[0][2] * a[2][1] - a[0][1] * a[2][2];
+    c.m[1][1] = a[0][0] * a[2][2] - a[0][2] * a[2][0];
+    c.m[1][2] = a[0][1] * a[2][0] - a[0][0] * a[2][1];
+    c.m[2][0] = a[0][1] * a[1][2] - a[0][2] * a[1][1];
+    c.m[2][1] = a[0][2] * a[1][0] - a[0][0] * a[1][2];
+    c.m[2][2] = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+    return c;
+}
+
+float qo_mat3_det_f32(const qo_mat3_f32 *m)
+{
+    qo_mat3_f32 c = mat3_cofactor(m);
+    return m->m[0][0] * c.m[0][0] + m->m[0][1] * c.m[0][1] + m->m[0][2] * c.m[0][2];
+}
+
+static float mat3_frobenius(const qo_mat3_f32 *m)
+{
+    float s = 0.0f;
+    int i, j;
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++) s += m->m[i][j] * m->m[i][j];
+    return sqrtf(s);
+}
+
+/* Largest |(M^T M - I)_ij|; NaN/Inf (from overflowing entries) propagate as "not small". */
+static float mat3_orthogonality_error(const qo_mat3_f32 *m)
+{
+    float worst = 0.0f;
+    int i, j;
+    for (i = 0; i < 3; i++) {
+        for (j = i; j < 3; j++) {
+            float d = m->m[0][i] * m->m[0][j] + m->m[1][i] * m->m[1][j] + m->m[2][i] * m->m[2][j];
+            float e = fabsf(d - (i == j ? 1.0f : 0.0f));
+            if (!(e <= worst)) worst = e; /* also picks up NaN */
+        }
+    }
+    return worst;
+}
+
+qo_status qo_quat_from_axis_angle_f32(qo_vec3_f32 axis, float angle, qo_quat_f32 *out)
+{
+    qo_quat_f32 u;
+    qo_status st;
+    float s;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_f32();
+    if (!vec3_is_finite(axis) || !isfinite(angle)) return QO_E_NONFINITE;
+    /* Normalising (0, axis) as a quaternion reuses the overflow/underflow-safe scaling. */
+    u.w = 0.0f; u.x = axis.x; u.y = axis.y; u.z = axis.z;
+    st = qo_quat_normalize_f32(u, &u);
+    if (st != QO_OK) {
+        *out = qo_quat_identity_f32();
+        return QO_E_DEGENERATE;
+    }
+    s = sinf(0.5f * angle);
+    out->w = cosf(0.5f * angle);
+    out->x = s * u.x; out->y = s * u.y; out->z = s * u.z;
+    return QO_OK;
+}
+
+qo_status qo_quat_to_axis_angle_f32(qo_quat_f32 q, qo_vec3_f32 *axis, float *angle)
+{
+    qo_quat_f32 n, v;
+    qo_status st;
+    float vn;
+    if (axis != NULL) *axis = vec3(1.0f, 0.0f, 0.0f);
+    if (angle != NULL) *angle = 0.0f;
+    if (axis == NULL || angle == NULL) return QO_E_NULL;
+    st = qo_quat_normalize_f32(q, &n);
+    if (st != QO_OK) return st;
+    n = qo_quat_canonical_f32(n);
+    v.w = 0.0f; v.x = n.x; v.y = n.y; v.z = n.z;
+    vn = qo_quat_norm_f32(v);
+    if (vn == 0.0f) return QO_OK; /* identity: documented axis x, angle 0 */
+    /* Unit axis through the safe normaliser: v can be subnormal after normalising q. */
+    if (qo_quat_normalize_f32(v, &v) != QO_OK) return QO_OK;
+    *axis = vec3(v.x, v.y, v.z);
+    *angle = 2.0f * atan2f(vn, n.w);
+    return QO_OK;
+}
+
+qo_status qo_quat_from_rotvec_f32(qo_vec3_f32 rv, qo_quat_f32 *out)
+{
+    float theta, h, k;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_f32();
+    if (!vec3_is_finite(rv)) return QO_E_NONFINITE;
+    theta = vec3_norm(rv);
+    if (isinf(theta)) return QO_E_RANGE;
+    h = 0.5f * theta;
+    if (h < 1e-2f) {
+        /* cos h and sin(h)/theta by Taylor: at h < 1e-2 the next terms are < 2e-15, and a
+         * tiny rv gives w = 1, k = 1/2 exactly (sinf(h)/theta would lose the quotient). */
+        float h2 = h * h;
+        out->w = 1.0f - 0.5f * h2 * (1.0f - h2 * (1.0f / 12.0f));
+        k = 0.5f * (1.0f - h2 * (1.0f / 6.0f) * (1.0f - h2 * (1.0f / 20.0f)));
+    } else {
+        out->w = cosf(h);
+        k = sinf(h) / theta;
+    }
+    out->x = k * rv.x; out->y = k * rv.y; out->z = k * rv.z;
+    return QO_OK;
+}
+
+qo_status qo_quat_to_rotvec_f32(qo_quat_f32 q, qo_vec3_f32 *out)
+{
+    qo_quat_f32 n, v;
+    qo_status st;
+    float vn, k;
+    if (out == NULL) return QO_E_NULL;
+    *out = vec3(0.0f, 0.0f, 0.0f);
+    st = qo_quat_normalize_f32(q, &n);
+    if (st != QO_OK) return st;
+    n = qo_quat_canonical_f32(n);
+    v.w = 0.0f; v.x = n.x; v.y = n.y; v.z = n.z;
+    vn = qo_quat_norm_f32(v);
+    if (vn < 1e-3f) {
+        /* 2 atan(t)/t * (1/w) with t = vn/w <= ~1e-3: series, so a subnormal vector part
+         * keeps its full relative precision (atan2f would round in the subnormal range).
+         * vn == 0 falls in here too and gives the zero vector. */
+        float t2 = (vn / n.w) * (vn / n.w);
+        k = (2.0f / n.w) * (1.0f - t2 * (1.0f / 3.0f));
+    } else {
+        k = 2.0f * atan2f(vn, n.w) / vn;
+    }
+    *out = vec3(k * n.x, k * n.y, k * n.z);
+    return QO_OK;
+}
+
+qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out)
+{
+    qo_quat_f32 n;
+    qo_status st;
+    float s, xx, yy, zz, xy, xz, yz, wx, wy, wz;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_mat3_identity_f32();
+    st = qo_quat_normalize_f32(q, &n);
+    if (st != QO_OK) return st;
+    /* s = 2/|n|^2 rather than 2: I + s(...) is orthogonal for ANY non-zero n, so the few-ulp
+     * norm error left by normalising does not leak into the matrix as non-orthogonality. */
+    s = 2.0f / (n.w * n.w + n.x * n.x + n.y * n.y + n.z * n.z);
+    xx = n.x * n.x; yy = n.y * n.y; zz = n.z * n.z;
+    xy = n.x * n.y; xz = n.x * n.z; yz = n.y * n.z;
+    wx = n.w * n.x; wy = n.w * n.y; wz = n.w * n.z;
+    out->m[0][0] = 1.0f - s * (yy + zz);
+    out->m[0][1] = s * (xy - wz);
+    out->m[0][2] = s * (xz + wy);
+    out->m[1][0] = s * (xy + wz);
+    out->m[1][1] = 1.0f - s * (xx + zz);
+    out->m[1][2] = s * (yz - wx);
+    out->m[2][0] = s * (xz - wy);
+    out->m[2][1] = s * (yz + wx);
+    out->m[2][2] = 1.0f - s * (xx + yy);
+    return QO_OK;
+}
+
+/* Shepperd's method on a matrix already known to be a rotation within tolerance. */
+static qo_quat_f32 mat3_to_quat_pivot(const qo_mat3_f32 *m)
+{
+    const float (*a)[3] = m->m;
+    float t = a[0][0] + a[1][1] + a[2][2];
+    float r, s;
+    qo_quat_f32 q;
+    /* The pivot is the largest of 4w^2-1 = t, 4x^2-1 = 2 m00 - t, ... ; comparing t with the
+     * diagonal entries picks the same one. Its square root argument is then >= 1 for an exact
+     * rotation; clamping keeps round-off from producing sqrt of a negative number. */
+    if (t >= a[0][0] && t >= a[1][1] && t >= a[2][2]) {
+        r = sqrtf(fmaxf(1.0f + t, FLT_MIN));
+        s = 0.5f / r;
+        q.w = 0.5f * r;
+        q.x = (a[2][1] - a[1][2]) * s;
+        q.y = (a[0][2] - a[2][0]) * s;
+        q.z = (a[1][0] - a[0][1]) * s;
+    } else if (a[0][0] >= a[1][1] && a[0][0] >= a[2][2]) {
+        r = sqrtf(fmaxf(1.0f + a[0][0] - a[1][1] - a[2][2], FLT_MIN));
+        s = 0.5f / r;
+        q.w = (a[2][1] - a[1][2]) * s;
+        q.x = 0.5f * r;
+        q.y = (a[0][1] + a[1][0]) * s;
+        q.z = (a[0][2] + a[2][0]) * s;
+    } else if (a[1][1] >= a[2][2]) {
+        r = sqrtf(fmaxf(1.0f - a[0][0] + a[1][1] - a[2][2], FLT_MIN));
+        s = 0.5f / r;
+        q.w = (a[0][2] - a[2][0]) * s;
+        q.x = (a[0][1] + a[1][0]) * s;
+        q.y = 0.5f * r;
+        q.z = (a[1][2] + a[2][1]) * s;
+    } else {
+        r = sqrtf(fmaxf(1.0f - a[0][0] - a[1][1] + a[2][2], FLT_MIN));
+        s = 0.5f / r;
+        q.w = (a[1][0] - a[0][1]) * s;
+        q.x = (a[0][2] + a[2][0]) * s;
+        q.y = (a[1][2] + a[2][1]) * s;
+        q.z = 0.5f * r;
+    }
+    return q;
+}
+
+qo_status qo_quat_from_mat3_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
+{
+    qo_quat_f32 q;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_f32();
+    if (m == NULL) return QO_E_NULL;
+    if (!mat3_is_finite(m)) return QO_E_NONFINITE;
+    if (!(mat3_orthogonality_error(m) <= QO_MAT3_ROTATION_TOL_F32)) return QO_E_NOT_ROTATION;
+    /* Orthonormal within tolerance means det is +-1 +- 2e-4: the sign test is reliable. */
+    if (!(qo_mat3_det_f32(m) > 0.0f)) return QO_E_NOT_ROTATION;
+    q = mat3_to_quat_pivot(m);
+    if (qo_quat_normalize_f32(q, &q) != QO_OK) return QO_E_NOT_ROTATION;
+    *out = qo_quat_canonical_f32(q);
+    return QO_OK;
+}
+
+qo_status qo_mat3_orthonormalize_f32(const qo_mat3_f32 *m, qo_mat3_f32 *out)
+{
+    qo_mat3_f32 x, c;
+    float mx = 0.0f, d, gamma, step;
+    int i, j, it, scaling = 1, converged = 0;
+    if (out == NULL) return QO_E_NULL;
+    if (m == NULL) {
+        *out = qo_mat3_identity_f32();
+        return QO_E_NULL;
+    }
+    if (!mat3_is_finite(m)) {
+        *out = qo_mat3_identity_f32();
+        return QO_E_NONFINITE;
+    }
+    /* The polar factor does not change under uniform scaling: bring the largest entry to 1 so
+     * that cofactors (products of two entries) and the determinant cannot overflow or
+     * underflow whatever the caller's magnitudes. */
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++)
+            if (fabsf(m->m[i][j]) > mx) mx = fabsf(m->m[i][j]);
+    if (mx == 0.0f) {
+        *out = qo_mat3_identity_f32();
+        return QO_E_NOT_ROTATION;
+    }
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++) x.m[i][j] = m->m[i][j] / mx;
+    *out = qo_mat3_identity_f32(); /* m may alias out: x holds the input from here on */
+
+    for (it = 0; it < CONV_NEWTON_MAX_ITER; it++) {
+        c = mat3_cofactor(&x);
+        d = x.m[0][0] * c.m[0][0] + x.m[0][1] * c.m[0][1] + x.m[0][2] * c.m[0][2];
+        if (!(fabsf(d) > 0.0f)) return QO_E_NOT_ROTATION;
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 3; j++) c.m[i][j] /= d; /* c = X^-T */
+        if (it == 0) {
+            /* Rank test on the input: a float32 inverse of a matrix this ill-conditioned has
+             * no correct digits, and its nearest rotation is not well determined. */
+            float cond = mat3_frobenius(&x) * mat3_frobenius(&c);
+            if (!(cond <= CONV_COND_MAX)) return QO_E_NOT_ROTATION;
+        }
+        /* Higham's scaling gamma = sqrt(|X^-1|_F / |X|_F) makes the first steps converge fast
+         * for scaled or stretched inputs; near convergence it is ~1 and only adds rounding. */
+        gamma = scaling ? sqrtf(mat3_frobenius(&c) / mat3_frobenius(&x)) : 1.0f;
+        step = 0.0f;
+        for (i = 0; i < 3; i++) {
+            for (j = 0; j < 3; j++) {
+                float nx = 0.5f * (gamma * x.m[i][j] + c.m[i][j] / gamma);
+                float dlt = fabsf(nx - x.m[i][j]);
+                if (!(dlt <= step)) step = dlt;
+                x.m[i][j] = nx;
+            }
+        }
+        if (!(step < CONV_NEWTON_SCALE_UNTIL)) continue;
+        scaling = 0;
+        if (step <= CONV_NEWTON_STEP_TOL) {
+            converged = 1;
+            break;
+        }
+    }
+    /* The iteration converges to the orthogonal polar factor, whose determinant has the sign
+     * of det M: -1 means the input was a reflection (its nearest orthogonal matrix is no
+     * rotation). The determinant of the result is +-1 to round-off, so the test is reliable
+     * even where det M itself was too small to trust its sign. */
+    if (!converged || !(qo_mat3_det_f32(&x) > 0.5f) ||
+        !(mat3_orthogonality_error(&x) <= QO_MAT3_ROTATION_TOL_F32))
+        return QO_E_NOT_ROTATION;
+    *out = x;
+    return QO_OK;
+}
+
+qo_status qo_quat_from_mat3_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
+{
+    qo_mat3_f32 r;
+    qo_status st;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_f32();
+    st = qo_mat3_orthonormalize_f32(m, &r);
+    if (st != QO_OK) return st;
+    return qo_quat_from_mat3_f32(&r, out);
+}

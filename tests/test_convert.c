@@ -1,0 +1,839 @@
+/*
+ * qorient/convert.h: every conversion against the double references of tests/common/ref.c,
+ * over fixed-seed random rotations and an edge table (identity, 180 degrees about axes and
+ * diagonals, each of the four Shepperd pivots, non-rotations, NaN/Inf, zero, NULL).
+ */
+#include <float.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "common/ref.h"
+#include "qorient/convert.h"
+#include "qorient/quat.h"
+
+/* Rotation error budget for one float32 conversion: round-off is ~1e-7 rad. */
+#define TOL_RAD 1e-6
+#define N_RANDOM 2000
+
+static qo_quat_f32 qf(float w, float x, float y, float z)
+{
+    qo_quat_f32 q;
+    q.w = w; q.x = x; q.y = y; q.z = z;
+    return q;
+}
+
+static qo_vec3_f32 vf(float x, float y, float z)
+{
+    qo_vec3_f32 v;
+    v.x = x; v.y = y; v.z = z;
+    return v;
+}
+
+static qo_mat3_f32 mf(float a, float b, float c, float d, float e, float f, float g, float h,
+                      float i)
+{
+    qo_mat3_f32 m;
+    m.m[0][0] = a; m.m[0][1] = b; m.m[0][2] = c;
+    m.m[1][0] = d; m.m[1][1] = e; m.m[1][2] = f;
+    m.m[2][0] = g; m.m[2][1] = h; m.m[2][2] = i;
+    return m;
+}
+
+static int is_identity_q(qo_quat_f32 q)
+{
+    return q.w == 1.0f && q.x == 0.0f && q.y == 0.0f && q.z == 0.0f;
+}
+
+static int is_identity_m(const qo_mat3_f32 *m)
+{
+    int i, j;
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++)
+            if (m->m[i][j] != (i == j ? 1.0f : 0.0f)) return 0;
+    return 1;
+}
+
+static double max_orth_error(const qo_mat3_f32 *m)
+{
+    double worst = 0.0;
+    int i, j, k;
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++) {
+            double s = 0.0;
+            for (k = 0; k < 3; k++) s += (double)m->m[k][i] * m->m[k][j];
+            s -= (i == j);
+            if (fabs(s) > worst) worst = fabs(s);
+        }
+    return worst;
+}
+
+static void print_q(const char *name, qo_quat_f32 q)
+{
+    print_error("  %s = (%.9g, %.9g, %.9g, %.9g)\n", name, q.w, q.x, q.y, q.z);
+}
+
+static void print_m(const char *name, const qo_mat3_f32 *m)
+{
+    print_error("  %s = [%.9g %.9g %.9g; %.9g %.9g %.9g; %.9g %.9g %.9g]\n", name, m->m[0][0],
+                m->m[0][1], m->m[0][2], m->m[1][0], m->m[1][1], m->m[1][2], m->m[2][0],
+                m->m[2][1], m->m[2][2]);
+}
+
+/* A random rotation as an exact float32 matrix: the double matrix rounded to float. */
+static qo_mat3_f32 rand_rot_f32(ref_rng *rng, ref_quat *q_out)
+{
+    ref_quat q = ref_rng_quat(rng);
+    ref_mat3 r = ref_quat_to_mat3(q);
+    if (q_out) *q_out = q;
+    return ref_mat3_to_f32(&r);
+}
+
+/* ---- the edge table: rotations (axis, angle in degrees) where conversions are hardest ---- */
+struct edge_rot { const char *name; double ax, ay, az, deg; };
+static const struct edge_rot edges[] = {
+    { "identity", 1, 0, 0, 0 },
+    { "180 about x", 1, 0, 0, 180 },
+    { "180 about y", 0, 1, 0, 180 },
+    { "180 about z", 0, 0, 1, 180 },
+    { "180 about -x", -1, 0, 0, 180 },
+    { "180 about (1,1,0)", 1, 1, 0, 180 },
+    { "180 about (1,0,1)", 1, 0, 1, 180 },
+    { "180 about (0,1,1)", 0, 1, 1, 180 },
+    { "180 about (1,-1,0)", 1, -1, 0, 180 },
+    { "180 about (1,1,1)", 1, 1, 1, 180 },
+    { "180 about (1,-1,1)", 1, -1, 1, 180 },
+    { "179.999 about (1,1,1)", 1, 1, 1, 179.999 },
+    { "180.001 about (1,2,3)", 1, 2, 3, 180.001 },
+    { "120 about (1,1,1): trace 0, all pivots tie", 1, 1, 1, 120 },
+    { "pivot trace: 10 about (1,2,3)", 1, 2, 3, 10 },
+    { "pivot m00: 170 about (1,0.1,0.1)", 1, 0.1, 0.1, 170 },
+    { "pivot m11: 170 about (0.1,1,0.1)", 0.1, 1, 0.1, 170 },
+    { "pivot m22: 170 about (0.1,0.1,1)", 0.1, 0.1, 1, 170 },
+    { "90 about z", 0, 0, 1, 90 },
+    { "tiny 1e-6 rad about (3,-1,2)", 3, -1, 2, 1e-6 * 180.0 / REF_PI },
+    { "tiny 1e-30 rad about y", 0, 1, 0, 1e-30 },
+};
+#define N_EDGES (sizeof edges / sizeof edges[0])
+
+static ref_quat edge_quat(size_t k)
+{
+    ref_vec3 a = { edges[k].ax, edges[k].ay, edges[k].az };
+    return ref_quat_from_axis_angle(a, edges[k].deg * REF_PI / 180.0);
+}
+
+/* ---- matrix helpers ---- */
+
+static void test_mat3_helpers_vs_double(void **state)
+{
+    ref_rng rng = { 11 };
+    int n, i, j;
+    qo_mat3_f32 id = qo_mat3_identity_f32();
+    (void)state;
+    assert_true(is_identity_m(&id));
+    for (n = 0; n < N_RANDOM; n++) {
+        qo_mat3_f32 a, b, p, t;
+        ref_mat3 ra, rb, rp;
+        qo_vec3_f32 v = vf((float)ref_rng_range(&rng, -10, 10), (float)ref_rng_range(&rng, -10, 10),
+                           (float)ref_rng_range(&rng, -10, 10)), mv;
+        double rv[3], det;
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 3; j++) {
+                a.m[i][j] = (float)ref_rng_range(&rng, -2, 2);
+                b.m[i][j] = (float)ref_rng_range(&rng, -2, 2);
+            }
+        ra = ref_mat3_from_f32(&a);
+        rb = ref_mat3_from_f32(&b);
+        rp = ref_mat3_mul(&ra, &rb);
+        p = qo_mat3_mul_f32(&a, &b);
+        t = qo_mat3_transpose_f32(&a);
+        mv = qo_mat3_mul_vec3_f32(&a, v);
+        for (i = 0; i < 3; i++)
+            rv[i] = ra.m[i][0] * v.x + ra.m[i][1] * v.y + ra.m[i][2] * v.z;
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 3; j++) {
+                if (fabs(p.m[i][j] - rp.m[i][j]) > 1e-5 || t.m[i][j] != a.m[j][i]) {
+                    print_m("a", &a);
+                    print_m("b", &b);
+                    fail_msg("mat3 mul/transpose case %d entry %d,%d: %.9g vs %.9g", n, i, j,
+                             p.m[i][j], rp.m[i][j]);
+                }
+            }
+        if (fabs(mv.x - rv[0]) > 1e-4 || fabs(mv.y - rv[1]) > 1e-4 || fabs(mv.z - rv[2]) > 1e-4)
+            fail_msg("mat3_mul_vec3 case %d: (%g %g %g) vs (%g %g %g)", n, mv.x, mv.y, mv.z,
+                     rv[0], rv[1], rv[2]);
+        det = ref_mat3_det(&ra);
+        if (fabs(qo_mat3_det_f32(&a) - det) > 1e-5) {
+            print_m("a", &a);
+            fail_msg("mat3_det case %d: %.9g vs %.9g", n, qo_mat3_det_f32(&a), det);
+        }
+    }
+    /* Rotation and reflection determinants. */
+    {
+        qo_mat3_f32 refl = mf(1, 0, 0, 0, 1, 0, 0, 0, -1);
+        assert_true(qo_mat3_det_f32(&id) == 1.0f);
+        assert_true(qo_mat3_det_f32(&refl) == -1.0f);
+    }
+}
+
+/* ---- quaternion -> matrix ---- */
+
+static void test_quat_to_mat3_vs_double(void **state)
+{
+    ref_rng rng = { 21 };
+    int n, i, j;
+    (void)state;
+    for (n = 0; n < N_RANDOM; n++) {
+        ref_quat rq = ref_rng_quat(&rng);
+        /* Any non-zero scale and either sign: the matrix must not care. */
+        double sc = (n % 3 == 0) ? ref_rng_range(&rng, 0.1, 10.0) : 1.0;
+        qo_quat_f32 q;
+        qo_mat3_f32 m;
+        ref_mat3 rm, mm;
+        qo_vec3_f32 v = vf(0.3f, -1.2f, 2.0f), a, b;
+        rq.w *= sc; rq.x *= sc; rq.y *= sc; rq.z *= sc;
+        if (n % 2) { rq.w = -rq.w; rq.x = -rq.x; rq.y = -rq.y; rq.z = -rq.z; }
+        q = ref_quat_to_f32(rq);
+        assert_int_equal(qo_quat_to_mat3_f32(q, &m), QO_OK);
+        rm = ref_quat_to_mat3(ref_quat_from_f32(q));
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 3; j++)
+                if (fabs(m.m[i][j] - rm.m[i][j]) > 1e-6) {
+                    print_q("q", q);
+                    fail_msg("quat_to_mat3 case %d entry %d,%d: %.9g vs %.9g", n, i, j,
+                             m.m[i][j], rm.m[i][j]);
+                }
+        mm = ref_mat3_from_f32(&m);
+        if (ref_mat3_rotation_distance(&mm, &rm) > TOL_RAD || max_orth_error(&m) > 1e-6) {
+            print_q("q", q);
+            fail_msg("quat_to_mat3 case %d: rotation error %.3g rad, orth error %.3g", n,
+                     ref_mat3_rotation_distance(&mm, &rm), max_orth_error(&m));
+        }
+        /* Same rotation as qo_quat_rotate_f32 (of the normalised q). */
+        {
+            qo_quat_f32 qn;
+            assert_int_equal(qo_quat_normalize_f32(q, &qn), QO_OK);
+            a = qo_mat3_mul_vec3_f32(&m, v);
+            b = qo_quat_rotate_f32(qn, v);
+            if (fabsf(a.x - b.x) > 2e-6f || fabsf(a.y - b.y) > 2e-6f || fabsf(a.z - b.z) > 2e-6f)
+                fail_msg("quat_to_mat3 case %d disagrees with quat_rotate: (%g %g %g) vs (%g %g %g)",
+                         n, a.x, a.y, a.z, b.x, b.y, b.z);
+        }
+    }
+}
+
+static void test_quat_to_mat3_errors(void **state)
+{
+    qo_mat3_f32 m;
+    (void)state;
+    m = mf(5, 5, 5, 5, 5, 5, 5, 5, 5);
+    assert_int_equal(qo_quat_to_mat3_f32(qf(0, 0, 0, 0), &m), QO_E_DEGENERATE);
+    assert_true(is_identity_m(&m));
+    m = mf(5, 5, 5, 5, 5, 5, 5, 5, 5);
+    assert_int_equal(qo_quat_to_mat3_f32(qf(NAN, 0, 0, 0), &m), QO_E_NONFINITE);
+    assert_true(is_identity_m(&m));
+    m = mf(5, 5, 5, 5, 5, 5, 5, 5, 5);
+    assert_int_equal(qo_quat_to_mat3_f32(qf(1, 0, -INFINITY, 0), &m), QO_E_NONFINITE);
+    assert_true(is_identity_m(&m));
+    assert_int_equal(qo_quat_to_mat3_f32(qf(1, 0, 0, 0), NULL), QO_E_NULL);
+    /* Huge and subnormal components normalise fine. */
+    assert_int_equal(qo_quat_to_mat3_f32(qf(0, FLT_MAX, 0, 0), &m), QO_OK);
+    assert_true(fabsf(m.m[0][0] - 1.0f) < 1e-6f && fabsf(m.m[1][1] + 1.0f) < 1e-6f &&
+                fabsf(m.m[2][2] + 1.0f) < 1e-6f);
+    assert_int_equal(qo_quat_to_mat3_f32(qf(0, 0, 0, 1e-42f), &m), QO_OK);
+    assert_true(fabsf(m.m[2][2] - 1.0f) < 1e-6f && fabsf(m.m[0][0] + 1.0f) < 1e-6f);
+}
+
+/* ---- matrix -> quaternion ---- */
+
+static void check_from_mat3(const char *name, int n, const qo_mat3_f32 *m, ref_quat expect)
+{
+    qo_quat_f32 q;
+    qo_status st = qo_quat_from_mat3_f32(m, &q);
+    double err;
+    if (st != QO_OK) {
+        print_m("m", m);
+        fail_msg("quat_from_mat3 %s (case %d): status %d", name, n, (int)st);
+    }
+    err = ref_quat_angle_between(ref_quat_from_f32(q), expect);
+    if (err > TOL_RAD || q.w < 0.0f || fabs(ref_quat_norm(ref_quat_from_f32(q)) - 1.0) > 1e-6) {
+        print_m("m", m);
+        print_q("got", q);
+        print_q("expected", ref_quat_to_f32(ref_quat_canonical(expect)));
+        fail_msg("quat_from_mat3 %s (case %d): error %.3g rad (w must be >= 0, |q| 1)", name, n,
+                 err);
+    }
+}
+
+static void test_quat_from_mat3_random(void **state)
+{
+    ref_rng rng = { 31 };
+    int n;
+    (void)state;
+    for (n = 0; n < N_RANDOM; n++) {
+        ref_quat rq;
+        qo_mat3_f32 m = rand_rot_f32(&rng, &rq);
+        check_from_mat3("random", n, &m, rq);
+    }
+}
+
+static void test_quat_from_mat3_edges(void **state)
+{
+    size_t k;
+    int pivots[4] = { 0, 0, 0, 0 };
+    (void)state;
+    for (k = 0; k < N_EDGES; k++) {
+        ref_quat rq = edge_quat(k);
+        ref_mat3 rm = ref_quat_to_mat3(rq);
+        qo_mat3_f32 m = ref_mat3_to_f32(&rm);
+        float t = m.m[0][0] + m.m[1][1] + m.m[2][2];
+        check_from_mat3(edges[k].name, (int)k, &m, rq);
+        /* Record which pivot the table exercised (the largest of t, m00, m11, m22). */
+        if (t >= m.m[0][0] && t >= m.m[1][1] && t >= m.m[2][2]) pivots[0]++;
+        else if (m.m[0][0] >= m.m[1][1] && m.m[0][0] >= m.m[2][2]) pivots[1]++;
+        else if (m.m[1][1] >= m.m[2][2]) pivots[2]++;
+        else pivots[3]++;
+    }
+    for (k = 0; k < 4; k++)
+        if (pivots[k] == 0) fail_msg("edge table misses pivot %d", (int)k);
+    /* Exact 180-degree matrices: the canonical sign picks a positive first non-zero. */
+    {
+        qo_mat3_f32 m = mf(1, 0, 0, 0, -1, 0, 0, 0, -1);
+        qo_quat_f32 q;
+        assert_int_equal(qo_quat_from_mat3_f32(&m, &q), QO_OK);
+        if (!(q.w == 0.0f && q.x == 1.0f && q.y == 0.0f && q.z == 0.0f)) {
+            print_q("q", q);
+            fail_msg("180 about x exact: expected (0,1,0,0)%s", "");
+        }
+        m = mf(-1, 0, 0, 0, -1, 0, 0, 0, 1);
+        assert_int_equal(qo_quat_from_mat3_f32(&m, &q), QO_OK);
+        if (!(q.w == 0.0f && q.x == 0.0f && q.y == 0.0f && q.z == 1.0f)) {
+            print_q("q", q);
+            fail_msg("180 about z exact: expected (0,0,0,1)%s", "");
+        }
+        /* 180 about (1,-1,0)/sqrt2: M = 2nn^T - I. */
+        m = mf(0, -1, 0, -1, 0, 0, 0, 0, -1);
+        assert_int_equal(qo_quat_from_mat3_f32(&m, &q), QO_OK);
+        if (!(q.w == 0.0f && q.x > 0.0f && fabsf(q.x + q.y) < 1e-7f && q.z == 0.0f)) {
+            print_q("q", q);
+            fail_msg("180 about (1,-1,0) exact: expected (0, .707, -.707, 0)%s", "");
+        }
+    }
+    /* Just off 180 degrees where w is tiny but non-zero: the result keeps w >= 0. */
+    {
+        ref_vec3 ax = { 0.3, -0.5, 0.8 };
+        int s;
+        for (s = -1; s <= 1; s += 2) {
+            ref_quat rq = ref_quat_from_axis_angle(ax, REF_PI + s * 1e-5);
+            ref_mat3 rm = ref_quat_to_mat3(rq);
+            qo_mat3_f32 m = ref_mat3_to_f32(&rm);
+            check_from_mat3("180 +- 1e-5", s, &m, rq);
+        }
+    }
+}
+
+static void test_quat_from_mat3_non_rotations(void **state)
+{
+    struct { const char *name; qo_mat3_f32 m; qo_status st; } cases[12];
+    qo_mat3_f32 r;
+    size_t n = 0, k;
+    int i, j;
+    ref_rng rng = { 41 };
+    (void)state;
+    r = rand_rot_f32(&rng, NULL);
+    cases[n].name = "scaled by 1.01"; cases[n].st = QO_E_NOT_ROTATION; cases[n].m = r;
+    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) cases[n].m.m[i][j] *= 1.01f;
+    n++;
+    cases[n].name = "scaled by 1.001"; cases[n].st = QO_E_NOT_ROTATION; cases[n].m = r;
+    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) cases[n].m.m[i][j] *= 1.001f;
+    n++;
+    cases[n].name = "sheared"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = mf(1, 0.01f, 0, 0, 1, 0, 0, 0, 1);
+    n++;
+    cases[n].name = "reflection diag(1,1,-1)"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = mf(1, 0, 0, 0, 1, 0, 0, 0, -1);
+    n++;
+    cases[n].name = "-I"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = mf(-1, 0, 0, 0, -1, 0, 0, 0, -1);
+    n++;
+    cases[n].name = "reflected random rotation"; cases[n].st = QO_E_NOT_ROTATION; cases[n].m = r;
+    for (j = 0; j < 3; j++) cases[n].m.m[1][j] = -r.m[1][j];
+    n++;
+    cases[n].name = "zero"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = mf(0, 0, 0, 0, 0, 0, 0, 0, 0);
+    n++;
+    cases[n].name = "huge entries (M^T M overflows)"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = mf(1e30f, 0, 0, 0, 1e30f, 0, 0, 0, 1e30f);
+    n++;
+    cases[n].name = "NaN entry"; cases[n].st = QO_E_NONFINITE; cases[n].m = r;
+    cases[n].m.m[2][1] = NAN;
+    n++;
+    cases[n].name = "Inf entry"; cases[n].st = QO_E_NONFINITE; cases[n].m = r;
+    cases[n].m.m[0][0] = -INFINITY;
+    n++;
+    cases[n].name = "rank 2 projector"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = mf(1, 0, 0, 0, 1, 0, 0, 0, 0);
+    n++;
+    cases[n].name = "1e-5 off orthonormal (accepted)"; cases[n].st = QO_OK; cases[n].m = r;
+    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) cases[n].m.m[i][j] *= 1.0f + 1e-5f;
+    n++;
+    for (k = 0; k < n; k++) {
+        qo_quat_f32 q = qf(9, 9, 9, 9);
+        qo_status st = qo_quat_from_mat3_f32(&cases[k].m, &q);
+        if (st != cases[k].st || (st != QO_OK && !is_identity_q(q))) {
+            print_m("m", &cases[k].m);
+            print_q("out", q);
+            fail_msg("quat_from_mat3 %s: status %d, expected %d (out must be identity on error)",
+                     cases[k].name, (int)st, (int)cases[k].st);
+        }
+    }
+    {
+        qo_quat_f32 q = qf(9, 9, 9, 9);
+        assert_int_equal(qo_quat_from_mat3_f32(NULL, &q), QO_E_NULL);
+        assert_true(is_identity_q(q));
+        assert_int_equal(qo_quat_from_mat3_f32(&r, NULL), QO_E_NULL);
+    }
+}
+
+static void test_mat3_round_trip(void **state)
+{
+    ref_rng rng = { 51 };
+    int n;
+    (void)state;
+    for (n = 0; n < N_RANDOM; n++) {
+        qo_quat_f32 q = ref_quat_to_f32(ref_rng_quat(&rng)), q2;
+        qo_mat3_f32 m;
+        double err;
+        assert_int_equal(qo_quat_to_mat3_f32(q, &m), QO_OK);
+        assert_int_equal(qo_quat_from_mat3_f32(&m, &q2), QO_OK);
+        err = ref_quat_angle_between(ref_quat_from_f32(q), ref_quat_from_f32(q2));
+        if (err > TOL_RAD) {
+            print_q("q", q);
+            print_q("back", q2);
+            fail_msg("quat -> mat3 -> quat case %d: error %.3g rad", n, err);
+        }
+    }
+}
+
+/* ---- orthonormalisation ---- */
+
+static void check_ortho(const char *name, int n, const qo_mat3_f32 *m)
+{
+    qo_mat3_f32 r;
+    ref_mat3 rm = ref_mat3_from_f32(m), ref, got;
+    qo_quat_f32 q;
+    qo_status st = qo_mat3_orthonormalize_f32(m, &r);
+    double err, qerr;
+    if (st != QO_OK) {
+        print_m("m", m);
+        fail_msg("orthonormalize %s (case %d): status %d", name, n, (int)st);
+    }
+    ref = ref_mat3_nearest_rotation(&rm);
+    got = ref_mat3_from_f32(&r);
+    err = ref_mat3_rotation_distance(&ref, &got);
+    if (err > TOL_RAD || max_orth_error(&r) > 1e-6 || qo_mat3_det_f32(&r) < 0.999f) {
+        print_m("m", m);
+        print_m("got", &r);
+        fail_msg("orthonormalize %s (case %d): %.3g rad from the double polar factor, orth %.3g",
+                 name, n, err, max_orth_error(&r));
+    }
+    /* The "caller asks for it" path lands on the same rotation. */
+    st = qo_quat_from_mat3_ortho_f32(m, &q);
+    qerr = ref_quat_angle_between(ref_quat_from_f32(q), ref_mat3_to_quat(&ref));
+    if (st != QO_OK || qerr > TOL_RAD || q.w < 0.0f)
+        fail_msg("quat_from_mat3_ortho %s (case %d): status %d, error %.3g rad", name, n, (int)st,
+                 qerr);
+}
+
+static void test_orthonormalize_perturbed(void **state)
+{
+    static const double amp[] = { 1e-7, 1e-5, 1e-3, 1e-2, 0.1, 0.3 };
+    ref_rng rng = { 61 };
+    size_t a;
+    int n, i, j;
+    (void)state;
+    for (a = 0; a < sizeof amp / sizeof amp[0]; a++) {
+        for (n = 0; n < 300; n++) {
+            qo_mat3_f32 m = rand_rot_f32(&rng, NULL);
+            char name[64];
+            for (i = 0; i < 3; i++)
+                for (j = 0; j < 3; j++) m.m[i][j] += (float)ref_rng_range(&rng, -amp[a], amp[a]);
+            snprintf(name, sizeof name, "noise %g", amp[a]);
+            check_ortho(name, n, &m);
+        }
+    }
+    /* Uniform scale (tiny, huge) and a strong anisotropic stretch. */
+    for (n = 0; n < 200; n++) {
+        qo_mat3_f32 m = rand_rot_f32(&rng, NULL), s;
+        static const float sc[] = { 1e-30f, 1e-3f, 2.5f, 1e30f };
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 3; j++) s.m[i][j] = m.m[i][j] * sc[n % 4];
+        check_ortho("uniformly scaled", n, &s);
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 3; j++) s.m[i][j] = m.m[i][j] * (j == 0 ? 100.0f : j == 1 ? 1.0f : 0.01f);
+        check_ortho("stretched 100:1:0.01", n, &s);
+    }
+    /* An exact rotation and the identity come back (to round-off), and in place works. */
+    {
+        qo_mat3_f32 m = rand_rot_f32(&rng, NULL), m0 = m, id = qo_mat3_identity_f32();
+        check_ortho("exact rotation", 0, &m);
+        assert_int_equal(qo_mat3_orthonormalize_f32(&m, &m), QO_OK);
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 3; j++)
+                if (fabsf(m.m[i][j] - m0.m[i][j]) > 3e-7f)
+                    fail_msg("orthonormalize in place changed a rotation: entry %d,%d %.9g vs %.9g",
+                             i, j, m.m[i][j], m0.m[i][j]);
+        assert_int_equal(qo_mat3_orthonormalize_f32(&id, &m), QO_OK);
+        assert_true(is_identity_m(&m));
+    }
+}
+
+static void test_orthonormalize_rejects(void **state)
+{
+    struct { const char *name; qo_mat3_f32 m; qo_status st; } cases[9];
+    size_t n = 0, k;
+    ref_rng rng = { 71 };
+    qo_mat3_f32 r = rand_rot_f32(&rng, NULL);
+    int j;
+    (void)state;
+    cases[n].name = "reflection diag(1,1,-1)"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = mf(1, 0, 0, 0, 1, 0, 0, 0, -1); n++;
+    cases[n].name = "noisy reflection"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = mf(1.01f, 0.02f, 0, -0.01f, 0.98f, 0.03f, 0, 0.01f, -1.02f); n++;
+    cases[n].name = "reflected random rotation"; cases[n].st = QO_E_NOT_ROTATION; cases[n].m = r;
+    for (j = 0; j < 3; j++) cases[n].m.m[2][j] = -r.m[2][j];
+    n++;
+    cases[n].name = "zero"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = mf(0, 0, 0, 0, 0, 0, 0, 0, 0); n++;
+    cases[n].name = "rank 1"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = mf(1, 2, 3, 2, 4, 6, 3, 6, 9); n++;
+    cases[n].name = "rank 2 (exactly singular)"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = mf(1, 0, 0, 0, 1, 0, 0, 0, 0); n++;
+    cases[n].name = "just singular: sigma3 = 1e-7"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = mf(1, 0, 0, 0, 1, 0, 0, 0, 1e-7f); n++;
+    cases[n].name = "NaN"; cases[n].st = QO_E_NONFINITE;
+    cases[n].m = mf(1, 0, 0, 0, NAN, 0, 0, 0, 1); n++;
+    cases[n].name = "Inf"; cases[n].st = QO_E_NONFINITE;
+    cases[n].m = mf(1, 0, 0, 0, 1, 0, INFINITY, 0, 1); n++;
+    for (k = 0; k < n; k++) {
+        qo_mat3_f32 out = mf(9, 9, 9, 9, 9, 9, 9, 9, 9);
+        qo_quat_f32 q = qf(9, 9, 9, 9);
+        qo_status st = qo_mat3_orthonormalize_f32(&cases[k].m, &out);
+        qo_status st2 = qo_quat_from_mat3_ortho_f32(&cases[k].m, &q);
+        if (st != cases[k].st || !is_identity_m(&out) || st2 != cases[k].st || !is_identity_q(q)) {
+            print_m("m", &cases[k].m);
+            fail_msg("orthonormalize %s: status %d / %d, expected %d, outputs must be identity",
+                     cases[k].name, (int)st, (int)st2, (int)cases[k].st);
+        }
+    }
+    /* Just off singular, but well inside the accepted condition range: still converted. */
+    {
+        qo_mat3_f32 m = mf(1, 0, 0, 0, 1, 0, 0, 0, 1e-3f);
+        check_ortho("sigma3 = 1e-3", 0, &m);
+    }
+    {
+        qo_mat3_f32 out = mf(9, 9, 9, 9, 9, 9, 9, 9, 9);
+        qo_quat_f32 q = qf(9, 9, 9, 9);
+        assert_int_equal(qo_mat3_orthonormalize_f32(NULL, &out), QO_E_NULL);
+        assert_true(is_identity_m(&out));
+        assert_int_equal(qo_mat3_orthonormalize_f32(&r, NULL), QO_E_NULL);
+        assert_int_equal(qo_quat_from_mat3_ortho_f32(NULL, &q), QO_E_NULL);
+        assert_true(is_identity_q(q));
+        assert_int_equal(qo_quat_from_mat3_ortho_f32(&r, NULL), QO_E_NULL);
+    }
+}
+
+/* ---- axis-angle ---- */
+
+static void test_axis_angle_from_vs_double(void **state)
+{
+    ref_rng rng = { 81 };
+    static const double scale[] = { 1.0, 1e-30, 1e30, 3.7 };
+    int n;
+    (void)state;
+    for (n = 0; n < N_RANDOM; n++) {
+        double s = scale[n % 4];
+        ref_vec3 ax = { ref_rng_range(&rng, -1, 1) * s, ref_rng_range(&rng, -1, 1) * s,
+                        ref_rng_range(&rng, -1, 1) * s };
+        float ang = (float)ref_rng_range(&rng, -4.0 * REF_PI, 4.0 * REF_PI);
+        qo_vec3_f32 af = ref_vec3_to_f32(ax);
+        ref_quat expect = ref_quat_from_axis_angle(ref_vec3_from_f32(af), ang);
+        qo_quat_f32 q;
+        double err;
+        assert_int_equal(qo_quat_from_axis_angle_f32(af, ang, &q), QO_OK);
+        /* Componentwise (the sign is part of the contract: no canonicalisation here). */
+        err = fabs(q.w - expect.w) + fabs(q.x - expect.x) + fabs(q.y - expect.y) +
+              fabs(q.z - expect.z);
+        if (err > 2e-6) {
+            print_q("got", q);
+            print_q("expected", ref_quat_to_f32(expect));
+            fail_msg("from_axis_angle case %d: axis (%g %g %g) angle %.9g, L1 error %.3g", n,
+                     af.x, af.y, af.z, ang, err);
+        }
+    }
+}
+
+static void test_axis_angle_from_edges(void **state)
+{
+    qo_quat_f32 q;
+    (void)state;
+    q = qf(9, 9, 9, 9);
+    assert_int_equal(qo_quat_from_axis_angle_f32(vf(0, 0, 0), 1.0f, &q), QO_E_DEGENERATE);
+    assert_true(is_identity_q(q));
+    q = qf(9, 9, 9, 9);
+    assert_int_equal(qo_quat_from_axis_angle_f32(vf(0, 0, 0), 0.0f, &q), QO_E_DEGENERATE);
+    assert_true(is_identity_q(q));
+    q = qf(9, 9, 9, 9);
+    assert_int_equal(qo_quat_from_axis_angle_f32(vf(NAN, 0, 1), 1.0f, &q), QO_E_NONFINITE);
+    assert_true(is_identity_q(q));
+    q = qf(9, 9, 9, 9);
+    assert_int_equal(qo_quat_from_axis_angle_f32(vf(0, 0, 1), INFINITY, &q), QO_E_NONFINITE);
+    assert_true(is_identity_q(q));
+    q = qf(9, 9, 9, 9);
+    assert_int_equal(qo_quat_from_axis_angle_f32(vf(0, 0, 1), NAN, &q), QO_E_NONFINITE);
+    assert_true(is_identity_q(q));
+    assert_int_equal(qo_quat_from_axis_angle_f32(vf(0, 0, 1), 1.0f, NULL), QO_E_NULL);
+    /* Components at FLT_MAX and subnormal: the axis length must not overflow / underflow. */
+    assert_int_equal(qo_quat_from_axis_angle_f32(vf(FLT_MAX, FLT_MAX, 0), 2.0f, &q), QO_OK);
+    assert_true(fabsf(q.x - 0.70710678f * sinf(1.0f)) < 1e-6f && fabsf(q.x - q.y) < 1e-7f &&
+                q.z == 0.0f && fabsf(q.w - cosf(1.0f)) < 1e-6f);
+    assert_int_equal(qo_quat_from_axis_angle_f32(vf(0, 0, -1e-44f), 1.0f, &q), QO_OK);
+    assert_true(fabsf(q.z + sinf(0.5f)) < 1e-6f && q.x == 0.0f && q.y == 0.0f);
+    /* Angle 0 about a valid axis is the identity rotation (w = 1, vector 0). */
+    assert_int_equal(qo_quat_from_axis_angle_f32(vf(1, 2, 3), 0.0f, &q), QO_OK);
+    assert_true(q.w == 1.0f && q.x == 0.0f && q.y == 0.0f && q.z == 0.0f);
+}
+
+static void test_axis_angle_to(void **state)
+{
+    ref_rng rng = { 91 };
+    int n;
+    (void)state;
+    for (n = 0; n < N_RANDOM; n++) {
+        ref_quat rq = ref_rng_quat(&rng);
+        double sc = (n % 4 == 0) ? -3.0 : (n % 4 == 1) ? 1e-20 : 1.0;
+        qo_quat_f32 q;
+        qo_vec3_f32 ax;
+        float ang;
+        ref_quat back;
+        double err, alen;
+        rq.w *= sc; rq.x *= sc; rq.y *= sc; rq.z *= sc;
+        q = ref_quat_to_f32(rq);
+        assert_int_equal(qo_quat_to_axis_angle_f32(q, &ax, &ang), QO_OK);
+        alen = sqrt((double)ax.x * ax.x + (double)ax.y * ax.y + (double)ax.z * ax.z);
+        back = ref_quat_from_axis_angle(ref_vec3_from_f32(ax), ang);
+        err = ref_quat_angle_between(back, ref_quat_from_f32(q));
+        if (err > TOL_RAD || !(ang >= 0.0f && ang <= 3.14159274f) || fabs(alen - 1.0) > 1e-6) {
+            print_q("q", q);
+            fail_msg("to_axis_angle case %d: axis (%g %g %g) angle %.9g: error %.3g rad", n, ax.x,
+                     ax.y, ax.z, ang, err);
+        }
+        /* The angle itself vs the double one (short way). */
+        {
+            ref_quat c = ref_quat_canonical(ref_quat_normalize(ref_quat_from_f32(q)));
+            double ra = 2.0 * atan2(sqrt(c.x * c.x + c.y * c.y + c.z * c.z), c.w);
+            if (fabs(ang - ra) > 1e-6)
+                fail_msg("to_axis_angle case %d: angle %.9g vs %.9g", n, ang, ra);
+        }
+    }
+}
+
+static void test_axis_angle_to_edges(void **state)
+{
+    qo_vec3_f32 ax;
+    float ang;
+    (void)state;
+    assert_int_equal(qo_quat_to_axis_angle_f32(qf(1, 0, 0, 0), &ax, &ang), QO_OK);
+    assert_true(ax.x == 1.0f && ax.y == 0.0f && ax.z == 0.0f && ang == 0.0f);
+    assert_int_equal(qo_quat_to_axis_angle_f32(qf(-2, 0, 0, 0), &ax, &ang), QO_OK);
+    assert_true(ax.x == 1.0f && ax.y == 0.0f && ax.z == 0.0f && ang == 0.0f);
+    /* Exactly pi: q and -q both give the canonical axis. */
+    assert_int_equal(qo_quat_to_axis_angle_f32(qf(0, 0, -1, 0), &ax, &ang), QO_OK);
+    assert_true(ax.x == 0.0f && ax.y == 1.0f && ax.z == 0.0f);
+    assert_true(fabs(ang - REF_PI) < 1e-6);
+    assert_int_equal(qo_quat_to_axis_angle_f32(qf(-1e-8f, 0.6f, 0, -0.8f), &ax, &ang), QO_OK);
+    assert_true(fabsf(ax.x + 0.6f) < 1e-6f && fabsf(ax.z - 0.8f) < 1e-6f);
+    assert_true(fabs(ang - REF_PI) < 1e-6 && ang <= 3.14159274f);
+    /* Tiny angle: full relative precision (no acos). */
+    assert_int_equal(qo_quat_to_axis_angle_f32(qf(1, 0, 0, 1e-20f), &ax, &ang), QO_OK);
+    assert_true(fabsf(ang - 2e-20f) < 1e-26f && ax.z == 1.0f);
+    /* Errors: documented outputs. */
+    ax = vf(9, 9, 9); ang = 9;
+    assert_int_equal(qo_quat_to_axis_angle_f32(qf(0, 0, 0, 0), &ax, &ang), QO_E_DEGENERATE);
+    assert_true(ax.x == 1.0f && ax.y == 0.0f && ax.z == 0.0f && ang == 0.0f);
+    ax = vf(9, 9, 9); ang = 9;
+    assert_int_equal(qo_quat_to_axis_angle_f32(qf(1, NAN, 0, 0), &ax, &ang), QO_E_NONFINITE);
+    assert_true(ax.x == 1.0f && ax.y == 0.0f && ax.z == 0.0f && ang == 0.0f);
+    ang = 9;
+    assert_int_equal(qo_quat_to_axis_angle_f32(qf(1, 0, 0, 0), NULL, &ang), QO_E_NULL);
+    assert_true(ang == 0.0f);
+    ax = vf(9, 9, 9);
+    assert_int_equal(qo_quat_to_axis_angle_f32(qf(1, 0, 0, 0), &ax, NULL), QO_E_NULL);
+    assert_true(ax.x == 1.0f && ax.y == 0.0f && ax.z == 0.0f);
+}
+
+/* ---- rotation vector ---- */
+
+static ref_vec3 ref_rotvec(ref_quat q)
+{
+    ref_quat c = ref_quat_canonical(ref_quat_normalize(q));
+    double vn = sqrt(c.x * c.x + c.y * c.y + c.z * c.z), k;
+    ref_vec3 r = { 0.0, 0.0, 0.0 };
+    if (vn == 0.0) return r;
+    k = 2.0 * atan2(vn, c.w) / vn;
+    r.x = k * c.x; r.y = k * c.y; r.z = k * c.z;
+    return r;
+}
+
+static void test_rotvec_vs_double(void **state)
+{
+    ref_rng rng = { 101 };
+    int n;
+    (void)state;
+    for (n = 0; n < N_RANDOM; n++) {
+        /* from: random direction, |rv| up to 3 pi (beyond pi gives w < 0, same rotation). */
+        ref_vec3 d = { ref_rng_range(&rng, -1, 1), ref_rng_range(&rng, -1, 1),
+                       ref_rng_range(&rng, -1, 1) };
+        double len = ref_rng_range(&rng, 0, 3.0 * REF_PI) / sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+        ref_vec3 rvd = { d.x * len, d.y * len, d.z * len };
+        qo_vec3_f32 rv = ref_vec3_to_f32(rvd), back;
+        ref_vec3 rvx = ref_vec3_from_f32(rv);
+        double th = sqrt(rvx.x * rvx.x + rvx.y * rvx.y + rvx.z * rvx.z);
+        ref_quat expect = ref_quat_from_axis_angle(rvx, th);
+        ref_vec3 rb;
+        qo_quat_f32 q;
+        double err;
+        assert_int_equal(qo_quat_from_rotvec_f32(rv, &q), QO_OK);
+        err = fabs(q.w - expect.w) + fabs(q.x - expect.x) + fabs(q.y - expect.y) +
+              fabs(q.z - expect.z);
+        if (err > 2e-6)
+            fail_msg("from_rotvec case %d: rv (%.9g %.9g %.9g), L1 error %.3g", n, rv.x, rv.y,
+                     rv.z, err);
+        /* to: from an independent random quaternion, vs the double rotation vector. */
+        q = ref_quat_to_f32(ref_rng_quat(&rng));
+        assert_int_equal(qo_quat_to_rotvec_f32(q, &back), QO_OK);
+        rb = ref_rotvec(ref_quat_from_f32(q));
+        err = fabs(back.x - rb.x) + fabs(back.y - rb.y) + fabs(back.z - rb.z);
+        if (err > 2e-6 || sqrt((double)back.x * back.x + (double)back.y * back.y +
+                               (double)back.z * back.z) > REF_PI + 1e-6) {
+            print_q("q", q);
+            fail_msg("to_rotvec case %d: (%.9g %.9g %.9g) vs (%.9g %.9g %.9g)", n, back.x, back.y,
+                     back.z, rb.x, rb.y, rb.z);
+        }
+    }
+}
+
+static void test_rotvec_edges(void **state)
+{
+    qo_quat_f32 q;
+    qo_vec3_f32 v;
+    (void)state;
+    /* Zero -> identity, OK. Tiny vectors are exact: (1, rv/2). */
+    assert_int_equal(qo_quat_from_rotvec_f32(vf(0, 0, 0), &q), QO_OK);
+    assert_true(is_identity_q(q));
+    assert_int_equal(qo_quat_from_rotvec_f32(vf(1e-20f, -3e-20f, 2e-38f), &q), QO_OK);
+    assert_true(q.w == 1.0f && q.x == 0.5e-20f && q.y == -1.5e-20f && q.z == 1e-38f);
+    assert_int_equal(qo_quat_from_rotvec_f32(vf(0, 0x1p-147f, 0), &q), QO_OK);
+    assert_true(q.w == 1.0f && q.y == 0x1p-148f);
+    /* Around the Taylor switch (|rv| = 0.02): both sides agree with the closed form. */
+    {
+        static const float th[] = { 0.0199999f, 0.02f, 0.0200001f, 1e-4f, 0.5f };
+        size_t k;
+        for (k = 0; k < sizeof th / sizeof th[0]; k++) {
+            qo_vec3_f32 rv = vf(0.6f * th[k], 0, 0.8f * th[k]);
+            ref_vec3 a = ref_vec3_from_f32(rv);
+            ref_quat e = ref_quat_from_axis_angle(a, sqrt(a.x * a.x + a.z * a.z));
+            assert_int_equal(qo_quat_from_rotvec_f32(rv, &q), QO_OK);
+            if (fabs(q.w - e.w) > 6e-8 || fabs(q.x - e.x) > 3e-8 || fabs(q.z - e.z) > 3e-8 ||
+                q.y != 0.0f)
+                fail_msg("from_rotvec |rv| = %.9g: (%.9g %.9g %.9g) vs (%.9g %.9g %.9g)", th[k],
+                         q.w, q.x, q.z, e.w, e.x, e.z);
+        }
+    }
+    q = qf(9, 9, 9, 9);
+    assert_int_equal(qo_quat_from_rotvec_f32(vf(NAN, 0, 0), &q), QO_E_NONFINITE);
+    assert_true(is_identity_q(q));
+    q = qf(9, 9, 9, 9);
+    assert_int_equal(qo_quat_from_rotvec_f32(vf(0, INFINITY, 0), &q), QO_E_NONFINITE);
+    assert_true(is_identity_q(q));
+    q = qf(9, 9, 9, 9);
+    assert_int_equal(qo_quat_from_rotvec_f32(vf(FLT_MAX, FLT_MAX, 0), &q), QO_E_RANGE);
+    assert_true(is_identity_q(q));
+    assert_int_equal(qo_quat_from_rotvec_f32(vf(1, 0, 0), NULL), QO_E_NULL);
+
+    /* to_rotvec: identity, tiny (and subnormal) with full relative precision, pi both signs. */
+    assert_int_equal(qo_quat_to_rotvec_f32(qf(1, 0, 0, 0), &v), QO_OK);
+    assert_true(v.x == 0.0f && v.y == 0.0f && v.z == 0.0f);
+    assert_int_equal(qo_quat_to_rotvec_f32(qf(1, 1e-30f, 0, -2e-30f), &v), QO_OK);
+    assert_true(fabsf(v.x - 2e-30f) <= 2e-37f && fabsf(v.z + 4e-30f) <= 4e-37f && v.y == 0.0f);
+    assert_int_equal(qo_quat_to_rotvec_f32(qf(-1, 0, 0x1p-133f, 0), &v), QO_OK);
+    assert_true(v.y == -0x1p-132f && v.x == 0.0f && v.z == 0.0f);
+    assert_int_equal(qo_quat_to_rotvec_f32(qf(0, 0, 0, -1), &v), QO_OK);
+    assert_true(v.x == 0.0f && v.y == 0.0f && fabs(v.z - REF_PI) < 1e-6);
+    assert_int_equal(qo_quat_to_rotvec_f32(qf(-1e-7f, 0, 1, 0), &v), QO_OK);
+    assert_true(v.y < 0.0f && fabs(-v.y - (REF_PI - 2e-7)) < 1e-6);
+    v = vf(9, 9, 9);
+    assert_int_equal(qo_quat_to_rotvec_f32(qf(0, 0, 0, 0), &v), QO_E_DEGENERATE);
+    assert_true(v.x == 0.0f && v.y == 0.0f && v.z == 0.0f);
+    v = vf(9, 9, 9);
+    assert_int_equal(qo_quat_to_rotvec_f32(qf(1, 0, NAN, 0), &v), QO_E_NONFINITE);
+    assert_true(v.x == 0.0f && v.y == 0.0f && v.z == 0.0f);
+    assert_int_equal(qo_quat_to_rotvec_f32(qf(1, 0, 0, 0), NULL), QO_E_NULL);
+}
+
+static void test_rotvec_round_trip(void **state)
+{
+    ref_rng rng = { 111 };
+    int n;
+    (void)state;
+    for (n = 0; n < N_RANDOM; n++) {
+        /* Short-way rotation vectors (|rv| < pi) come back unchanged. */
+        ref_quat c = ref_quat_canonical(ref_rng_quat(&rng));
+        qo_vec3_f32 rv = ref_vec3_to_f32(ref_rotvec(c)), back;
+        qo_quat_f32 q;
+        double err;
+        assert_int_equal(qo_quat_from_rotvec_f32(rv, &q), QO_OK);
+        assert_int_equal(qo_quat_to_rotvec_f32(q, &back), QO_OK);
+        err = fabs(back.x - rv.x) + fabs(back.y - rv.y) + fabs(back.z - rv.z);
+        /* Away from pi the map is well conditioned; near pi the canonical flip may move rv to
+         * its antipode -rv*(2pi-|rv|)/|rv| (the same rotation): compare as rotations there. */
+        if (err > 3e-6) {
+            double th1 = sqrt((double)rv.x * rv.x + (double)rv.y * rv.y + (double)rv.z * rv.z);
+            double th2 = sqrt((double)back.x * back.x + (double)back.y * back.y +
+                              (double)back.z * back.z);
+            ref_quat qa = ref_quat_from_axis_angle(ref_vec3_from_f32(rv), th1);
+            ref_quat qb = ref_quat_from_axis_angle(ref_vec3_from_f32(back), th2);
+            if (ref_quat_angle_between(qa, qb) > TOL_RAD)
+                fail_msg("rotvec round trip case %d: (%.9g %.9g %.9g) -> (%.9g %.9g %.9g)", n,
+                         rv.x, rv.y, rv.z, back.x, back.y, back.z);
+        }
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_mat3_helpers_vs_double),
+        cmocka_unit_test(test_quat_to_mat3_vs_double),
+        cmocka_unit_test(test_quat_to_mat3_errors),
+        cmocka_unit_test(test_quat_from_mat3_random),
+        cmocka_unit_test(test_quat_from_mat3_edges),
+        cmocka_unit_test(test_quat_from_mat3_non_rotations),
+        cmocka_unit_test(test_mat3_round_trip),
+        cmocka_unit_test(test_orthonormalize_perturbed),
+        cmocka_unit_test(test_orthonormalize_rejects),
+        cmocka_unit_test(test_axis_angle_from_vs_double),
+        cmocka_unit_test(test_axis_angle_from_edges),
+        cmocka_unit_test(test_axis_angle_to),
+        cmocka_unit_test(test_axis_angle_to_edges),
+        cmocka_unit_test(test_rotvec_vs_double),
+        cmocka_unit_test(test_rotvec_edges),
+        cmocka_unit_test(test_rotvec_round_trip),
+    };
+    return cmocka_run_group_tests_name("convert", tests, NULL, NULL);
+}
