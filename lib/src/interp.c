@@ -1,0 +1,490 @@
+/* Interpolation on the unit-quaternion sphere, float32. See qorient/interp.h for the contract
+ * of each function. */
+#include "qorient/interp.h"
+
+#include <math.h>
+
+#include "qorient/quat.h"
+
+#define QO_PI_F 3.14159265358979f
+
+static qo_quat_f32 neg_q(qo_quat_f32 q)
+{
+    qo_quat_f32 r = { -q.w, -q.x, -q.y, -q.z };
+    return r;
+}
+
+/* wa*a + wb*b */
+static qo_quat_f32 comb_q(float wa, qo_quat_f32 a, float wb, qo_quat_f32 b)
+{
+    qo_quat_f32 r;
+    r.w = wa * a.w + wb * b.w;
+    r.x = wa * a.x + wb * b.x;
+    r.y = wa * a.y + wb * b.y;
+    r.z = wa * a.z + wb * b.z;
+    return r;
+}
+
+/* b, negated when it lies in the other hemisphere than ref. dot == 0 keeps b. */
+static qo_quat_f32 align_to(qo_quat_f32 b, qo_quat_f32 ref)
+{
+    return (qo_quat_dot_f32(ref, b) < 0.0f) ? neg_q(b) : b;
+}
+
+/* 4-D angle between unit a and unit b in [0, pi]: 2*atan2(|a-b|, |a+b|). Unlike acos(dot) it
+ * keeps full relative precision of the small differences near 0 and near pi. */
+static float angle4(qo_quat_f32 a, qo_quat_f32 b)
+{
+    float dw = a.w - b.w, dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
+    float sw = a.w + b.w, sx = a.x + b.x, sy = a.y + b.y, sz = a.z + b.z;
+    float d = sqrtf(dw * dw + dx * dx + dy * dy + dz * dz);
+    float s = sqrtf(sw * sw + sx * sx + sy * sy + sz * sz);
+    return 2.0f * atan2f(d, s);
+}
+
+/* sin(u th)/sin(th) for th < QO_SLERP_SERIES_ANGLE: u (1 + (1 - u^2) th^2/6) + O(th^4). */
+static float series_weight(float u, float th2)
+{
+    return u * (1.0f + (1.0f - u * u) * th2 * (1.0f / 6.0f));
+}
+
+/* Great-circle interpolation of unit a and b with angle th = angle4(a, b), any real u
+ * (extrapolation allowed), no sign flip, result normalised. th must be < pi - series angle. */
+static qo_quat_f32 slerp_weights(qo_quat_f32 a, qo_quat_f32 b, float th, float u)
+{
+    float wa, wb;
+    qo_quat_f32 r, n;
+    if (th < QO_SLERP_SERIES_ANGLE) {
+        float th2 = th * th;
+        wa = series_weight(1.0f - u, th2);
+        wb = series_weight(u, th2);
+    } else {
+        float inv = 1.0f / sinf(th);
+        wa = sinf((1.0f - u) * th) * inv;
+        wb = sinf(u * th) * inv;
+    }
+    r = comb_q(wa, a, wb, b);
+    /* |r| is 1 up to rounding (never near 0 in the allowed range of th), so this cannot fail;
+     * it removes the few-ulp norm drift of the weighted sum. */
+    (void)qo_quat_normalize_f32(r, &n);
+    return n;
+}
+
+/* Unchecked great-circle slerp for internal use (control points need u = 2, 1/2, +-1/3).
+ * Returns 0 and *out = a when a and b are (nearly) antipodal, where the circle is undefined. */
+static int slerp_raw(qo_quat_f32 a, qo_quat_f32 b, float u, qo_quat_f32 *out)
+{
+    float th = angle4(a, b);
+    if (QO_PI_F - th < QO_SLERP_SERIES_ANGLE) {
+        *out = a;
+        return 0;
+    }
+    *out = slerp_weights(a, b, th, u);
+    return 1;
+}
+
+/* Checks and normalises one orientation input. */
+static qo_status unit_in(qo_quat_f32 q, qo_quat_f32 *u)
+{
+    if (!qo_quat_is_finite_f32(q)) {
+        *u = qo_quat_identity_f32();
+        return QO_E_NONFINITE;
+    }
+    return qo_quat_normalize_f32(q, u);
+}
+
+/* Checks two orientation inputs: NaN/Inf in either wins over zero in either. */
+static qo_status unit_in2(qo_quat_f32 a, qo_quat_f32 b, qo_quat_f32 *ua, qo_quat_f32 *ub)
+{
+    qo_status sa, sb;
+    if (!qo_quat_is_finite_f32(a) || !qo_quat_is_finite_f32(b)) return QO_E_NONFINITE;
+    sa = qo_quat_normalize_f32(a, ua);
+    sb = qo_quat_normalize_f32(b, ub);
+    return (sa != QO_OK) ? sa : sb;
+}
+
+/* Common checks of t: out already holds the value to return on error. */
+static qo_status check_t(float t)
+{
+    if (!isfinite(t)) return QO_E_NONFINITE;
+    if (t < 0.0f || t > 1.0f) return QO_E_RANGE;
+    return QO_OK;
+}
+
+qo_status qo_quat_lerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out)
+{
+    qo_status st;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_f32();
+    if (!qo_quat_is_finite_f32(a) || !qo_quat_is_finite_f32(b)) return QO_E_NONFINITE;
+    *out = a;
+    st = check_t(t);
+    if (st != QO_OK || t == 0.0f) return st;
+    if (t == 1.0f) {
+        *out = b;
+        return QO_OK;
+    }
+    *out = comb_q(1.0f - t, a, t, b);
+    return QO_OK;
+}
+
+qo_status qo_quat_nlerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out)
+{
+    qo_quat_f32 ua, ub;
+    qo_status st;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_f32();
+    st = unit_in2(a, b, &ua, &ub);
+    if (st != QO_OK) return st;
+    *out = ua;
+    st = check_t(t);
+    if (st != QO_OK || t == 0.0f) return st;
+    ub = align_to(ub, ua);
+    if (t == 1.0f) {
+        *out = ub;
+        return QO_OK;
+    }
+    /* After the flip dot >= 0, so |(1-t)a + tb| >= 1/sqrt(2): normalising cannot fail. */
+    (void)qo_quat_normalize_f32(comb_q(1.0f - t, ua, t, ub), out);
+    return QO_OK;
+}
+
+/* Short (longway == 0) or long (longway != 0) slerp. */
+static qo_status slerp_common(qo_quat_f32 a, qo_quat_f32 b, float t, int longway,
+                              qo_quat_f32 *out)
+{
+    qo_quat_f32 ua, ub;
+    qo_status st;
+    float d, th;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_f32();
+    st = unit_in2(a, b, &ua, &ub);
+    if (st != QO_OK) return st;
+    *out = ua;
+    st = check_t(t);
+    if (st != QO_OK) return st;
+    d = qo_quat_dot_f32(ua, ub);
+    /* The flipped copy is what every branch below uses (including the series branch), so a
+     * and -a interpolate to a unit quaternion, never through the origin. */
+    if (longway ? (d > 0.0f) : (d < 0.0f)) ub = neg_q(ub);
+    th = angle4(ua, ub);
+    if (longway && QO_PI_F - th < QO_SLERP_SERIES_ANGLE) return QO_E_DEGENERATE;
+    if (t == 0.0f) return QO_OK;
+    if (t == 1.0f) {
+        *out = ub;
+        return QO_OK;
+    }
+    *out = slerp_weights(ua, ub, th, t);
+    return QO_OK;
+}
+
+qo_status qo_quat_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out)
+{
+    return slerp_common(a, b, t, 0, out);
+}
+
+qo_status qo_quat_slerp_long_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out)
+{
+    return slerp_common(a, b, t, 1, out);
+}
+
+qo_status qo_quat_slerp_rate_f32(qo_quat_f32 a, qo_quat_f32 b, float duration,
+                                 qo_vec3_f32 *omega)
+{
+    qo_quat_f32 ua, ub, lg;
+    qo_status st;
+    float k;
+    if (omega == NULL) return QO_E_NULL;
+    omega->x = omega->y = omega->z = 0.0f;
+    st = unit_in2(a, b, &ua, &ub);
+    if (st != QO_OK) return st;
+    if (!isfinite(duration)) return QO_E_NONFINITE;
+    if (!(duration > 0.0f)) return QO_E_RANGE;
+    ub = align_to(ub, ua);
+    /* conj(a)*b' has w = dot >= 0, so its log is the short rotation's (0, phi/2 * axis). */
+    st = qo_quat_log_f32(qo_quat_mul_f32(qo_quat_conj_f32(ua), ub), &lg);
+    if (st != QO_OK) return st;
+    k = 2.0f / duration;
+    omega->x = k * lg.x;
+    omega->y = k * lg.y;
+    omega->z = k * lg.z;
+    if (!isfinite(omega->x) || !isfinite(omega->y) || !isfinite(omega->z)) {
+        /* a tiny duration can overflow the rate */
+        omega->x = omega->y = omega->z = 0.0f;
+        return QO_E_RANGE;
+    }
+    return QO_OK;
+}
+
+/* Checks that every key is finite and non-zero (NaN/Inf anywhere wins over zero). */
+static qo_status check_keys(const qo_quat_f32 *keys, size_t n)
+{
+    size_t i;
+    qo_status st = QO_OK;
+    qo_quat_f32 u;
+    for (i = 0; i < n; i++) {
+        if (!qo_quat_is_finite_f32(keys[i])) return QO_E_NONFINITE;
+        if (st == QO_OK && qo_quat_normalize_f32(keys[i], &u) != QO_OK) st = QO_E_DEGENERATE;
+    }
+    return st;
+}
+
+static void fill_identity(qo_quat_f32 *q, size_t n)
+{
+    size_t i;
+    if (q == NULL) return;
+    for (i = 0; i < n; i++) q[i] = qo_quat_identity_f32();
+}
+
+/* Unit key (validated beforehand) aligned to prev. */
+static qo_quat_f32 next_key(qo_quat_f32 k, qo_quat_f32 prev)
+{
+    qo_quat_f32 u;
+    (void)qo_quat_normalize_f32(k, &u);
+    return align_to(u, prev);
+}
+
+qo_status qo_quat_align_keys_f32(const qo_quat_f32 *keys, size_t n, qo_quat_f32 *out)
+{
+    size_t i;
+    qo_status st;
+    qo_quat_f32 prev;
+    if (keys == NULL || out == NULL) {
+        fill_identity(out, n);
+        return QO_E_NULL;
+    }
+    if (n == 0) return QO_E_TOO_FEW;
+    st = check_keys(keys, n);
+    if (st != QO_OK) {
+        fill_identity(out, n);
+        return st;
+    }
+    (void)qo_quat_normalize_f32(keys[0], &prev);
+    out[0] = prev;
+    for (i = 1; i < n; i++) {
+        prev = next_key(keys[i], prev);
+        out[i] = prev;
+    }
+    return QO_OK;
+}
+
+/* de Casteljau on p[0..n-1] (unit, sign-aligned), in place. Exact endpoints. */
+static qo_quat_f32 casteljau(qo_quat_f32 *p, size_t n, float t)
+{
+    size_t lev, i;
+    if (t == 0.0f) return p[0];
+    if (t == 1.0f) return p[n - 1];
+    for (lev = n - 1; lev > 0; lev--) {
+        for (i = 0; i < lev; i++) {
+            qo_quat_f32 r;
+            /* An antipodal pair inside the pyramid has no circle: keep its first point. */
+            (void)slerp_raw(p[i], p[i + 1], t, &r);
+            p[i] = r;
+        }
+    }
+    return p[0];
+}
+
+qo_status qo_quat_bezier_f32(const qo_quat_f32 *ctrl, size_t n, float t, qo_quat_f32 *out)
+{
+    qo_quat_f32 p[QO_BEZIER_MAX_POINTS];
+    size_t i;
+    qo_status st;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_f32();
+    if (ctrl == NULL) return QO_E_NULL;
+    if (n < 2) return QO_E_TOO_FEW;
+    if (n > QO_BEZIER_MAX_POINTS) return QO_E_CAPACITY;
+    st = check_keys(ctrl, n);
+    if (st != QO_OK) return st;
+    (void)qo_quat_normalize_f32(ctrl[0], &p[0]);
+    *out = p[0];
+    st = check_t(t);
+    if (st != QO_OK) return st;
+    for (i = 1; i < n; i++) p[i] = next_key(ctrl[i], p[i - 1]);
+    *out = casteljau(p, n, t);
+    return QO_OK;
+}
+
+qo_status qo_quat_bezier3_f32(qo_quat_f32 q0, qo_quat_f32 q1, qo_quat_f32 q2, qo_quat_f32 q3,
+                              float t, qo_quat_f32 *out)
+{
+    qo_quat_f32 c[4];
+    c[0] = q0; c[1] = q1; c[2] = q2; c[3] = q3;
+    return qo_quat_bezier_f32(c, 4, t, out);
+}
+
+/* Slerp(q_i, Bisect(Double(q_{i-1}, q_i), q_{i+1}), u) for u = +-1/3: returns a_i and b_i. */
+static void inner_controls(qo_quat_f32 qm, qo_quat_f32 qc, qo_quat_f32 qn,
+                           qo_quat_f32 *ai, qo_quat_f32 *bi)
+{
+    qo_quat_f32 dbl, abar;
+    (void)slerp_raw(qm, qc, 2.0f, &dbl);
+    if (!slerp_raw(dbl, qn, 0.5f, &abar)) {
+        /* Double(q_{i-1}, q_i) antipodal to q_{i+1}: no bisector. The Euclidean formula's
+         * limit (q_{i+1} == q_{i-1}) is a zero tangent, so abar = q_i (documented). */
+        abar = qc;
+    }
+    (void)slerp_raw(qc, abar, 1.0f / 3.0f, ai);
+    (void)slerp_raw(qc, abar, -1.0f / 3.0f, bi);
+}
+
+/* End control point Slerp(q_end, Slerp(q_far, q_near, 2), 1/3) of the notes. */
+static qo_quat_f32 end_control(qo_quat_f32 q_end, qo_quat_f32 q_near, qo_quat_f32 q_far)
+{
+    qo_quat_f32 dbl, r;
+    (void)slerp_raw(q_far, q_near, 2.0f, &dbl);
+    if (!slerp_raw(q_end, dbl, 1.0f / 3.0f, &r)) r = q_end;
+    return r;
+}
+
+qo_status qo_quat_spline_controls_f32(const qo_quat_f32 *keys, size_t n,
+                                      qo_quat_f32 *a, qo_quat_f32 *b)
+{
+    qo_quat_f32 qm, qc, qn;
+    qo_status st;
+    size_t i;
+    if (keys == NULL || a == NULL || b == NULL) {
+        fill_identity(a, n);
+        fill_identity(b, n);
+        return QO_E_NULL;
+    }
+    fill_identity(a, n);
+    fill_identity(b, n);
+    if (n < 2) return QO_E_TOO_FEW;
+    st = check_keys(keys, n);
+    if (st != QO_OK) return st;
+    (void)qo_quat_normalize_f32(keys[0], &qm);
+    qc = next_key(keys[1], qm);
+    if (n == 2) {
+        /* Evenly spaced on the arc: the cubic Bezier is then the constant-rate slerp. */
+        (void)slerp_raw(qm, qc, 1.0f / 3.0f, &a[0]);
+        (void)slerp_raw(qm, qc, 2.0f / 3.0f, &b[1]);
+        b[0] = qm;
+        a[1] = qc;
+        return QO_OK;
+    }
+    qn = next_key(keys[2], qc);
+    a[0] = end_control(qm, qc, qn);
+    b[0] = qm;
+    /* Rolling window (q_{i-1}, q_i, q_{i+1}) over the aligned keys: no scratch array. */
+    for (i = 1; i + 1 < n; i++) {
+        if (i > 1) {
+            qm = qc;
+            qc = qn;
+            qn = next_key(keys[i + 1], qc);
+        }
+        inner_controls(qm, qc, qn, &a[i], &b[i]);
+    }
+    /* Window is now (q_{n-3}, q_{n-2}, q_{n-1}). */
+    b[n - 1] = end_control(qn, qc, qm);
+    a[n - 1] = qn;
+    return QO_OK;
+}
+
+qo_status qo_quat_spline_eval_f32(const qo_quat_f32 *keys, const qo_quat_f32 *a,
+                                  const qo_quat_f32 *b, size_t n, float s, qo_quat_f32 *out)
+{
+    qo_quat_f32 p[4];
+    qo_status st;
+    size_t i, k;
+    float t;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_f32();
+    if (keys == NULL || a == NULL || b == NULL) return QO_E_NULL;
+    if (n < 2) return QO_E_TOO_FEW;
+    if (!(s >= 0.0f) || !isfinite(s) || s > (float)(n - 1)) {
+        /* NaN and below 0 -> first key, above n-1 -> last key. */
+        const qo_quat_f32 *end = (s > 0.0f) ? &keys[n - 1] : &keys[0];
+        (void)unit_in(*end, out);
+        return isfinite(s) ? QO_E_RANGE : QO_E_NONFINITE;
+    }
+    i = (size_t)s;
+    if (i > n - 2) i = n - 2;
+    t = s - (float)i;
+    p[0] = keys[i];
+    p[1] = a[i];
+    p[2] = b[i + 1];
+    p[3] = keys[i + 1];
+    st = check_keys(p, 4);
+    if (st != QO_OK) return st;
+    for (k = 0; k < 4; k++) (void)qo_quat_normalize_f32(p[k], &p[k]);
+    /* a_i and b_{i+1} carry the aligned signs and lie within 60 deg (4-D) of their keys, so
+     * aligning the keys to them is unambiguous even for unaligned caller keys. */
+    p[0] = align_to(p[0], p[1]);
+    p[3] = align_to(p[3], p[2]);
+    *out = casteljau(p, 4, t);
+    return QO_OK;
+}
+
+qo_status qo_quat_squad_f32(qo_quat_f32 q0, qo_quat_f32 s0, qo_quat_f32 s1, qo_quat_f32 q1,
+                            float t, qo_quat_f32 *out)
+{
+    qo_quat_f32 p[4], x, y;
+    qo_status st;
+    size_t k;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_f32();
+    p[0] = q0; p[1] = s0; p[2] = s1; p[3] = q1;
+    st = check_keys(p, 4);
+    if (st != QO_OK) return st;
+    for (k = 0; k < 4; k++) (void)qo_quat_normalize_f32(p[k], &p[k]);
+    *out = p[0];
+    st = check_t(t);
+    if (st != QO_OK || t == 0.0f) return st;
+    p[3] = align_to(p[3], p[0]);
+    p[1] = align_to(p[1], p[0]);
+    p[2] = align_to(p[2], p[3]);
+    if (t == 1.0f) {
+        *out = p[3];
+        return QO_OK;
+    }
+    (void)slerp_raw(p[0], p[3], t, &x);
+    (void)slerp_raw(p[1], p[2], t, &y);
+    (void)slerp_raw(x, y, 2.0f * t * (1.0f - t), out);
+    return QO_OK;
+}
+
+/* log of a unit quaternion as its pure part (the ln|q| ~ 1e-8 scalar part is rounding). */
+static qo_quat_f32 log_unit(qo_quat_f32 q)
+{
+    qo_quat_f32 l;
+    (void)qo_quat_log_f32(q, &l);
+    l.w = 0.0f;
+    return l;
+}
+
+qo_status qo_quat_squad_controls_f32(const qo_quat_f32 *keys, size_t n, qo_quat_f32 *s)
+{
+    qo_quat_f32 qm, qc, qn, qci, l1, l2, e, arg;
+    qo_status st;
+    size_t i;
+    if (keys == NULL || s == NULL) {
+        fill_identity(s, n);
+        return QO_E_NULL;
+    }
+    fill_identity(s, n);
+    if (n < 2) return QO_E_TOO_FEW;
+    st = check_keys(keys, n);
+    if (st != QO_OK) return st;
+    (void)qo_quat_normalize_f32(keys[0], &qc);
+    s[0] = qc;
+    qn = next_key(keys[1], qc);
+    for (i = 1; i + 1 < n; i++) {
+        qm = qc;
+        qc = qn;
+        qn = next_key(keys[i + 1], qc);
+        qci = qo_quat_conj_f32(qc);
+        /* Aligned keys: both relative rotations have w >= 0, so the logs are the short ones. */
+        l1 = log_unit(qo_quat_mul_f32(qci, qn));
+        l2 = log_unit(qo_quat_mul_f32(qci, qm));
+        arg.w = 0.0f;
+        arg.x = -0.25f * (l1.x + l2.x);
+        arg.y = -0.25f * (l1.y + l2.y);
+        arg.z = -0.25f * (l1.z + l2.z);
+        (void)qo_quat_exp_f32(arg, &e);
+        (void)qo_quat_normalize_f32(qo_quat_mul_f32(qc, e), &s[i]);
+    }
+    s[n - 1] = qn;
+    return QO_OK;
+}
