@@ -1,0 +1,180 @@
+/*
+ * qorient/euler.h - Euler angles, float32: all 12 axis sequences, intrinsic and extrinsic
+ * (24 conventions), both directions, with gimbal lock reported as data.
+ *
+ * Index:
+ *   qo_euler_seq                 enum of the 24 conventions (scipy's names: xyz extrinsic, XYZ intrinsic)
+ *   qo_euler_f32                 three angles a1, a2, a3 (rad) in the order the sequence names them
+ *   qo_euler_info_f32            gimbal-lock report: locked flag and margin (rad) to the singularity
+ *   QO_EULER_LOCK_BAND_F32       default lock band (rad) of qo_quat_to_euler_f32
+ *   qo_euler_seq_parse()         "xyz" / "ZYX" / "zxz" ... -> qo_euler_seq
+ *   qo_euler_seq_name()          qo_euler_seq -> "xyz" / "ZYX" / ...
+ *   qo_euler_seq_is_intrinsic()  1 for the upper-case (intrinsic) sequences
+ *   qo_euler_seq_is_proper()     1 for proper Euler sequences (first axis == third axis)
+ *   qo_quat_from_euler_f32()     angles -> quaternion
+ *   qo_quat_to_euler_f32()       quaternion -> angles, scipy ranges, default lock band
+ *   qo_quat_to_euler_band_f32()  the same with a caller-chosen lock band
+ *   qo_quat_to_euler_near_f32()  quaternion -> the solution nearest previous angles (joints)
+ *
+ * Conventions (the same as scipy.spatial.transform.Rotation.from_euler / as_euler):
+ *   - A sequence names three axes, e.g. "xyz". Lower case = EXTRINSIC: rotate about the fixed
+ *     (world) axes x, then y, then z. Upper case = INTRINSIC: rotate about the body's own axes
+ *     X, then the new Y', then the newer Z''. Cases cannot be mixed.
+ *   - Angles (a1, a2, a3) belong to the axes in the order written. With R_x(t) the active
+ *     rotation by t about x (types.h: Hamilton, active, right-handed):
+ *       extrinsic "xyz": q = q_z(a3) * q_y(a2) * q_x(a1)     (x applied first)
+ *       intrinsic "XYZ": q = q_X(a1) * q_Y(a2) * q_Z(a3)
+ *     so intrinsic "XYZ" (a1, a2, a3) is the same rotation as extrinsic "zyx" (a3, a2, a1).
+ *     Example: intrinsic "ZYX" = (yaw, pitch, roll) of aerospace; yaw 90 deg = (pi/2, 0, 0).
+ *   - Tait-Bryan sequences (three different axes: xyz, xzy, yxz, yzx, zxy, zyx) are singular
+ *     (gimbal lock) when the middle angle is +-pi/2. Proper Euler sequences (first axis ==
+ *     third: xyx, xzx, yxy, yzy, zxz, zyz) are singular when the middle angle is 0 or pi -
+ *     including the identity rotation.
+ *   - Ranges returned by qo_quat_to_euler_f32 / _band_f32 (scipy's): a1, a3 in [-pi, pi];
+ *     a2 in [-pi/2, pi/2] (Tait-Bryan) or [0, pi] (proper). (pi here is the float nearest pi.)
+ *
+ * Gimbal lock. margin = the angle (rad, in [0, pi/2]) between the middle angle and its nearest
+ * singular value; locked = (margin <= band). At lock only the sum (or difference) of a1 and a3
+ * is determined by the rotation. Our documented choice, scipy's: a3 = 0 and a1 takes all of
+ * it, so the angles still compose to the input rotation. When the input is not exactly
+ * singular but inside the band, forcing a3 = 0 moves the composed rotation by at most
+ * 2*asin(2*sin(margin/2)) ~= 2*margin (rad): the part of the rotation that tells a1 from a3
+ * has size sin(margin/2). The middle angle is never snapped; a1 is the best fit given a2, a3.
+ *
+ * Why QO_EULER_LOCK_BAND_F32 is 2e-6 rad (and not the 1e-3 of matrix-based code):
+ *   - The middle angle is computed directly from the quaternion (Bernardes & Viollet 2022:
+ *     2*atan2(hypot, hypot), no asin, never NaN), so float32 noise moves the margin LINEARLY,
+ *     by a few 1e-7 rad at an exactly singular input (an asin/acos form would move it by
+ *     sqrt(1e-7) ~ 3e-4, which is why PX4 needs 1e-3). bench/accuracy_euler measures the
+ *     largest margin seen at exactly singular inputs; 2e-6 leaves several times headroom, so
+ *     every exactly singular float32 input is flagged.
+ *   - A flagged input recomposes within 2*margin <= 4e-6 rad (plus float rounding ~5e-7), inside
+ *     the 1e-5 rad goal. A band of 1e-3 would let flagged inputs recompose 2e-3 rad off.
+ *   - Outside the band the full decomposition is returned and recomposes to float precision
+ *     however close to lock (a1 and a3 are individually ill-conditioned there, their
+ *     composition is not).
+ *   A gimbal that wants a wider "hold" zone (e.g. 0.5 deg) passes its own band to
+ *   qo_quat_to_euler_band_f32 / qo_quat_to_euler_near_f32 and accepts the 2*margin bound.
+ *
+ * Inputs: any finite non-zero quaternion (it is normalised first; q and -q give the same
+ * angles). Angles of any finite size for from_euler (they are periodic).
+ */
+#ifndef QORIENT_EULER_H
+#define QORIENT_EULER_H
+
+#include "qorient/status.h"
+#include "qorient/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/*
+ * The 24 conventions. The constant names mirror scipy's sequence strings exactly, so they are
+ * the one place in qorient where enum constants are mixed case: QO_EULER_xyz is extrinsic
+ * x-y-z, QO_EULER_XYZ is intrinsic X-Y'-Z''. Values 0..11 extrinsic, 12..23 intrinsic, in the
+ * same axis order; Tait-Bryan first, then proper. The values are part of the ABI.
+ */
+typedef enum qo_euler_seq {
+    QO_EULER_xyz = 0, QO_EULER_xzy, QO_EULER_yxz, QO_EULER_yzx, QO_EULER_zxy, QO_EULER_zyx,
+    QO_EULER_xyx, QO_EULER_xzx, QO_EULER_yxy, QO_EULER_yzy, QO_EULER_zxz, QO_EULER_zyz,
+    QO_EULER_XYZ, QO_EULER_XZY, QO_EULER_YXZ, QO_EULER_YZX, QO_EULER_ZXY, QO_EULER_ZYX,
+    QO_EULER_XYX, QO_EULER_XZX, QO_EULER_YXY, QO_EULER_YZY, QO_EULER_ZXZ, QO_EULER_ZYZ,
+    QO_EULER_SEQ_COUNT_   /* number of conventions; not a convention */
+} qo_euler_seq;
+
+/* Three angles in radians, a1 about the first axis named by the sequence, a2 the second,
+ * a3 the third (scipy's from_euler(seq, [a1, a2, a3])). */
+typedef struct qo_euler_f32 { float a1, a2, a3; } qo_euler_f32;
+
+/* Gimbal-lock report of one decomposition.
+ *   locked: 1 when margin <= the lock band in use (then a3 was chosen, not measured), else 0.
+ *   margin: angle in rad, in [0, pi/2], between the middle angle and the nearest singular
+ *           value (+-pi/2 for Tait-Bryan; 0 or pi for proper). A property of the rotation and
+ *           the sequence, not of the band: callers may apply their own threshold to it. */
+typedef struct qo_euler_info_f32 { int locked; float margin; } qo_euler_info_f32;
+
+/* Default lock band of qo_quat_to_euler_f32, rad (justified in the file comment above). */
+#define QO_EULER_LOCK_BAND_F32 2e-6f
+
+/*
+ * Parses a sequence string: exactly three letters, each x, y or z, all lower case (extrinsic)
+ * or all upper case (intrinsic), no two consecutive letters equal (the first and third may be
+ * equal: proper Euler). Nothing may follow the three letters.
+ * Returns QO_OK; QO_E_NULL if s or out is NULL; QO_E_ARG for any other string (mixed case,
+ * "xxy", "xy", "xyzx", "abc", ""). On error *out (if out is not NULL) is QO_EULER_SEQ_COUNT_,
+ * which every function below rejects with QO_E_ARG, so an unchecked failure cannot silently
+ * become some sequence.
+ */
+qo_status qo_euler_seq_parse(const char *s, qo_euler_seq *out);
+
+/* The sequence's string as scipy spells it ("xyz", "ZYX", ...); "invalid" for a value that is
+ * not one of the 24. Never NULL; the string is constant. */
+const char *qo_euler_seq_name(qo_euler_seq seq);
+
+/* 1 if seq is one of the 12 intrinsic (upper-case) sequences, 0 otherwise (also for an invalid
+ * value). */
+int qo_euler_seq_is_intrinsic(qo_euler_seq seq);
+
+/* 1 if seq is one of the 12 proper Euler sequences (first axis == third axis: singular at a
+ * middle angle of 0 or pi), 0 for Tait-Bryan (singular at +-pi/2) and for an invalid value. */
+int qo_euler_seq_is_proper(qo_euler_seq seq);
+
+/*
+ * Quaternion of the rotation given by Euler angles e (rad, any finite value) in convention seq:
+ * the product of the three elementary half-angle quaternions in composition order (see the
+ * file comment). The sign is that product's, not canonicalised - the same as scipy's
+ * from_euler(...).as_quat() - apply qo_quat_canonical_f32 for w >= 0. Unit to float rounding.
+ * Returns QO_OK; QO_E_NULL (out NULL); QO_E_ARG (seq not one of the 24); QO_E_NONFINITE (an
+ * angle is NaN or Inf). On error *out is the identity.
+ */
+qo_status qo_quat_from_euler_f32(qo_euler_seq seq, qo_euler_f32 e, qo_quat_f32 *out);
+
+/*
+ * Euler angles of the rotation q in convention seq, scipy's ranges (file comment), lock band
+ * QO_EULER_LOCK_BAND_F32. q need not be unit (it is normalised); q and -q give the same result.
+ * Method: Bernardes & Viollet 2022, directly from the quaternion, atan2 only (never NaN).
+ * At lock (info.locked == 1): a3 = 0 and a1 carries the rest (file comment); a2 as measured.
+ * Accuracy (bench/accuracy_euler): composing the result in double gives q within 1e-6 rad
+ * generically and within 1e-5 rad at or near lock.
+ * info may be NULL. Returns QO_OK; QO_E_NULL (out NULL); QO_E_ARG (bad seq); QO_E_NONFINITE
+ * (a component of q is NaN or Inf); QO_E_DEGENERATE (q is zero, or so small its norm
+ * underflows). On error *out = (0, 0, 0) and *info = { 0, 0 }.
+ */
+qo_status qo_quat_to_euler_f32(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f32 *out,
+                               qo_euler_info_f32 *info);
+
+/*
+ * As qo_quat_to_euler_f32 with the lock band band_rad (rad, in [0, pi/2]; 0 flags only an
+ * exactly computed margin of 0, pi/2 flags everything). The composed result is within
+ * 2*margin (<= 2*band_rad) of q when locked.
+ * Returns as qo_quat_to_euler_f32, plus QO_E_NONFINITE for a NaN/Inf band and QO_E_RANGE for
+ * a finite band outside [0, pi/2]. On error *out = (0, 0, 0) and *info = { 0, 0 }.
+ */
+qo_status qo_quat_to_euler_band_f32(qo_quat_f32 q, qo_euler_seq seq, float band_rad,
+                                    qo_euler_f32 *out, qo_euler_info_f32 *info);
+
+/*
+ * Euler angles of q nearest the previous joint angles prev, for joints that must not jump.
+ * Every rotation has two solutions off lock: (a1, a2, a3) and (a1 + pi, pi - a2, a3 + pi)
+ * (Tait-Bryan) or (a1 + pi, -a2, a3 + pi) (proper). Each angle of each is moved by a multiple
+ * of 2*pi to the value nearest the same angle of prev, and the solution with the smaller sum
+ * of squared differences to prev is returned (the first one on a tie). So the outputs are NOT
+ * limited to [-pi, pi]: a continuous joint keeps counting turns (precision is float32's at the
+ * size of prev: re-wrap prev now and then on a joint that turns forever).
+ * At lock (margin <= band, rad in [0, pi/2]): the free split stays where prev had it: a3 =
+ * prev.a3 exactly, a2 the measured middle angle of the branch nearer prev.a2, and a1 the best
+ * fit given those (unwrapped toward prev.a1). Exactly at the singularity this composes to q;
+ * inside the band it is within 2*margin of q (and much closer while prev tracks the motion).
+ * info may be NULL. Returns QO_OK; QO_E_NULL (out NULL); QO_E_ARG (bad seq); QO_E_NONFINITE
+ * (NaN/Inf in q, prev or band); QO_E_DEGENERATE (q zero); QO_E_RANGE (band outside
+ * [0, pi/2]). On error *out = prev if prev is finite (hold the joint), else (0, 0, 0), and
+ * *info = { 0, 0 }.
+ */
+qo_status qo_quat_to_euler_near_f32(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f32 prev,
+                                    float band, qo_euler_f32 *out, qo_euler_info_f32 *info);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* QORIENT_EULER_H */
