@@ -84,8 +84,9 @@ qo_status qo_quat_nlerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *
  * everything (float acos gives 0 for dot > 1 - 6e-8, i.e. for any th < 3.5e-4). Below
  * QO_SLERP_SERIES_ANGLE the weights come from a series (see there). The flipped b' is used in
  * every branch, so q and -q (the same rotation) interpolate to that rotation, unit length.
- * Endpoints are exact: t == 0 returns unit a (a/|a|, bit-exact a for a unit input), t == 1
- * returns unit b' - i.e. -b/|b| when dot(a, b) < 0 (the sign nearest a), else b/|b|.
+ * Endpoints are exact: t == 0 returns unit a (a/|a| exactly as qo_quat_normalize_f32 gives it,
+ * which is a itself up to the last bit for a unit a), t == 1 returns unit b' - i.e. -b/|b| when
+ * dot(a, b) < 0 (the sign nearest a), else b/|b|.
  * Exactly 180 deg apart (dot == 0, th = pi/2) is not special: b is kept (no flip) and the path
  * is the great circle through a and b, which is one of the two equally short rotations.
  * Returns QO_OK; QO_E_NULL (out NULL, nothing written); QO_E_NONFINITE for NaN/Inf in a or b
