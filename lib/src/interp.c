@@ -58,10 +58,23 @@ static qo_quat_f32 slerp_weights(qo_quat_f32 a, qo_quat_f32 b, float th, float u
         float th2 = th * th;
         wa = series_weight(1.0f - u, th2);
         wb = series_weight(u, th2);
-    } else {
+    } else if (th <= 0.5f * QO_PI_F) {
         float inv = 1.0f / sinf(th);
         wa = sinf((1.0f - u) * th) * inv;
         wb = sinf(u * th) * inv;
+    } else {
+        /* Beyond 90 deg (long way, extrapolated control points) the weights grow like
+         * 1/sin(th) and their difference amplifies the error of th by 1/sin^2(th). Instead
+         * rotate a towards the unit direction e of the a-b plane orthogonal to a:
+         * out = cos(u th) a + sin(u th) e. e is built from s = a + b, which is small near
+         * th = pi but computed with small RELATIVE error (b ~ -a: the sums are exact), as
+         * s - (s.a) a; the textbook b - (a.b) a would cancel two O(1) terms. |s| >= 2 sin of
+         * half the series angle, so e is defined. */
+        qo_quat_f32 e, sum = comb_q(1.0f, a, 1.0f, b);
+        (void)qo_quat_normalize_f32(comb_q(1.0f, sum, -qo_quat_dot_f32(sum, a), a), &e);
+        r = comb_q(cosf(u * th), a, sinf(u * th), e);
+        (void)qo_quat_normalize_f32(r, &n);
+        return n;
     }
     r = comb_q(wa, a, wb, b);
     /* |r| is 1 up to rounding (never near 0 in the allowed range of th), so this cannot fail;

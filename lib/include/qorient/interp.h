@@ -69,8 +69,8 @@ qo_status qo_quat_lerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *o
  * then out = normalise((1-t)*a + t*b). Cheaper than slerp; same path, but the angular rate is
  * not constant (fastest at the middle; for a rotation of angle phi the speed ratio middle/ends
  * is 1/cos^2(phi/4): 1.17 at 90 deg, 2 at 180 deg). t == 0 gives unit a, t == 1 the (possibly
- * negated) unit b, exactly. When a and -b are the same rotation 180 deg apart (dot == 0) the
- * middle is well defined: the sum has length >= 1/sqrt(2).
+ * negated) unit b, exactly. The middle is always defined: after the flip dot >= 0, so the sum
+ * has length >= 1/sqrt(2) (also for orientations exactly 180 deg apart, dot == 0).
  * Returns QO_OK; QO_E_NULL (out NULL, nothing written); QO_E_NONFINITE for NaN/Inf in a or b
  * (*out = identity) or t NaN/Inf (*out = unit a); QO_E_DEGENERATE if a or b is zero
  * (*out = identity); QO_E_RANGE if t is outside [0, 1] (*out = unit a). */
@@ -84,8 +84,9 @@ qo_status qo_quat_nlerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *
  * everything (float acos gives 0 for dot > 1 - 6e-8, i.e. for any th < 3.5e-4). Below
  * QO_SLERP_SERIES_ANGLE the weights come from a series (see there). The flipped b' is used in
  * every branch, so q and -q (the same rotation) interpolate to that rotation, unit length.
- * Endpoints are exact: t == 0 returns unit a (a/|a|, bit-exact a for a unit input), t == 1
- * returns unit b' - i.e. -b/|b| when dot(a, b) < 0 (the sign nearest a), else b/|b|.
+ * Endpoints are exact: t == 0 returns unit a (a/|a| exactly as qo_quat_normalize_f32 gives it,
+ * which is a itself up to the last bit for a unit a), t == 1 returns unit b' - i.e. -b/|b| when
+ * dot(a, b) < 0 (the sign nearest a), else b/|b|.
  * Exactly 180 deg apart (dot == 0, th = pi/2) is not special: b is kept (no flip) and the path
  * is the great circle through a and b, which is one of the two equally short rotations.
  * Returns QO_OK; QO_E_NULL (out NULL, nothing written); QO_E_NONFINITE for NaN/Inf in a or b
@@ -97,8 +98,10 @@ qo_status qo_quat_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *
  * ? -b : b, so the path is the rotation of angle 2*pi - phi (phi = the short rotation angle)
  * about the opposite sense of the same axis. For dot == 0 b is kept (both ways are 180 deg).
  * When a and b are the same rotation (phi -> 0) the long way is a full turn about an axis the
- * inputs no longer define; the conditioning of the axis is about 6e-8/phi rad, so the function
- * refuses phi < 2*QO_SLERP_SERIES_ANGLE (0.002 rad) with QO_E_DEGENERATE (*out = unit a).
+ * inputs no longer define: the plane of the path, and so the result, is only known to about
+ * 1e-6/phi rad (float rounding of the inputs divided by |a + b'| ~ phi/2; measured 7.4e-7/phi by
+ * bench/accuracy_interp.c). The function refuses phi < 2*QO_SLERP_SERIES_ANGLE (0.002 rad)
+ * with QO_E_DEGENERATE (*out = unit a).
  * Endpoints: t == 0 gives unit a, t == 1 gives unit b' exactly.
  * Other statuses and outputs as qo_quat_slerp_f32. */
 qo_status qo_quat_slerp_long_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out);
@@ -141,8 +144,9 @@ qo_status qo_quat_bezier_f32(const qo_quat_f32 *ctrl, size_t n, float t, qo_quat
 qo_status qo_quat_bezier3_f32(qo_quat_f32 q0, qo_quat_f32 q1, qo_quat_f32 q2, qo_quat_f32 q3,
                               float t, qo_quat_f32 *out);
 
-/* Inner control points of Shoemake's C1 Bezier spline through n keyframes (as in Barbic's
- * CSCI 520 "Quaternion interpolation" notes). The keys are first normalised and aligned
+/* Inner control points of Shoemake's C1 Bezier spline through n keyframes, as given in the
+ * lecture notes on quaternion interpolation this module follows (Shoemake 1985, with the
+ * 1/3 scaling of the Euclidean cubic Bezier). The keys are first normalised and aligned
  * (qo_quat_align_keys_f32); q_i below are the ALIGNED keys, and the spline passes through
  * them (the same rotations as the caller's keys, possibly opposite signs). Segment i (from q_i
  * to q_{i+1}) is the cubic Bezier q_i, a_i, b_{i+1}, q_{i+1}. With Slerp(p, q, u) the great-
