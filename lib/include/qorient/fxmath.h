@@ -101,7 +101,7 @@ qo_q16 qo_fx_mul_q16(int32_t a, qo_q16 b);
  * round(sum(terms[0..n-1]) / 2^shift) computed exactly (every term is split into a high and a
  * low part, so no intermediate overflows and there is one rounding, ties toward +inf), NOT
  * saturated. Preconditions (unchecked, documented): |terms[i]| <= 2^62, n <= 16,
- * 1 <= shift <= 40. The typical use is a dot product of Q1.30 values: terms are
+ * 8 <= shift <= 40. The typical use is a dot product of Q1.30 values: terms are
  * (int64_t)a_i * b_i (Q2.60), shift 30, result Q1.30 in an int64 (saturate with
  * qo_fx_sat_i32 or check the range yourself).
  */
