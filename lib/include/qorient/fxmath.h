@@ -1,0 +1,188 @@
+/*
+ * qorient/fxmath.h - fixed-point primitives of the fixed core (no float, no double, no libm).
+ *
+ * Formats: see qorient/types.h. Q1.30 (qo_q30) unit-range values, Q3.28 (qo_q28) radians,
+ * Q16.16 (qo_q16) user units. Every function is pure: no static caches, no tables in RAM, no
+ * hidden state, safe from interrupts and on several cores at once.
+ *
+ * Index:
+ *   QO_Q28_PI, QO_Q28_HALF_PI, QO_Q28_TWO_PI   pi, pi/2, 2pi in Q3.28 (each rounded to nearest)
+ *   qo_fx_sat_i32          saturate an int64 to int32
+ *   qo_fx_add_q30          saturating a + b (any one format)
+ *   qo_fx_sub_q30          saturating a - b (any one format)
+ *   qo_fx_neg_q30          saturating -a (any one format)
+ *   qo_fx_mul_q30          a * b with b in Q1.30, result in a's format (rounded, saturated)
+ *   qo_fx_mul_q28          a * b with b in Q3.28, result in a's format (rounded, saturated)
+ *   qo_fx_mul_q16          a * b with b in Q16.16, result in a's format (rounded, saturated)
+ *   qo_fx_sum_round_i64    round(sum of int64 terms / 2^shift), exact, one rounding
+ *   qo_fx_div_q30          num / den -> Q1.30 (status: den 0, overflow)
+ *   qo_fx_div_q28          num / den -> Q3.28 (status: den 0, overflow)
+ *   qo_fx_div_q16          num / den -> Q16.16 (status: den 0, overflow)
+ *   qo_fx_sqrt_u64         integer square root, rounded to nearest
+ *   qo_fx_sqrt_q30         square root of a Q1.30 value (status: negative)
+ *   qo_fx_rsqrt_q30        1/sqrt of a Q1.30 value (status: <= 0, overflow)
+ *   qo_fx_norm3_q30        sqrt(x^2+y^2+z^2) with 64-bit accumulation (saturated)
+ *   qo_fx_norm4_q30        sqrt(w^2+x^2+y^2+z^2) with 64-bit accumulation (saturated)
+ *   qo_fx_sincos_q28       sin and cos of a Q3.28 angle (any angle, reduced mod 2pi)
+ *   qo_fx_sincos_half_q28  sin and cos of HALF a Q3.28 angle (no rounding of the halving)
+ *   qo_fx_sincos_q60       sin and cos of an int64 Q3.60 angle (the kernel of the two above)
+ *   qo_fx_sin_q28          sin of a Q3.28 angle
+ *   qo_fx_cos_q28          cos of a Q3.28 angle
+ *   qo_fx_atan2_q28        atan2(y, x) of two int32 of any one scale -> Q3.28 in [-pi, pi]
+ *   qo_fx_asin_q28         asin of a Q1.30 input clamped to [-1, 1] -> Q3.28 in [-pi/2, pi/2]
+ *   qo_fx_acos_q28         acos of a Q1.30 input clamped to [-1, 1] -> Q3.28 in [0, pi]
+ *   qo_fx_wrap_pi_q28      an angle reduced to [-pi, pi]
+ *
+ * Rounding: "rounded" means round to nearest with ties toward +infinity (add half an LSB,
+ * then floor), unless a function says otherwise. Saturation clamps to [INT32_MIN, INT32_MAX].
+ *
+ * Methods, accuracy and size (measured by bench/accuracy_fx.c against double libm over the
+ * whole domain; sizes are Cortex-M0+ -O2 Thumb code, see the report):
+ *   mul/add/sub/neg:   exact result rounded once (mul: <= 0.5 LSB), saturated.
+ *   div:               64-bit integer division with remainder-based rounding (<= 0.5 LSB);
+ *                      on Cortex-M0+ this calls the compiler's integer __aeabi_uldivmod.
+ *   sqrt_u64/sqrt_q30: bit-by-bit (digit-by-digit) integer square root, 32 iterations, then
+ *                      exact rounding from the remainder: correctly rounded (<= 0.5 LSB).
+ *   rsqrt_q30:         exact square root then one rounded 64-bit division: <= 1 LSB.
+ *   sincos:            argument reduced mod pi/2 in Q3.60 with a 62-bit pi/2 (the reduction
+ *                      itself is exact to 2^-60 for every Q3.28 input), then Taylor polynomials
+ *                      on [-pi/4, pi/4] (sin to x^11, cos to x^12, truncation < 1e-11) by
+ *                      Horner in Q1.31 with 64-bit products: <= 1 LSB of Q1.30 (typ. 0.5).
+ *                      No table.
+ *   atan2:             octant folding to t = min/max in [0, 1]; t is rotated by the nearest of
+ *                      atan(k/8), k = 0..8 (a 9-entry const table, 72 bytes) using the exact
+ *                      integer rotation (8x + ky, 8y - kx), so one division gives |t'| <= 1/16;
+ *                      then atan(t') by its odd series to t'^9 in Q1.31. <= 1 LSB of Q3.28
+ *                      (3.7e-9 rad; libfixmath's fix16_atan2 is off by up to 1e-2 rad).
+ *   asin/acos:         atan2 of (x, sqrt(1 - x^2)) with 1 - x^2 formed exactly in Q2.60, so the
+ *                      ends +-1 and the neighbourhood of +-1 keep full accuracy: <= 1 LSB.
+ * Portability: the fixed core needs two's-complement int32_t/int64_t and an arithmetic right
+ * shift of negative values (true of gcc and clang on every target); fxmath_fx.c checks this at
+ * compile time.
+ */
+#ifndef QORIENT_FXMATH_H
+#define QORIENT_FXMATH_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "qorient/status.h"
+#include "qorient/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* pi, pi/2 and 2pi in Q3.28, each rounded to nearest (so 2*HALF_PI == PI - 1 LSB, and
+ * TWO_PI == 2*PI - 1 LSB: use the constant you mean). */
+#define QO_Q28_PI      ((qo_q28)843314857)   /* 3.14159265 */
+#define QO_Q28_HALF_PI ((qo_q28)421657428)   /* 1.57079633 */
+#define QO_Q28_TWO_PI  ((qo_q28)1686629713)  /* 6.28318531 */
+
+/* v clamped to [INT32_MIN, INT32_MAX]. */
+int32_t qo_fx_sat_i32(int64_t v);
+
+/* a + b, a - b and -a, saturated. Formats must match; the result is in that format. Used for
+ * every format (Q1.30, Q3.28, Q16.16): the _q30 suffix names the family, not a restriction.
+ * qo_fx_neg_q30(INT32_MIN) is INT32_MAX. */
+qo_q30 qo_fx_add_q30(qo_q30 a, qo_q30 b);
+qo_q30 qo_fx_sub_q30(qo_q30 a, qo_q30 b);
+qo_q30 qo_fx_neg_q30(qo_q30 a);
+
+/* Product a * b where b is in Q1.30 (resp. Q3.28, Q16.16) and a in any format F: the result
+ * is in F. Exact 64-bit product, rounded once (ties toward +inf), saturated. So
+ * qo_fx_mul_q30(q30, q30) -> Q1.30, qo_fx_mul_q30(angle_q28, q30) -> Q3.28,
+ * qo_fx_mul_q28(q28, q28) -> Q3.28, qo_fx_mul_q16(q16, q16) -> Q16.16. */
+qo_q30 qo_fx_mul_q30(int32_t a, qo_q30 b);
+qo_q28 qo_fx_mul_q28(int32_t a, qo_q28 b);
+qo_q16 qo_fx_mul_q16(int32_t a, qo_q16 b);
+
+/*
+ * round(sum(terms[0..n-1]) / 2^shift) computed exactly (every term is split into a high and a
+ * low part, so no intermediate overflows and there is one rounding, ties toward +inf), NOT
+ * saturated. Preconditions (unchecked, documented): |terms[i]| <= 2^62, n <= 16,
+ * 8 <= shift <= 40. The typical use is a dot product of Q1.30 values: terms are
+ * (int64_t)a_i * b_i (Q2.60), shift 30, result Q1.30 in an int64 (saturate with
+ * qo_fx_sat_i32 or check the range yourself).
+ */
+int64_t qo_fx_sum_round_i64(const int64_t *terms, size_t n, unsigned shift);
+
+/*
+ * num / den with both in one format (any), result in Q1.30 (resp. Q3.28, Q16.16), rounded to
+ * nearest (ties away from zero).
+ * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_DEGENERATE if den == 0 (*out = 0);
+ * QO_E_OVERFLOW if the quotient does not fit (*out = INT32_MAX or INT32_MIN by the sign).
+ */
+qo_status qo_fx_div_q30(int32_t num, int32_t den, qo_q30 *out);
+qo_status qo_fx_div_q28(int32_t num, int32_t den, qo_q28 *out);
+qo_status qo_fx_div_q16(int32_t num, int32_t den, qo_q16 *out);
+
+/* floor(sqrt(v) + 1/2): the integer square root rounded to nearest (never a tie), for every
+ * uint64 v. The result is at most 2^32 (for v >= (2^32 - 1/2)^2), hence the uint64 type. */
+uint64_t qo_fx_sqrt_u64(uint64_t v);
+
+/*
+ * sqrt(x) for x in Q1.30, result in Q1.30, correctly rounded (x < 2 so sqrt(x) < 1.42 fits).
+ * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_RANGE if x < 0 (*out = 0).
+ */
+qo_status qo_fx_sqrt_q30(qo_q30 x, qo_q30 *out);
+
+/*
+ * 1/sqrt(x) for x in Q1.30, result in Q1.30 (<= 1 LSB error). Fits for x > 0.25.
+ * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_RANGE if x <= 0 (*out = INT32_MAX);
+ * QO_E_OVERFLOW if 1/sqrt(x) >= 2, i.e. x <= 0.25 (*out = INT32_MAX).
+ */
+qo_status qo_fx_rsqrt_q30(qo_q30 x, qo_q30 *out);
+
+/* Euclidean norm of a 3- or 4-vector of Q1.30 components, in Q1.30: the squares are summed
+ * exactly in 64 bits and the square root is correctly rounded. Saturates at INT32_MAX
+ * (~2.0) when the norm does not fit. Works for any single format (the result has the
+ * format of the inputs). */
+qo_q30 qo_fx_norm3_q30(qo_q30 x, qo_q30 y, qo_q30 z);
+qo_q30 qo_fx_norm4_q30(qo_q30 w, qo_q30 x, qo_q30 y, qo_q30 z);
+
+/*
+ * sin and cos of angle_rad (Q3.28 radians, any value in [-8, 8): reduced mod 2pi exactly),
+ * results in Q1.30 within 1 LSB of the true sin/cos of the exact input value. sin(0) = 0,
+ * cos(0) = QO_Q30_ONE exactly; |results| <= QO_Q30_ONE.
+ * Returns QO_OK; QO_E_NULL if s or c is NULL (the other one is still written).
+ */
+qo_status qo_fx_sincos_q28(qo_q28 angle_rad, qo_q30 *s, qo_q30 *c);
+
+/* sin and cos of angle_rad / 2 (Q3.28 angle), without rounding the halved angle: what a
+ * quaternion from an angle needs. Same accuracy and statuses as qo_fx_sincos_q28. */
+qo_status qo_fx_sincos_half_q28(qo_q28 angle_rad, qo_q30 *s, qo_q30 *c);
+
+/* sin and cos of an angle given as an int64 in Q3.60 (value = raw / 2^60, any raw value:
+ * |angle| < 8 rad), results in Q1.30. For callers that hold angles with more than 28
+ * fractional bits (sums, halves, norms computed in 64 bits). Same statuses as above. */
+qo_status qo_fx_sincos_q60(int64_t angle_q60, qo_q30 *s, qo_q30 *c);
+
+/* sin / cos of a Q3.28 angle in Q1.30 (the matching half of qo_fx_sincos_q28). */
+qo_q30 qo_fx_sin_q28(qo_q28 angle_rad);
+qo_q30 qo_fx_cos_q28(qo_q28 angle_rad);
+
+/*
+ * atan2(y, x) in Q3.28 radians, in [-QO_Q28_PI, QO_Q28_PI], for y and x of ANY one fixed
+ * format (only the ratio matters), every int32 value including INT32_MIN. <= 1 LSB of Q3.28.
+ * Axes: atan2(0, x>0) = 0, atan2(0, x<0) = +QO_Q28_PI (there is no -0 in integers),
+ * atan2(y>0, 0) = QO_Q28_HALF_PI, atan2(y<0, 0) = -QO_Q28_HALF_PI, and atan2(0, 0) = 0
+ * (a documented choice, as C's atan2(+0, +0)).
+ */
+qo_q28 qo_fx_atan2_q28(int32_t y, int32_t x);
+
+/* asin(x) in [-QO_Q28_HALF_PI, QO_Q28_HALF_PI] and acos(x) in [0, QO_Q28_PI], Q3.28, for x in
+ * Q1.30. x outside [-1, 1] (possible in Q1.30, e.g. a dot product that rounding pushed to
+ * 1 + 1 LSB) is clamped to +-1 first: asin(+-1) = +-QO_Q28_HALF_PI, acos(1) = 0,
+ * acos(-1) = QO_Q28_PI exactly. <= 1 LSB of Q3.28 over the whole domain. */
+qo_q28 qo_fx_asin_q28(qo_q30 x);
+qo_q28 qo_fx_acos_q28(qo_q30 x);
+
+/* The angle congruent to a mod 2pi in [-QO_Q28_PI, QO_Q28_PI] (exact reduction with a
+ * high-precision 2pi, then rounded; an input already in range is returned unchanged). */
+qo_q28 qo_fx_wrap_pi_q28(qo_q28 a);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* QORIENT_FXMATH_H */

@@ -1,0 +1,328 @@
+/* Fixed-point primitives. See qorient/fxmath.h for the contract, methods and error bounds.
+ * Integer arithmetic only (int64 products and divisions): no floating point, no libm. */
+#include "qorient/fxmath.h"
+
+/* The rounding shifts below rely on >> of a negative value being an arithmetic shift
+ * (implementation-defined in C99, arithmetic on gcc and clang for every target). */
+typedef char qo_fx_arith_shift_check[((-1) >> 1) == -1 ? 1 : -1];
+
+/* pi/2 in Q3.60 and 2pi in Q3.60 (rounded): the reduction constants of sincos and wrap. */
+#define HALF_PI_Q60 ((int64_t)1811004864519280711LL)
+#define TWO_PI_Q60  ((int64_t)7244019458077122842LL)
+/* pi and pi/2 in Q1.31 (held in int64): the octant constants of atan2. */
+#define PI_Q31      ((int64_t)6746518852LL)
+#define HALF_PI_Q31 ((int64_t)3373259426LL)
+#define ONE_Q31     ((int64_t)2147483648LL)
+
+/* atan(k/8) in Q1.31, k = 0..8 (const: lives in flash). */
+static const int64_t atan_k8_q31[9] = {
+    0, 267050317, 526087673, 770454148, 995675659,
+    1199582895, 1381908109, 1543675670, 1686629713
+};
+
+int32_t qo_fx_sat_i32(int64_t v)
+{
+    if (v > INT32_MAX) return INT32_MAX;
+    if (v < INT32_MIN) return INT32_MIN;
+    return (int32_t)v;
+}
+
+qo_q30 qo_fx_add_q30(qo_q30 a, qo_q30 b) { return qo_fx_sat_i32((int64_t)a + b); }
+qo_q30 qo_fx_sub_q30(qo_q30 a, qo_q30 b) { return qo_fx_sat_i32((int64_t)a - b); }
+qo_q30 qo_fx_neg_q30(qo_q30 a) { return qo_fx_sat_i32(-(int64_t)a); }
+
+/* a*b / 2^shift, rounded (ties up), saturated. |a*b| <= 2^62 so adding the half cannot
+ * overflow. */
+static int32_t mul_shift(int32_t a, int32_t b, unsigned shift)
+{
+    int64_t p = (int64_t)a * b;
+    return qo_fx_sat_i32((p + ((int64_t)1 << (shift - 1))) >> shift);
+}
+
+qo_q30 qo_fx_mul_q30(int32_t a, qo_q30 b) { return mul_shift(a, b, 30); }
+qo_q28 qo_fx_mul_q28(int32_t a, qo_q28 b) { return mul_shift(a, b, 28); }
+qo_q16 qo_fx_mul_q16(int32_t a, qo_q16 b) { return mul_shift(a, b, 16); }
+
+int64_t qo_fx_sum_round_i64(const int64_t *terms, size_t n, unsigned shift)
+{
+    /* Each term = hi * 2^shift + lo with 0 <= lo < 2^shift; summing the parts separately
+     * keeps the exact total without a 128-bit accumulator, and we round once at the end. */
+    int64_t hi = 0, lo = 0;
+    int64_t mask = ((int64_t)1 << shift) - 1;
+    size_t i;
+    for (i = 0; i < n; i++) {
+        hi += terms[i] >> shift;
+        lo += terms[i] & mask;
+    }
+    return hi + ((lo + ((int64_t)1 << (shift - 1))) >> shift);
+}
+
+static qo_status div_shift(int32_t num, int32_t den, unsigned shift, int32_t *out)
+{
+    uint64_t n, d, q;
+    int neg;
+    if (out == NULL) return QO_E_NULL;
+    if (den == 0) { *out = 0; return QO_E_DEGENERATE; }
+    neg = (num < 0) != (den < 0);
+    n = num < 0 ? (uint64_t)(-(int64_t)num) : (uint64_t)num;
+    d = den < 0 ? (uint64_t)(-(int64_t)den) : (uint64_t)den;
+    /* n * 2^shift <= 2^61; + d/2 rounds to nearest, ties away from zero. */
+    q = ((n << shift) + d / 2u) / d;
+    if (neg) {
+        if (q > (uint64_t)1 << 31) { *out = INT32_MIN; return QO_E_OVERFLOW; }
+        *out = (int32_t)(-(int64_t)q);
+    } else {
+        if (q > (uint64_t)INT32_MAX) { *out = INT32_MAX; return QO_E_OVERFLOW; }
+        *out = (int32_t)q;
+    }
+    return QO_OK;
+}
+
+qo_status qo_fx_div_q30(int32_t num, int32_t den, qo_q30 *out) { return div_shift(num, den, 30, out); }
+qo_status qo_fx_div_q28(int32_t num, int32_t den, qo_q28 *out) { return div_shift(num, den, 28, out); }
+qo_status qo_fx_div_q16(int32_t num, int32_t den, qo_q16 *out) { return div_shift(num, den, 16, out); }
+
+uint64_t qo_fx_sqrt_u64(uint64_t v)
+{
+    /* Digit-by-digit square root: res ends as floor(sqrt(v)), rem = v - res^2. */
+    uint64_t rem = v, res = 0, bit = (uint64_t)1 << 62;
+    while (bit > rem) bit >>= 2;
+    while (bit != 0) {
+        if (rem >= res + bit) {
+            rem -= res + bit;
+            res = (res >> 1) + bit;
+        } else {
+            res >>= 1;
+        }
+        bit >>= 2;
+    }
+    /* v >= (res + 1/2)^2 = res^2 + res + 1/4  <=>  rem > res (integers). */
+    if (rem > res) res++;
+    return res;
+}
+
+qo_status qo_fx_sqrt_q30(qo_q30 x, qo_q30 *out)
+{
+    if (out == NULL) return QO_E_NULL;
+    if (x < 0) { *out = 0; return QO_E_RANGE; }
+    /* sqrt(x / 2^30) * 2^30 = sqrt(x * 2^30); x * 2^30 < 2^61. */
+    *out = (qo_q30)qo_fx_sqrt_u64((uint64_t)x << 30);
+    return QO_OK;
+}
+
+qo_status qo_fx_rsqrt_q30(qo_q30 x, qo_q30 *out)
+{
+    uint64_t s, r;
+    unsigned e;
+    if (out == NULL) return QO_E_NULL;
+    if (x <= 0) { *out = INT32_MAX; return QO_E_RANGE; }
+    if (x <= (QO_Q30_ONE >> 2)) { *out = INT32_MAX; return QO_E_OVERFLOW; }
+    /* 2^30 / sqrt(x / 2^30) = 2^45 / sqrt(x) = 2^(45 + e/2) / sqrt(x * 2^e). The largest even
+     * e keeping x * 2^e < 2^64 gives sqrt(x * 2^e) >= 2^31, so its 0.5 rounding error costs
+     * at most 0.5 LSB of the result. */
+    e = x < QO_Q30_ONE ? 34u : 32u;
+    s = qo_fx_sqrt_u64((uint64_t)x << e);
+    r = (((uint64_t)1 << (45u + e / 2u)) + s / 2u) / s;
+    *out = r > (uint64_t)INT32_MAX ? INT32_MAX : (qo_q30)r;
+    return r > (uint64_t)INT32_MAX ? QO_E_OVERFLOW : QO_OK;
+}
+
+static uint64_t sq(int32_t v)
+{
+    int64_t p = (int64_t)v * v;
+    return (uint64_t)p;
+}
+
+static qo_q30 sqrt_sat(uint64_t sum, int carried)
+{
+    uint64_t r;
+    if (carried) return INT32_MAX;
+    r = qo_fx_sqrt_u64(sum);
+    return r > (uint64_t)INT32_MAX ? INT32_MAX : (qo_q30)r;
+}
+
+qo_q30 qo_fx_norm3_q30(qo_q30 x, qo_q30 y, qo_q30 z)
+{
+    /* Each square <= 2^62, three of them < 2^64: no carry possible. */
+    return sqrt_sat(sq(x) + sq(y) + sq(z), 0);
+}
+
+qo_q30 qo_fx_norm4_q30(qo_q30 w, qo_q30 x, qo_q30 y, qo_q30 z)
+{
+    uint64_t s3 = sq(x) + sq(y) + sq(z);
+    uint64_t s4 = s3 + sq(w);
+    /* Only w = x = y = z = INT32_MIN reaches 2^64 (a norm of 4, saturated anyway). */
+    return sqrt_sat(s4, s4 < s3);
+}
+
+/* round(a * b / 2^31) for |a|, |b| <= 2^31 (product <= 2^62). */
+static int64_t mul31(int64_t a, int64_t b)
+{
+    return (a * b + ((int64_t)1 << 30)) >> 31;
+}
+
+/* round(v / 2^s), s >= 1. */
+static int64_t rshift_round(int64_t v, unsigned s)
+{
+    return (v + ((int64_t)1 << (s - 1))) >> s;
+}
+
+/* Taylor coefficients in Q1.31 (rounded): sin = r + r*u*(c3 + u*(c5 + ...)) to r^11 and
+ * cos = 1 + u*(d2 + u*(d4 + ...)) to r^12, u = r^2, on |r| <= pi/4 (truncation < 1e-11). */
+static const int64_t sin_c[5] = { -357913941, 17895697, -426088, 5918, -54 };
+static const int64_t cos_c[6] = { -1073741824, 89478485, -2982616, 53261, -592, 4 };
+
+qo_status qo_fx_sincos_q60(int64_t angle_q60, qo_q30 *s, qo_q30 *c)
+{
+    int64_t k = angle_q60 / HALF_PI_Q60;
+    int64_t r = angle_q60 - k * HALF_PI_Q60;   /* |r| < pi/2, exact */
+    int64_t r32, u31, u33, ws, wc, w34, sv, cv, t;
+    uint64_t ar, u64;
+    int quadrant;
+    if (r > HALF_PI_Q60 / 2) { r -= HALF_PI_Q60; k++; }
+    else if (r < -(HALF_PI_Q60 / 2)) { r += HALF_PI_Q60; k--; }
+    /* Precision plan (each rounding below costs < 0.25 LSB of Q1.30 in the result): the
+     * leading terms r and 1 are kept exact in Q2.62; u = r^2 is formed from r in Q32 as an
+     * exact unsigned 64-bit square; only the small correction terms go through the Q1.31
+     * Horner evaluation. |r| <= pi/4, so |r32| < 2^31.7 and r32^2 < 2^63.3 (unsigned). */
+    r32 = rshift_round(r, 28);
+    ar = (uint64_t)(r32 < 0 ? -r32 : r32);
+    u64 = ar * ar;                                   /* Q64 */
+    u31 = (int64_t)((u64 + ((uint64_t)1 << 32)) >> 33);
+    u33 = (int64_t)((u64 + ((uint64_t)1 << 30)) >> 31);
+    ws = sin_c[4];
+    ws = sin_c[3] + mul31(u31, ws);
+    ws = sin_c[2] + mul31(u31, ws);
+    ws = sin_c[1] + mul31(u31, ws);
+    ws = sin_c[0] + mul31(u31, ws);                  /* ~ -1/6, Q1.31 */
+    w34 = rshift_round(u31 * ws, 28);                /* u * ws ~ -u/6 in Q34 (< 2^30.8) */
+    sv = r * 4 + rshift_round(r32 * w34, 4);         /* Q62: r + r u ws */
+    wc = cos_c[5];
+    wc = cos_c[4] + mul31(u31, wc);
+    wc = cos_c[3] + mul31(u31, wc);
+    wc = cos_c[2] + mul31(u31, wc);
+    wc = cos_c[1] + mul31(u31, wc);
+    wc = cos_c[0] + mul31(u31, wc);                  /* ~ -1/2, Q1.31 */
+    cv = ((int64_t)1 << 62) + rshift_round(u33 * wc, 2);   /* Q62: 1 + u wc */
+    quadrant = (int)(((k % 4) + 4) % 4);
+    switch (quadrant) {
+    case 1: t = sv; sv = cv; cv = -t; break;
+    case 2: sv = -sv; cv = -cv; break;
+    case 3: t = sv; sv = -cv; cv = t; break;
+    default: break;
+    }
+    /* Q2.62 -> Q1.30, rounded once, and kept within [-1, 1]. */
+    sv = rshift_round(sv, 32);
+    cv = rshift_round(cv, 32);
+    if (sv > QO_Q30_ONE) sv = QO_Q30_ONE;
+    if (sv < -QO_Q30_ONE) sv = -QO_Q30_ONE;
+    if (cv > QO_Q30_ONE) cv = QO_Q30_ONE;
+    if (cv < -QO_Q30_ONE) cv = -QO_Q30_ONE;
+    if (s != NULL) *s = (qo_q30)sv;
+    if (c != NULL) *c = (qo_q30)cv;
+    return (s == NULL || c == NULL) ? QO_E_NULL : QO_OK;
+}
+
+qo_status qo_fx_sincos_q28(qo_q28 angle_rad, qo_q30 *s, qo_q30 *c)
+{
+    /* angle * 2^32 is in [-2^63, 2^63): exact in int64 (multiplication, not a shift of a
+     * negative value). */
+    return qo_fx_sincos_q60((int64_t)angle_rad * ((int64_t)1 << 32), s, c);
+}
+
+qo_status qo_fx_sincos_half_q28(qo_q28 angle_rad, qo_q30 *s, qo_q30 *c)
+{
+    return qo_fx_sincos_q60((int64_t)angle_rad * ((int64_t)1 << 31), s, c);
+}
+
+qo_q30 qo_fx_sin_q28(qo_q28 angle_rad)
+{
+    qo_q30 s, c;
+    (void)qo_fx_sincos_q28(angle_rad, &s, &c);
+    return s;
+}
+
+qo_q30 qo_fx_cos_q28(qo_q28 angle_rad)
+{
+    qo_q30 s, c;
+    (void)qo_fx_sincos_q28(angle_rad, &s, &c);
+    return c;
+}
+
+qo_q28 qo_fx_atan2_q28(int32_t y, int32_t x)
+{
+    uint64_t ax = x < 0 ? (uint64_t)(-(int64_t)x) : (uint64_t)x;
+    uint64_t ay = y < 0 ? (uint64_t)(-(int64_t)y) : (uint64_t)y;
+    uint64_t mx, mn, q;
+    int64_t bx, by, t, u, p, a;
+    int swap;
+    unsigned k;
+    if (ax == 0 && ay == 0) return 0;
+    swap = ay > ax;
+    mx = swap ? ay : ax;
+    mn = swap ? ax : ay;
+    /* Scale so mx is in [2^30, 2^31]: the rotation below then cannot overflow, and no input
+     * bit is lost (|int32| <= 2^31). */
+    while (mx < ((uint64_t)1 << 30)) { mx <<= 1; mn <<= 1; }
+    /* k = round(8 * mn / mx) in 0..8, t = mn/mx in [0, 1]. */
+    k = (unsigned)((16u * mn + mx) / (2u * mx));
+    /* Rotate (mx, mn) by -atan(k/8), scaled by 8: the angle left is atan(by / bx) with
+     * |by / bx| <= 1/16. Exact integer arithmetic: bx <= 2^35, |by| <= 2^31. */
+    bx = (int64_t)(8u * mx + k * mn);
+    by = (int64_t)(8u * mn) - (int64_t)(k * mx);
+    q = (((uint64_t)(by < 0 ? -by : by) << 31) + (uint64_t)bx / 2u) / (uint64_t)bx;
+    t = by < 0 ? -(int64_t)q : (int64_t)q;
+    /* atan(t) = t (1 - t^2/3 + t^4/5 - t^6/7); the next term is < 2e-12. */
+    u = mul31(t, t);
+    p = -306783378;
+    p = 429496730 + mul31(u, p);
+    p = -715827883 + mul31(u, p);
+    p = ONE_Q31 + mul31(u, p);
+    a = atan_k8_q31[k] + mul31(t, p);
+    if (swap) a = HALF_PI_Q31 - a;
+    if (x < 0) a = PI_Q31 - a;
+    if (a < 0) a = 0;
+    /* Q1.31 -> Q3.28 rounded on the magnitude, so atan2(-y, x) == -atan2(y, x). */
+    a = (a + 4) >> 3;
+    if (a > QO_Q28_PI) a = QO_Q28_PI;
+    return (qo_q28)(y < 0 ? -a : a);
+}
+
+/* sqrt(1 - x^2) in Q1.30 for |x| <= 1 (Q1.30): 1 - x^2 is exact in Q2.60. */
+static int32_t cofactor(int32_t x)
+{
+    int64_t rest = ((int64_t)1 << 60) - (int64_t)x * x;
+    return (int32_t)qo_fx_sqrt_u64((uint64_t)rest);
+}
+
+static int32_t clamp_unit(qo_q30 x)
+{
+    if (x > QO_Q30_ONE) return QO_Q30_ONE;
+    if (x < -QO_Q30_ONE) return -QO_Q30_ONE;
+    return x;
+}
+
+qo_q28 qo_fx_asin_q28(qo_q30 x)
+{
+    int32_t v = clamp_unit(x);
+    return qo_fx_atan2_q28(v, cofactor(v));
+}
+
+qo_q28 qo_fx_acos_q28(qo_q30 x)
+{
+    int32_t v = clamp_unit(x);
+    return qo_fx_atan2_q28(cofactor(v), v);
+}
+
+qo_q28 qo_fx_wrap_pi_q28(qo_q28 a)
+{
+    int64_t r;
+    if (a >= -QO_Q28_PI && a <= QO_Q28_PI) return a;
+    /* |a| < 8 < 3pi: one turn of 2pi (in Q3.60, exact) brings it into range. */
+    r = (int64_t)a * ((int64_t)1 << 32);
+    r = a > 0 ? r - TWO_PI_Q60 : r + TWO_PI_Q60;
+    r = (r + ((int64_t)1 << 31)) >> 32;
+    if (r > QO_Q28_PI) r = QO_Q28_PI;
+    if (r < -QO_Q28_PI) r = -QO_Q28_PI;
+    return (qo_q28)r;
+}
