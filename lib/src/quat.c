@@ -41,7 +41,7 @@ float qo_quat_norm_f32(qo_quat_f32 q)
      * near FLT_MAX) nor underflows (components near FLT_MIN): the naive form returns Inf or 0
      * for quaternions that are perfectly normalisable. */
     float m = fabsf(q.w);
-    float s, w, x, y, z;
+    float w, x, y, z;
     if (fabsf(q.x) > m) m = fabsf(q.x);
     if (fabsf(q.y) > m) m = fabsf(q.y);
     if (fabsf(q.z) > m) m = fabsf(q.z);
@@ -49,21 +49,18 @@ float qo_quat_norm_f32(qo_quat_f32 q)
         /* m is 0, or NaN (comparisons with NaN are false): propagate NaN, else 0. */
         return (isnan(q.w) || isnan(q.x) || isnan(q.y) || isnan(q.z)) ? NAN : 0.0f;
     }
-    if (isinf(m)) return INFINITY;
+    /* NaN first: the header promises NaN for any NaN input, also next to an Inf. */
     if (isnan(q.w) || isnan(q.x) || isnan(q.y) || isnan(q.z)) return NAN;
+    if (isinf(m)) return INFINITY;
     /* Fast path: no risk of overflow or harmful underflow. */
     if (m > 1e-18f && m < 1e18f) {
         return sqrtf(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
     }
-    s = 1.0f / m;
-    if (isinf(s)) { /* m is subnormal: 1/m overflows, scale in two steps */
-        w = (q.w * 0x1p60f) / (m * 0x1p60f);
-        x = (q.x * 0x1p60f) / (m * 0x1p60f);
-        y = (q.y * 0x1p60f) / (m * 0x1p60f);
-        z = (q.z * 0x1p60f) / (m * 0x1p60f);
-    } else {
-        w = q.w * s; x = q.x * s; y = q.y * s; z = q.z * s;
-    }
+    /* Divide rather than multiply by 1/m: for m above ~3e38 or below ~3e-39 the reciprocal is
+     * subnormal or overflows, and a subnormal 1/m has too few bits (norm(FLT_MAX,0,0,0) came
+     * out an ulp low; 3e38 too). The division of a component by the largest one is exact-ish
+     * and always in [-1, 1]. */
+    w = q.w / m; x = q.x / m; y = q.y / m; z = q.z / m;
     return m * sqrtf(w * w + x * x + y * y + z * z);
 }
 
@@ -179,14 +176,28 @@ qo_status qo_quat_exp_f32(qo_quat_f32 q, qo_quat_f32 *out)
 
 qo_status qo_quat_log_f32(qo_quat_f32 q, qo_quat_f32 *out)
 {
-    float n, vn, ang, k;
+    float n, vn, ang, m, lnscale = 0.0f;
+    qo_quat_f32 v;
     if (out == NULL) return QO_E_NULL;
     out->w = out->x = out->y = out->z = 0.0f;
     if (!qo_quat_is_finite_f32(q)) return QO_E_NONFINITE;
+    /* Huge components: |q| or |v| would overflow. Scale by 2^-64 (exact) and add 64 ln 2 back
+     * to ln|q|; the angle and the axis do not depend on the scale. */
+    m = fabsf(q.w);
+    if (fabsf(q.x) > m) m = fabsf(q.x);
+    if (fabsf(q.y) > m) m = fabsf(q.y);
+    if (fabsf(q.z) > m) m = fabsf(q.z);
+    if (m > 1e18f) {
+        q.w *= 0x1p-64f; q.x *= 0x1p-64f; q.y *= 0x1p-64f; q.z *= 0x1p-64f;
+        lnscale = 44.3614196f; /* 64 ln 2 */
+    }
     n = qo_quat_norm_f32(q);
     if (!(n > 0.0f)) return QO_E_DEGENERATE;
-    vn = sqrtf(q.x * q.x + q.y * q.y + q.z * q.z);
-    out->w = logf(n);
+    /* |v| with the scaled norm: a naive sqrt(x^2+y^2+z^2) underflows to 0 for |v| < 1e-19,
+     * which dropped the vector part (and near w = -1 replaced its axis by the fallback x). */
+    v.w = 0.0f; v.x = q.x; v.y = q.y; v.z = q.z;
+    vn = qo_quat_norm_f32(v);
+    out->w = logf(n) + lnscale;
     if (vn == 0.0f) {
         /* Real quaternion: log of a positive real is real; of a negative real the angle is pi
          * about an arbitrary axis - we take x and say so in the header. */
@@ -194,9 +205,8 @@ qo_status qo_quat_log_f32(qo_quat_f32 q, qo_quat_f32 *out)
         return QO_OK;
     }
     ang = atan2f(vn, q.w);
-    /* atan2(vn, w)/vn, stable as vn -> 0 with w > 0: ang/vn -> 1/w. */
-    k = ang / vn;
-    out->x = k * q.x; out->y = k * q.y; out->z = k * q.z;
+    /* angle * unit axis; v/vn rather than (ang/vn)*v so a subnormal vn cannot overflow. */
+    out->x = ang * (q.x / vn); out->y = ang * (q.y / vn); out->z = ang * (q.z / vn);
     return QO_OK;
 }
 

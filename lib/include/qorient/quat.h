@@ -53,9 +53,11 @@ float qo_quat_norm_f32(qo_quat_f32 q);
  * On any error *out is the identity. The sign of q is kept. */
 qo_status qo_quat_normalize_f32(qo_quat_f32 q, qo_quat_f32 *out);
 
-/* Multiplicative inverse conj(q)/|q|^2 (for a unit quaternion: the conjugate).
- * Returns QO_OK, QO_E_NULL, QO_E_NONFINITE, or QO_E_DEGENERATE for |q| == 0 or |q|^2
- * overflowing/underflowing float; *out is the identity on error. */
+/* Multiplicative inverse conj(q)/|q|^2 (for a unit quaternion: the conjugate), computed as
+ * (conj(q)/|q|)/|q| so |q|^2 itself may overflow or underflow float (|q| = 1e30 is fine).
+ * Returns QO_OK, QO_E_NULL, QO_E_NONFINITE, or QO_E_DEGENERATE for |q| == 0, |q| overflowing
+ * float (components near FLT_MAX) or 1/|q| overflowing (|q| below ~3e-39);
+ * *out is the identity on error. */
 qo_status qo_quat_inverse_f32(qo_quat_f32 q, qo_quat_f32 *out);
 
 /* The representative of the same rotation with w >= 0; when w == 0 the first non-zero of
@@ -64,7 +66,8 @@ qo_quat_f32 qo_quat_canonical_f32(qo_quat_f32 q);
 
 /* Rotates v by the unit quaternion q: v' = q (0,v) q*, evaluated as
  * v + 2w(u x v) + 2 u x (u x v) with u = (x, y, z) (no normalisation of q: pass a unit
- * quaternion; a non-unit q scales the result by |q|^2). */
+ * quaternion; for a non-unit q the result is neither q v q* nor a rotation of v - normalise
+ * first). */
 qo_vec3_f32 qo_quat_rotate_f32(qo_quat_f32 q, qo_vec3_f32 v);
 
 /* Angle in radians, in [0, pi], of the rotation that takes orientation a to orientation b
