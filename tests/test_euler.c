@@ -348,6 +348,19 @@ static void test_to_euler_known_values(void **state)
     q.w = h * 1e20f; q.z = h * 1e20f;
     assert_int_equal(qo_quat_to_euler_f32(q, QO_EULER_ZYX, &e, NULL), QO_OK);
     assert_float_equal(e.a1, 1.57079633f, 1e-6f);
+    /* Subnormal and near-FLT_MAX components: scaled, not rejected, not overflowing. */
+    q.w = 1e-40f; q.x = 0.0f; q.y = 0.0f; q.z = 1e-40f;
+    assert_int_equal(qo_quat_to_euler_f32(q, QO_EULER_ZYX, &e, &info), QO_OK);
+    assert_float_equal(e.a1, 1.57079633f, 1e-5f);
+    q.w = 3e38f; q.x = 3e38f; q.y = 0.0f; q.z = 0.0f; /* 90 deg about x */
+    assert_int_equal(qo_quat_to_euler_f32(q, QO_EULER_XYZ, &e, &info), QO_OK);
+    assert_float_equal(e.a1, 1.57079633f, 1e-6f);
+    assert_float_equal(e.a2, 0.0f, 1e-6f); assert_float_equal(e.a3, 0.0f, 1e-6f);
+    /* A tiny but not-yet-subnormal singular input is still flagged (the margin is a ratio). */
+    q.w = 0.70710678118655f * 1e-30f; q.x = 0.0f; q.y = 0.70710678118655f * 1e-30f; q.z = 0.0f;
+    assert_int_equal(qo_quat_to_euler_f32(q, QO_EULER_ZYX, &e, &info), QO_OK);
+    assert_int_equal(info.locked, 1);
+    assert_float_equal(e.a2, 1.57079633f, 1e-6f);
 }
 
 /* ---- gimbal lock -------------------------------------------------------------------------- */
@@ -379,6 +392,36 @@ static void test_exactly_singular_all24(void **state)
                              "(%.9g %.9g %.9g) recomposes %.3g off", k_names[seq], a1, a2, a3,
                              info.locked, info.margin, e.a1, e.a2, e.a3, err);
                 check_ranges(seq, e, "singular");
+
+                /* The same, built as a user would: our from_euler with the float nearest the
+                 * singular angle; then with each component moved by up to 2 ulp (noise from
+                 * an upstream float computation). Both must still be flagged. */
+                {
+                    qo_euler_f32 se;
+                    qo_quat_f32 qs;
+                    float *comp[4];
+                    int c;
+                    se.a1 = (float)a1; se.a2 = (float)a2; se.a3 = (float)a3;
+                    assert_int_equal(qo_quat_from_euler_f32((qo_euler_seq)seq, se, &qs), QO_OK);
+                    assert_int_equal(qo_quat_to_euler_f32(qs, (qo_euler_seq)seq, &e, &info), QO_OK);
+                    err = recompose_err(seq, e, ref_quat(seq, se.a1, a2, se.a3));
+                    if (!info.locked || e.a3 != 0.0f || err > 1e-5)
+                        fail_msg("singular via from_euler %s (%.9g %.9g %.9g): locked %d margin "
+                                 "%.3g err %.3g", k_names[seq], se.a1, se.a2, se.a3, info.locked,
+                                 info.margin, err);
+                    comp[0] = &qs.w; comp[1] = &qs.x; comp[2] = &qs.y; comp[3] = &qs.z;
+                    for (c = 0; c < 4; c++) {
+                        int u = (int)(rng_next() % 5) - 2;
+                        for (; u > 0; u--) *comp[c] = nextafterf(*comp[c], INFINITY);
+                        for (; u < 0; u++) *comp[c] = nextafterf(*comp[c], -INFINITY);
+                    }
+                    assert_int_equal(qo_quat_to_euler_f32(qs, (qo_euler_seq)seq, &e, &info), QO_OK);
+                    err = recompose_err(seq, e, dq_from_f(qs));
+                    if (!info.locked || err > 1e-5)
+                        fail_msg("singular + 2 ulp noise %s q=(%.9g %.9g %.9g %.9g): locked %d "
+                                 "margin %.3g err %.3g", k_names[seq], qs.w, qs.x, qs.y, qs.z,
+                                 info.locked, info.margin, err);
+                }
             }
         }
     }

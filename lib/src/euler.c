@@ -12,14 +12,15 @@
 
 #include <math.h>
 
-#define PI_F      3.14159265358979f
 #define HALF_PI_F 1.57079632679490f
-#define TWO_PI_F  6.28318530717959f
 /* 2*pi split for Cody-Waite reduction: HI has 8 significant bits, so k*HI is exact for
  * |k| < 2^16 and the reduction of a few thousand turns keeps full float accuracy. */
 #define TWO_PI_HI 6.28125f
 #define TWO_PI_LO 0.00193530717958648f
 #define INV_TWO_PI_F 0.159154943091895f
+/* pi split the same way, for the second solution's a + pi. */
+#define PI_HI 3.140625f
+#define PI_LO 0.000967653589793116f
 
 /* Axes of the 12 base sequences (enum order); 0 = x, 1 = y, 2 = z. */
 static const unsigned char seq_axes[12][3] = {
@@ -113,28 +114,48 @@ qo_status qo_quat_from_euler_f32(qo_euler_seq seq, qo_euler_f32 e, qo_quat_f32 *
     return QO_OK;
 }
 
-/* Wraps an angle in [-2pi, 2pi] (a sum of two atan2 results) into [-pi, pi]. */
-static float wrap_pi(float a)
-{
-    if (a > PI_F) return a - TWO_PI_F;
-    if (a < -PI_F) return a + TWO_PI_F;
-    return a;
-}
-
-/* a + 2*pi*k for the integer k that brings it nearest ref. */
+/* a + 2*pi*k for the integer k that brings it nearest ref. The small correction k*LO goes in
+ * first while the value is still small, the exact k*HI last: one rounding at the size of the
+ * result, not three. */
 static float unwrap_toward(float a, float ref)
 {
-    float d = a - ref;
-    float k = roundf(d * INV_TWO_PI_F);
-    float r = (d - k * TWO_PI_HI) - k * TWO_PI_LO; /* in about [-pi, pi] */
-    return ref + r;
+    float k = roundf((ref - a) * INV_TWO_PI_F);
+    return (a + k * TWO_PI_LO) + k * TWO_PI_HI;
 }
 
-/* The full (unlocked) decomposition of a unit quaternion, plus the lock margin. */
+/* a + pi with one rounding (PI_F itself is 8.7e-8 off pi). */
+static float add_pi(float a)
+{
+    return (a + PI_LO) + PI_HI;
+}
+
+/* arg(u + iv)^2 = 2 arg(u + iv), already in [-pi, pi] (no wrap, no 2*pi constant error). */
+static float double_arg(float u, float v)
+{
+    return atan2f(2.0f * u * v, (u - v) * (u + v));
+}
+
+/* The full (unlocked) decomposition of q, plus the lock margin. */
 typedef struct decomp {
     qo_euler_f32 e;  /* principal solution, scipy ranges */
     float margin;    /* rad, [0, pi/2] */
 } decomp;
+
+/* Every quantity below is a ratio or an angle of q's components, so q needs no normalising
+ * (which would round each component once more): an exact power-of-two scaling is enough to
+ * keep the squares away from overflow and underflow. Requires q finite and non-zero. */
+static qo_quat_f32 scale_pow2(qo_quat_f32 q)
+{
+    float m = fabsf(q.w);
+    float f = 1.0f;
+    if (fabsf(q.x) > m) m = fabsf(q.x);
+    if (fabsf(q.y) > m) m = fabsf(q.y);
+    if (fabsf(q.z) > m) m = fabsf(q.z);
+    while (m < 0x1p-20f) { m *= 0x1p40f; f *= 0x1p40f; }
+    while (m > 0x1p20f) { m *= 0x1p-40f; f *= 0x1p-40f; }
+    q.w *= f; q.x *= f; q.y *= f; q.z *= f;
+    return q;
+}
 
 static decomp decompose(qo_quat_f32 q, qo_euler_seq seq)
 {
@@ -152,43 +173,38 @@ static decomp decompose(qo_quat_f32 q, qo_euler_seq seq)
          * s = sin(t2/2), S = (t1 + t3)/2, D = (t1 - t3)/2:
          *   w = c cos S,  q_i = c sin S,  q_j = s cos D,  eps q_l = s sin D.
          * So t2 = 2 atan2(|(q_j, q_l)|, |(w, q_i)|) in [0, pi]: singular at 0 (D undefined)
-         * and pi (S undefined). */
+         * and pi (S undefined). t1 = S + D and t3 = S - D are the arguments of the complex
+         * products (a + ib)(c + id) and (a + ib)(c - id): one atan2 each, in [-pi, pi]. */
         int l = 3 - i - j;
         float a = q.w, b = quat_comp(q, i), c = quat_comp(q, j), d = eps * quat_comp(q, l);
-        float S, D;
         n1 = sqrtf(a * a + b * b);
         n2 = sqrtf(c * c + d * d);
         t2 = 2.0f * atan2f(n2, n1);
-        S = atan2f(b, a);
-        D = atan2f(d, c);
-        t1 = S + D;
-        t3 = S - D;
+        t1 = atan2f(b * c + a * d, a * c - b * d);
+        t3 = atan2f(b * c - a * d, a * c + b * d);
     } else {
         /* Tait-Bryan. With t3' = eps t3 and (x, y, z) = (q_i, q_j, eps q_k), the product
          * q_i(t1) q_j(t2) q_k(t3) is the even-permutation one, and
          *   a = w - y = sqrt2 cos(p/2) cos D,   b = x + z = sqrt2 sin(p/2) sin S,
          *   c = w + y = sqrt2 sin(p/2) cos S,   d = z - x = -sqrt2 cos(p/2) sin D,
-         * where p = t2 + pi/2, S = (t1 + t3')/2, D = (t1 - t3')/2. So p = 2 atan2(|(b,c)|,
-         * |(a,d)|) in [0, pi], t2 = p - pi/2 in [-pi/2, pi/2]: singular at -pi/2 (S
-         * undefined) and +pi/2 (D undefined). */
+         * where p = t2 + pi/2, S = (t1 + t3')/2, D = (t1 - t3')/2. So p = 2 atan2(n2, n1) with
+         * n1 = |(a,d)|, n2 = |(b,c)|, i.e. t2 = atan2(n2^2 - n1^2, 2 n1 n2) in [-pi/2, pi/2]
+         * (one atan2, no pi/2 constant): singular at -pi/2 (n2 = 0, S undefined) and +pi/2
+         * (n1 = 0, D undefined). t1 = S + D = arg((c + ib)(a - id)),
+         * t3' = S - D = arg((c + ib)(a + id)). */
         float x = quat_comp(q, i), y = quat_comp(q, j), z = eps * quat_comp(q, k);
         float a = q.w - y, b = x + z, c = q.w + y, d = z - x;
-        float S, D;
         n1 = sqrtf(a * a + d * d);
         n2 = sqrtf(b * b + c * c);
-        t2 = 2.0f * atan2f(n2, n1) - HALF_PI_F;
-        S = atan2f(b, c);
-        D = atan2f(-d, a);
-        t1 = S + D;
-        t3 = eps * (S - D);
+        t2 = atan2f((n2 - n1) * (n2 + n1), 2.0f * n1 * n2);
+        t1 = atan2f(b * a - c * d, c * a + b * d);
+        t3 = eps * atan2f(b * a + c * d, c * a - b * d);
     }
     /* The distance to the nearer singularity straight from the two norms (no subtraction
      * from pi, so it keeps its accuracy down to 0). */
     lo = n1 < n2 ? n1 : n2;
     hi = n1 < n2 ? n2 : n1;
     r.margin = 2.0f * atan2f(lo, hi);
-    t1 = wrap_pi(t1);
-    t3 = wrap_pi(t3);
     r.e.a2 = t2;
     r.e.a1 = intrinsic ? t1 : t3;
     r.e.a3 = intrinsic ? t3 : t1;
@@ -206,7 +222,7 @@ static float fit_a1(qo_quat_f32 q, qo_euler_seq seq, float a2, float a3)
     qo_quat_f32 p;
     if ((int)seq >= 12) p = qo_quat_mul_f32(qo_quat_mul_f32(q, c3), c2); /* q = q1 q2 q3 */
     else p = qo_quat_mul_f32(c2, qo_quat_mul_f32(c3, q));                /* q = q3 q2 q1 */
-    return wrap_pi(2.0f * atan2f(quat_comp(p, ax[0]), p.w));
+    return double_arg(p.w, quat_comp(p, ax[0]));
 }
 
 static void set_error_outputs(qo_euler_f32 *out, qo_euler_info_f32 *info)
@@ -215,15 +231,16 @@ static void set_error_outputs(qo_euler_f32 *out, qo_euler_info_f32 *info)
     if (info != NULL) { info->locked = 0; info->margin = 0.0f; }
 }
 
-/* Shared argument checks; on success *qn is q normalised. */
+/* Shared argument checks; on success *qn is q scaled by a power of two (same rotation). */
 static qo_status check_args(qo_quat_f32 q, qo_euler_seq seq, float band, qo_quat_f32 *qn)
 {
-    qo_status st;
+    *qn = q;
     if (!seq_valid(seq)) return QO_E_ARG;
     if (!isfinite(band)) return QO_E_NONFINITE;
-    st = qo_quat_normalize_f32(q, qn);
-    if (st != QO_OK) return st;
+    if (!qo_quat_is_finite_f32(q)) return QO_E_NONFINITE;
+    if (q.w == 0.0f && q.x == 0.0f && q.y == 0.0f && q.z == 0.0f) return QO_E_DEGENERATE;
     if (!(band >= 0.0f && band <= HALF_PI_F)) return QO_E_RANGE;
+    *qn = scale_pow2(q);
     return QO_OK;
 }
 
@@ -277,7 +294,7 @@ qo_status qo_quat_to_euler_near_f32(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f3
     /* The second solution: (a1 + pi, pi - a2, a3 + pi) Tait-Bryan, (a1 + pi, -a2, a3 + pi)
      * proper (a rotation by pi about the first axis conjugates the middle one into its
      * negative, and the two pi's combine into the identity). */
-    alt2 = qo_euler_seq_is_proper(seq) ? -r.e.a2 : PI_F - r.e.a2;
+    alt2 = qo_euler_seq_is_proper(seq) ? -r.e.a2 : add_pi(-r.e.a2);
     p.a2 = unwrap_toward(r.e.a2, prev.a2);
     alt.a2 = unwrap_toward(alt2, prev.a2);
     if (r.margin <= band) {
@@ -289,8 +306,8 @@ qo_status qo_quat_to_euler_near_f32(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f3
     } else {
         p.a1 = unwrap_toward(r.e.a1, prev.a1);
         p.a3 = unwrap_toward(r.e.a3, prev.a3);
-        alt.a1 = unwrap_toward(r.e.a1 + PI_F, prev.a1);
-        alt.a3 = unwrap_toward(r.e.a3 + PI_F, prev.a3);
+        alt.a1 = unwrap_toward(add_pi(r.e.a1), prev.a1);
+        alt.a3 = unwrap_toward(add_pi(r.e.a3), prev.a3);
         if (sq(alt.a1 - prev.a1) + sq(alt.a2 - prev.a2) + sq(alt.a3 - prev.a3) <
             sq(p.a1 - prev.a1) + sq(p.a2 - prev.a2) + sq(p.a3 - prev.a3)) {
             p = alt;
