@@ -339,7 +339,7 @@ static void test_quat_from_mat3_edges(void **state)
 
 static void test_quat_from_mat3_non_rotations(void **state)
 {
-    struct { const char *name; qo_mat3_f32 m; qo_status st; } cases[12];
+    struct { const char *name; qo_mat3_f32 m; qo_status st; } cases[13];
     qo_mat3_f32 r;
     size_t n = 0, k;
     int i, j;
@@ -422,7 +422,7 @@ static void test_mat3_round_trip(void **state)
 
 /* ---- orthonormalisation ---- */
 
-static void check_ortho(const char *name, int n, const qo_mat3_f32 *m)
+static void check_ortho_tol(const char *name, int n, const qo_mat3_f32 *m, double tol)
 {
     qo_mat3_f32 r;
     ref_mat3 rm = ref_mat3_from_f32(m), ref, got;
@@ -436,7 +436,7 @@ static void check_ortho(const char *name, int n, const qo_mat3_f32 *m)
     ref = ref_mat3_nearest_rotation(&rm);
     got = ref_mat3_from_f32(&r);
     err = ref_mat3_rotation_distance(&ref, &got);
-    if (err > TOL_RAD || max_orth_error(&r) > 1e-6 || qo_mat3_det_f32(&r) < 0.999f) {
+    if (err > tol || max_orth_error(&r) > 1e-6 || qo_mat3_det_f32(&r) < 0.999f) {
         print_m("m", m);
         print_m("got", &r);
         fail_msg("orthonormalize %s (case %d): %.3g rad from the double polar factor, orth %.3g",
@@ -445,9 +445,28 @@ static void check_ortho(const char *name, int n, const qo_mat3_f32 *m)
     /* The "caller asks for it" path lands on the same rotation. */
     st = qo_quat_from_mat3_ortho_f32(m, &q);
     qerr = ref_quat_angle_between(ref_quat_from_f32(q), ref_mat3_to_quat(&ref));
-    if (st != QO_OK || qerr > TOL_RAD || q.w < 0.0f)
+    if (st != QO_OK || qerr > tol || q.w < 0.0f)
         fail_msg("quat_from_mat3_ortho %s (case %d): status %d, error %.3g rad", name, n, (int)st,
                  qerr);
+}
+
+static void check_ortho(const char *name, int n, const qo_mat3_f32 *m)
+{
+    check_ortho_tol(name, n, m, TOL_RAD);
+}
+
+/* U diag(s1, s2, s3) V^T with random rotations U, V, rounded to float. */
+static qo_mat3_f32 rand_svd_f32(ref_rng *rng, double s1, double s2, double s3)
+{
+    ref_mat3 u = ref_quat_to_mat3(ref_rng_quat(rng)), v = ref_quat_to_mat3(ref_rng_quat(rng));
+    ref_mat3 d = { { { 0 } } }, vt, t;
+    int i, j;
+    d.m[0][0] = s1; d.m[1][1] = s2; d.m[2][2] = s3;
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++) vt.m[i][j] = v.m[j][i];
+    t = ref_mat3_mul(&u, &d);
+    t = ref_mat3_mul(&t, &vt);
+    return ref_mat3_to_f32(&t);
 }
 
 static void test_orthonormalize_perturbed(void **state)
@@ -475,8 +494,22 @@ static void test_orthonormalize_perturbed(void **state)
             for (j = 0; j < 3; j++) s.m[i][j] = m.m[i][j] * sc[n % 4];
         check_ortho("uniformly scaled", n, &s);
         for (i = 0; i < 3; i++)
-            for (j = 0; j < 3; j++) s.m[i][j] = m.m[i][j] * (j == 0 ? 100.0f : j == 1 ? 1.0f : 0.01f);
-        check_ortho("stretched 100:1:0.01", n, &s);
+            for (j = 0; j < 3; j++) s.m[i][j] = m.m[i][j] * (j == 0 ? 30.0f : j == 1 ? 1.0f : 0.1f);
+        check_ortho("stretched 30:1:0.1", n, &s);
+    }
+    /* Strongly stretched: singular values log-uniform in [1e-3, 1]. The nearest rotation is
+     * itself sensitive here (moves by |dM|/(s2+s3)): the documented error bound is
+     * ~4e-8 s1/(s2+s3); allow 3x that. */
+    for (n = 0; n < 600; n++) {
+        double s[3], t;
+        qo_mat3_f32 m;
+        for (i = 0; i < 3; i++) s[i] = pow(10.0, ref_rng_range(&rng, -3.0, 0.0));
+        /* sort descending */
+        if (s[0] < s[1]) { t = s[0]; s[0] = s[1]; s[1] = t; }
+        if (s[1] < s[2]) { t = s[1]; s[1] = s[2]; s[2] = t; }
+        if (s[0] < s[1]) { t = s[0]; s[0] = s[1]; s[1] = t; }
+        m = rand_svd_f32(&rng, s[0], s[1], s[2]);
+        check_ortho_tol("stretched U diag(s) V^T", n, &m, 5e-7 + 1.2e-7 * s[0] / (s[1] + s[2]));
     }
     /* An exact rotation and the identity come back (to round-off), and in place works. */
     {
@@ -495,7 +528,7 @@ static void test_orthonormalize_perturbed(void **state)
 
 static void test_orthonormalize_rejects(void **state)
 {
-    struct { const char *name; qo_mat3_f32 m; qo_status st; } cases[9];
+    struct { const char *name; qo_mat3_f32 m; qo_status st; } cases[13];
     size_t n = 0, k;
     ref_rng rng = { 71 };
     qo_mat3_f32 r = rand_rot_f32(&rng, NULL);
@@ -516,6 +549,16 @@ static void test_orthonormalize_rejects(void **state)
     cases[n].m = mf(1, 0, 0, 0, 1, 0, 0, 0, 0); n++;
     cases[n].name = "just singular: sigma3 = 1e-7"; cases[n].st = QO_E_NOT_ROTATION;
     cases[n].m = mf(1, 0, 0, 0, 1, 0, 0, 0, 1e-7f); n++;
+    /* Near rank 1: float32 cofactors have no correct digits (this once converged to a
+     * rotation pi away from the true one); must be refused, not guessed. */
+    cases[n].name = "U diag(1, 7e-5, 7e-5) V^T"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = rand_svd_f32(&rng, 1.0, 7e-5, 7e-5); n++;
+    cases[n].name = "U diag(1, 3e-4, 3e-4) V^T"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = rand_svd_f32(&rng, 1.0, 3e-4, 3e-4); n++;
+    cases[n].name = "U diag(1, 1, 1e-4) V^T"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = rand_svd_f32(&rng, 1.0, 1.0, 1e-4); n++;
+    cases[n].name = "U diag(100, 1, 0.01) V^T (condition 1e4)"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = rand_svd_f32(&rng, 100.0, 1.0, 0.01); n++;
     cases[n].name = "NaN"; cases[n].st = QO_E_NONFINITE;
     cases[n].m = mf(1, 0, 0, 0, NAN, 0, 0, 0, 1); n++;
     cases[n].name = "Inf"; cases[n].st = QO_E_NONFINITE;
