@@ -400,6 +400,29 @@ static void test_quat_from_mat3_non_rotations(void **state)
     }
 }
 
+/* Accepted but drifted matrices (max |M^T M - I| up to the 1e-4 tolerance) give the quaternion
+ * of their NEAREST rotation, not whatever the direct formula lands on. */
+static void test_quat_from_mat3_drifted(void **state)
+{
+    static const double amp[] = { 1e-7, 3e-7, 1e-6, 1e-5, 3e-5 };
+    ref_rng rng = { 45 };
+    size_t a;
+    int n, i, j;
+    (void)state;
+    for (a = 0; a < sizeof amp / sizeof amp[0]; a++) {
+        for (n = 0; n < 400; n++) {
+            qo_mat3_f32 m = rand_rot_f32(&rng, NULL);
+            ref_mat3 md, near;
+            for (i = 0; i < 3; i++)
+                for (j = 0; j < 3; j++) m.m[i][j] += (float)ref_rng_range(&rng, -amp[a], amp[a]);
+            md = ref_mat3_from_f32(&m);
+            near = ref_mat3_nearest_rotation(&md);
+            if (max_orth_error(&m) > 1e-4) continue; /* refused by contract, tested elsewhere */
+            check_from_mat3("drifted", n, &m, ref_mat3_to_quat(&near));
+        }
+    }
+}
+
 static void test_mat3_round_trip(void **state)
 {
     ref_rng rng = { 51 };
@@ -867,6 +890,7 @@ int main(void)
         cmocka_unit_test(test_quat_from_mat3_random),
         cmocka_unit_test(test_quat_from_mat3_edges),
         cmocka_unit_test(test_quat_from_mat3_non_rotations),
+        cmocka_unit_test(test_quat_from_mat3_drifted),
         cmocka_unit_test(test_mat3_round_trip),
         cmocka_unit_test(test_orthonormalize_perturbed),
         cmocka_unit_test(test_orthonormalize_rejects),

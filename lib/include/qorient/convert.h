@@ -107,7 +107,10 @@ qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out);
 /*
  * Canonical unit quaternion (w >= 0) of the rotation matrix *m (row-major, v' = M v).
  * The matrix must already be a rotation within QO_MAT3_ROTATION_TOL_F32 (max entry of
- * |M^T M - I|) with det M > 0; small residual non-orthogonality is absorbed. Robust at every
+ * |M^T M - I|) with det M > 0. The result is the rotation nearest M (to ~5e-7 rad): a matrix
+ * off by more than float32 rounding (max |M^T M - I| > 5e-7) is first projected with
+ * qo_mat3_orthonormalize_f32, since the direct formula would land up to ~1.6 * that error
+ * away. Robust at every
  * angle: the pivot is the largest of trace, m00, m11, m22 (Shepperd), so 180-degree rotations,
  * where the trace is -1, lose no precision; square-root arguments are clamped at 0 and the
  * result is normalised.
