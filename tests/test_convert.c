@@ -19,6 +19,12 @@
 
 /* Rotation error budget for one float32 conversion: round-off is ~1e-7 rad. */
 #define TOL_RAD 1e-6
+/* A status check inside a loop over cases: names the call and the case on failure. */
+#define EXPECT_OK(call, n) do { \
+        qo_status st_ = (call); \
+        if (st_ != QO_OK) fail_msg("%s: status %d in case %d", #call, (int)st_, (int)(n)); \
+    } while (0)
+
 #define N_RANDOM 2000
 
 static qo_quat_f32 qf(float w, float x, float y, float z)
@@ -199,7 +205,7 @@ static void test_quat_to_mat3_vs_double(void **state)
         rq.w *= sc; rq.x *= sc; rq.y *= sc; rq.z *= sc;
         if (n % 2) { rq.w = -rq.w; rq.x = -rq.x; rq.y = -rq.y; rq.z = -rq.z; }
         q = ref_quat_to_f32(rq);
-        assert_int_equal(qo_quat_to_mat3_f32(q, &m), QO_OK);
+        EXPECT_OK(qo_quat_to_mat3_f32(q, &m), n);
         rm = ref_quat_to_mat3(ref_quat_from_f32(q));
         for (i = 0; i < 3; i++)
             for (j = 0; j < 3; j++)
@@ -217,7 +223,7 @@ static void test_quat_to_mat3_vs_double(void **state)
         /* Same rotation as qo_quat_rotate_f32 (of the normalised q). */
         {
             qo_quat_f32 qn;
-            assert_int_equal(qo_quat_normalize_f32(q, &qn), QO_OK);
+            EXPECT_OK(qo_quat_normalize_f32(q, &qn), n);
             a = qo_mat3_mul_vec3_f32(&m, v);
             b = qo_quat_rotate_f32(qn, v);
             if (fabsf(a.x - b.x) > 2e-6f || fabsf(a.y - b.y) > 2e-6f || fabsf(a.z - b.z) > 2e-6f)
@@ -432,8 +438,8 @@ static void test_mat3_round_trip(void **state)
         qo_quat_f32 q = ref_quat_to_f32(ref_rng_quat(&rng)), q2;
         qo_mat3_f32 m;
         double err;
-        assert_int_equal(qo_quat_to_mat3_f32(q, &m), QO_OK);
-        assert_int_equal(qo_quat_from_mat3_f32(&m, &q2), QO_OK);
+        EXPECT_OK(qo_quat_to_mat3_f32(q, &m), n);
+        EXPECT_OK(qo_quat_from_mat3_f32(&m, &q2), n);
         err = ref_quat_angle_between(ref_quat_from_f32(q), ref_quat_from_f32(q2));
         if (err > TOL_RAD) {
             print_q("q", q);
@@ -631,7 +637,7 @@ static void test_axis_angle_from_vs_double(void **state)
         ref_quat expect = ref_quat_from_axis_angle(ref_vec3_from_f32(af), ang);
         qo_quat_f32 q;
         double err;
-        assert_int_equal(qo_quat_from_axis_angle_f32(af, ang, &q), QO_OK);
+        EXPECT_OK(qo_quat_from_axis_angle_f32(af, ang, &q), n);
         /* Componentwise (the sign is part of the contract: no canonicalisation here). */
         err = fabs(q.w - expect.w) + fabs(q.x - expect.x) + fabs(q.y - expect.y) +
               fabs(q.z - expect.z);
@@ -690,7 +696,7 @@ static void test_axis_angle_to(void **state)
         double err, alen;
         rq.w *= sc; rq.x *= sc; rq.y *= sc; rq.z *= sc;
         q = ref_quat_to_f32(rq);
-        assert_int_equal(qo_quat_to_axis_angle_f32(q, &ax, &ang), QO_OK);
+        EXPECT_OK(qo_quat_to_axis_angle_f32(q, &ax, &ang), n);
         alen = sqrt((double)ax.x * ax.x + (double)ax.y * ax.y + (double)ax.z * ax.z);
         back = ref_quat_from_axis_angle(ref_vec3_from_f32(ax), ang);
         err = ref_quat_angle_between(back, ref_quat_from_f32(q));
@@ -774,7 +780,7 @@ static void test_rotvec_vs_double(void **state)
         ref_vec3 rb;
         qo_quat_f32 q;
         double err;
-        assert_int_equal(qo_quat_from_rotvec_f32(rv, &q), QO_OK);
+        EXPECT_OK(qo_quat_from_rotvec_f32(rv, &q), n);
         err = fabs(q.w - expect.w) + fabs(q.x - expect.x) + fabs(q.y - expect.y) +
               fabs(q.z - expect.z);
         if (err > 2e-6)
@@ -782,7 +788,7 @@ static void test_rotvec_vs_double(void **state)
                      rv.z, err);
         /* to: from an independent random quaternion, vs the double rotation vector. */
         q = ref_quat_to_f32(ref_rng_quat(&rng));
-        assert_int_equal(qo_quat_to_rotvec_f32(q, &back), QO_OK);
+        EXPECT_OK(qo_quat_to_rotvec_f32(q, &back), n);
         rb = ref_rotvec(ref_quat_from_f32(q));
         err = fabs(back.x - rb.x) + fabs(back.y - rb.y) + fabs(back.z - rb.z);
         if (err > 2e-6 || sqrt((double)back.x * back.x + (double)back.y * back.y +
@@ -843,6 +849,23 @@ static void test_rotvec_edges(void **state)
     assert_true(v.x == 0.0f && v.y == 0.0f && fabs(v.z - REF_PI) < 1e-6);
     assert_int_equal(qo_quat_to_rotvec_f32(qf(-1e-7f, 0, 1, 0), &v), QO_OK);
     assert_true(v.y < 0.0f && fabs(-v.y - (REF_PI - 2e-7)) < 1e-6);
+    /* Around the series switch (|v| = 1e-3): relative precision on both sides. */
+    {
+        static const struct { float vn; double rel; } t[] = {
+            { 1e-4f, 1.5e-7 }, { 5e-4f, 1.5e-7 }, { 9.99e-4f, 1.5e-7 }, { 1.001e-3f, 4e-7 },
+            { 1e-2f, 4e-7 },
+        };
+        size_t k;
+        for (k = 0; k < sizeof t / sizeof t[0]; k++) {
+            qo_quat_f32 qq = qf(sqrtf(1.0f - t[k].vn * t[k].vn), 0.6f * t[k].vn, 0, -0.8f * t[k].vn);
+            ref_vec3 e = ref_rotvec(ref_quat_from_f32(qq));
+            double en = sqrt(e.x * e.x + e.z * e.z);
+            assert_int_equal(qo_quat_to_rotvec_f32(qq, &v), QO_OK);
+            if (fabs(v.x - e.x) > t[k].rel * en || fabs(v.z - e.z) > t[k].rel * en || v.y != 0.0f)
+                fail_msg("to_rotvec |v| = %g: (%.9g %.9g) vs (%.9g %.9g)", t[k].vn, v.x, v.z, e.x,
+                         e.z);
+        }
+    }
     v = vf(9, 9, 9);
     assert_int_equal(qo_quat_to_rotvec_f32(qf(0, 0, 0, 0), &v), QO_E_DEGENERATE);
     assert_true(v.x == 0.0f && v.y == 0.0f && v.z == 0.0f);
@@ -863,8 +886,8 @@ static void test_rotvec_round_trip(void **state)
         qo_vec3_f32 rv = ref_vec3_to_f32(ref_rotvec(c)), back;
         qo_quat_f32 q;
         double err;
-        assert_int_equal(qo_quat_from_rotvec_f32(rv, &q), QO_OK);
-        assert_int_equal(qo_quat_to_rotvec_f32(q, &back), QO_OK);
+        EXPECT_OK(qo_quat_from_rotvec_f32(rv, &q), n);
+        EXPECT_OK(qo_quat_to_rotvec_f32(q, &back), n);
         err = fabs(back.x - rv.x) + fabs(back.y - rv.y) + fabs(back.z - rv.z);
         /* Away from pi the map is well conditioned; near pi the canonical flip may move rv to
          * its antipode -rv*(2pi-|rv|)/|rv| (the same rotation): compare as rotations there. */
