@@ -127,6 +127,12 @@ static const struct edge_rot edges[] = {
 };
 #define N_EDGES (sizeof edges / sizeof edges[0])
 
+static ref_quat rscale_q(ref_quat q, double s)
+{
+    q.w *= s; q.x *= s; q.y *= s; q.z *= s;
+    return q;
+}
+
 static ref_quat edge_quat(size_t k)
 {
     ref_vec3 a = { edges[k].ax, edges[k].ay, edges[k].az };
@@ -445,6 +451,46 @@ static void test_mat3_round_trip(void **state)
             print_q("q", q);
             print_q("back", q2);
             fail_msg("quat -> mat3 -> quat case %d: error %.3g rad", n, err);
+        }
+    }
+}
+
+/* Every conversion on the edge table, both signs of q: the rotation survives. */
+static void test_edges_all_conversions(void **state)
+{
+    size_t k;
+    int sgn;
+    (void)state;
+    for (k = 0; k < N_EDGES; k++) {
+        for (sgn = -1; sgn <= 1; sgn += 2) {
+            ref_quat rq = rscale_q(edge_quat(k), sgn);
+            qo_quat_f32 q = ref_quat_to_f32(rq), q2;
+            ref_quat qd = ref_quat_from_f32(q);
+            qo_mat3_f32 m;
+            qo_vec3_f32 ax, rv;
+            float ang;
+            ref_mat3 rm = ref_quat_to_mat3(qd), mm;
+            double e_m, e_aa, e_rv, e_back, th;
+            ref_quat b_aa, b_rv = { 1.0, 0.0, 0.0, 0.0 };
+            EXPECT_OK(qo_quat_to_mat3_f32(q, &m), k);
+            mm = ref_mat3_from_f32(&m);
+            e_m = ref_mat3_rotation_distance(&rm, &mm);
+            EXPECT_OK(qo_quat_to_axis_angle_f32(q, &ax, &ang), k);
+            b_aa = ref_quat_from_axis_angle(ref_vec3_from_f32(ax), ang);
+            e_aa = ref_quat_angle_between(b_aa, qd);
+            EXPECT_OK(qo_quat_to_rotvec_f32(q, &rv), k);
+            th = sqrt((double)rv.x * rv.x + (double)rv.y * rv.y + (double)rv.z * rv.z);
+            if (th > 0.0) b_rv = ref_quat_from_axis_angle(ref_vec3_from_f32(rv), th);
+            e_rv = ref_quat_angle_between(b_rv, qd);
+            EXPECT_OK(qo_quat_from_rotvec_f32(rv, &q2), k);
+            e_back = ref_quat_angle_between(ref_quat_from_f32(q2), qd);
+            if (e_m > TOL_RAD || e_aa > TOL_RAD || e_rv > TOL_RAD || e_back > TOL_RAD ||
+                !(ang >= 0.0f && ang <= 3.14159274f) || th > REF_PI + 1e-6) {
+                print_q("q", q);
+                fail_msg("edge %s (sign %d): errors mat3 %.3g, axis-angle %.3g, rotvec %.3g, "
+                         "rotvec->quat %.3g rad; angle %.9g, |rv| %.9g",
+                         edges[k].name, sgn, e_m, e_aa, e_rv, e_back, ang, th);
+            }
         }
     }
 }
@@ -914,6 +960,7 @@ int main(void)
         cmocka_unit_test(test_quat_from_mat3_edges),
         cmocka_unit_test(test_quat_from_mat3_non_rotations),
         cmocka_unit_test(test_quat_from_mat3_drifted),
+        cmocka_unit_test(test_edges_all_conversions),
         cmocka_unit_test(test_mat3_round_trip),
         cmocka_unit_test(test_orthonormalize_perturbed),
         cmocka_unit_test(test_orthonormalize_rejects),
