@@ -110,10 +110,9 @@ qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out);
  * |M^T M - I|) with det M > 0. The result is the rotation nearest M (to ~5e-7 rad): a matrix
  * off by more than float32 rounding (max |M^T M - I| > 5e-7) is first projected with
  * qo_mat3_orthonormalize_f32, since the direct formula would land up to ~1.6 * that error
- * away. Robust at every
- * angle: the pivot is the largest of trace, m00, m11, m22 (Shepperd), so 180-degree rotations,
- * where the trace is -1, lose no precision; square-root arguments are clamped at 0 and the
- * result is normalised.
+ * away. Robust at every angle: the pivot is the largest of trace, m00, m11, m22 (Shepperd),
+ * so 180-degree rotations, where the trace is -1, lose no precision; square-root arguments
+ * are clamped at 0 and the result is normalised.
  * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NONFINITE for a NaN/Inf entry;
  * QO_E_NOT_ROTATION for a matrix that is scaled, sheared, a reflection (det < 0) or singular.
  * *out is the identity on every error.
