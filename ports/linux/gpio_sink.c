@@ -422,6 +422,7 @@ static qo_status lg_open(void *ctx, const qo_gpio_line *line, int initial, int *
     struct gpiod_request_config *rc = NULL;
     struct gpiod_line_request *req = NULL;
     unsigned off = line->offset;
+    int err = 0;
     int slot = lg_slot(b);
     *handle = -1;
     if (slot < 0) return QO_E_CAPACITY;
@@ -437,13 +438,14 @@ static qo_status lg_open(void *ctx, const qo_gpio_line *line, int initial, int *
         gpiod_line_config_add_line_settings(lc, &off, 1, ls) == 0) {
         gpiod_request_config_set_consumer(rc, b->consumer);
         req = gpiod_chip_request_lines(chip, rc, lc);
+        if (!req) err = errno; /* before the frees below can change it */
     }
     gpiod_request_config_free(rc);
     gpiod_line_config_free(lc);
     gpiod_line_settings_free(ls);
     /* A v2 request lives on without its chip object. */
     gpiod_chip_close(chip);
-    if (!req) return errno == EINVAL ? QO_E_CONFIG : QO_E_IO;
+    if (!req) return err == EINVAL ? QO_E_CONFIG : QO_E_IO;
     b->line[slot] = req;
     b->chip[slot] = NULL;
     b->offset[slot] = off;
