@@ -494,6 +494,12 @@ static void test_config_errors(void **state)
     bad = C; bad.joint[0].dir.chip = NULL; assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_E_NULL);
     bad = C; bad.step_high_us = 1000.0; /* = 1/max_rate: no low time left */
     assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_E_CONFIG);
+    bad = C; bad.joint[1].dir_setup_us = 1496.0; /* + 5 us high > 1.5 ms window */
+    assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_E_CONFIG);
+    bad.joint[1].dir_setup_us = 1494.0; bad.joint[1].max_rate_hz = 100.0;
+    assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_OK);
+    qo_gpio_sink_close(&G);
+    reset_backend();
     bad = C; bad.joint[0].kind = QO_GPIO_SERVO_PWM; /* 2 ms pulse in a 1.5 ms window */
     assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_E_CONFIG);
     assert_int_equal(B.nopen, 0);

@@ -91,6 +91,8 @@ static qo_status check_config(const qo_gpio_sink_config *c)
                 !finite_in(j->dir_setup_us, 0.0, 1e6))
                 return QO_E_LIMIT;
             if (!(c->step_high_us < 1e6 / j->max_rate_hz)) return QO_E_CONFIG;
+            /* a window that cannot hold one pulse after a direction change would stall forever */
+            if (!(c->step_high_us + j->dir_setup_us < window_us)) return QO_E_CONFIG;
         } else if (j->kind == QO_GPIO_SERVO_PWM) {
             if (!line_given(&j->step)) return QO_E_NULL;
             if (!isfinite(j->servo_center_us) || !isfinite(j->servo_us_per_unit) ||

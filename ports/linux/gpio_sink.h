@@ -153,8 +153,9 @@ void qo_gpio_sink_config_default(qo_gpio_sink_config *cfg, qo_gpio_joint *joint_
  * function NULL, or a joint with neither chip nor name); QO_E_TOO_FEW (n_joints 0);
  * QO_E_CAPACITY (n_joints > QO_GPIO_MAX_JOINTS); QO_E_LIMIT (period, window, rate, steps per
  * unit, high time, setup or servo widths not finite or out of range); QO_E_ARG (unknown joint
- * kind); QO_E_CONFIG (high time not below 1/max rate, a servo pulse that does not fit the
- * window, or the backend could not find a chip/line); QO_E_IO (the backend failed otherwise).
+ * kind); QO_E_CONFIG (high time not below 1/max rate, high time + dir setup not below the
+ * window, a servo pulse that does not fit the window or the frame, or the backend could not
+ * find a chip/line); QO_E_IO (the backend failed otherwise).
  * On error g is not open (write returns QO_E_STATE).
  */
 qo_status qo_gpio_sink_open(qo_gpio_sink *g, const qo_gpio_sink_config *cfg,
