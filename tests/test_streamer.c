@@ -237,7 +237,7 @@ static void test_no_catch_up_burst_random(void **state)
 {
     const uint64_t P = 2000000u;
     const size_t N = 3000;
-    uint64_t skipped = 0, origin, max_lat = 0;
+    uint64_t skipped = 0, origin, max_lat = 0, max_perr = 0;
     qo_streamer_stats st;
     size_t k;
     (void)state;
@@ -264,6 +264,10 @@ static void test_no_catch_up_burst_random(void **state)
                 fail_msg("tick %zu: deadline %llu, first future after end %llu is %llu", k,
                          (unsigned long long)d, (unsigned long long)prev_end,
                          (unsigned long long)first);
+            if (d == F.deadline[k - 1] + P) { /* consecutive deadlines: a real period */
+                double e = fabs((double)(F.wake[k] - F.wake[k - 1]) - (double)P);
+                if (e > (double)max_perr) max_perr = (uint64_t)e;
+            }
         }
     }
     assert_int_equal(qo_streamer_stats_read(&S, &st), QO_OK);
@@ -277,6 +281,32 @@ static void test_no_catch_up_burst_random(void **state)
                  (unsigned long long)skipped);
     assert_int_equal(st.lat_max_ns, max_lat);
     assert_int_equal(st.lat_count, N);
+    assert_int_equal(st.period_err_max_ns, max_perr);
+    assert_true(max_perr > 0);
+}
+
+/* A reader holding the statistics lock never blocks the tick: ticks park their numbers
+ * (QO_STREAMER_PENDING latencies, the rest counted as dropped) and publish them at the first
+ * tick after the lock is free. */
+static void test_stats_reader_never_blocks_tick(void **state)
+{
+    const size_t held = QO_STREAMER_PENDING + 8u;
+    qo_streamer_stats st;
+    size_t k;
+    (void)state;
+    setup_streamer(&S, 500.0);
+    for (k = 0; k < 5; k++) (void)qo_streamer_tick(&S);
+    F.work[7] = 3u * 2000000u + 1u; /* 3 deadlines missed while the lock is held */
+    assert_int_equal(pthread_mutex_lock(&S.lock), 0); /* plays the reader */
+    for (k = 0; k < held; k++) (void)qo_streamer_tick(&S);
+    assert_int_equal(S.live.ticks, 5); /* nothing published while held */
+    assert_int_equal(pthread_mutex_unlock(&S.lock), 0);
+    (void)qo_streamer_tick(&S);
+    assert_int_equal(qo_streamer_stats_read(&S, &st), QO_OK);
+    assert_int_equal(st.ticks, 5u + held + 1u);
+    assert_int_equal(st.overruns, 3);
+    assert_int_equal(st.stats_dropped, held - QO_STREAMER_PENDING);
+    assert_int_equal(st.lat_count, st.ticks - st.stats_dropped);
 }
 
 /* Nearest-rank percentile from a sorted copy, in the test's own terms. */
@@ -541,6 +571,7 @@ int main(void)
         cmocka_unit_test(test_period_accuracy),
         cmocka_unit_test(test_overrun_skips_and_counts),
         cmocka_unit_test(test_no_catch_up_burst_random),
+        cmocka_unit_test(test_stats_reader_never_blocks_tick),
         cmocka_unit_test(test_hist_percentiles_vs_brute_force),
         cmocka_unit_test(test_streamer_stats_vs_brute_force),
         cmocka_unit_test(test_stop_leaves_defined_target),

@@ -210,11 +210,14 @@ qo_status qo_streamer_tick(qo_streamer *s)
     s->last_wake_ns = wake;
 
     s->pend.ticks++;
-    if (s->pend_n < QO_STREAMER_PENDING) s->pend_lat[s->pend_n++] = lat;
-    else s->pend.stats_dropped++;
     if (pthread_mutex_trylock(&s->lock) == 0) {
         merge_pending(s);
+        qo_jitter_hist_add(&s->hist, lat);
         pthread_mutex_unlock(&s->lock);
+    } else if (s->pend_n < QO_STREAMER_PENDING) {
+        s->pend_lat[s->pend_n++] = lat;
+    } else {
+        s->pend.stats_dropped++;
     }
     return st != QO_OK ? st : st_w;
 }
