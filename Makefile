@@ -54,7 +54,7 @@ SPORT_OBJ := $(PORT_SRC:%.c=$(BUILD)/san/%.o)
 SCOMMON_OBJ := $(TEST_COMMON:%.c=$(BUILD)/san/%.o)
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all lib test test-vm core-check clean tests-build figures
+.PHONY: all lib test test-run test-vm core-check clean tests-build figures
 # Keep the sanitizer objects between runs (they are intermediates of the test pattern rule).
 .SECONDARY:
 all: $(BUILD)/libqorient.a $(BUILD)/libqorient_ports.a $(BUILD)/qorient
@@ -112,9 +112,14 @@ figures: $(BENCH_BIN)
 
 tests-build: $(TEST_BIN) $(BUILD)/qorient
 
-# Runs every cmocka program and every shell test; tests/run.sh prints the totals and fails on
-# any failure.
-test: tests-build
+# `make test` first installs missing Debian packages (tools/deps.sh: sudo when not root), then
+# builds in a fresh make so pkg-config sees them. test-run: runs every cmocka program and every
+# shell test; tests/run.sh prints the totals and fails on any failure.
+test:
+	@sh tools/deps.sh test
+	@$(MAKE) --no-print-directory test-run
+
+test-run: tests-build
 	@QORIENT=$(BUILD)/qorient sh tests/run.sh $(TEST_BIN) -- $(TEST_SH)
 
 # The GPIO sink against the kernel's gpio-sim in a QEMU VM (needs root-free qemu, downloads
