@@ -138,6 +138,7 @@ struct qo_modbus_sink {
     struct item *items;
     struct jstate *js;
     uint32_t backoff_us;
+    unsigned bus_failures; /* consecutive ticks failed on the bus (argument errors excluded) */
     struct timespec next_attempt;
     qo_modbus_sink_stats st;
 };
@@ -291,6 +292,7 @@ static qo_status do_connect(qo_modbus_sink *s)
     }
     s->st.common.connected = 1;
     s->st.common.consecutive_failures = 0;
+    s->bus_failures = 0;
     s->backoff_us = 0;
     s->st.backoff_us = 0;
     return QO_OK;
@@ -481,15 +483,26 @@ static void fail_action(qo_modbus_sink *s)
     link_down(s);
 }
 
+/* A rejected call (bad arguments, wrong state): counted, but it says nothing about the bus. */
+static qo_status rejected(qo_modbus_sink *s, qo_status st)
+{
+    s->st.common.writes_failed++;
+    s->st.common.consecutive_failures++;
+    s->st.last_error = st;
+    return st;
+}
+
 static qo_status tick_result(qo_modbus_sink *s, qo_status st)
 {
     if (st == QO_OK) {
         s->st.common.writes_ok++;
         s->st.common.consecutive_failures = 0;
+        s->bus_failures = 0;
         return QO_OK;
     }
     s->st.common.writes_failed++;
     s->st.common.consecutive_failures++;
+    s->bus_failures++;
     s->st.last_error = st;
     if (st == QO_E_DISCONNECTED && s->connected) {
         link_down(s);
@@ -498,7 +511,7 @@ static qo_status tick_result(qo_modbus_sink *s, qo_status st)
             s->st.disabled = 1;
             s->st.actions++;
         }
-    } else if (s->connected && s->st.common.consecutive_failures >= s->set.fail_threshold) {
+    } else if (s->connected && s->bus_failures >= s->set.fail_threshold) {
         fail_action(s);
     }
     return st;
@@ -512,11 +525,11 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
     (void)tick;
     if (s == NULL) return QO_E_NULL;
     s->st.common.writes++;
-    if (targets == NULL) return tick_result(s, QO_E_NULL);
-    if (s->closed || s->disabled) return tick_result(s, QO_E_STATE);
-    if (n != s->map->n_joints) return tick_result(s, QO_E_RANGE);
+    if (targets == NULL) return rejected(s, QO_E_NULL);
+    if (s->closed || s->disabled) return rejected(s, QO_E_STATE);
+    if (n != s->map->n_joints) return rejected(s, QO_E_RANGE);
     for (i = 0; i < n; i++)
-        if (!isfinite(targets[i])) return tick_result(s, QO_E_NONFINITE);
+        if (!isfinite(targets[i])) return rejected(s, QO_E_NONFINITE);
     if (!s->connected) return tick_result(s, QO_E_DISCONNECTED);
     for (g = 0; g < s->n_groups && st == QO_OK; g++) {
         struct group *gr = &s->groups[g];
@@ -587,6 +600,7 @@ qo_status qo_modbus_sink_enable(qo_modbus_sink *s)
     s->disabled = 0;
     s->st.disabled = 0;
     s->st.common.consecutive_failures = 0;
+    s->bus_failures = 0;
     return QO_OK;
 }
 

@@ -503,6 +503,19 @@ qo_status qo_sim_get_joint(qo_sim *sim, size_t i, double *target, double *positi
     return QO_OK;
 }
 
+qo_status qo_sim_get_register(qo_sim *sim, unsigned slave, uint16_t address, uint16_t *value)
+{
+    if (value == NULL) return QO_E_NULL;
+    *value = 0;
+    if (sim == NULL) return QO_E_NULL;
+    if (slave > 255 || sim->maps[slave] == NULL) return QO_E_RANGE;
+    pthread_mutex_lock(&sim->mu);
+    physics(sim);
+    *value = sim->maps[slave]->tab_registers[address];
+    pthread_mutex_unlock(&sim->mu);
+    return QO_OK;
+}
+
 qo_status qo_sim_get_stats(qo_sim *sim, qo_sim_stats *out)
 {
     if (out == NULL) return QO_E_NULL;

@@ -8,6 +8,7 @@
  *   qo_sim_port()         the TCP port actually bound (useful with port 0)
  *   qo_sim_set_fault()    change the fault injection while running
  *   qo_sim_get_joint()    a joint's target and simulated position
+ *   qo_sim_get_register() one holding register of one slave
  *   qo_sim_get_stats()    counters
  *   qo_sim_wait_requests() block until N requests were handled (condition variable)
  *   qo_sim_stop()         stop the thread, close, free
@@ -100,6 +101,10 @@ qo_status qo_sim_set_fault(qo_sim *sim, const qo_sim_fault *fault);
 /* Joint i's last target and its simulated position now, in joint units.
  * QO_OK, QO_E_NULL, QO_E_RANGE (i out of range; outputs 0). */
 qo_status qo_sim_get_joint(qo_sim *sim, size_t i, double *target, double *position);
+
+/* Holding register `address` of `slave`. QO_OK, QO_E_NULL, QO_E_RANGE (slave not in the
+ * map; *value 0). */
+qo_status qo_sim_get_register(qo_sim *sim, unsigned slave, uint16_t address, uint16_t *value);
 
 /* QO_OK or QO_E_NULL (*out zeroed). */
 qo_status qo_sim_get_stats(qo_sim *sim, qo_sim_stats *out);
