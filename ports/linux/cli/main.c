@@ -13,6 +13,7 @@ struct qo_cli_cmd {
 /* One line per subcommand; keep sorted by the order a newcomer meets them. */
 static const struct qo_cli_cmd cmds[] = {
     { "version", qo_cli_version, "print the version" },
+    { "sim", qo_cli_sim, "simulated Modbus servo drive bank (register map, lag, faults)" },
 };
 
 static void usage(FILE *f)
