@@ -39,8 +39,10 @@ static void load_six(void)
 static qo_modbus_sink_settings test_settings(void)
 {
     qo_modbus_sink_settings s = qo_modbus_sink_settings_default;
-    s.response_timeout_us = 20000;
-    s.byte_timeout_us = 5000;
+    /* Generous for loopback (replies take ~0.1 ms) so a loaded CI machine does not turn into
+     * spurious timeouts; faults that must time out are longer (delay 150 ms). */
+    s.response_timeout_us = 100000;
+    s.byte_timeout_us = 20000;
     s.fail_threshold = 3;
     s.reconnect_min_us = 1000;
     s.reconnect_max_us = 20000;
@@ -210,12 +212,12 @@ struct fault_case {
 static void test_tcp_faults(void **state)
 {
     static const struct fault_case cases[] = {
-        { "delay 40 ms x2 (timeouts, late replies)", { QO_SIM_FAULT_DELAY, 40, 0.0, 60, 2 } },
+        { "delay 150 ms x2 (timeouts, late replies)", { QO_SIM_FAULT_DELAY, 150, 0.0, 60, 2 } },
         { "drop x4 (applied, no reply)", { QO_SIM_FAULT_DROP, 0, 0.0, 60, 4 } },
         { "exception x4 (not applied)", { QO_SIM_FAULT_EXCEPTION, 0, 0.0, 60, 4 } },
         { "close x1 (disconnect mid-stream)", { QO_SIM_FAULT_CLOSE, 0, 0.0, 60, 1 } },
         { "close x3 (reconnects fail too)", { QO_SIM_FAULT_CLOSE, 0, 0.0, 60, 3 } },
-        { "drop 5% of requests", { QO_SIM_FAULT_DROP, 0, 0.05, 0, 0 } },
+        { "drop 3% of requests", { QO_SIM_FAULT_DROP, 0, 0.03, 0, 0 } },
         { "exception 10% of requests", { QO_SIM_FAULT_EXCEPTION, 0, 0.10, 0, 0 } },
     };
     size_t c;
@@ -261,6 +263,7 @@ static void test_tcp_faults(void **state)
             fail_msg("%s: failures lasted until tick %u", cases[c].name, r.last_failed_tick);
         if (cases[c].fault.kind == QO_SIM_FAULT_CLOSE && st.common.reconnects == 0)
             fail_msg("%s: no reconnection", cases[c].name);
+        if (getenv("QO_DEBUG")) printf("%s: failed %u timeouts %llu proto %llu exc %llu disc %llu reconn %llu\n", cases[c].name, r.failed, (unsigned long long)st.timeouts, (unsigned long long)st.protocol_errors, (unsigned long long)st.exceptions, (unsigned long long)st.disconnects, (unsigned long long)st.common.reconnects);
         if (cases[c].fault.kind == QO_SIM_FAULT_DELAY && st.timeouts == 0)
             fail_msg("%s: no timeout counted", cases[c].name);
         if (cases[c].fault.kind == QO_SIM_FAULT_EXCEPTION && st.exceptions == 0)

@@ -210,6 +210,13 @@ static qo_status after_request(qo_modbus_sink *s, int rc, int *uncertain)
     if (rc >= 0) return QO_OK;
     s->st.requests_failed++;
     st = classify(err, uncertain, s);
+    if (s->spec.transport == QO_MODBUS_TCP && (err == EMBBADDATA || err == EMBBADSLAVE)) {
+        /* On TCP this is a stale reply (an earlier request's, after a timeout): the reply
+         * to this request is still on its way. Consume it (bounded by the response timeout)
+         * so the link is back in step now instead of staying one reply behind. */
+        uint8_t rsp[MODBUS_TCP_MAX_ADU_LENGTH];
+        (void)modbus_receive_confirmation(s->ctx, rsp);
+    }
     /* A late or partial reply must not be read as the answer to the next request. */
     modbus_flush(s->ctx);
     s->st.last_error = st;

@@ -34,8 +34,11 @@
  *      sent as one FC16 per run of strictly contiguous registers of one slave, split at the
  *      slave's max_registers (never inside a 32-bit value); runs go out in slave, then
  *      address order, each followed by the slave's gap_us of silence;
- *   4. the tick stops at the first failed request (so a tick costs at most one response
- *      timeout), modbus_flush() drops any stale reply, and the failure is counted.
+ *   4. the tick stops at the first failed request, modbus_flush() drops any stale reply,
+ *      and the failure is counted. On TCP a reply with the wrong transaction id (the late
+ *      answer to an earlier, timed-out request) is followed by one more bounded receive to
+ *      consume this request's own reply, so the link is in step again at once. A tick thus
+ *      costs at most two response timeouts (plus the gaps).
  * libmodbus's own error recovery is NONE: its LINK mode can loop for ever.
  *
  * After `fail_threshold` consecutive failed ticks (or at once when the link is lost) the
