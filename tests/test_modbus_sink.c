@@ -17,6 +17,7 @@
 #include <pthread.h>
 #include <pty.h>
 #include <termios.h>
+#include <time.h>
 #include <unistd.h>
 #include <cmocka.h>
 
@@ -495,6 +496,63 @@ static void test_arguments_and_specs(void **state)
     qo_sim_stop(sim);
 }
 
+static double mono_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + (double)t.tv_nsec * 1e-9;
+}
+
+/* The simulator's first-order lag against exp(-t/tau) computed here: the position read at
+ * a time known to within [before, after] of a write known to within [wa, wb] must lie
+ * between the two bounds of 1 - exp(-dt/tau). The feedback registers carry it (FC03). */
+static void test_sim_first_order_lag(void **state)
+{
+    const double tau = 0.05;
+    qo_sim *sim = NULL;
+    qo_sim_settings ss = qo_sim_settings_default;
+    qo_modbus_sink *s = NULL;
+    qo_modbus_sink_settings set = test_settings();
+    char spec[64];
+    float t[NJ] = { 0.05f, 0.05f, 0.05f, 0.05f, 0.05f, 0.05f }, fb[NJ];
+    double wa, wb, elapsed = 0.0;
+    int reads = 0;
+    (void)state;
+    load_six();
+    ss.lag_s = tau;
+    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, &ss, &sim), QO_OK);
+    snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+    assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+    wa = mono_s();
+    assert_int_equal(qo_modbus_sink_write(s, t, NJ, 0), QO_OK); /* step 0 -> 0.05 (= max_step) */
+    wb = mono_s();
+    while (elapsed < 0.15 && reads < 100000) {
+        double tgt, pos, b0, b1, lo, hi;
+        b0 = mono_s();
+        assert_int_equal(qo_sim_get_joint(sim, 3, &tgt, &pos), QO_OK);
+        b1 = mono_s();
+        lo = 0.05 * (1.0 - exp(-fmax(b0 - wb, 0.0) / tau));
+        hi = 0.05 * (1.0 - exp(-(b1 - wa) / tau));
+        if (tgt != 0.05 || pos < lo - 1e-12 || pos > hi + 1e-12)
+            fail_msg("lag: at %.4f s target %.9g position %.9g outside [%.9g, %.9g]", b0 - wa,
+                     tgt, pos, lo, hi);
+        elapsed = b1 - wa;
+        reads++;
+    }
+    /* after 3 tau the feedback register shows ~95 % of the step (0.5e-3 resolution) */
+    {
+        double r0 = mono_s(), r1, lo, hi;
+        assert_int_equal(qo_modbus_sink_read_feedback(s, fb, NJ), QO_OK);
+        r1 = mono_s();
+        lo = 0.05 * (1.0 - exp(-(r0 - wb) / tau)) - 0.5e-3; /* register resolution 1e-3 */
+        hi = 0.05 * (1.0 - exp(-(r1 - wa) / tau)) + 0.5e-3;
+        if ((double)fb[3] < lo - 1e-7 || (double)fb[3] > hi + 1e-7)
+            fail_msg("feedback %.9g outside [%.9g, %.9g]", (double)fb[3], lo, hi);
+    }
+    qo_modbus_sink_free(s);
+    qo_sim_stop(sim);
+}
+
 /* ---- RTU over two pty pairs joined by a relay thread ------------------------------------ */
 
 struct relay {
@@ -637,6 +695,7 @@ int main(void)
         cmocka_unit_test(test_disable_action_and_enable),
         cmocka_unit_test(test_grouping),
         cmocka_unit_test(test_arguments_and_specs),
+        cmocka_unit_test(test_sim_first_order_lag),
         cmocka_unit_test(test_rtu_pty_with_garbage),
     };
     return cmocka_run_group_tests_name("modbus_sink", tests, NULL, NULL);
