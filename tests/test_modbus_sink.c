@@ -460,6 +460,20 @@ static void test_arguments_and_specs(void **state)
     assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_DISCONNECTED);
     assert_null(s);
     assert_int_equal(qo_modbus_sink_open(NULL, &map, &set, &s), QO_E_NULL);
+    /* hand-made maps are checked: bad type, zero scale, NaN max_step, too few registers */
+    map.joints[2].fmt.type = QO_REG_TYPE_COUNT_;
+    assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_CONFIG);
+    load_six();
+    map.joints[2].fmt.scale = 0.0;
+    assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_CONFIG);
+    load_six();
+    map.joints[2].max_step = NAN;
+    assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_CONFIG);
+    load_six();
+    map.slaves[0].max_registers = 1; /* an int32 cannot be split */
+    assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_CONFIG);
+    assert_null(s);
+    load_six();
     /* bad ticks send nothing */
     sim = start_tcp_sim(NULL, NULL, 0.0, spec, sizeof spec);
     assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);

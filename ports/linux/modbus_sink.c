@@ -398,6 +398,21 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
         settings->reconnect_max_us < settings->reconnect_min_us ||
         (settings->on_fail != QO_MODBUS_ON_FAIL_HOLD && settings->on_fail != QO_MODBUS_ON_FAIL_DISABLE))
         return QO_E_CONFIG;
+    /* A map may be built by hand rather than by qo_regmap_load: check what the sink relies on. */
+    for (i = 0; i < map->n_slaves; i++)
+        if (map->slaves[i].max_registers < 1 || map->slaves[i].max_registers > QO_REGMAP_MAX_REGISTERS)
+            return QO_E_CONFIG;
+    for (i = 0; i < map->n_joints; i++) {
+        const qo_regmap_joint *j = &map->joints[i];
+        const qo_regmap_slave *sl = qo_regmap_find_slave(map, j->slave);
+        size_t w = qo_reg_type_width(j->fmt.type);
+        double raw;
+        if (w == 0 || qo_reg_raw_from_value(&j->fmt, 0.0, &raw) != QO_OK ||
+            (size_t)j->address + w > 65536u || j->slave < 1 || j->slave > 255 ||
+            !(j->max_step >= 0.0) || !isfinite(j->max_step) || j->min > j->max ||
+            (sl != NULL && w > sl->max_registers))
+            return QO_E_CONFIG;
+    }
     s = calloc(1, sizeof *s);
     if (s == NULL) return QO_E_CAPACITY;
     s->map = map;
