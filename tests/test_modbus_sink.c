@@ -510,6 +510,65 @@ static void test_arguments_and_specs(void **state)
     qo_sim_stop(sim);
 }
 
+/* The worked Leadshine example map end to end: init writes, the PR0 block of 8 registers in
+ * one FC16 per drive (constants around the high-first int32 target), invert on the tilt
+ * drive. Expected registers are computed here from the manual's layout. */
+static void test_leadshine_example_map(void **state)
+{
+    char err[256], spec[64];
+    qo_sim *sim = NULL;
+    qo_modbus_sink *s = NULL;
+    qo_modbus_sink_settings set = test_settings();
+    qo_modbus_sink_stats st;
+    qo_sim_stats a, b;
+    float t[2] = { 0.0f, 0.0f };
+    const double scale = 10000.0 / (2.0 * 3.14159265358979323846);
+    unsigned k;
+    uint16_t reg;
+    (void)state;
+    assert_int_equal(qo_regmap_load("examples/maps/leadshine_cs2rs_pr.ini", &map, err, sizeof err),
+                     QO_OK);
+    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, NULL, &sim), QO_OK);
+    snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+    assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+    assert_int_equal(qo_sim_get_register(sim, 1, 0x0405, &reg), QO_OK);
+    assert_int_equal(reg, 1);
+    assert_int_equal(qo_sim_get_register(sim, 2, 0x0405, &reg), QO_OK);
+    assert_int_equal(reg, 1);
+    /* walk to pan 0.5 rad, tilt 0.3 rad at 0.02 rad per tick: 25 and 15 ticks */
+    t[0] = 0.5f;
+    t[1] = 0.3f;
+    assert_int_equal(qo_sim_get_stats(sim, &a), QO_OK);
+    for (k = 0; k < 30; k++) assert_int_equal(qo_modbus_sink_write(s, t, 2, k), QO_OK);
+    assert_int_equal(qo_sim_get_stats(sim, &b), QO_OK);
+    assert_int_equal(qo_modbus_sink_get_stats(s, &st), QO_OK);
+    assert_int_equal(st.groups, 2);
+    assert_int_equal(b.requests - a.requests, 60);
+    {
+        static const uint16_t consts[][2] = { { 0x6200, 1 }, { 0x6203, 1500 }, { 0x6204, 20 },
+                                              { 0x6205, 20 }, { 0x6206, 0 }, { 0x6207, 0x10 } };
+        unsigned sl;
+        size_t i;
+        for (sl = 1; sl <= 2; sl++) {
+            int32_t want = (int32_t)lround((sl == 1 ? 1.0 : -1.0) * (double)t[sl - 1] * scale);
+            uint16_t hi, lo;
+            for (i = 0; i < 6; i++) {
+                assert_int_equal(qo_sim_get_register(sim, sl, consts[i][0], &reg), QO_OK);
+                if (reg != consts[i][1])
+                    fail_msg("slave %u register 0x%04X = %u want %u", sl, consts[i][0], reg,
+                             consts[i][1]);
+            }
+            assert_int_equal(qo_sim_get_register(sim, sl, 0x6201, &hi), QO_OK);
+            assert_int_equal(qo_sim_get_register(sim, sl, 0x6202, &lo), QO_OK);
+            if ((int32_t)(((uint32_t)hi << 16) | lo) != want)
+                fail_msg("slave %u target %d want %d", sl, (int32_t)(((uint32_t)hi << 16) | lo),
+                         want);
+        }
+    }
+    qo_modbus_sink_free(s);
+    qo_sim_stop(sim);
+}
+
 static double mono_s(void)
 {
     struct timespec t;
@@ -710,6 +769,7 @@ int main(void)
         cmocka_unit_test(test_grouping),
         cmocka_unit_test(test_arguments_and_specs),
         cmocka_unit_test(test_sim_first_order_lag),
+        cmocka_unit_test(test_leadshine_example_map),
         cmocka_unit_test(test_rtu_pty_with_garbage),
     };
     return cmocka_run_group_tests_name("modbus_sink", tests, NULL, NULL);
