@@ -456,6 +456,15 @@ static void test_arguments_and_specs(void **state)
     set.reconnect_max_us = 10;
     assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_CONFIG);
     set = test_settings();
+    /* a host name goes through modbus_new_tcp_pi; the simulator wants an IPv4 literal */
+    assert_int_equal(qo_modbus_parse_spec("tcp://localhost:1", &sp), QO_OK);
+    {
+        modbus_t *ctx = qo_modbus_new_ctx(&sp);
+        assert_non_null(ctx);
+        modbus_free(ctx);
+        assert_int_equal(qo_sim_start("tcp://localhost:0", &map, NULL, &sim), QO_E_CONFIG);
+        assert_null(sim);
+    }
     /* port 1 on loopback: nobody listens */
     assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_DISCONNECTED);
     assert_null(s);

@@ -1,6 +1,8 @@
 #include "linux/modbus_sink.h"
 
+#include <arpa/inet.h>
 #include <errno.h>
+#include <stdio.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -96,7 +98,14 @@ bad:
 modbus_t *qo_modbus_new_ctx(const qo_modbus_spec *spec)
 {
     if (spec == NULL) return NULL;
-    if (spec->transport == QO_MODBUS_TCP) return modbus_new_tcp(spec->host, spec->port);
+    if (spec->transport == QO_MODBUS_TCP) {
+        struct in_addr a;
+        char port[16];
+        /* modbus_new_tcp takes IPv4 literals only; names and IPv6 go through the _pi API. */
+        if (inet_pton(AF_INET, spec->host, &a) == 1) return modbus_new_tcp(spec->host, spec->port);
+        snprintf(port, sizeof port, "%d", spec->port);
+        return modbus_new_tcp_pi(spec->host, port);
+    }
     if (spec->transport == QO_MODBUS_RTU)
         return modbus_new_rtu(spec->device, spec->baud, spec->parity, spec->data_bits,
                               spec->stop_bits);

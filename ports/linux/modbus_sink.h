@@ -84,7 +84,9 @@ typedef struct qo_modbus_spec {
  * QO_E_CONFIG (*out zeroed on error). */
 qo_status qo_modbus_parse_spec(const char *text, qo_modbus_spec *out);
 
-/* modbus_new_tcp / modbus_new_rtu for the spec, or NULL (bad spec or libmodbus failure). */
+/* A libmodbus context for the spec, or NULL (bad spec or libmodbus failure): modbus_new_tcp
+ * for an IPv4 literal, modbus_new_tcp_pi for a host name or IPv6 address (client side only:
+ * the simulator listens on IPv4 literals), modbus_new_rtu for a serial device. */
 modbus_t *qo_modbus_new_ctx(const qo_modbus_spec *spec);
 
 typedef enum qo_modbus_fail_action {
@@ -94,7 +96,9 @@ typedef enum qo_modbus_fail_action {
 
 typedef struct qo_modbus_sink_settings {
     uint32_t response_timeout_us; /* first reply byte (and TCP connect); keep it below the
-                                     control period; 1..10000000 */
+                                     control period; 1..10000000. On RTU it also covers the
+                                     request's own wire time: at 19200 8E1 a 6 x int32 FC16
+                                     (33 bytes) takes 19 ms before the drive can answer */
     uint32_t byte_timeout_us;     /* between reply bytes; 0 = whole reply within the response
                                      timeout */
     unsigned fail_threshold;      /* consecutive failed ticks before the action; >= 1 */

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <sys/socket.h>
 #include <netinet/in.h>
+#include <arpa/inet.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -432,6 +433,10 @@ qo_status qo_sim_start(const char *spec, const qo_regmap *map, const qo_sim_sett
     s->rng = settings->seed;
     st = qo_modbus_parse_spec(spec, &s->spec);
     if (st != QO_OK) goto fail;
+    if (s->spec.transport == QO_MODBUS_TCP) {
+        struct in_addr ia;
+        if (inet_pton(AF_INET, s->spec.host, &ia) != 1) { st = QO_E_CONFIG; goto fail; }
+    }
     s->joints = calloc(map->n_joints, sizeof *s->joints);
     if (s->joints == NULL) { st = QO_E_CAPACITY; goto fail; }
     for (i = 0; i < map->n_slaves; i++) {

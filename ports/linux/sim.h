@@ -84,7 +84,8 @@ typedef struct qo_sim_stats {
 typedef struct qo_sim qo_sim;
 
 /* Starts a simulator for `map` (kept by pointer: it must outlive the sim) listening on
- * `spec` ("tcp://HOST:PORT", PORT 0 = ephemeral; or "rtu:DEVICE,BAUD,8N1").
+ * `spec` ("tcp://IPV4:PORT", PORT 0 = ephemeral, 0.0.0.0 = every interface; or
+ * "rtu:DEVICE,BAUD,8N1").
  * settings NULL = defaults. Returns QO_OK with *out set, or (with *out NULL):
  * QO_E_NULL; QO_E_CONFIG (bad spec, empty map, bad settings); QO_E_IO (cannot bind or open
  * the device, cannot start the thread); QO_E_CAPACITY (out of memory). */
