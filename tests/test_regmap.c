@@ -206,6 +206,54 @@ static void test_example_files(void **state)
     }
 }
 
+/* A list too long for one line continues on indented lines; an over-long line is an error
+ * on its own line (inih would otherwise read its tail as a bogus key). */
+static void test_long_lists(void **state)
+{
+    static char text[2048];
+    char err[256];
+    size_t len = 0, i;
+    const qo_regmap_slave *sl;
+    (void)state;
+    len += (size_t)snprintf(text + len, sizeof text - len, "[slave.1]\nconstant = ");
+    for (i = 0; i < 8; i++)
+        len += (size_t)snprintf(text + len, sizeof text - len, "0x%04X=%u, ", (unsigned)(0x100 + i),
+                                (unsigned)i);
+    len += (size_t)snprintf(text + len, sizeof text - len, "\n    ; a comment between\n    ");
+    for (i = 8; i < 16; i++)
+        len += (size_t)snprintf(text + len, sizeof text - len, "0x%04X=%u ", (unsigned)(0x100 + i),
+                                (unsigned)i);
+    len += (size_t)snprintf(text + len, sizeof text - len,
+                            "\n[joint.a]\nslave = 1\naddress = 0\ntype = int16\n");
+    assert_int_equal(qo_regmap_parse(text, "long.ini", &map, err, sizeof err), QO_OK);
+    sl = qo_regmap_find_slave(&map, 1);
+    assert_non_null(sl);
+    assert_int_equal(sl->n_constant, 16);
+    for (i = 0; i < 16; i++) {
+        assert_int_equal(sl->constant[i].address, 0x100 + i);
+        assert_int_equal(sl->constant[i].value, i);
+    }
+    /* a 17th entry on a continuation line exceeds the capacity */
+    assert_int_equal(qo_regmap_parse("[slave.1]\ninit = 1=1 2=2 3=3 4=4 5=5 6=6 7=7 8=8\n"
+                                     "  9=9 10=10 11=11 12=12 13=13 14=14 15=15 16=16\n  17=17\n"
+                                     "[joint.a]\nslave = 1\naddress = 0\ntype = int16\n",
+                                     "cap.ini", &map, err, sizeof err), QO_E_CAPACITY);
+    assert_non_null(strstr(err, "cap.ini:4: "));
+    /* continuing a one-value key is an error */
+    assert_int_equal(qo_regmap_parse("[joint.a]\nslave = 1\naddress = 0\n  5\ntype = int16\n",
+                                     "cont.ini", &map, err, sizeof err), QO_E_CONFIG);
+    assert_non_null(strstr(err, "cont.ini:4: "));
+    /* one line of 300 characters */
+    len = (size_t)snprintf(text, sizeof text, "[slave.1]\ninit = ");
+    for (i = 0; i < 20; i++)
+        len += (size_t)snprintf(text + len, sizeof text - len, "0x%04X=0x%04X, ", (unsigned)i,
+                                (unsigned)i);
+    (void)snprintf(text + len, sizeof text - len,
+                   "\n[joint.a]\nslave = 1\naddress = 0\ntype = int16\n");
+    assert_int_equal(qo_regmap_parse(text, "wide.ini", &map, err, sizeof err), QO_E_CONFIG);
+    if (strncmp(err, "wide.ini:2: line longer than", 28) != 0) fail_msg("message: %s", err);
+}
+
 static void test_null_and_small_buffers(void **state)
 {
     char err[8];
@@ -236,6 +284,7 @@ int main(void)
         cmocka_unit_test(test_errors_name_file_and_line),
         cmocka_unit_test(test_capacity_of_joints),
         cmocka_unit_test(test_example_files),
+        cmocka_unit_test(test_long_lists),
         cmocka_unit_test(test_null_and_small_buffers),
     };
     return cmocka_run_group_tests_name("regmap", tests, NULL, NULL);

@@ -29,6 +29,9 @@ struct parser {
     qo_status st;       /* first error */
     int line;           /* line being parsed */
     int at_line_start;
+    int cont;           /* the line being parsed is an indented continuation line */
+    int too_long;       /* swallowing the rest of an over-long line */
+    char last_key[32];  /* key of the previous key line, for continuations */
     enum sect_kind kind;
     size_t cur;         /* index of the current joint or slave */
     unsigned seen;      /* keys seen in the current section */
@@ -284,10 +287,13 @@ static void joint_key(struct parser *p, const char *key, const char *val)
 #undef BAD
 }
 
+/* Parses a write list; a continuation line appends to the entries already read. */
 static void write_list(struct parser *p, const char *key, const char *val, qo_reg_write *out,
                        size_t *n)
 {
-    qo_status st = qo_regmap_parse_writes(val, out, QO_REGMAP_MAX_WRITES, n);
+    size_t have = p->cont ? *n : 0, got = 0;
+    qo_status st = qo_regmap_parse_writes(val, out + have, QO_REGMAP_MAX_WRITES - have, &got);
+    *n = have + got;
     if (st == QO_E_CAPACITY)
         fail(p, st, p->line, "'%s' has more than %d entries", key, QO_REGMAP_MAX_WRITES);
     else if (st != QO_OK)
@@ -310,13 +316,13 @@ static void slave_key(struct parser *p, const char *key, const char *val)
             fail(p, QO_E_CONFIG, p->line, "bad gap_us '%s' (0..1000000)", val);
         else s->gap_us = (unsigned)l;
     } else if (!strcmp(key, "init")) {
-        if (mark(p, SK_INIT, key)) return;
+        if (!p->cont && mark(p, SK_INIT, key)) return;
         write_list(p, key, val, s->init, &s->n_init);
     } else if (!strcmp(key, "disable")) {
-        if (mark(p, SK_DISABLE, key)) return;
+        if (!p->cont && mark(p, SK_DISABLE, key)) return;
         write_list(p, key, val, s->disable, &s->n_disable);
     } else if (!strcmp(key, "constant")) {
-        if (mark(p, SK_CONSTANT, key)) return;
+        if (!p->cont && mark(p, SK_CONSTANT, key)) return;
         write_list(p, key, val, s->constant, &s->n_constant);
     } else {
         fail(p, QO_E_CONFIG, p->line, "unknown key '%s' in [slave.%u]", key, s->id);
@@ -327,6 +333,11 @@ static int handler(void *user, const char *section, const char *name, const char
 {
     struct parser *p = user;
     (void)section; /* the current section is tracked by the reader, which knows its line */
+    if (p->cont && !(p->kind == SECT_SLAVE && (!strcmp(name, "init") || !strcmp(name, "disable") ||
+                                               !strcmp(name, "constant")))) {
+        fail(p, QO_E_CONFIG, p->line, "indented line continues '%s', which takes one value", name);
+        return 1;
+    }
     switch (p->kind) {
     case SECT_JOINT: joint_key(p, name, value); break;
     case SECT_SLAVE: slave_key(p, name, value); break;
@@ -359,10 +370,31 @@ static char *reader(char *str, int num, void *stream)
     }
     if (r == NULL) return NULL;
     len = strlen(str);
+    if (p->too_long) {
+        /* rest of an over-long line: hand inih a blank line instead */
+        p->too_long = !(len > 0 && str[len - 1] == '\n');
+        p->at_line_start = !p->too_long;
+        str[0] = '\n';
+        str[1] = '\0';
+        return r;
+    }
+    if (!(len > 0 && str[len - 1] == '\n') && (int)len == num - 1) {
+        /* inih would split the line and read its tail as a new key: report it instead */
+        p->line++;
+        fail(p, QO_E_CONFIG, p->line,
+             "line longer than %d characters (continue a long list on indented lines)", num - 2);
+        p->too_long = 1;
+        p->at_line_start = 0;
+        str[0] = '\n';
+        str[1] = '\0';
+        return r;
+    }
     if (p->at_line_start) {
         const char *q = str;
         p->line++;
         while (*q == ' ' || *q == '\t') q++;
+        /* inih's rule: an indented, non-comment line continues the previous key's value */
+        p->cont = q > str && *q != '\0' && *q != '\n' && *q != '\r' && *q != ';' && *q != '#';
         if (*q == '[') {
             const char *e = strchr(q, ']');
             if (e != NULL && (size_t)(e - q) < 80) {

@@ -32,6 +32,10 @@
  *   max_step = 0.01           ; largest change per tick in joint units, > 0 (default: unlimited)
  *   feedback = 0x602A         ; optional address of the actual position, same type/order/scale
  *
+ * Lines are at most 198 characters (inih's buffer); a longer write list continues on
+ * indented lines, which append to it (comment lines may sit between them):
+ *   constant = 0x6200=1, 0x6203=600,
+ *              0x6207=0x10
  * Values: integers are decimal or 0x hex (a leading 0 is decimal, not octal); register values
  * in write lists are 0..65535 or -32768..-1 (two's complement). Unknown sections or keys,
  * duplicate sections or keys, bad values, registers of one slave that overlap (targets,
