@@ -147,13 +147,19 @@ typedef struct decomp {
 static qo_quat_f32 scale_pow2(qo_quat_f32 q)
 {
     float m = fabsf(q.w);
-    float f = 1.0f;
     if (fabsf(q.x) > m) m = fabsf(q.x);
     if (fabsf(q.y) > m) m = fabsf(q.y);
     if (fabsf(q.z) > m) m = fabsf(q.z);
-    while (m < 0x1p-20f) { m *= 0x1p40f; f *= 0x1p40f; }
-    while (m > 0x1p20f) { m *= 0x1p-40f; f *= 0x1p-40f; }
-    q.w *= f; q.x *= f; q.y *= f; q.z *= f;
+    /* Scale step by step: a subnormal-only q needs 2^160, which as one factor would overflow
+     * float to Inf (and 0 * Inf = NaN); each step is exact and stays below 2^60. */
+    while (m < 0x1p-20f) {
+        m *= 0x1p40f;
+        q.w *= 0x1p40f; q.x *= 0x1p40f; q.y *= 0x1p40f; q.z *= 0x1p40f;
+    }
+    while (m > 0x1p20f) {
+        m *= 0x1p-40f;
+        q.w *= 0x1p-40f; q.x *= 0x1p-40f; q.y *= 0x1p-40f; q.z *= 0x1p-40f;
+    }
     return q;
 }
 
