@@ -79,6 +79,8 @@ static qo_status check_settings(const qo_gimbal_settings_f32 *s)
     if (!(s->vmax > 0.0f)) return QO_E_LIMIT; /* also rejects NaN */
     for (i = 0; i < 3; i++) {
         if (isnan(s->min[i]) || isnan(s->max[i]) || s->min[i] > s->max[i]) return QO_E_LIMIT;
+        /* min = +Inf (or max = -Inf) would clamp the joint to an infinite command. */
+        if (s->min[i] == INFINITY || s->max[i] == -INFINITY) return QO_E_LIMIT;
     }
     return QO_OK;
 }

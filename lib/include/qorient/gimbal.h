@@ -84,8 +84,8 @@ typedef struct qo_gimbal_settings_f32 {
     float band;         /* rad, [0, pi/2]: inside this margin from the singular configuration
                            the free angle is held where it was (see qo_quat_to_euler_near_f32) */
     float vmax;         /* rad/s, > 0: per-joint rate limit; +INFINITY for none */
-    float min[3];       /* rad: joint position limits (may be -INFINITY) */
-    float max[3];       /* rad: (may be +INFINITY); min[i] <= max[i] */
+    float min[3];       /* rad: joint position limits (may be -INFINITY, not +INFINITY) */
+    float max[3];       /* rad: (may be +INFINITY, not -INFINITY); min[i] <= max[i] */
 } qo_gimbal_settings_f32;
 
 /* ZYX (yaw-pitch-roll head), band 1 degree, no rate limit, no position limits. */
@@ -116,7 +116,7 @@ typedef struct qo_gimbal_sample_f32 {
  * Validates settings and starts the gimbal without a previous sample (the first step then
  * takes the principal decomposition, scipy's ranges, and applies no rate limit).
  * Returns QO_OK; QO_E_NULL; QO_E_ARG (bad seq); QO_E_RANGE (band outside [0, pi/2]);
- * QO_E_LIMIT (vmax not > 0 or NaN, a NaN limit, or min > max); on error the gimbal is
+ * QO_E_LIMIT (vmax not > 0 or NaN, a NaN limit, min > max, min = +Inf or max = -Inf); on error the gimbal is
  * initialised with the default settings and must not be used until a successful init.
  */
 qo_status qo_gimbal_init_f32(qo_gimbal_f32 *g, const qo_gimbal_settings_f32 *s);
