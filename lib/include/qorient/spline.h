@@ -38,8 +38,9 @@
  *                  Catmull-Rom tangents or zero; accelerations from settings.key_acc or else
  *                  estimated as the same weighted slope of the key velocities (C2 because
  *                  each key has one acceleration) or zero. Zero derivatives make every key a
- *                  stop (rest-to-rest segments). Inconsistent given p/v/a overshoot: that is
- *                  the caller's data.
+ *                  stop (rest-to-rest segments). Given arrays cover every key including the
+ *                  ends (settings.end then only shapes what is estimated). Inconsistent given
+ *                  p/v/a overshoot: that is the caller's data.
  * End conditions (settings.end; ignored by LINEAR and CUBIC_HERMITE):
  *   CLAMPED   the first/last key velocities are settings.end_vel[j] / end_vel[N + j]
  *             (NULL = 0: start and stop at rest); QUINTIC also has zero end accelerations.
@@ -174,7 +175,10 @@ qo_status qo_spline_sample_f32(const qo_spline_f32 *s, float t, float *pos, floa
  * it once at plan time). Times, positions, limits and wrap periods are rounded to Q16.16,
  * coefficients to Q16.16, 1/h and 1/h^2 to 24-bit mantissa + exponent computed from the
  * ROUNDED key times (so s reaches exactly 1 at the next key). Limits beyond the Q16.16 range
- * (and +-Inf) become INT32_MIN / INT32_MAX.
+ * (and +-Inf) become INT32_MIN / INT32_MAX. Note the normalised coefficients are larger than
+ * the positions: up to ~3x the step between keys for cubics and ~15x (b4 = -15 d for a
+ * rest-to-rest quintic) for QUINTIC, and the end state holds the end velocity and
+ * acceleration; all must fit Q16.16 (steps up to ~2000 units for QUINTIC).
  * Returns QO_OK; QO_E_NULL (s, table or out NULL); QO_E_STATE (s->n_keys == 0);
  * QO_E_CAPACITY (table_len < qo_spline_q16_len(N, K)); QO_E_OVERFLOW (a time, coefficient,
  * end velocity/acceleration or wrap period does not fit Q16.16); QO_E_ORDER (two key times
