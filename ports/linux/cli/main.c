@@ -13,6 +13,7 @@ struct qo_cli_cmd {
 /* One line per subcommand; keep sorted by the order a newcomer meets them. */
 static const struct qo_cli_cmd cmds[] = {
     { "version", qo_cli_version, "print the version" },
+    { "plan", qo_cli_plan_keys, "sample a multi-joint trajectory through keyframes" },
 };
 
 static void usage(FILE *f)
