@@ -173,12 +173,12 @@ static int read_keys(FILE *in, const char *name, int per_joint, struct plan_keys
         lineno++;
         pr = qo_cli_parse_numbers(line, v, PLAN_MAX_FIELDS + 1, &n);
         if (pr == -2) {
-            fprintf(stderr, "qorient plan: %s:%ld: more than %d columns\n", name, lineno, PLAN_MAX_FIELDS + 1);
+            fprintf(stderr, "qorient plan: %s: line %ld: more than %d columns\n", name, lineno, PLAN_MAX_FIELDS + 1);
             rc = 1;
             break;
         }
         if (pr != 0) {
-            fprintf(stderr, "qorient plan: %s:%ld: not a number: '%s'\n", name, lineno, line);
+            fprintf(stderr, "qorient plan: %s: line %ld: not a number: '%s'\n", name, lineno, line);
             rc = 1;
             break;
         }
@@ -186,7 +186,7 @@ static int read_keys(FILE *in, const char *name, int per_joint, struct plan_keys
         for (i = 0; i < n; i++)
             if (!isfinite(v[i]) || !isfinite((float)v[i])) break;
         if (i < n) {
-            fprintf(stderr, "qorient plan: %s:%ld: column %zu is not a finite float number\n", name,
+            fprintf(stderr, "qorient plan: %s: line %ld: column %zu is not a finite float number\n", name,
                     lineno, i + 1);
             rc = 1;
             break;
@@ -194,7 +194,7 @@ static int read_keys(FILE *in, const char *name, int per_joint, struct plan_keys
         if (first_line == 0) {
             if (n < 2 || (n - 1) % (size_t)per_joint != 0) {
                 fprintf(stderr,
-                        "qorient plan: %s:%ld: %zu columns: expected t and %d number(s) per joint\n",
+                        "qorient plan: %s: line %ld: %zu columns: expected t and %d number(s) per joint\n",
                         name, lineno, n, per_joint);
                 rc = 1;
                 break;
@@ -202,7 +202,7 @@ static int read_keys(FILE *in, const char *name, int per_joint, struct plan_keys
             first_line = lineno;
             ks->cols = n - 1;
         } else if (n - 1 != ks->cols) {
-            fprintf(stderr, "qorient plan: %s:%ld: %zu columns, expected %zu as on line %ld\n", name,
+            fprintf(stderr, "qorient plan: %s: line %ld: %zu columns, expected %zu as on line %ld\n", name,
                     lineno, n, ks->cols + 1, first_line);
             rc = 1;
             break;
@@ -210,7 +210,7 @@ static int read_keys(FILE *in, const char *name, int per_joint, struct plan_keys
         tf = (float)v[0];
         if (ks->n_keys > 0 && !(tf > ks->t[ks->n_keys - 1])) {
             fprintf(stderr,
-                    "qorient plan: %s:%ld: time %.9g is not after the previous keyframe's %.9g "
+                    "qorient plan: %s: line %ld: time %.9g is not after the previous keyframe's %.9g "
                     "(line %ld): times must increase strictly\n",
                     name, lineno, v[0], (double)ks->t[ks->n_keys - 1], prev_line);
             rc = 1;
