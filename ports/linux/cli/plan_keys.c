@@ -28,7 +28,9 @@ static const char plan_usage[] =
     "                   must have the same number of columns (see --columns).\n"
     "Output: one line per sample, 't,p1..pN,v1..vN,a1..aN' (position, velocity in units/s,\n"
     "  acceleration in units/s^2), at t = t_first + i/rate up to the last key time, plus a\n"
-    "  last sample at exactly the last key time when the rate does not land on it.\n"
+    "  last sample at exactly the last key time when the rate does not land on it. Before\n"
+    "  the first and after the last key a trajectory is at rest; at the last key it reports\n"
+    "  the end velocity/acceleration of the last segment.\n"
     "\n"
     "Options:\n"
     "  --profile NAME   linear   straight lines between keys (velocity steps at keys)\n"
@@ -61,7 +63,8 @@ static const char plan_usage[] =
     "  --unwrapped      print continuous joints unwrapped (continuing from the first key)\n"
     "  --degrees        positions are degrees: the wrap period is 360\n"
     "  --fixed          sample with the fixed-point (Q16.16) sampler instead of float32\n"
-    "                   (times and values must fit in +-32768)\n"
+    "                   (times and values must fit in +-32768; each sample is taken at the\n"
+    "                   nearest Q16.16 time, within 7.7 us of the printed time)\n"
     "  --vmax V,...  --amax A,...  --jmax J,...  --sync MODE\n"
     "                   limits of the trapezoid|scurve profiles only: given with a keyframe\n"
     "                   profile they are an error (keyframe timing comes from the input).\n"
@@ -132,11 +135,13 @@ struct plan_cfg {
 struct plan_keys {
     size_t n_keys, cap, cols;
     float *t, *vals;
+    double t_first, t_last; /* as read, for printing the sample times */
 };
 
-static int push_key(struct plan_keys *ks, float t, const double *v)
+static int push_key(struct plan_keys *ks, double td, const double *v)
 {
     size_t i;
+    float t = (float)td;
     if (ks->n_keys == ks->cap) {
         size_t nc = ks->cap ? 2 * ks->cap : 64;
         float *nt = realloc(ks->t, nc * sizeof *nt);
@@ -149,6 +154,8 @@ static int push_key(struct plan_keys *ks, float t, const double *v)
         ks->cap = nc;
     }
     ks->t[ks->n_keys] = t;
+    if (ks->n_keys == 0) ks->t_first = td;
+    ks->t_last = td;
     for (i = 0; i < ks->cols; i++) ks->vals[ks->n_keys * ks->cols + i] = (float)v[i];
     ks->n_keys++;
     return 0;
@@ -216,7 +223,7 @@ static int read_keys(FILE *in, const char *name, int per_joint, struct plan_keys
             rc = 1;
             break;
         }
-        if (push_key(ks, tf, v + 1) != 0) {
+        if (push_key(ks, v[0], v + 1) != 0) {
             fprintf(stderr, "qorient plan: out of memory\n");
             rc = 1;
             break;
@@ -288,10 +295,18 @@ static int make_wrap(const char *arg, size_t nj, unsigned char **out)
     return 0;
 }
 
+/* The time column is the nominal sample time t_first + i/rate (printed with %.9g, so a
+ * 100 Hz stream reads 0.01, not the float32 0.00999999978 it was sampled at). */
+static void print_time(double t)
+{
+    if (t == 0.0) t = 0.0;
+    printf("%.9g", t);
+}
+
 static void print_row_f32(double t, size_t nj, const float *p, const float *v, const float *a)
 {
     size_t j;
-    qo_cli_print_f32(stdout, (float)t);
+    print_time(t);
     for (j = 0; j < nj; j++) { putchar(','); qo_cli_print_f32(stdout, p[j]); }
     for (j = 0; j < nj; j++) { putchar(','); qo_cli_print_f32(stdout, v[j]); }
     for (j = 0; j < nj; j++) { putchar(','); qo_cli_print_f32(stdout, a[j]); }
@@ -303,10 +318,10 @@ static void print_q16(qo_q16 x)
     printf("%.10g", (double)x / 65536.0);
 }
 
-static void print_row_q16(qo_q16 t, size_t nj, const qo_q16 *p, const qo_q16 *v, const qo_q16 *a)
+static void print_row_q16(double t, size_t nj, const qo_q16 *p, const qo_q16 *v, const qo_q16 *a)
 {
     size_t j;
-    print_q16(t);
+    print_time(t);
     for (j = 0; j < nj; j++) { putchar(','); print_q16(p[j]); }
     for (j = 0; j < nj; j++) { putchar(','); print_q16(v[j]); }
     for (j = 0; j < nj; j++) { putchar(','); print_q16(a[j]); }
@@ -424,7 +439,7 @@ static int run_plan(const struct plan_cfg *c, const struct plan_keys *ks, size_t
     qo_spline_f32 sp;
     qo_spline_q16 fx;
     qo_status st;
-    double t0 = ks->t[0], tl = ks->t[ks->n_keys - 1], span_n, i;
+    double t0 = ks->t_first, tl = ks->t_last, span_n, i;
     int rc = 0, overflow = 0;
     if (coef == NULL || p == NULL || cl == NULL || ncl == NULL || pq == NULL) {
         fputs("qorient plan: out of memory\n", stderr);
@@ -461,10 +476,10 @@ static int run_plan(const struct plan_cfg *c, const struct plan_keys *ks, size_t
             qo_q16 tq = (qo_q16)lrint(t * 65536.0);
             st = qo_spline_sample_q16(&fx, tq, pq, pq + nj, pq + 2 * nj, cl);
             if (st == QO_E_OVERFLOW) overflow++;
-            print_row_q16(tq, nj, pq, pq + nj, pq + 2 * nj);
+            print_row_q16(t, nj, pq, pq + nj, pq + 2 * nj);
         } else {
             qo_spline_sample_f32(&sp, (float)t, p, p + nj, p + 2 * nj, cl);
-            print_row_f32((float)t, nj, p, p + nj, p + 2 * nj);
+            print_row_f32(t, nj, p, p + nj, p + 2 * nj);
         }
         for (j = 0; j < nj; j++) ncl[j] += cl[j] != 0;
     }
@@ -489,7 +504,7 @@ out:
 int qo_cli_plan_keys(int argc, char **argv)
 {
     struct plan_cfg c;
-    struct plan_keys ks = { 0, 0, 0, NULL, NULL };
+    struct plan_keys ks = { 0, 0, 0, NULL, NULL, 0.0, 0.0 };
     qo_spline_settings_f32 set = qo_spline_settings_default;
     float *lo = NULL, *hi = NULL, *pk = NULL, *vk = NULL, *ak = NULL;
     unsigned char *wrap = NULL;
