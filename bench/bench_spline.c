@@ -45,7 +45,7 @@ static int cmp_d(const void *a, const void *b)
 
 static float t_keys[NK], p_keys[NK * MAXJ];
 static float coef[NK + 3 * MAXJ + 6 * NK * MAXJ];
-static int32_t table[5 * NK + 3 * MAXJ + 6 * NK * MAXJ];
+static int32_t table[5 * NK + 3 * MAXJ + 7 * NK * MAXJ];
 static volatile float sink_f;
 static volatile int32_t sink_q;
 

@@ -250,7 +250,7 @@ static void test_fixed_edges(void **state)
     size_t need = qo_spline_q16_len(1, 2);
     (void)state;
     set.profile = QO_SPLINE_LINEAR;
-    assert_int_equal(need, 10 + 3 + 12);
+    assert_int_equal(need, 10 + 3 + 14);
     assert_int_equal(qo_spline_q16_len(0, 2), 0);
     assert_int_equal(qo_spline_q16_len(1, 1), 0);
     assert_int_equal(qo_spline_q16_len(SIZE_MAX / 4, 4), 0);

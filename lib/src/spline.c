@@ -490,8 +490,20 @@ qo_status qo_spline_to_q16_f32(const qo_spline_f32 *s, int32_t *table, size_t ta
         for (j = 0; j < nj; j++) {
             const float *b = row_of_c(s->coef, nj, nk, k, j);
             int32_t *q = ct + QO_SPLINE_Q16_COEF_WORDS * (k * nj + j);
+            int32_t f = 0;
+            float mag = 0.0f, sc;
+            /* Extra fractional bits for this row: the most (up to QO_SPLINE_Q16_MAX_FRAC)
+             * that keep every |b_n| below 2^14 units after scaling, i.e. raw < 2^30. The
+             * end-state row (physical p, v, a) keeps f = 0. */
+            if (k + 1 < nk) {
+                for (n = 0; n < COEF_W; n++)
+                    if (fabsf(b[n]) > mag) mag = fabsf(b[n]);
+                while (f < QO_SPLINE_Q16_MAX_FRAC && ldexpf(mag, (int)f + 1) < 16384.0f) f++;
+            }
+            sc = ldexpf(1.0f, (int)f);
             for (n = 0; n < COEF_W; n++)
-                if (!to_q16(b[n], &q[n])) return QO_E_OVERFLOW;
+                if (!to_q16(b[n] * sc, &q[n])) return QO_E_OVERFLOW;
+            q[COEF_W] = f;
         }
     }
     out->n_keys = nk;

@@ -2,7 +2,8 @@
  * table layout, the formats and the error bound. */
 #include "qorient/spline_fx.h"
 
-/* Normalised segment time s in Q5.27: with int32 coefficients (|b| < 2^31) the Horner sums
+/* Normalised segment time s in Q5.27: with int32 coefficients (|b| < 2^31; the conversion
+ * keeps them below 2^30, or 2^31 for f = 0) the Horner sums
  * stay below 20 * 2^31 < 2^35.4, and 2^35.4 * 2^27 < 2^63, so no product can overflow int64. */
 #define S_FRAC 27
 #define S_ONE ((int64_t)1 << S_FRAC)
@@ -128,8 +129,10 @@ qo_status qo_spline_sample_q16(const qo_spline_q16 *s, qo_q16 t, qo_q16 *pos, qo
         int8_t c = 0;
         if (mode == 1) {
             const int32_t *kr = kt + QO_SPLINE_Q16_KEY_WORDS * k;
+            int32_t f = b[6]; /* extra fractional bits of this row, [0, 14] */
             int64_t dv, dh;
             int big = 0;
+            if (f < 0 || f > QO_SPLINE_Q16_MAX_FRAC) f = 0; /* a damaged table: stay defined */
             x = b[5];
             x = horner_step(x, sn, b[4]);
             x = horner_step(x, sn, b[3]);
@@ -147,12 +150,16 @@ qo_status qo_spline_sample_q16(const qo_spline_q16 *s, qo_q16 t, qo_q16 *pos, qo
             dh = horner_step(dh, sn, (int64_t)6 * b[4]);
             dh = horner_step(dh, sn, (int64_t)3 * b[3]);
             dh = horner_step(dh, sn, b[2]);
-            v = scale(dv, kr[1], kr[2], (int64_t)INT32_MAX + 1, &big);
+            x = rshift_round(x, f);
+            v = scale(dv, kr[1], kr[2] + f, (int64_t)INT32_MAX + 1, &big);
             /* p'' / h^2 = 2 (p''/2) m2 2^-e2 = (p''/2) m2 2^-(e2 - 1) */
-            a = scale(dh, kr[3], kr[4] - 1, (int64_t)INT32_MAX + 1, &big);
+            a = scale(dh, kr[3], kr[4] - 1 + f, (int64_t)INT32_MAX + 1, &big);
             if (big) ovf = 1;
         } else {
-            x = b[0];
+            /* the first row (hold before the start) carries its f; the end row has f = 0 */
+            int32_t f = b[6];
+            if (f < 0 || f > QO_SPLINE_Q16_MAX_FRAC) f = 0;
+            x = rshift_round(b[0], f);
             v = (mode == 2) ? b[1] : 0;
             a = (mode == 2) ? b[2] : 0;
         }

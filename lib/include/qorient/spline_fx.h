@@ -18,22 +18,26 @@
  *       m in [2^23, 2^24) (24-bit mantissas, h_k = t_(k+1) - t_k of the Q16.16 key times;
  *       the last row holds only t_(K-1));
  *   N rows of 3 words: position min, max (INT32_MIN / INT32_MAX = none), wrap period (0 = none);
- *   K*N rows of 6 words: segment k, joint j: b_0..b_5 (Q16.16) of
+ *   K*N rows of 7 words: segment k, joint j: b_0..b_5 and f, the b_n in Q(16+f) (16 + f
+ *       fractional bits, f in [0, 14] per row: the most that keeps every |b_n| < 2^14 units,
+ *       so small moves keep up to 14 more bits) of
  *       p(s) = b_0 + b_1 s + ... + b_5 s^5,  s = (t - t_k) / h_k in [0, 1]  (normalised time),
- *       v = p'(s) / h_k,  a = p''(s) / h_k^2;  row K-1 holds the end state (p, v, a, 0, 0, 0).
+ *       v = p'(s) / h_k,  a = p''(s) / h_k^2;  row K-1 holds the end state (p, v, a, 0, 0, 0)
+ *       in Q16.16 (f = 0).
  * Sampling: s is formed in Q5.27 with rounding, the three polynomials are evaluated by Horner
  * in int64 with rounding after every product (symmetric, half away from zero), and v, a are
  * scaled by the mantissa/exponent pairs. Intermediates are bounded so that int64 cannot
  * overflow for any table (coefficients are int32, s <= 2^27, mantissas < 2^24).
  *
  * Error bound (fixed sample vs the float32 sample of the same plan at the same t, where t
- * is a Q16.16 value): position within 6 LSB (0.5 LSB rounding of each of the 6 coefficients
- * plus 0.5 LSB per Horner step) + |v| * d, where d <= 2^-17 s is how far the key times moved
- * when rounded to Q16.16 (0 when the key times are multiples of 2^-16 s) and |v| is in units
- * per second; velocity and acceleration with the same count of LSB times 1/h and 1/h^2
- * relative to the segment's position scale, plus 2^-23 relative from the 24-bit mantissas.
- * The float32 sample itself carries ~1 float ulp; bench/bench_spline.c measures the worst
- * differences.
+ * is a Q16.16 value), in Q16.16 LSB: position 0.5 + 5.5 * 2^-f (0.5 * 2^-f for rounding each
+ * of the 6 coefficients and each of the 5 Horner steps, 0.5 for the final rounding) + |v| d,
+ * where d <= 2^-17 s is how far the key times moved when rounded to Q16.16 (0 when they are
+ * multiples of 2^-16 s) and |v| is in LSB per second; velocity 0.5 + 10 * 2^-f / h (in
+ * seconds) and acceleration 0.5 + 23 * 2^-f / h^2 by the same count, each plus 2^-23 relative
+ * (24-bit mantissas) and the key-time term. With f = 0 (moves of ~1000 units and more) that
+ * is 6 LSB in position. The float32 sample itself carries ~1 float ulp of the coefficients;
+ * bench/bench_spline.c measures the worst differences.
  */
 #ifndef QORIENT_SPLINE_FX_H
 #define QORIENT_SPLINE_FX_H
@@ -51,7 +55,9 @@ extern "C" {
 /* Words per key row, per joint row and per (segment, joint) coefficient row of the table. */
 #define QO_SPLINE_Q16_KEY_WORDS   5u
 #define QO_SPLINE_Q16_JOINT_WORDS 3u
-#define QO_SPLINE_Q16_COEF_WORDS  6u
+#define QO_SPLINE_Q16_COEF_WORDS  7u
+/* Most extra fractional bits of a coefficient row. */
+#define QO_SPLINE_Q16_MAX_FRAC    14
 
 /* A keyframe trajectory for the fixed-point sampler. Made by qo_spline_to_q16_f32(); n_keys
  * == 0 marks a table that is not usable (a failed conversion). The table memory belongs to
@@ -64,7 +70,7 @@ typedef struct qo_spline_q16 {
     const int32_t *table; /* qo_spline_q16_len(N, K) words, layout above */
 } qo_spline_q16;
 
-/* int32 words the table needs: 5K + 3N + 6KN. Returns 0 when n_joints == 0, n_keys < 2 or the
+/* int32 words the table needs: 5K + 3N + 7KN. Returns 0 when n_joints == 0, n_keys < 2 or the
  * size does not fit in size_t. */
 size_t qo_spline_q16_len(size_t n_joints, size_t n_keys);
 
