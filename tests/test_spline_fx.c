@@ -106,12 +106,17 @@ static void fixed_vs_float(int exact_times, uint64_t seed)
                     double dv = fabs((double)vq[j] - lsb(vf[j]));
                     double da = fabs((double)aq[j] - lsb(af[j]));
                     double shift = exact_times ? 0.0 : 1.0 / 131072.0; /* key-time rounding, s */
-                    double tol_p = 6 + lsb(fb) + lsb(fabs(vf[j]) * shift) + 1;
+                    /* the row's extra fractional bits f, from the documented table layout */
+                    int32_t f = table[5 * K + 3 * N + 7 * ((int)seg * N + j) + 6];
+                    double g = ldexp(1.0, -f);
+                    /* bound of spline_fx.h + float32's own rounding + 1 LSB for the
+                     * float-to-LSB comparison itself */
+                    double tol_p = 0.5 + 5.5 * g + lsb(fb) + lsb(fabs(vf[j]) * shift) + 1;
                     /* key-time rounding moves the sample by <= shift and changes h by
                      * <= 2 shift (relative 2 shift / h, once for v, twice for a) */
-                    double tol_v = 10 / h + 1 + fabs(lsb(vf[j])) * 0x1p-22 + lsb(5 * fb / h) +
+                    double tol_v = 10 * g / h + 0.5 + fabs(lsb(vf[j])) * 0x1p-22 + lsb(5 * fb / h) +
                                    lsb(fabs(af[j]) * shift + fabs(vf[j]) * 2 * shift / h) + 1;
-                    double tol_a = 23 / (h * h) + 1 + fabs(lsb(af[j])) * 0x1p-22 +
+                    double tol_a = 23 * g / (h * h) + 0.5 + fabs(lsb(af[j])) * 0x1p-22 +
                                    lsb(20 * fb / (h * h)) + lsb(4 * 60 * S / (h * h * h) * shift +
                                    fabs(af[j]) * 4 * shift / h) + 1;
                     int skip_v = !exact_times && order < 1 && near < 2.0 / 65536.0;
@@ -183,6 +188,37 @@ static void test_fixed_vs_closed_form(void **state)
                          rp, rv, ra);
         }
     }
+}
+
+/* A small move keeps extra fractional bits (f = 12 here: max |b| = 15 * 0.25): the fixed
+ * sample is then within 1 LSB of the double closed form in position and velocity. */
+static void test_fixed_small_move_precision(void **state)
+{
+    const float t[2] = { 0.0f, 0.5f };
+    const float p[2] = { 0.125f, 0.375f };
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    qo_spline_f32 sp;
+    qo_spline_q16 fx;
+    int i;
+    double worst_p = 0, worst_v = 0;
+    (void)state;
+    set.profile = QO_SPLINE_QUINTIC;
+    assert_int_equal(qo_spline_init_f32(1, 2, t, p, &set, coef, CAP, &sp), QO_OK);
+    assert_int_equal(qo_spline_to_q16_f32(&sp, table, CAP, &fx), QO_OK);
+    assert_int_equal(table[5 * 2 + 3 * 1 + 6], 12); /* f of the only segment */
+    for (i = 0; i <= 32768; i += 7) {
+        double s = i / 32768.0, d = 0.25, rp, rv;
+        qo_q16 pq, vq;
+        rp = 0.125 + d * (10 * pow(s, 3) - 15 * pow(s, 4) + 6 * pow(s, 5));
+        rv = d * (30 * s * s - 60 * pow(s, 3) + 30 * pow(s, 4)) / 0.5;
+        assert_int_equal(qo_spline_sample_q16(&fx, (qo_q16)i, &pq, &vq, NULL, NULL), QO_OK);
+        if (fabs(pq - lsb(rp)) > worst_p) worst_p = fabs(pq - lsb(rp));
+        if (fabs(vq - lsb(rv)) > worst_v) worst_v = fabs(vq - lsb(rv));
+        if (fabs(pq - lsb(rp)) > 1.0 || fabs(vq - lsb(rv)) > 1.0)
+            fail_msg("t=%.9g: fixed (%.9g, %.9g) vs double (%.9g, %.9g)", i / 65536.0, pq / 65536.0,
+                     vq / 65536.0, rp, rv);
+    }
+    print_message("small move vs double: worst pos %.2f, vel %.2f LSB\n", worst_p, worst_v);
 }
 
 /* Ends, wrap and limits in the fixed sampler. */
@@ -331,6 +367,7 @@ int main(void)
         cmocka_unit_test(test_fixed_vs_float_exact_times),
         cmocka_unit_test(test_fixed_vs_float_arbitrary_times),
         cmocka_unit_test(test_fixed_vs_closed_form),
+        cmocka_unit_test(test_fixed_small_move_precision),
         cmocka_unit_test(test_fixed_ends_wrap_limits),
         cmocka_unit_test(test_fixed_edges),
     };
