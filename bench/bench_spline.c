@@ -18,7 +18,7 @@
 #define NK 32
 #define MAXJ 18
 #define TICKS 20000
-#define RUNS 15
+#define RUNS 31
 
 static uint64_t rng = 12345;
 static double urand(double lo, double hi)
