@@ -73,7 +73,7 @@ static void bench(size_t nj)
 {
     qo_spline_f32 sp;
     qo_spline_q16 fx;
-    double tf[RUNS], tq[RUNS], span;
+    double tf[RUNS], tq[RUNS], tfp[RUNS], tqp[RUNS], span;
     float pos[MAXJ], vel[MAXJ], acc[MAXJ];
     qo_q16 pq[MAXJ], vq[MAXJ], aq[MAXJ];
     int r, i;
@@ -94,13 +94,32 @@ static void bench(size_t nj)
             sink_q = pq[nj - 1];
         }
         tq[r] = (now_ns() - t0) / ((double)TICKS * (double)nj);
+        /* position only (servo setpoints): vel/acc NULL */
+        t0 = now_ns();
+        for (i = 0; i < TICKS; i++) {
+            float t = (float)(span * i / TICKS);
+            qo_spline_sample_f32(&sp, t, pos, NULL, NULL, NULL);
+            sink_f = pos[nj - 1];
+        }
+        tfp[r] = (now_ns() - t0) / ((double)TICKS * (double)nj);
+        t0 = now_ns();
+        for (i = 0; i < TICKS; i++) {
+            qo_q16 t = (qo_q16)(span * 65536.0 * i / TICKS);
+            qo_spline_sample_q16(&fx, t, pq, NULL, NULL, NULL);
+            sink_q = pq[nj - 1];
+        }
+        tqp[r] = (now_ns() - t0) / ((double)TICKS * (double)nj);
     }
+    qsort(tfp, RUNS, sizeof tfp[0], cmp_d);
+    qsort(tqp, RUNS, sizeof tqp[0], cmp_d);
     qsort(tf, RUNS, sizeof tf[0], cmp_d);
     qsort(tq, RUNS, sizeof tq[0], cmp_d);
     printf("%2zu joints: float32 %.1f ns/joint/tick (%.0f ns/tick), Q16.16 %.1f ns/joint/tick "
            "(%.0f ns/tick); median of %d runs x %d ticks (min %.1f / %.1f)\n",
            nj, tf[RUNS / 2], tf[RUNS / 2] * (double)nj, tq[RUNS / 2], tq[RUNS / 2] * (double)nj,
            RUNS, TICKS, tf[0], tq[0]);
+    printf("%2zu joints, position only: float32 %.1f ns/joint/tick, Q16.16 %.1f ns/joint/tick "
+           "(min %.1f / %.1f)\n", nj, tfp[RUNS / 2], tqp[RUNS / 2], tfp[0], tqp[0]);
 }
 
 static void accuracy(int exact_times)

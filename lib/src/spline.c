@@ -397,8 +397,11 @@ qo_status qo_spline_sample_f32(const qo_spline_f32 *s, float t, float *pos, floa
         int8_t c = 0;
         if (mode == 1) {
             x = b[0] + sn * (b[1] + sn * (b[2] + sn * (b[3] + sn * (b[4] + sn * b[5]))));
-            v = (b[1] + sn * (2.0f * b[2] + sn * (3.0f * b[3] + sn * (4.0f * b[4] + sn * 5.0f * b[5])))) / h;
-            a = ((2.0f * b[2] + sn * (6.0f * b[3] + sn * (12.0f * b[4] + sn * 20.0f * b[5]))) / h) / h;
+            v = a = 0.0f; /* derivatives only when asked for */
+            if (vel)
+                v = (b[1] + sn * (2.0f * b[2] + sn * (3.0f * b[3] + sn * (4.0f * b[4] + sn * 5.0f * b[5])))) / h;
+            if (acc)
+                a = ((2.0f * b[2] + sn * (6.0f * b[3] + sn * (12.0f * b[4] + sn * 20.0f * b[5]))) / h) / h;
         } else {
             x = b[0];
             v = (mode == 2) ? b[1] : 0.0f;
