@@ -837,6 +837,50 @@ static void test_many_joints_keys(void **state)
     }
 }
 
+/* The documented re-planning recipe: sample plan A at the switch time, plan B from that
+ * sample (first key = position, CLAMPED start velocity = velocity): at the switch B gives the
+ * same position bit for bit and the same velocity up to rounding; B then reaches its keys. */
+static void test_replan_continues(void **state)
+{
+    keys ks;
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    qo_spline_f32 a, b;
+    static float coef_b[COEF_CAP];
+    int trial, j;
+    (void)state;
+    rng_state = 909;
+    for (trial = 0; trial < 20; trial++) {
+        float ts, pa[MAXN], va[MAXN], pb[MAXN], vb[MAXN], ev[2 * MAXN];
+        float tb[3], keyb[3 * MAXN];
+        random_keys(&ks, 3, 5, 0.2, 1.0, 5.0);
+        set.profile = (trial & 1) ? QO_SPLINE_CATMULL_ROM : QO_SPLINE_CUBIC_C2;
+        assert_int_equal(plan(&ks, &set, &a), QO_OK);
+        ts = (float)urand(ks.t[1], ks.t[3]);
+        sample(&a, ts, pa, va, NULL);
+        tb[0] = ts;
+        tb[1] = ts + 0.5f;
+        tb[2] = ts + 1.5f;
+        for (j = 0; j < 3; j++) {
+            keyb[j] = pa[j];
+            keyb[3 + j] = (float)urand(-5.0, 5.0);
+            keyb[6 + j] = (float)urand(-5.0, 5.0);
+            ev[j] = va[j];
+            ev[3 + j] = 0.0f;
+        }
+        set.end = QO_SPLINE_END_CLAMPED;
+        set.end_vel = ev;
+        assert_int_equal(qo_spline_init_f32(3, 3, tb, keyb, &set, coef_b, COEF_CAP, &b), QO_OK);
+        set.end_vel = NULL;
+        sample(&b, ts, pb, vb, NULL);
+        for (j = 0; j < 3; j++) {
+            if (pb[j] != pa[j]) fail_msg("trial %d joint %d: position %.9g != %.9g at the switch", trial, j, (double)pb[j], (double)pa[j]);
+            check_close("replan velocity", trial, j, ts, vb[j], va[j], 8 * FLT_EPSILON * (1 + fabs(va[j])));
+        }
+        sample(&b, tb[2], pb, vb, NULL);
+        for (j = 0; j < 3; j++) assert_true(pb[j] == keyb[6 + j] && vb[j] == 0.0f);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -851,6 +895,7 @@ int main(void)
         cmocka_unit_test(test_wrap_short_way),
         cmocka_unit_test(test_edges),
         cmocka_unit_test(test_many_joints_keys),
+        cmocka_unit_test(test_replan_continues),
     };
     return cmocka_run_group_tests_name("spline", tests, NULL, NULL);
 }

@@ -287,6 +287,7 @@ qo_status qo_spline_init_f32(size_t n_joints, size_t n_keys, const float *t, con
             break;
         case QO_SPLINE_CATMULL_ROM:
             key_velocities(coef, n_joints, n_keys, j, tt, set);
+            known_a = set->end == QO_SPLINE_END_NATURAL; /* slot 2 is 0: exactly natural */
             break;
         case QO_SPLINE_QUINTIC:
             known_a = 1;
@@ -304,11 +305,19 @@ qo_status qo_spline_init_f32(size_t n_joints, size_t n_keys, const float *t, con
             }
             break;
         case QO_SPLINE_CUBIC_C2:
-            known_v = 0;
+            /* the end state is exact where the end condition fixes it */
+            known_v = set->end == QO_SPLINE_END_CLAMPED;
+            known_a = !known_v;
             solve_c2(coef, n_joints, n_keys, j, tt, set->end == QO_SPLINE_END_NATURAL,
                      set->end_vel ? set->end_vel[j] : 0.0f,
                      set->end_vel ? set->end_vel[n_joints + j] : 0.0f);
             break;
+        }
+        if (set->profile == QO_SPLINE_CUBIC_C2) {
+            /* the end row keeps exact end values; solve_c2 left M in slot 2 and scratch in
+             * 3, 4, which the end-state step below clears */
+            last[1] = set->end_vel ? set->end_vel[n_joints + j] : 0.0f;
+            if (known_a) last[2] = 0.0f;
         }
         for (k = 0; k + 1 < n_keys; k++) {
             float *r0 = row_of(coef, n_joints, n_keys, k, j);

@@ -65,6 +65,11 @@
  * flagged in the sample's clamped[] output. Keys outside the limits are accepted (they get
  * clamped and reported when sampled).
  *
+ * Re-planning mid-motion: a plan is immutable. To change the keys while moving, sample the
+ * current plan at the switch time and plan again with that sample as the first key and its
+ * velocity as the CLAMPED start velocity (end_vel[j]): position and velocity continue without
+ * a jump (for QUINTIC pass key_vel / key_acc to carry the acceleration as well).
+ *
  * Storage: everything the sampler needs (times, limits, wrap periods, coefficients) is copied
  * into the caller's coef array, so t, p and the settings arrays may be freed after init.
  * Sampling reads only; one plan may be sampled from several contexts at once.
@@ -182,7 +187,8 @@ qo_status qo_spline_sample_f32(const qo_spline_f32 *s, float t, float *pos, floa
  * Returns QO_OK; QO_E_NULL (s, table or out NULL); QO_E_STATE (s->n_keys == 0);
  * QO_E_CAPACITY (table_len < qo_spline_q16_len(N, K)); QO_E_OVERFLOW (a time, coefficient,
  * end velocity/acceleration or wrap period does not fit Q16.16); QO_E_ORDER (two key times
- * round to the same Q16.16 value). On error *out is the empty table (n_keys == 0).
+ * round to the same Q16.16 value). On error *out is the empty table (n_keys == 0) and the
+ * contents of table are unspecified.
  */
 qo_status qo_spline_to_q16_f32(const qo_spline_f32 *s, int32_t *table, size_t table_len,
                                qo_spline_q16 *out);
