@@ -331,7 +331,8 @@ qo_status qo_spline_init_f32(size_t n_joints, size_t n_keys, const float *t, con
         {
             const float *b = row_of(coef, n_joints, n_keys, n_keys - 2, j);
             float h = tt[n_keys - 1] - tt[n_keys - 2];
-            if (!known_v) last[1] = (b[1] + 2.0f * b[2] + 3.0f * b[3] + 4.0f * b[4] + 5.0f * b[5]) / h;
+            if (!known_v)
+                last[1] = (b[1] + 2.0f * b[2] + 3.0f * b[3] + 4.0f * b[4] + 5.0f * b[5]) / h;
             if (!known_a)
                 last[2] = (set->profile == QO_SPLINE_LINEAR) ? 0.0f :
                           ((2.0f * b[2] + 6.0f * b[3] + 12.0f * b[4] + 20.0f * b[5]) / h) / h;
@@ -408,9 +409,11 @@ qo_status qo_spline_sample_f32(const qo_spline_f32 *s, float t, float *pos, floa
             x = b[0] + sn * (b[1] + sn * (b[2] + sn * (b[3] + sn * (b[4] + sn * b[5]))));
             v = a = 0.0f; /* derivatives only when asked for */
             if (vel)
-                v = (b[1] + sn * (2.0f * b[2] + sn * (3.0f * b[3] + sn * (4.0f * b[4] + sn * 5.0f * b[5])))) / h;
+                v = (b[1] + sn * (2.0f * b[2] + sn * (3.0f * b[3] +
+                     sn * (4.0f * b[4] + sn * 5.0f * b[5])))) / h;
             if (acc)
-                a = ((2.0f * b[2] + sn * (6.0f * b[3] + sn * (12.0f * b[4] + sn * 20.0f * b[5]))) / h) / h;
+                a = ((2.0f * b[2] + sn * (6.0f * b[3] + sn * (12.0f * b[4] +
+                      sn * 20.0f * b[5]))) / h) / h;
         } else {
             x = b[0];
             v = (mode == 2) ? b[1] : 0.0f;

@@ -3,7 +3,8 @@
  *
  * Index:
  *   qo_spline_profile           LINEAR, CUBIC_HERMITE, CATMULL_ROM, CUBIC_C2, QUINTIC
- *   qo_spline_end               end condition: CLAMPED (given end velocities, default rest) or NATURAL
+ *   qo_spline_end               end condition: CLAMPED (given end velocities, default rest)
+ *                               or NATURAL
  *   qo_spline_derivs            key derivatives the caller did not give: ESTIMATED or ZERO
  *   qo_spline_settings_f32      plan settings; qo_spline_settings_default is the const default
  *   qo_spline_f32               a planned trajectory (coefficients in caller storage)
@@ -111,17 +112,18 @@ typedef struct qo_spline_settings_f32 {
     qo_spline_profile profile;   /* default QO_SPLINE_CUBIC_C2 */
     qo_spline_end end;           /* default QO_SPLINE_END_CLAMPED */
     const float *end_vel;        /* 2N: start velocities, then end velocities (CLAMPED); NULL = 0 */
-    const float *key_vel;        /* K*N key velocities: required by CUBIC_HERMITE, optional for QUINTIC */
+    const float *key_vel;        /* K*N key velocities: CUBIC_HERMITE (required), QUINTIC */
     const float *key_acc;        /* K*N key accelerations: optional for QUINTIC */
     qo_spline_derivs derivs;     /* QUINTIC: key velocities / accelerations not given */
     const float *pos_min;        /* N lower position limits, NULL = none */
     const float *pos_max;        /* N upper position limits, NULL = none */
     const unsigned char *wrap;   /* N flags, nonzero = continuous joint; NULL = none */
-    float wrap_period;           /* period of continuous joints, > 0 (default 2 pi; 360 for degrees) */
-    int wrap_output;             /* nonzero (default): output wrapped joints in (-period/2, period/2] */
+    float wrap_period;           /* period of continuous joints, > 0 (default 2 pi; 360 deg) */
+    int wrap_output;             /* nonzero (default): wrapped joints out in (-P/2, P/2] */
 } qo_spline_settings_f32;
 
-/* CUBIC_C2, CLAMPED at rest, no derivative arrays, no limits, no wrap, period 2 pi, wrapped output. */
+/* CUBIC_C2, CLAMPED at rest, no derivative arrays, no limits, no wrap, period 2 pi, wrapped
+ * output. */
 extern const qo_spline_settings_f32 qo_spline_settings_default;
 
 /* A planned trajectory. Written by qo_spline_init_f32(); n_keys == 0 marks a failed or

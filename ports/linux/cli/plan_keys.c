@@ -104,7 +104,8 @@ static long parse_list(const char *arg, double **out)
     char *copy = strdup(arg);
     double *v = malloc(PLAN_MAX_FIELDS * sizeof *v);
     *out = NULL;
-    if (copy == NULL || v == NULL || qo_cli_parse_numbers(copy, v, PLAN_MAX_FIELDS, &n) != 0 || n == 0) {
+    if (copy == NULL || v == NULL || qo_cli_parse_numbers(copy, v, PLAN_MAX_FIELDS, &n) != 0 ||
+        n == 0) {
         free(copy);
         free(v);
         return -1;
@@ -180,7 +181,8 @@ static int read_keys(FILE *in, const char *name, int per_joint, struct plan_keys
         lineno++;
         pr = qo_cli_parse_numbers(line, v, PLAN_MAX_FIELDS + 1, &n);
         if (pr == -2) {
-            fprintf(stderr, "qorient plan: %s: line %ld: more than %d columns\n", name, lineno, PLAN_MAX_FIELDS + 1);
+            fprintf(stderr, "qorient plan: %s: line %ld: more than %d columns\n", name, lineno,
+                    PLAN_MAX_FIELDS + 1);
             rc = 1;
             break;
         }
@@ -193,15 +195,16 @@ static int read_keys(FILE *in, const char *name, int per_joint, struct plan_keys
         for (i = 0; i < n; i++)
             if (!isfinite(v[i]) || !isfinite((float)v[i])) break;
         if (i < n) {
-            fprintf(stderr, "qorient plan: %s: line %ld: column %zu is not a finite float number\n", name,
-                    lineno, i + 1);
+            fprintf(stderr, "qorient plan: %s: line %ld: column %zu is not a finite float number\n",
+                    name, lineno, i + 1);
             rc = 1;
             break;
         }
         if (first_line == 0) {
             if (n < 2 || (n - 1) % (size_t)per_joint != 0) {
                 fprintf(stderr,
-                        "qorient plan: %s: line %ld: %zu columns: expected t and %d number(s) per joint\n",
+                        "qorient plan: %s: line %ld: %zu columns: expected t and %d number(s) "
+                        "per joint\n",
                         name, lineno, n, per_joint);
                 rc = 1;
                 break;
@@ -209,7 +212,8 @@ static int read_keys(FILE *in, const char *name, int per_joint, struct plan_keys
             first_line = lineno;
             ks->cols = n - 1;
         } else if (n - 1 != ks->cols) {
-            fprintf(stderr, "qorient plan: %s: line %ld: %zu columns, expected %zu as on line %ld\n", name,
+            fprintf(stderr,
+                    "qorient plan: %s: line %ld: %zu columns, expected %zu as on line %ld\n", name,
                     lineno, n, ks->cols + 1, first_line);
             rc = 1;
             break;
@@ -217,7 +221,8 @@ static int read_keys(FILE *in, const char *name, int per_joint, struct plan_keys
         tf = (float)v[0];
         if (ks->n_keys > 0 && !(tf > ks->t[ks->n_keys - 1])) {
             fprintf(stderr,
-                    "qorient plan: %s: line %ld: time %.9g is not after the previous keyframe's %.9g "
+                    "qorient plan: %s: line %ld: time %.9g is not after the previous "
+                    "keyframe's %.9g "
                     "(line %ld): times must increase strictly\n",
                     name, lineno, v[0], (double)ks->t[ks->n_keys - 1], prev_line);
             rc = 1;
@@ -253,7 +258,8 @@ static int make_limits(const char *arg, const char *opt, size_t nj, float **out)
         return 2;
     }
     if ((size_t)n != 1 && (size_t)n != nj) {
-        fprintf(stderr, "qorient plan: %s: %ld values for %zu joints (give 1 or %zu)\n", opt, n, nj, nj);
+        fprintf(stderr, "qorient plan: %s: %ld values for %zu joints (give 1 or %zu)\n", opt, n,
+                nj, nj);
         free(v);
         return 2;
     }
@@ -349,7 +355,8 @@ static int parse_opts(int argc, char **argv, struct plan_cfg *c, int *help)
             else if (strcmp(optarg, "spline") == 0) c->profile = QO_SPLINE_CUBIC_C2;
             else if (strcmp(optarg, "quintic") == 0) c->profile = QO_SPLINE_QUINTIC;
             else if (strcmp(optarg, "trapezoid") == 0 || strcmp(optarg, "scurve") == 0) {
-                fprintf(stderr, "qorient plan: --profile %s is a velocity/acceleration-limited move of "
+                fprintf(stderr, "qorient plan: --profile %s is a velocity/acceleration-limited "
+                        "move of "
                         "the motion planner, not a keyframe profile\n", optarg);
                 return 2;
             } else {
@@ -362,7 +369,8 @@ static int parse_opts(int argc, char **argv, struct plan_cfg *c, int *help)
             errno = 0;
             c->rate = strtod(optarg, &end);
             if (end == optarg || *end != '\0' || !isfinite(c->rate) || !(c->rate > 0.0)) {
-                fprintf(stderr, "qorient plan: --rate: '%s' is not a positive number of Hz\n", optarg);
+                fprintf(stderr, "qorient plan: --rate: '%s' is not a positive number of Hz\n",
+                        optarg);
                 return 2;
             }
             break;
@@ -418,7 +426,8 @@ static int parse_opts(int argc, char **argv, struct plan_cfg *c, int *help)
         fputs("qorient plan: --profile cubic needs key velocities: --columns pv\n", stderr);
         return 2;
     }
-    if (c->columns > 1 && c->profile != QO_SPLINE_CUBIC_HERMITE && c->profile != QO_SPLINE_QUINTIC) {
+    if (c->columns > 1 && c->profile != QO_SPLINE_CUBIC_HERMITE &&
+        c->profile != QO_SPLINE_QUINTIC) {
         fputs("qorient plan: --columns pv|pva only with --profile cubic or quintic\n", stderr);
         return 2;
     }
@@ -485,7 +494,8 @@ static int run_plan(const struct plan_cfg *c, const struct plan_keys *ks, size_t
     }
     for (j = 0; j < nj; j++)
         if (ncl[j])
-            fprintf(stderr, "qorient plan: note: joint %zu clamped to its limits in %lu sample(s)\n",
+            fprintf(stderr,
+                    "qorient plan: note: joint %zu clamped to its limits in %lu sample(s)\n",
                     j + 1, ncl[j]);
     if (overflow) {
         fprintf(stderr, "qorient plan: --fixed: %d sample(s) saturated Q16.16\n", overflow);
@@ -542,8 +552,8 @@ int qo_cli_plan_keys(int argc, char **argv)
     if (lo && hi)
         for (j = 0; j < nj; j++)
             if (lo[j] > hi[j]) {
-                fprintf(stderr, "qorient plan: --min/--max: joint %zu: min %.9g > max %.9g\n", j + 1,
-                        (double)lo[j], (double)hi[j]);
+                fprintf(stderr, "qorient plan: --min/--max: joint %zu: min %.9g > max %.9g\n",
+                        j + 1, (double)lo[j], (double)hi[j]);
                 rc = 2;
                 goto out;
             }
