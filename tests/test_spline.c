@@ -232,7 +232,8 @@ static void test_keys_interpolated_exactly(void **state)
                 set.profile = all_profiles[pi];
                 set.end = e ? QO_SPLINE_END_NATURAL : QO_SPLINE_END_CLAMPED;
                 st = plan(&ks, &set, &sp);
-                if (st != QO_OK) fail_msg("%s trial %d: init status %d", prof_name(set.profile), trial, (int)st);
+                if (st != QO_OK) fail_msg("%s trial %d: init status %d", prof_name(set.profile),
+                                          trial, (int)st);
                 for (i = 0; i < ks.k; i++) {
                     float p[MAXN], v[MAXN], a[MAXN];
                     sample(&sp, ks.t[i], p, v, a);
@@ -385,7 +386,8 @@ static void test_c2_against_double(void **state)
                     sample(&sp, ks.t[ks.k - 1], p, v, a);
                     if (nat) check_close("c2 natural end acc", trial, j, td[ks.k - 1], a[j], 0.0,
                                          256 * eps * P * ks.k / (hmin * hmin));
-                    else check_close("c2 clamped end vel", trial, j, td[ks.k - 1], v[j], ev[ks.n + j],
+                    else check_close("c2 clamped end vel", trial, j, td[ks.k - 1], v[j],
+                                     ev[ks.n + j],
                                      64 * eps * P * ks.k / hmin);
                 }
             }
@@ -412,7 +414,8 @@ static double ref_tangent(const keys *ks, int j, int i, int natural, const float
         s0 = ((double)ks->p[n + j] - ks->p[j]) / ((double)ks->t[1] - ks->t[0]);
         return 1.5 * s0 - 0.5 * ref_tangent(ks, j, 1, natural, ev);
     }
-    s1 = ((double)ks->p[(k - 1) * n + j] - ks->p[(k - 2) * n + j]) / ((double)ks->t[k - 1] - ks->t[k - 2]);
+    s1 = ((double)ks->p[(k - 1) * n + j] - ks->p[(k - 2) * n + j]) /
+         ((double)ks->t[k - 1] - ks->t[k - 2]);
     return 1.5 * s1 - 0.5 * ref_tangent(ks, j, k - 2, natural, ev);
 }
 
@@ -455,7 +458,8 @@ static void test_catmull_rom_against_double(void **state)
                     ref_eval(c, (double)t - ks.t[s], &rp, &rv, &ra);
                     check_close("catmull pos", trial, j, t, p[j], rp, 32 * eps * P);
                     check_close("catmull vel", trial, j, t, v[j], rv, 64 * eps * P / hmin);
-                    check_close("catmull acc", trial, j, t, a[j], ra, 256 * eps * P / (hmin * hmin));
+                    check_close("catmull acc", trial, j, t, a[j], ra,
+                                256 * eps * P / (hmin * hmin));
                 }
             }
             if (nat && ks.k > 2) {
@@ -504,7 +508,8 @@ static void test_hermite_quintic_against_double(void **state)
             if (mode == 2 || mode == 4)
                 for (j = 0; j < ks.n; j++)
                     for (i = 1; i + 1 < ks.k; i++) {
-                        double h0 = (double)ks.t[i] - ks.t[i - 1], h1 = (double)ks.t[i + 1] - ks.t[i];
+                        double h0 = (double)ks.t[i] - ks.t[i - 1];
+                        double h1 = (double)ks.t[i + 1] - ks.t[i];
                         double g0 = (kv[i * ks.n + j] - kv[(i - 1) * ks.n + j]) / h0;
                         double g1 = (kv[(i + 1) * ks.n + j] - kv[i * ks.n + j]) / h1;
                         ka[i * ks.n + j] = (g0 * h1 + g1 * h0) / (h0 + h1);
@@ -607,7 +612,8 @@ static void test_limits_clamp_and_report(void **state)
     assert_int_equal(plan(&ks, &set, &free_sp), QO_OK);
     set.pos_min = lo;
     set.pos_max = hi;
-    assert_int_equal(qo_spline_init_f32(3, (size_t)ks.k, ks.t, ks.p, &set, coef2, COEF_CAP, &lim), QO_OK);
+    assert_int_equal(qo_spline_init_f32(3, (size_t)ks.k, ks.t, ks.p, &set, coef2, COEF_CAP, &lim),
+                     QO_OK);
     for (i = 0; i < 400; i++) {
         float t = (float)urand(ks.t[0] - 0.5, ks.t[ks.k - 1] + 0.5);
         float p[3], v[3], a[3], pf[3], vf[3], af[3];
@@ -655,7 +661,8 @@ static void test_wrap_short_way(void **state)
             assert_int_equal(qo_spline_sample_f32(&sp, tt, pos, vel, NULL, NULL), QO_OK);
             if (wrapped_out) {
                 if (!(pos[0] > -3.14159275f && pos[0] <= 3.14159275f))
-                    fail_msg("t=%g: wrapped output %.9g outside (-pi, pi]", (double)tt, (double)pos[0]);
+                    fail_msg("t=%g: wrapped output %.9g outside (-pi, pi]", (double)tt,
+                             (double)pos[0]);
                 /* never through 0: keys are within 0.65 rad of +-pi */
                 if (fabs(fabs(pos[0]) - 3.14159265) > 0.7)
                     fail_msg("t=%g: %.9g went the long way", (double)tt, (double)pos[0]);
@@ -796,7 +803,8 @@ static void test_edges(void **state)
         const float tw[2] = { -3e38f, 3e38f };
         set = qo_spline_settings_default;
         set.end_vel = ev;
-        assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, COEF_CAP, &sp), QO_E_NONFINITE);
+        assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, COEF_CAP, &sp),
+                         QO_E_NONFINITE);
         set.end_vel = NULL;
         assert_int_equal(qo_spline_init_f32(1, 2, th, ph, &set, coef, COEF_CAP, &sp), QO_E_RANGE);
         assert_int_equal(qo_spline_init_f32(1, 2, tw, p2, &set, coef, COEF_CAP, &sp), QO_E_RANGE);
@@ -828,7 +836,8 @@ static void test_many_joints_keys(void **state)
     for (i = 0; i < 200 * 18; i++) p[i] = (float)urand(-3.0, 3.0);
     set.profile = QO_SPLINE_QUINTIC;
     assert_int_equal(qo_spline_coef_len(18, 200), sizeof buf / sizeof buf[0]);
-    assert_int_equal(qo_spline_init_f32(18, 200, t, p, &set, buf, sizeof buf / sizeof buf[0], &sp), QO_OK);
+    assert_int_equal(qo_spline_init_f32(18, 200, t, p, &set, buf, sizeof buf / sizeof buf[0], &sp),
+                     QO_OK);
     for (i = 0; i < 200; i++) {
         float pos[18];
         assert_int_equal(qo_spline_sample_f32(&sp, t[i], pos, NULL, NULL, NULL), QO_OK);
@@ -873,8 +882,10 @@ static void test_replan_continues(void **state)
         set.end_vel = NULL;
         sample(&b, ts, pb, vb, NULL);
         for (j = 0; j < 3; j++) {
-            if (pb[j] != pa[j]) fail_msg("trial %d joint %d: position %.9g != %.9g at the switch", trial, j, (double)pb[j], (double)pa[j]);
-            check_close("replan velocity", trial, j, ts, vb[j], va[j], 8 * FLT_EPSILON * (1 + fabs(va[j])));
+            if (pb[j] != pa[j]) fail_msg("trial %d joint %d: position %.9g != %.9g at the switch",
+                                         trial, j, (double)pb[j], (double)pa[j]);
+            check_close("replan velocity", trial, j, ts, vb[j], va[j],
+                        8 * FLT_EPSILON * (1 + fabs(va[j])));
         }
         sample(&b, tb[2], pb, vb, NULL);
         for (j = 0; j < 3; j++) assert_true(pb[j] == keyb[6 + j] && vb[j] == 0.0f);

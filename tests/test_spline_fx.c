@@ -71,7 +71,10 @@ static void fixed_vs_float(int exact_times, uint64_t seed)
             t[i] = t[i - 1] + (float)urand(0.2, 1.0);
             if (exact_times) t[i] = floorf(t[i] * 1024.0f) / 1024.0f;
         }
-        for (i = 0; i < K * N; i++) { p[i] = (float)urand(-20.0, 20.0); v[i] = (float)urand(-20.0, 20.0); }
+        for (i = 0; i < K * N; i++) {
+            p[i] = (float)urand(-20.0, 20.0);
+            v[i] = (float)urand(-20.0, 20.0);
+        }
         for (pi = 0; pi < NPROF; pi++) {
             qo_spline_settings_f32 set = qo_spline_settings_default;
             qo_spline_f32 sp;
@@ -80,7 +83,8 @@ static void fixed_vs_float(int exact_times, uint64_t seed)
             set.profile = all_profiles[pi];
             set.key_vel = v;
             set.end = (trial & 1) ? QO_SPLINE_END_NATURAL : QO_SPLINE_END_CLAMPED;
-            assert_int_equal(qo_spline_init_f32((size_t)N, (size_t)K, t, p, &set, coef, CAP, &sp), QO_OK);
+            assert_int_equal(qo_spline_init_f32((size_t)N, (size_t)K, t, p, &set, coef, CAP, &sp),
+                             QO_OK);
             assert_int_equal(qo_spline_to_q16_f32(&sp, table, CAP, &fx), QO_OK);
             order = set.profile == QO_SPLINE_LINEAR ? 0
                   : (set.profile == QO_SPLINE_CUBIC_C2 || set.profile == QO_SPLINE_QUINTIC) ? 2 : 1;
@@ -125,14 +129,17 @@ static void fixed_vs_float(int exact_times, uint64_t seed)
                     if (!skip_v && dv > worst_v) worst_v = dv;
                     if (!skip_a && da > worst_a) worst_a = da;
                     if (dp > tol_p)
-                        fail_msg("profile %d trial %d t=%.9g joint %d: pos fixed %.9g float %.9g, %.1f LSB > %.1f",
-                                 (int)set.profile, trial, (double)tf, j, pq[j] / 65536.0, (double)pf[j], dp, tol_p);
+                        fail_msg("profile %d trial %d t=%.9g joint %d: pos fixed %.9g float %.9g, "
+                                 "%.1f LSB > %.1f", (int)set.profile, trial, (double)tf, j,
+                                 pq[j] / 65536.0, (double)pf[j], dp, tol_p);
                     if (!skip_v && dv > tol_v)
-                        fail_msg("profile %d trial %d t=%.9g joint %d: vel fixed %.9g float %.9g, %.1f LSB > %.1f",
-                                 (int)set.profile, trial, (double)tf, j, vq[j] / 65536.0, (double)vf[j], dv, tol_v);
+                        fail_msg("profile %d trial %d t=%.9g joint %d: vel fixed %.9g float %.9g, "
+                                 "%.1f LSB > %.1f", (int)set.profile, trial, (double)tf, j,
+                                 vq[j] / 65536.0, (double)vf[j], dv, tol_v);
                     if (!skip_a && da > tol_a)
-                        fail_msg("profile %d trial %d t=%.9g joint %d: acc fixed %.9g float %.9g, %.1f LSB > %.1f",
-                                 (int)set.profile, trial, (double)tf, j, aq[j] / 65536.0, (double)af[j], da, tol_a);
+                        fail_msg("profile %d trial %d t=%.9g joint %d: acc fixed %.9g float %.9g, "
+                                 "%.1f LSB > %.1f", (int)set.profile, trial, (double)tf, j,
+                                 aq[j] / 65536.0, (double)af[j], da, tol_a);
                 }
             }
         }
@@ -259,11 +266,14 @@ static void test_fixed_ends_wrap_limits(void **state)
         /* wrapped joint: in (-pi, pi], near +-pi (the short way), same as float */
         if (!(pos[0] > -205888 && pos[0] <= 205888) || fabs(fabs(pos[0] / 65536.0) - M_PI) > 0.7)
             fail_msg("t=%g: wrapped joint %.9g", tq / 65536.0, pos[0] / 65536.0);
-        if (fabs(fabs(pos[0] - lsb(pf[0])) - 0) > 16 && fabs(fabs(pos[0] - lsb(pf[0])) - lsb(2 * M_PI)) > 16)
-            fail_msg("t=%g: wrapped fixed %.9g float %.9g", tq / 65536.0, pos[0] / 65536.0, (double)pf[0]);
+        /* equal, or one period apart when the two land on either side of +-pi */
+        if (fabs(pos[0] - lsb(pf[0])) > 16 && fabs(fabs(pos[0] - lsb(pf[0])) - lsb(2 * M_PI)) > 16)
+            fail_msg("t=%g: wrapped fixed %.9g float %.9g", tq / 65536.0, pos[0] / 65536.0,
+                     (double)pf[0]);
         /* limited joint: the same clamp decision as float (away from the limit itself) */
         if (cl[1] != cf[1] && fabs(pf[1] - hi[1]) > 1e-3 && fabs(pf[1] - lo[1]) > 1e-3)
-            fail_msg("t=%g: clamp fixed %d float %d (float pos %.9g)", tq / 65536.0, cl[1], cf[1], (double)pf[1]);
+            fail_msg("t=%g: clamp fixed %d float %d (float pos %.9g)", tq / 65536.0, cl[1], cf[1],
+                     (double)pf[1]);
         if (cl[1]) {
             seen_clamp = 1;
             assert_true(pos[1] == (cl[1] > 0 ? 4 * 65536 : -65536));
