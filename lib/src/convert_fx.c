@@ -63,21 +63,21 @@ qo_status qo_quat_to_axis_angle_q30(qo_quat_q30 q, qo_vec3_q30 *axis, qo_q28 *an
     qo_quat_q30 u;
     int64_t c[3];
     uint64_t n;
-    qo_status st;
     if (axis != NULL) { axis->x = QO_Q30_ONE; axis->y = 0; axis->z = 0; }
     if (angle != NULL) *angle = 0;
     if (axis == NULL || angle == NULL) return QO_E_NULL;
-    st = qo_quat_normalize_q30(q, &u);
-    if (st != QO_OK) return st;
-    u = qo_quat_canonical_q30(u);
+    if (q.w == 0 && q.x == 0 && q.y == 0 && q.z == 0) return QO_E_DEGENERATE;
+    /* Work on q itself, not on a rounded unit copy: the axis of a small rotation comes from a
+     * short vector part, whose direction a Q1.30 normalisation would blur. */
+    u = qo_quat_canonical_q30(q);
     c[0] = u.x; c[1] = u.y; c[2] = u.z;
     n = scale_vec3(c);
     if (n == 0) return QO_OK;   /* zero rotation: axis (1, 0, 0), angle 0 */
     axis->x = (qo_q30)div_round(c[0] * QO_Q30_ONE, n);
     axis->y = (qo_q30)div_round(c[1] * QO_Q30_ONE, n);
     axis->z = (qo_q30)div_round(c[2] * QO_Q30_ONE, n);
-    /* u is unit, so |v| < 2^31 fits; w >= 0 gives an angle in [0, pi]. */
-    *angle = (qo_q28)(2 * qo_fx_atan2_q28(qo_fx_norm3_q30(u.x, u.y, u.z), u.w));
+    /* 2 atan2(|v|, |w|), scale-free: the angle between the identity and q. */
+    *angle = qo_quat_angle_between_q30(qo_quat_identity_q30(), u);
     return QO_OK;
 }
 
@@ -114,36 +114,63 @@ qo_status qo_quat_to_rotvec_q30(qo_quat_q30 q, qo_vec3_q28 *out)
     return QO_OK;
 }
 
-/* round(sum of n terms / 2^30), saturated: one matrix entry. */
+/* round(sum of n terms / 2^30), saturated: one matrix entry from Q2.60 products. */
 static qo_q30 entry(const int64_t *t, size_t n)
 {
     return qo_fx_sat_i32(qo_fx_sum_round_i64(t, n, 30));
 }
 
+/* The same from Q2.62 products. */
+static qo_q30 entry32(const int64_t *t, size_t n)
+{
+    return qo_fx_sat_i32(qo_fx_sum_round_i64(t, n, 32));
+}
+
+/* q / |q| with components in Q1.31 held in int64 (one more bit than Q1.30, so the matrix
+ * entries built from products of them round to Q1.30 with less accumulated error).
+ * Returns 0 for q == 0. Same scaling scheme as qo_quat_normalize_q30. */
+static int unit_q31(qo_quat_q30 q, int64_t u[4])
+{
+    int64_t c[4];
+    uint64_t m = 0, n2 = 0, n;
+    int i, all = 1;
+    c[0] = q.w; c[1] = q.x; c[2] = q.y; c[3] = q.z;
+    for (i = 0; i < 4; i++) if (mag(c[i]) > m) m = mag(c[i]);
+    if (m == 0) return 0;
+    while (m < ((uint64_t)1 << 30)) {
+        m <<= 1;
+        for (i = 0; i < 4; i++) c[i] *= 2;
+    }
+    for (i = 0; i < 4; i++) if (mag(c[i]) != ((uint64_t)1 << 31)) all = 0;
+    if (all) for (i = 0; i < 4; i++) c[i] /= 2;   /* four of 2^31 would carry out of 64 bits */
+    for (i = 0; i < 4; i++) n2 += mag(c[i]) * mag(c[i]);
+    n = qo_fx_sqrt_u64(n2);
+    for (i = 0; i < 4; i++) u[i] = div_round(c[i] * ((int64_t)1 << 31), n);
+    return 1;
+}
+
 qo_status qo_quat_to_mat3_q30(qo_quat_q30 q, qo_mat3_q30 *out)
 {
-    qo_quat_q30 u;
-    qo_status st;
-    int64_t t[5];
+    int64_t u[4], t[5];
     int64_t xx, yy, zz, xy, xz, yz, wx, wy, wz;
-    const int64_t one = (int64_t)1 << 60;
+    const int64_t one = (int64_t)1 << 62;
     if (out == NULL) return QO_E_NULL;
     *out = mat3_identity();
-    st = qo_quat_normalize_q30(q, &u);
-    if (st != QO_OK) return st;
-    xx = P(u.x, u.x); yy = P(u.y, u.y); zz = P(u.z, u.z);
-    xy = P(u.x, u.y); xz = P(u.x, u.z); yz = P(u.y, u.z);
-    wx = P(u.w, u.x); wy = P(u.w, u.y); wz = P(u.w, u.z);
-    /* Each term is <= 2^60 (unit components), the 2x written as two terms. */
-    t[0] = one; t[1] = t[2] = -yy; t[3] = t[4] = -zz; out->m[0][0] = entry(t, 5);
-    t[0] = one; t[1] = t[2] = -xx; t[3] = t[4] = -zz; out->m[1][1] = entry(t, 5);
-    t[0] = one; t[1] = t[2] = -xx; t[3] = t[4] = -yy; out->m[2][2] = entry(t, 5);
-    t[0] = t[1] = xy; t[2] = t[3] = -wz; out->m[0][1] = entry(t, 4);
-    t[0] = t[1] = xy; t[2] = t[3] = wz;  out->m[1][0] = entry(t, 4);
-    t[0] = t[1] = xz; t[2] = t[3] = wy;  out->m[0][2] = entry(t, 4);
-    t[0] = t[1] = xz; t[2] = t[3] = -wy; out->m[2][0] = entry(t, 4);
-    t[0] = t[1] = yz; t[2] = t[3] = -wx; out->m[1][2] = entry(t, 4);
-    t[0] = t[1] = yz; t[2] = t[3] = wx;  out->m[2][1] = entry(t, 4);
+    if (!unit_q31(q, u)) return QO_E_DEGENERATE;
+    /* Products of Q1.31 unit components are Q2.62 and at most 2^62; the factor 2 is written
+     * as two terms; each entry is the exact sum rounded once to Q1.30. */
+    xx = u[1] * u[1]; yy = u[2] * u[2]; zz = u[3] * u[3];
+    xy = u[1] * u[2]; xz = u[1] * u[3]; yz = u[2] * u[3];
+    wx = u[0] * u[1]; wy = u[0] * u[2]; wz = u[0] * u[3];
+    t[0] = one; t[1] = t[2] = -yy; t[3] = t[4] = -zz; out->m[0][0] = entry32(t, 5);
+    t[0] = one; t[1] = t[2] = -xx; t[3] = t[4] = -zz; out->m[1][1] = entry32(t, 5);
+    t[0] = one; t[1] = t[2] = -xx; t[3] = t[4] = -yy; out->m[2][2] = entry32(t, 5);
+    t[0] = t[1] = xy; t[2] = t[3] = -wz; out->m[0][1] = entry32(t, 4);
+    t[0] = t[1] = xy; t[2] = t[3] = wz;  out->m[1][0] = entry32(t, 4);
+    t[0] = t[1] = xz; t[2] = t[3] = wy;  out->m[0][2] = entry32(t, 4);
+    t[0] = t[1] = xz; t[2] = t[3] = -wy; out->m[2][0] = entry32(t, 4);
+    t[0] = t[1] = yz; t[2] = t[3] = -wx; out->m[1][2] = entry32(t, 4);
+    t[0] = t[1] = yz; t[2] = t[3] = wx;  out->m[2][1] = entry32(t, 4);
     return QO_OK;
 }
 
