@@ -73,14 +73,15 @@ qo_status qo_quat_from_rotvec_q30(qo_vec3_q28 rv, qo_quat_q30 *out);
 /*
  * Rotation vector (Q3.28 radians) of q: canonical sign first (w >= 0), so |*out| is in
  * [0, pi]; angle 2*atan2(|v|, w). At exactly pi the sign follows qo_quat_canonical_q30.
- * q need not be unit. <= 2 LSB of Q3.28 per component.
+ * q need not be unit. <= 3 LSB of Q3.28 per component.
  * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_DEGENERATE for q == 0 (*out = (0, 0, 0)).
  */
 qo_status qo_quat_to_rotvec_q30(qo_quat_q30 q, qo_vec3_q28 *out);
 
 /*
  * Rotation matrix (Q1.30, row-major, v' = M v) of q, normalised first: any non-zero q (and q
- * or -q) gives a proper rotation. Entries rounded once from exact products (<= ~2 LSB).
+ * or -q) gives a proper rotation. q is normalised to Q1.31 and each entry is the exact sum of
+ * products rounded once (<= 3 LSB of Q1.30).
  * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_DEGENERATE for q == 0. *out is the identity
  * matrix on every error.
  */
