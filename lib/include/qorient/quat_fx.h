@@ -97,7 +97,7 @@ qo_q28 qo_quat_angle_between_q30(qo_quat_q30 a, qo_quat_q30 b);
  * which has no Q1.30 meaning for a unit rotation, so the fixed API takes the vector only.)
  * v = 0 gives the identity. Each component within ~2 LSB.
  * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_RANGE if a component of v is 4 rad or more in
- * magnitude (|v| up to 4 rad covers every rotation twice) - *out is the identity then.
+ * magnitude (|v| <= pi already reaches every rotation) - *out is the identity then.
  */
 qo_status qo_quat_exp_q30(qo_vec3_q28 v, qo_quat_q30 *out);
 
