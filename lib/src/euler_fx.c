@@ -135,7 +135,11 @@ static q64 scale_pow2(qo_quat_q30 q)
     m = 0;
     for (i = 0; i < 4; i++) if (abs_u64(r.v[i]) > m) m = abs_u64(r.v[i]);
     if (m > ((uint64_t)1 << 30)) {
-        for (i = 0; i < 4; i++) r.v[i] = rshift_round(r.v[i], 1);   /* <= 2^30 after */
+        /* halved, rounded on the magnitude (so q and -q stay exact negatives): <= 2^30 */
+        for (i = 0; i < 4; i++) {
+            int64_t h = (int64_t)((abs_u64(r.v[i]) + 1u) >> 1);
+            r.v[i] = r.v[i] < 0 ? -h : h;
+        }
     } else {
         unsigned s = 0;
         while ((m << (s + 1)) <= ((uint64_t)1 << 30)) s++;
