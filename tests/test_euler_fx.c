@@ -588,6 +588,17 @@ static void test_exactly_singular_all24(void **state)
                                  "(%.10g %.10g %.10g) recomposes %.3g off", c->name, k_names[seq],
                                  a1, a2, a3, info.locked, info.margin, e[0], e[1], e[2], err);
                     check_ranges(c, seq, e, "singular");
+                    /* -q: bit-identical angles and margin, also on the fitted (locked) path */
+                    {
+                        double en[3];
+                        einfo infon;
+                        assert_int_equal(c->to_euler(dq_neg(q), seq, 1, 0, en, &infon), QO_OK);
+                        if (en[0] != e[0] || en[1] != e[1] || en[2] != e[2] ||
+                            infon.margin != info.margin || infon.locked != info.locked)
+                            fail_msg("%s singular %s: -q gave (%.10g %.10g %.10g), q (%.10g %.10g "
+                                     "%.10g)", c->name, k_names[seq], en[0], en[1], en[2], e[0],
+                                     e[1], e[2]);
+                    }
                     /* 2. built as a user would: the core's own from_euler with the value
                      * nearest the singular angle */
                     s[0] = c->ra(a1); s[1] = c->ra(a2); s[2] = c->ra(a3);

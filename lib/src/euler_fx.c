@@ -65,17 +65,25 @@ static qo_q28 atan2_i64(int64_t y, int64_t x)
     return qo_fx_atan2_q28(yy, xx);
 }
 
-/* Hamilton product a * b, each component round(sum / 2^shift). The caller guarantees the
+/* round(a / 2^s) for s >= 1, ties away from zero: odd in a, so a product with -q is exactly
+ * the negated product with q (q and -q then give bit-identical angles, as in the _f32 core). */
+static int64_t rshift_round_odd(int64_t a, unsigned s)
+{
+    int64_t m = (int64_t)((abs_u64(a) + ((uint64_t)1 << (s - 1))) >> s);
+    return a < 0 ? -m : m;
+}
+
+/* Hamilton product a * b, each component round(sum / 2^shift) (ties away from zero). The caller guarantees the
  * bounds: every single product < 2^62 and the true sum < 2^62 (then the partial sums of up to
  * four such products stay below 2^63). */
 static q64 qmul(q64 a, q64 b, unsigned shift)
 {
     const int64_t *p = a.v, *q = b.v;
     q64 r;
-    r.v[0] = rshift_round(p[0] * q[0] - p[1] * q[1] - p[2] * q[2] - p[3] * q[3], shift);
-    r.v[1] = rshift_round(p[0] * q[1] + p[1] * q[0] + p[2] * q[3] - p[3] * q[2], shift);
-    r.v[2] = rshift_round(p[0] * q[2] - p[1] * q[3] + p[2] * q[0] + p[3] * q[1], shift);
-    r.v[3] = rshift_round(p[0] * q[3] + p[1] * q[2] - p[2] * q[1] + p[3] * q[0], shift);
+    r.v[0] = rshift_round_odd(p[0] * q[0] - p[1] * q[1] - p[2] * q[2] - p[3] * q[3], shift);
+    r.v[1] = rshift_round_odd(p[0] * q[1] + p[1] * q[0] + p[2] * q[3] - p[3] * q[2], shift);
+    r.v[2] = rshift_round_odd(p[0] * q[2] - p[1] * q[3] + p[2] * q[0] + p[3] * q[1], shift);
+    r.v[3] = rshift_round_odd(p[0] * q[3] + p[1] * q[2] - p[2] * q[1] + p[3] * q[0], shift);
     return r;
 }
 
