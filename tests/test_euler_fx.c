@@ -949,6 +949,64 @@ static void test_fx_from_euler_extreme_angles(void **state)
             }
 }
 
+/* Raw int32 quaternions of every size (full range down to a few LSB, non-unit, saturated)
+ * and prev anywhere in Q3.28: no overflow (UBSan watches every int64 step), outputs in range,
+ * recomposition at the fixed core's precision, the near variant's status OK or OVERFLOW only
+ * when an output had to be taken one turn back (then it still composes to q). */
+static void test_fx_random_raw_inputs(void **state)
+{
+    int seq, n;
+    (void)state;
+    rng_state = 0xF1C5EDull;
+    for (seq = 0; seq < 24; seq++)
+        for (n = 0; n < 400; n++) {
+            qo_quat_q30 q;
+            qo_euler_q28 e, prev, o;
+            qo_euler_info_q28 info;
+            qo_status st;
+            unsigned sh = (unsigned)(rng_next() % 31);
+            double ee[3], oo[3], tol;
+            dq r;
+            q.w = (int32_t)(uint32_t)rng_next() >> sh; q.x = (int32_t)(uint32_t)rng_next() >> sh;
+            q.y = (int32_t)(uint32_t)rng_next() >> sh; q.z = (int32_t)(uint32_t)rng_next() >> sh;
+            if (n % 50 == 0) q.w = INT32_MIN;
+            if (n % 50 == 1) q.x = INT32_MAX;
+            if (q.w == 0 && q.x == 0 && q.y == 0 && q.z == 0) q.z = 1;
+            r.w = q.w; r.x = q.x; r.y = q.y; r.z = q.z;
+            st = qo_quat_to_euler_q30(q, (qo_euler_seq)seq, &e, &info);
+            ee[0] = e.a1 / Q28; ee[1] = e.a2 / Q28; ee[2] = e.a3 / Q28;
+            /* a few-LSB quaternion is still exact input; components >= 1.0 lose 1 bit */
+            tol = info.locked ? 2.0 * info.margin / Q28 + 5e-8 : 5e-8;
+            if (st != QO_OK || recompose_err(seq, ee, r) > tol)
+                fail_msg("fixed raw %s q=(%d %d %d %d): status %d (%.10g %.10g %.10g) err %.3g",
+                         k_names[seq], (int)q.w, (int)q.x, (int)q.y, (int)q.z, (int)st, ee[0],
+                         ee[1], ee[2], recompose_err(seq, ee, r));
+            check_ranges(&k_cores[1], seq, ee, "raw");
+            prev.a1 = (int32_t)(uint32_t)rng_next(); prev.a2 = (int32_t)(uint32_t)rng_next();
+            prev.a3 = (int32_t)(uint32_t)rng_next();
+            st = qo_quat_to_euler_near_q30(q, (qo_euler_seq)seq, prev,
+                                           (qo_q28)(rng_next() % 1000), &o, &info);
+            oo[0] = o.a1 / Q28; oo[1] = o.a2 / Q28; oo[2] = o.a3 / Q28;
+            tol = info.locked ? 2.0 * info.margin / Q28 + 5e-8 : 5e-8;
+            if ((st != QO_OK && st != QO_E_OVERFLOW) || recompose_err(seq, oo, r) > tol ||
+                (info.locked && o.a3 != prev.a3))
+                fail_msg("fixed raw near %s q=(%d %d %d %d) prev (%d %d %d): status %d "
+                         "(%.10g %.10g %.10g) err %.3g", k_names[seq], (int)q.w, (int)q.x,
+                         (int)q.y, (int)q.z, (int)prev.a1, (int)prev.a2, (int)prev.a3, (int)st,
+                         oo[0], oo[1], oo[2], recompose_err(seq, oo, r));
+            /* OVERFLOW only if some output is more than pi from its prev (taken back a turn) */
+            if (st == QO_E_OVERFLOW && fabs(oo[0] - prev.a1 / Q28) <= PI_D + 1e-6 &&
+                fabs(oo[1] - prev.a2 / Q28) <= PI_D + 1e-6 && fabs(oo[2] - prev.a3 / Q28) <= PI_D + 1e-6)
+                fail_msg("fixed raw near %s: OVERFLOW but every output is within pi of prev",
+                         k_names[seq]);
+            if (st == QO_OK && (fabs(oo[0] - prev.a1 / Q28) > PI_D + 1e-6 ||
+                                fabs(oo[2] - prev.a3 / Q28) > PI_D + 1e-6))
+                fail_msg("fixed raw near %s: OK but an output is more than pi from prev "
+                         "(%.10g %.10g %.10g) prev (%.10g %.10g %.10g)", k_names[seq], oo[0],
+                         oo[1], oo[2], prev.a1 / Q28, prev.a2 / Q28, prev.a3 / Q28);
+        }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -968,6 +1026,7 @@ int main(void)
         cmocka_unit_test(test_near_picks_branch_and_locks),
         cmocka_unit_test(test_fx_near_range_end),
         cmocka_unit_test(test_fx_from_euler_extreme_angles),
+        cmocka_unit_test(test_fx_random_raw_inputs),
     };
     return cmocka_run_group_tests_name("euler_fx (fixed and float32 through one body)", tests,
                                        NULL, NULL);
