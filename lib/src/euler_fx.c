@@ -6,9 +6,13 @@
  * the quaternion (Bernardes & Viollet 2022) as one atan2 each, and at lock a3 is chosen and a1
  * fitted. What fixed point changes is the arithmetic, and it is better here: the quaternion is
  * scaled by a power of two so its largest component is in (2^29, 2^30], after which every
- * product the method needs is EXACT in int64 (the bounds are given next to each one). The only
- * roundings are the square roots of two sums of squares (correctly rounded), the reduction of
- * each atan2 argument pair to 30 significant bits, and the atan2 itself (<= 1 LSB of Q3.28).
+ * product of the decomposition is EXACT in int64 (the bounds are given next to each one). Its
+ * only roundings are the square roots of two sums of squares (correctly rounded), the
+ * reduction of each atan2 argument pair to 30 significant bits, and the atan2 itself (<= 1 LSB
+ * of Q3.28). The fit at lock and from_euler multiply quaternions and round each product once,
+ * keeping one or more guard bits in between (qmul below).
+ * Not used here, on purpose: a Q1.30 x Q1.30 -> Q1.30 quaternion product would round after
+ * every step and lose the guard bits.
  */
 #include "qorient/euler_fx.h"
 #include "qorient/fxmath.h"
