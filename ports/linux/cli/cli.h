@@ -12,6 +12,8 @@
 
 /* Subcommands: argv[0] is the subcommand name. Return the process exit status. */
 int qo_cli_version(int argc, char **argv);
+/* `plan --profile trapezoid|scurve` (plan_moves.c): limit-respecting online motion. */
+int qo_cli_plan_moves(int argc, char **argv);
 
 /* Splits `line` in place into numbers separated by blanks and/or commas. Writes at most `max`
  * values to out and their count to *n. Returns 0 on success, -1 if a field is not a number

@@ -13,6 +13,7 @@ struct qo_cli_cmd {
 /* One line per subcommand; keep sorted by the order a newcomer meets them. */
 static const struct qo_cli_cmd cmds[] = {
     { "version", qo_cli_version, "print the version" },
+    { "plan-moves", qo_cli_plan_moves, "v/a/j-limited online motion of N joints (plan --profile)" },
 };
 
 static void usage(FILE *f)
