@@ -118,93 +118,123 @@ static void eval_vc(int scurve, float v0, float a0, float vc, const qo_motion_li
     *dur = t;
 }
 
+/* What a root search evaluates at extremum velocity vc. mode 0 (minimum time): displacement of
+ * the zero-cruise profile minus dp, aux = its duration. mode 1 (time sync): position reached in
+ * exactly T with the cruise filling the rest, minus dp, aux = that cruise time. */
+typedef struct rctx {
+    int scurve, mode;
+    float v0, a0, dp, T;
+    const qo_motion_limits_f32 *l;
+} rctx;
+
+static float resid(const rctx *c, float vc, float *aux)
+{
+    float d, t;
+    eval_vc(c->scurve, c->v0, c->a0, vc, c->l, &d, &t);
+    if (c->mode == 0) {
+        *aux = t;
+        return d - c->dp;
+    }
+    *aux = c->T - t;
+    return d + vc * (c->T - t) - c->dp;
+}
+
+/* Root of resid between a and b, whose residuals fa, fb have opposite signs. Illinois method:
+ * regula falsi that halves the stale end's residual, so it keeps the bracket (like bisection,
+ * never diverges) but converges superlinearly; at most QO_MOTION_BISECT_ITERS steps, stops when
+ * the bracket is 2 float32 ulps wide. Returns the end with the smaller true |residual|. */
+static float root(const rctx *c, float a, float b, float fa, float fb, float xa, float xb, float *aux)
+{
+    float ga = fa, gb = fb; /* Illinois-weighted copies */
+    int side = 0;
+    unsigned it;
+    for (it = 0; it < QO_MOTION_BISECT_ITERS; it++) {
+        float m = a - ga * (b - a) / (gb - ga), fm, xm;
+        if (!(m > fminf(a, b) && m < fmaxf(a, b))) m = 0.5f * (a + b);
+        if (m == a || m == b) break;
+        fm = resid(c, m, &xm);
+        if (fm == 0.0f) {
+            *aux = xm;
+            return m;
+        }
+        if ((fm < 0.0f) == (fb < 0.0f)) {
+            b = m;
+            fb = gb = fm;
+            xb = xm;
+            if (side == -1) ga *= 0.5f;
+            side = -1;
+        } else {
+            a = m;
+            fa = ga = fm;
+            xa = xm;
+            if (side == 1) gb *= 0.5f;
+            side = 1;
+        }
+        /* 2 ulps of the larger end, and no finer than 2.4e-10 vmax near vc = 0 (the residual's
+         * slope there is bounded, so that is far below float32 resolution of the result) */
+        if (fabsf(b - a) <= 2.4e-7f * fmaxf(fmaxf(fabsf(a), fabsf(b)), 1e-3f * c->l->vmax)) break;
+    }
+    if (fabsf(fa) <= fabsf(fb)) {
+        *aux = xa;
+        return a;
+    }
+    *aux = xb;
+    return b;
+}
+
 /* Minimum-time extremum velocity vc and cruise tc for displacement dp (see motion.h). */
 static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_limits_f32 *l, float *vc,
                       float *tc)
 {
-    float lo = -l->vmax, hi = l->vmax, dlo, dhi, dum, dm;
-    unsigned it;
-    eval_vc(scurve, v0, a0, hi, l, &dhi, &dum);
-    if (dp >= dhi) {
-        *vc = hi;
-        *tc = (dp - dhi) / hi;
+    rctx c;
+    float flo, fhi, xlo, xhi, x;
+    c.scurve = scurve;
+    c.mode = 0;
+    c.v0 = v0;
+    c.a0 = a0;
+    c.dp = dp;
+    c.T = 0.0f;
+    c.l = l;
+    fhi = resid(&c, l->vmax, &xhi);
+    if (fhi <= 0.0f) {
+        *vc = l->vmax;
+        *tc = -fhi / l->vmax;
         return;
     }
-    eval_vc(scurve, v0, a0, lo, l, &dlo, &dum);
-    if (dp <= dlo) {
-        *vc = lo;
-        *tc = (dlo - dp) / hi;
+    flo = resid(&c, -l->vmax, &xlo);
+    if (flo >= 0.0f) {
+        *vc = -l->vmax;
+        *tc = flo / l->vmax;
         return;
     }
-    /* The displacement grows monotonically with vc: bisect dlo < dp < dhi. */
-    for (it = 0; it < QO_MOTION_BISECT_ITERS; it++) {
-        float mid = 0.5f * (lo + hi);
-        if (mid <= lo || mid >= hi) break;
-        eval_vc(scurve, v0, a0, mid, l, &dm, &dum);
-        if (dm == dp) {
-            lo = hi = mid;
-            dlo = dhi = dm;
-            break;
-        }
-        if (dm < dp) {
-            lo = mid;
-            dlo = dm;
-        } else {
-            hi = mid;
-            dhi = dm;
-        }
-    }
-    *vc = (dp - dlo <= dhi - dp) ? lo : hi;
+    /* The displacement grows monotonically with vc: one root in (-vmax, vmax). */
+    *vc = root(&c, -l->vmax, l->vmax, flo, fhi, xlo, xhi, &x);
     *tc = 0.0f;
 }
 
-/* Residual of reaching dp in exactly T through extremum vc (cruise fills the rest of T). */
-static float sync_resid(int scurve, float v0, float a0, float dp, float T, float vc, const qo_motion_limits_f32 *l,
-                        float *tc)
-{
-    float d, t;
-    eval_vc(scurve, v0, a0, vc, l, &d, &t);
-    *tc = T - t;
-    return d + vc * (T - t) - dp;
-}
-
-/* A profile of exactly duration T >= the minimum: lower |vc| from vc* toward 0 (bisection on
- * the residual, which changes sign on [0, vc*]). Returns 0 if no such profile was found. */
+/* A profile of exactly duration T >= the minimum: lower |vc| from vc* toward 0 (the residual
+ * changes sign on [0, vc*]). Returns 0 if no such profile was found. */
 static int solve_time(int scurve, float v0, float a0, float dp, float vcs, float T, const qo_motion_limits_f32 *l,
                       float *vc, float *tc)
 {
-    float a = 0.0f, b = vcs, tca, tcb, fa, fb;
-    unsigned it;
-    fa = sync_resid(scurve, v0, a0, dp, T, a, l, &tca);
-    fb = sync_resid(scurve, v0, a0, dp, T, b, l, &tcb);
+    rctx c;
+    float fa, fb, tca, tcb;
+    c.scurve = scurve;
+    c.mode = 1;
+    c.v0 = v0;
+    c.a0 = a0;
+    c.dp = dp;
+    c.T = T;
+    c.l = l;
+    fa = resid(&c, 0.0f, &tca);
+    fb = resid(&c, vcs, &tcb);
     if (fa == 0.0f || (fa < 0.0f) == (fb < 0.0f)) {
         /* Stop, then wait at rest (the residual is the minimum solve's own, tiny). */
         *vc = 0.0f;
         *tc = tca;
         return tca >= 0.0f && fabsf(fa) <= 1e-4f * (fabsf(dp) + l->vmax * T);
     }
-    for (it = 0; it < QO_MOTION_BISECT_ITERS; it++) {
-        float m = 0.5f * (a + b), tcm, fm;
-        if (m == a || m == b) break;
-        fm = sync_resid(scurve, v0, a0, dp, T, m, l, &tcm);
-        if ((fm < 0.0f) == (fa < 0.0f)) {
-            a = m;
-            fa = fm;
-            tca = tcm;
-        } else {
-            b = m;
-            fb = fm;
-            tcb = tcm;
-        }
-        if (fm == 0.0f) break;
-    }
-    if (fabsf(fa) <= fabsf(fb)) {
-        *vc = a;
-        *tc = tca;
-    } else {
-        *vc = b;
-        *tc = tcb;
-    }
+    *vc = root(&c, 0.0f, vcs, fa, fb, tca, tcb, tc);
     if (*tc < 0.0f) {
         /* Rounding may leave -ulp; a real negative cruise means the bracket was wrong. */
         if (*tc < -1e-5f * T) return 0;

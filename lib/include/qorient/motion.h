@@ -32,8 +32,9 @@
  * With the target at rest, every such profile is: a fastest velocity change from (v0, a0) to a
  * velocity extremum vc with a = 0 (<= 3 phases: ramp, hold amax, ramp), a cruise at vc (only
  * when |vc| = vmax), and a fastest stop from (vc, 0) to (0, 0) (<= 3 phases). The planner finds
- * the vc whose displacement equals the distance (the displacement is monotone in vc, solved by
- * bisection on [-vmax, vmax], at most QO_MOTION_BISECT_ITERS steps), and cruises at +-vmax when
+ * the vc whose displacement equals the distance (the displacement is monotone in vc; solved on
+ * [-vmax, vmax] by the Illinois method: regula falsi that keeps a bracket like bisection, at most
+ * QO_MOTION_BISECT_ITERS steps, typically 5-12), and cruises at +-vmax when
  * even vc = +-vmax falls short. For TRAPEZOID this family provably contains the minimum-time
  * solution (double integrator, state bound on v). For SCURVE it contains the minimum-time
  * rest-to-rest solution (checked against the closed form in tests/test_motion.c) and, for moving
@@ -44,8 +45,8 @@
  * Synchronisation (settings.sync):
  *   - QO_MOTION_SYNC_NONE: each joint takes its own minimum time.
  *   - QO_MOTION_SYNC_TIME: every joint arrives at the slowest joint's minimum time T. A faster
- *     joint gets a profile of exactly T by lowering its extremum velocity vc (bisection on vc in
- *     (0, vc*], at most QO_MOTION_BISECT_ITERS steps; any T above the joint's minimum is reachable
+ *     joint gets a profile of exactly T by lowering its extremum velocity vc (bracketed root search
+ *     on vc in (0, vc*], at most QO_MOTION_BISECT_ITERS steps; any T above the joint's minimum is reachable
  *     because the cruise may then be arbitrarily slow).
  *   - QO_MOTION_SYNC_PHASE: straight line in joint space: p_i(t) = p0_i + d_i s(t), one scalar
  *     profile s: 0 -> 1 with limits min_i(vmax_i/|d_i|) etc. Possible only when every joint's
@@ -99,7 +100,7 @@ extern "C" {
 #define QO_MOTION_MAX_JOINTS 32
 /* Phases of one joint's plan: 3 (velocity change) + 1 (cruise) + 3 (stop). */
 #define QO_MOTION_MAX_PHASES 7
-/* Upper bound of bisection steps in one solve (float32 converges in fewer; bounded anyway). */
+/* Upper bound of root-search steps in one solve (typically 5-12 are used; bounded anyway). */
 #define QO_MOTION_BISECT_ITERS 48
 
 typedef enum qo_motion_profile {
