@@ -114,13 +114,118 @@ static double ref_min_time(double D, double v0, double a0, double V, double A, d
     return best;
 }
 
+
+/* ---- independent global check: linear program over piecewise-constant jerk ----
+ * K equal steps over duration Tp, jerk u_k in [-J, J], |a| <= A and |v| <= V at every step
+ * end, final (p, v, a) = (D, 0, 0). Feasible means a profile of duration Tp exists (v is only
+ * checked at step ends: it may exceed V between them by at most A h / 8). Dense phase-1
+ * simplex (Bland's rule: no cycling). Returns 1 feasible, 0 infeasible, -1 gave up. */
+#define LPK 60
+#define LPM (5 * LPK + 3)
+#define LPN (LPK + 5 * LPK + 3 + LPM)
+static double lp_tab[LPM + 1][LPN + 1];
+static int lp_basis[LPM];
+
+static int lp_feasible(double D, double v0, double a0, double V, double A, double J, double Tp)
+{
+    double h = Tp / LPK, coef[LPM][LPK], rhs[LPM];
+    int type[LPM]; /* 0: <=, 1: >=, 2: = */
+    int m = 0, i, k, r, c, ncol, nart = 0, it;
+    for (k = 1; k <= LPK; k++) {
+        for (i = 0; i < LPK; i++) coef[m][i] = i < k ? h : 0;
+        rhs[m] = A - a0; type[m++] = 0;
+        for (i = 0; i < LPK; i++) coef[m][i] = i < k ? h : 0;
+        rhs[m] = -A - a0; type[m++] = 1;
+        for (i = 0; i < LPK; i++) coef[m][i] = i < k ? h * h * (2.0 * (k - i) - 1) / 2 : 0;
+        rhs[m] = V - v0 - k * h * a0; type[m++] = 0;
+        for (i = 0; i < LPK; i++) coef[m][i] = i < k ? h * h * (2.0 * (k - i) - 1) / 2 : 0;
+        rhs[m] = -V - v0 - k * h * a0; type[m++] = 1;
+        for (i = 0; i < LPK; i++) coef[m][i] = i == k - 1 ? 1 : 0;
+        rhs[m] = J; type[m++] = 0; /* u <= J */
+    }
+    for (i = 0; i < LPK; i++) coef[m][i] = h;
+    rhs[m] = -a0; type[m++] = 2;
+    for (i = 0; i < LPK; i++) coef[m][i] = h * h * (2.0 * (LPK - i) - 1) / 2;
+    rhs[m] = -v0 - LPK * h * a0; type[m++] = 2;
+    for (i = 0; i < LPK; i++) {
+        double x = LPK - i, y = LPK - i - 1;
+        coef[m][i] = h * h * h * (x * x * x - y * y * y) / 6;
+    }
+    rhs[m] = D - LPK * h * v0 - 0.5 * (LPK * h) * (LPK * h) * a0; type[m++] = 2;
+    /* u = w - J with w >= 0; scale each row to unit max coefficient */
+    memset(lp_tab, 0, sizeof lp_tab);
+    ncol = LPK + m; /* w, then one slack/surplus per row (unused for '=') */
+    for (r = 0; r < m; r++) {
+        double mx = 0, sum = 0, b;
+        for (i = 0; i < LPK; i++) { mx = fmax(mx, fabs(coef[r][i])); sum += coef[r][i]; }
+        b = rhs[r] + J * sum;
+        if (mx == 0) mx = 1;
+        for (i = 0; i < LPK; i++) lp_tab[r][i] = coef[r][i] / mx;
+        b /= mx;
+        if (type[r] != 2) lp_tab[r][LPK + r] = type[r] == 0 ? 1 : -1;
+        if (b < 0) {
+            for (c = 0; c < ncol; c++) lp_tab[r][c] = -lp_tab[r][c];
+            b = -b;
+            if (type[r] != 2) type[r] = 1 - type[r];
+        }
+        lp_tab[r][LPN] = b;
+    }
+    for (r = 0; r < m; r++) {
+        if (type[r] == 0) {
+            lp_basis[r] = LPK + r;
+        } else {
+            lp_tab[r][ncol + nart] = 1;
+            lp_basis[r] = ncol + nart;
+            nart++;
+        }
+    }
+    ncol += nart;
+    /* phase-1 objective: minimise the sum of artificials = -(sum of their rows) in reduced form */
+    for (c = 0; c <= LPN; c++) lp_tab[m][c] = 0;
+    for (r = 0; r < m; r++) {
+        if (lp_basis[r] < LPK + m) continue;
+        for (c = 0; c < ncol; c++)
+            if (c != lp_basis[r]) lp_tab[m][c] -= lp_tab[r][c];
+        lp_tab[m][LPN] -= lp_tab[r][LPN];
+    }
+    for (it = 0; it < 20000; it++) {
+        int e = -1, l = -1;
+        double best = 0;
+        for (c = 0; c < ncol; c++) {
+            int basic = 0;
+            for (r = 0; r < m && !basic; r++) basic = lp_basis[r] == c;
+            if (!basic && lp_tab[m][c] < -1e-11) { e = c; break; } /* Bland: first improving */
+        }
+        if (e < 0) break;
+        for (r = 0; r < m; r++) {
+            if (lp_tab[r][e] > 1e-11) {
+                double q = lp_tab[r][LPN] / lp_tab[r][e];
+                if (l < 0 || q < best - 1e-15 || (q <= best + 1e-15 && lp_basis[r] < lp_basis[l])) { best = q; l = r; }
+            }
+        }
+        if (l < 0) return -1;
+        {
+            double pv = lp_tab[l][e];
+            for (c = 0; c <= LPN; c++) lp_tab[l][c] /= pv;
+            for (r = 0; r <= m; r++) {
+                double f = lp_tab[r][e];
+                if (r == l || f == 0) continue;
+                for (c = 0; c <= LPN; c++) lp_tab[r][c] -= f * lp_tab[l][c];
+            }
+            lp_basis[l] = e;
+        }
+    }
+    if (it >= 20000) return -1;
+    return -lp_tab[m][LPN] < 1e-8;
+}
+
 int main(int argc, char **argv)
 {
     long ncase = argc > 1 ? atol(argv[1]) : 10000, c, nref = 0, nover1 = 0;
     double *tplan = malloc(sizeof(double) * (size_t)(ncase > 0 ? ncase : 1));
     double worst_ratio = 0, worst_vo = 0, worst_ao = 0, worst_jo = 0, worst_cont_replan = 0, worst_cont_phase = 0;
     double sample_f = 0, sample_q = 0, sum_ratio = 0;
-    long n_phase_fallback = 0;
+    long n_phase_fallback = 0, lp_cases = 0, lp_shorter = 0, lp_longer_fail = 0, lp_gaveup = 0;
     volatile float sink = 0;
     volatile int32_t sinkq = 0;
     if (tplan == NULL || ncase <= 0) return 1;
@@ -209,6 +314,33 @@ int main(int argc, char **argv)
             if (r > 1.01) nover1++;
         }
         if (qo_motion_sync_used(&pl) != QO_MOTION_SYNC_TIME) n_phase_fallback++;
+        /* global check on some single joints: the LP over all piecewise-constant jerk profiles
+         * must find nothing 2 % shorter than the planner's own minimum time, and must find
+         * something 5 % longer (else the check would be vacuous) */
+        if (c % 100 == 50) {
+            qo_motion_planner_f32 p1;
+            qo_motion_joint_f32 j1[1];
+            qo_motion_settings_f32 s1 = { QO_MOTION_SCURVE, QO_MOTION_SYNC_NONE };
+            int q = (int)(c / 100) % NJ, fs, fl;
+            double Tj;
+            qo_motion_init_f32(&p1, j1, 1, &l[q], &b[0][q], 0.0f, &s1);
+            /* put the joint in the sampled moving state (one constant-state phase) */
+            j1[0].nph = 1;
+            j1[0].ph[0].t = 0.0f; j1[0].ph[0].d = 1e6f;
+            j1[0].ph[0].p = b[0][q]; j1[0].ph[0].v = b[1][q]; j1[0].ph[0].a = b[2][q]; j1[0].ph[0].j = 0.0f;
+            j1[0].duration = 1e6f;
+            qo_motion_set_target_f32(&p1, 0.0f, &tg[q], NULL);
+            Tj = qo_motion_duration_f32(&p1);
+            if (Tj > 1e-3) {
+                double D = (double)tg[q] - b[0][q];
+                fs = lp_feasible(D, b[1][q], b[2][q], l[q].vmax, l[q].amax, l[q].jmax, 0.98 * Tj);
+                fl = lp_feasible(D, b[1][q], b[2][q], l[q].vmax, l[q].amax, l[q].jmax, 1.05 * Tj);
+                lp_cases++;
+                if (fs == 1) lp_shorter++;
+                if (fl != 1) lp_longer_fail++;
+                if (fs < 0 || fl < 0) lp_gaveup++;
+            }
+        }
     }
     qsort(tplan, (size_t)ncase, sizeof(double), cmp_d);
 
@@ -267,6 +399,9 @@ int main(int argc, char **argv)
     printf("  worst continuity (rel):       across the re-plan %.3g, at phase boundaries/end %.3g\n",
            worst_cont_replan, worst_cont_phase);
     printf("  plans not TIME-synchronised:  %ld\n", n_phase_fallback);
+    printf("  global LP check (%ld single joints, %d jerk steps): feasible at 0.98 T: %ld (want 0), "
+           "infeasible at 1.05 T: %ld (want 0), solver gave up: %ld\n",
+           lp_cases, LPK, lp_shorter, lp_longer_fail, lp_gaveup);
     (void)sink;
     (void)sinkq;
     free(tplan);
