@@ -39,8 +39,10 @@
  * solution (double integrator, state bound on v). For SCURVE it contains the minimum-time
  * rest-to-rest solution (checked against the closed form in tests/test_motion.c) and, for moving
  * starts, the profiles of Reflexxes Type IV for a target at rest; tests/test_motion.c also checks
- * numerically that no profile of the family with a shorter duration reaches the target. A
- * general proof for moving SCURVE starts is NOT claimed (Ruckig lists further profile shapes).
+ * numerically that no profile of the family with a shorter duration reaches the target, and
+ * bench/bench_motion.c solves a linear program over ALL piecewise-constant jerk profiles (60
+ * steps) and finds none 2 % shorter. A general proof for moving SCURVE starts is NOT claimed
+ * (Ruckig lists further profile shapes for general target states).
  *
  * Synchronisation (settings.sync):
  *   - QO_MOTION_SYNC_NONE: each joint takes its own minimum time.
@@ -81,7 +83,9 @@
  * rest; the remaining step is the solver residual (~1e-7 relative in position, float32
  * rounding in v and a).
  * Absolute times are float32 too: keep the caller's time origin recent (ulp(1000 s) = 61 us).
- * Stack use is small and fixed; no heap, no static mutable state: planners never interfere.
+ * Resources (arm-none-eabi-gcc -O2, Cortex-M4F): ~6.4 KB code, worst stack of a re-plan ~1 KB
+ * (independent of N: per-joint scratch lives in the joint struct), 236 B per joint; no heap, no
+ * static mutable state: planners never interfere. A re-plan costs O(N) root searches.
  */
 #ifndef QORIENT_MOTION_H
 #define QORIENT_MOTION_H
