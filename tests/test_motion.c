@@ -402,12 +402,17 @@ static void test_time_sync(void **state)
             tg[i] = (float)(p0[i] + urand(-20, 20));
         }
         assert_int_equal(qo_motion_init_f32(&pl, jts, n, l, p0, 1.0f, &st), QO_OK);
-        if (cs % 4 >= 2) {
+        if (cs % 4 == 2) {
             for (i = 0; i < n; i++) {
                 float v, a;
                 rand_state_in(&l[i], st.profile == QO_MOTION_SCURVE, &v, &a);
                 force_state(&pl, i, p0[i], v, a);
             }
+        } else if (cs % 4 == 3) {
+            /* out-of-limit starts: braked back into the limits, still synchronised */
+            for (i = 0; i < n; i++)
+                force_state(&pl, i, p0[i], (float)(urand(-2, 2) * l[i].vmax),
+                            st.profile == QO_MOTION_SCURVE ? (float)(urand(-2, 2) * l[i].amax) : 0.0f);
         }
         assert_int_equal(qo_motion_set_target_f32(&pl, 1.0f, tg, NULL), QO_OK);
         assert_int_equal(qo_motion_sync_used(&pl), QO_MOTION_SYNC_TIME);
@@ -435,13 +440,17 @@ static void test_phase_sync(void **state)
         float p0[NJ], tg[NJ], pos[NJ];
         size_t i, n = 2 + (size_t)(rng_next() % (NJ - 1));
         int k;
+        size_t iref = 0;
         double d[NJ], dmax = 0;
         for (i = 0; i < n; i++) {
             l[i] = rand_limits();
             p0[i] = (float)urand(-10, 10);
             tg[i] = (float)(p0[i] + urand(-20, 20));
             d[i] = (double)tg[i] - p0[i];
-            dmax = fmax(dmax, fabs(d[i]));
+            if (fabs(d[i]) > dmax) {
+                dmax = fabs(d[i]);
+                iref = i;
+            }
         }
         assert_int_equal(qo_motion_init_f32(&pl, jts, n, l, p0, 0.0f, &st), QO_OK);
         assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, tg, NULL), QO_OK);
@@ -451,11 +460,54 @@ static void test_phase_sync(void **state)
         for (k = 0; k <= 200; k++) {
             double s0;
             qo_motion_sample_f32(&pl, qo_motion_duration_f32(&pl) * (float)k / 200.0f, pos, NULL, NULL);
-            s0 = ((double)pos[0] - p0[0]) / d[0];
-            for (i = 1; i < n; i++) {
+            /* s from the joint that moves most (best resolved), then every joint's deviation
+             * from the line in its own unit */
+            s0 = ((double)pos[iref] - p0[iref]) / d[iref];
+            for (i = 0; i < n; i++) {
                 double si = ((double)pos[i] - p0[i]) / d[i];
                 if (fabs(si - s0) * fabs(d[i]) > 1e-5 * (1.0 + dmax + fabs(p0[i]))) {
                     print_error("phase sync case %d k %d joint %zu: s %g vs %g\n", cs, k, i, si, s0);
+                    fail();
+                }
+            }
+        }
+    }
+    /* Proportional moving start (v0, a0 along the displacement): still a straight line. */
+    for (cs = 0; cs < 40; cs++) {
+        qo_motion_planner_f32 pl;
+        qo_motion_joint_f32 jts[3];
+        qo_motion_limits_f32 l[3];
+        qo_motion_settings_f32 st = { cs & 1 ? QO_MOTION_SCURVE : QO_MOTION_TRAPEZOID, QO_MOTION_SYNC_PHASE };
+        float p0[3], tg[3], pos[3];
+        double d[3], kv = urand(-0.3, 0.3), ka = (cs & 1) ? urand(-0.3, 0.3) : 0.0, smax = INFINITY;
+        size_t i, iref = 0;
+        int k;
+        for (i = 0; i < 3; i++) {
+            l[i] = rand_limits();
+            p0[i] = (float)urand(-10, 10);
+            tg[i] = (float)(p0[i] + urand(-20, 20));
+            d[i] = (double)tg[i] - p0[i];
+            if (fabs(d[i]) > fabs(d[iref])) iref = i;
+            smax = fmin(smax, fmin(l[i].vmax / fabs(d[i]), l[i].amax / fabs(d[i])));
+        }
+        kv *= smax;
+        ka *= smax;
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 3, l, p0, 0.0f, &st), QO_OK);
+        for (i = 0; i < 3; i++) force_state(&pl, i, p0[i], (float)(kv * d[i]), (float)(ka * d[i]));
+        assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, tg, NULL), QO_OK);
+        if (qo_motion_sync_used(&pl) != QO_MOTION_SYNC_PHASE) {
+            print_error("phase moving case %d: fell back to %d\n", cs, (int)qo_motion_sync_used(&pl));
+            fail();
+        }
+        check_plan(&pl, "phase moving", cs, 400);
+        for (k = 0; k <= 200; k++) {
+            double s0;
+            qo_motion_sample_f32(&pl, qo_motion_duration_f32(&pl) * (float)k / 200.0f, pos, NULL, NULL);
+            s0 = ((double)pos[iref] - p0[iref]) / d[iref];
+            for (i = 0; i < 3; i++) {
+                double si = ((double)pos[i] - p0[i]) / d[i];
+                if (fabs(si - s0) * fabs(d[i]) > 1e-5 * (1.0 + 20.0 + fabs(p0[i]))) {
+                    print_error("phase moving case %d k %d joint %zu: s %g vs %g\n", cs, k, i, si, s0);
                     fail();
                 }
             }
