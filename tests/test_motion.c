@@ -866,6 +866,66 @@ static void test_q16_sampler(void **state)
     }
 }
 
+/* Edge table: starts exactly on the limits, targets exactly at the braking point, identical
+ * positions while moving, tiny and huge moves. Every plan must stay within the limits, be
+ * continuous and end at rest on the target; durations are checked where a closed form exists. */
+static void test_edges(void **state)
+{
+    static const struct {
+        const char *name;
+        float v0, a0, dp; /* limits vmax = 2, amax = 4, jmax = 16 */
+        double tref;      /* expected SCURVE duration; -1 = no closed form, -2 = rest-to-rest
+                           * closed form (both profiles) */
+    } cases[] = {
+        { "rest, zero move", 0.0f, 0.0f, 0.0f, -2.0 },
+        /* stop from vmax: 2/4 + 4/16 = 0.75 s over 0.75 u; the rest cruises */
+        { "cruising at vmax, far", 2.0f, 0.0f, 100.0f, (100.0 - 0.75) / 2.0 + 0.75 },
+        { "at vmax, target at the braking point", 2.0f, 0.0f, 2.0f * (2.0f / 4.0f + 4.0f / 16.0f) / 2.0f, 2.0 / 4.0 + 4.0 / 16.0 },
+        { "at -vmax, identical position (must come back)", -2.0f, 0.0f, 0.0f, -1.0 },
+        { "at amax and vmax-ish", 1.5f, 4.0f, 10.0f, -1.0 },
+        { "at -amax moving forward", 1.0f, -4.0f, 3.0f, -1.0 },
+        { "tiny move", 0.0f, 0.0f, 1e-6f, -2.0 },
+        { "huge move", 0.0f, 0.0f, 1e4f, -2.0 },
+        { "beyond vmax and amax toward target", 5.0f, 9.0f, 50.0f, -1.0 },
+        { "beyond vmax away from target", -5.0f, -9.0f, 1.0f, -1.0 },
+    };
+    size_t c;
+    int prof;
+    (void)state;
+    for (prof = 0; prof < 2; prof++) {
+        for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+            qo_motion_planner_f32 pl;
+            qo_motion_joint_f32 jts[1];
+            qo_motion_limits_f32 l = qo_motion_limits_default;
+            qo_motion_settings_f32 st = { (qo_motion_profile)prof, QO_MOTION_SYNC_TIME };
+            float p0 = 3.0f, tg = 3.0f + cases[c].dp, pos, vel, acc;
+            l.vmax = 2.0f;
+            l.amax = 4.0f;
+            l.jmax = 16.0f;
+            assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, &p0, 0.0f, &st), QO_OK);
+            if (cases[c].v0 != 0.0f || cases[c].a0 != 0.0f)
+                force_state(&pl, 0, p0, cases[c].v0, prof ? cases[c].a0 : 0.0f);
+            assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, &tg, NULL), QO_OK);
+            check_plan(&pl, cases[c].name, prof, 2000);
+            assert_int_equal(qo_motion_sample_f32(&pl, qo_motion_end_time_f32(&pl), &pos, &vel, &acc), QO_OK);
+            if (pos != tg) {
+                print_error("%s (%s): ends at %.9g, target %.9g\n", cases[c].name, prof ? "scurve" : "trap",
+                            (double)pos, (double)tg);
+                fail();
+            }
+            {
+                double tref = cases[c].tref == -2.0 ? ref_rest_time(prof, fabs((double)tg - p0), 2.0, 4.0, 16.0)
+                                                    : (prof == 1 ? cases[c].tref : -1.0);
+                if (tref >= 0.0 && fabs(qo_motion_duration_f32(&pl) - tref) > 1e-5 * (1.0 + tref)) {
+                    print_error("%s (%s): duration %.9g, expected %.9g\n", cases[c].name, prof ? "scurve" : "trap",
+                                (double)qo_motion_duration_f32(&pl), tref);
+                    fail();
+                }
+            }
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -879,6 +939,7 @@ int main(void)
         cmocka_unit_test(test_clamp_report),
         cmocka_unit_test(test_nonfinite_brakes),
         cmocka_unit_test(test_bad_args),
+        cmocka_unit_test(test_edges),
         cmocka_unit_test(test_q16_sampler),
     };
     return cmocka_run_group_tests_name("motion", tests, NULL, NULL);

@@ -210,6 +210,19 @@ static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_
     /* The displacement grows monotonically with vc: one root in (-vmax, vmax). */
     *vc = root(&c, -l->vmax, l->vmax, flo, fhi, xlo, xhi, &x);
     *tc = 0.0f;
+    {
+        /* A root a float ulp away from the velocity the start state reaches anyway (vnat)
+         * would add a pulse of 2 sqrt(eps / jmax) seconds: take vnat itself when it is a root to
+         * float precision, and let a short cruise absorb the residual when its sign allows. */
+        float vn = scurve ? v0 + a0 * fabsf(a0) / (2.0f * l->jmax) : v0, fn, xn;
+        if (vn >= -l->vmax && vn <= l->vmax && vn != *vc) {
+            fn = resid(&c, vn, &xn);
+            if (fabsf(fn) <= 1e-6f * (fabsf(dp) + (fabsf(v0) + l->vmax) * xn)) {
+                *vc = vn;
+                if (vn != 0.0f && -fn / vn >= 0.0f) *tc = -fn / vn;
+            }
+        }
+    }
 }
 
 /* A profile of exactly duration T >= the minimum: lower |vc| from vc* toward 0 (the residual
