@@ -41,6 +41,11 @@ check "scurve ends at rest" awk -F, 'END { if ($2 != 1 || $3 != -4 || $4 != 0 ||
 # phase sync: straight line in joint space (p2 = -2 p1 all along)
 printf '0,0,0\n0,1,-2\n' | P --profile scurve --vmax 1,3 --amax 4,1 --jmax 20 --sync phase >"$tmp.o"
 check "phase sync straight line" awk -F, '{ if ((2 * $2 + $3) > 1e-5 || (2 * $2 + $3) < -1e-5) exit 1 }' "$tmp.o"
+# phase requested from a state off the new line: falls back to time sync and says so
+printf '0,0,0\n0,1,-2\n0.3,-1,1\n' | P --profile scurve --vmax 1 --amax 4 --jmax 20 --sync phase >"$tmp.o" 2>"$tmp.e"; rc=$?
+check "phase fallback exit 0" [ $rc -eq 0 ]
+check "phase fallback reported on line 3" grep -q "line 3.*time sync" "$tmp.e"
+check "phase no fallback note on line 2" sh -c "! grep -q 'line 2' '$tmp.e'"
 # sync none: joint 1 arrives first
 printf '0,0,0\n0,1,-4\n' | P --profile trapezoid --vmax 1 --amax 1 --sync none --rate 100 >"$tmp.o"
 check "sync none: joint 1 early" awk -F, '$1 > 2.05 && $1 < 2.1 { if ($2 != 1 || $3 == -4) bad = 1; seen = 1 } END { exit !(seen && !bad) }' "$tmp.o"

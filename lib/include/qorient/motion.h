@@ -70,6 +70,13 @@
  * mask. The range limits the target only: a joint moving fast toward its range end may pass it
  * while braking if its braking distance says so (nothing can prevent that within the limits).
  *
+ * A joint already at rest on its target gets no phases (duration 0) and never moves; it does
+ * not take part in the synchronisation.
+ *
+ * Concurrency: re-planning and sampling the SAME planner must not overlap (a sample taken
+ * while a re-plan rewrites the phases mixes two plans). An interrupt that samples while the
+ * main loop re-plans should use two planners (or two exported Q16.16 tables) and swap a pointer.
+ *
  * Safety: a non-finite target, or an attempt to set bad limits, returns a status and switches
  * the planner to a braking profile from the current state at t_now (each joint stops as fast as
  * its valid limits allow, no jump). Sampling after the end returns the final positions at rest.

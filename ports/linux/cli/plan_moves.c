@@ -40,8 +40,9 @@ static const char plan_usage[] =
     "                by trapezoid.\n"
     "  --rate HZ     output sample rate, > 0 (default 100).\n"
     "  --sync S      time (default): all joints arrive together; phase: straight line in\n"
-    "                joint space when the state allows it, else time; none: each joint as\n"
-    "                fast as it can.\n"
+    "                joint space when the state allows it (all at rest, or moving along the\n"
+    "                new line), else time, with a note on standard error; none: each joint\n"
+    "                as fast as it can.\n"
     "  --min P,...   lowest allowed target per joint; --max P,... highest. Targets outside\n"
     "                are clamped to the range and reported on standard error.\n"
     "  --wrap J,...  1-based joint numbers of continuous joints: they take the short way\n"
@@ -341,6 +342,9 @@ int qo_cli_plan_moves(int argc, char **argv)
                 fprintf(stderr, "qorient plan: line %ld: %s\n", ln, qo_status_str(st));
                 status = 1;
             }
+            if (st == QO_OK && set.sync == QO_MOTION_SYNC_PHASE && qo_motion_sync_used(&pl) != QO_MOTION_SYNC_PHASE)
+                fprintf(stderr, "qorient plan: line %ld: no straight line from the current state, time sync used\n",
+                        ln);
             for (i = 0; i < pl.n; i++)
                 if (mask & ((uint32_t)1 << i))
                     fprintf(stderr, "qorient plan: line %ld: joint %zu target %g clamped to %g\n", ln, i + 1,
