@@ -41,7 +41,7 @@
  * starts, the profiles of Reflexxes Type IV for a target at rest; tests/test_motion.c also checks
  * numerically that no profile of the family with a shorter duration reaches the target, and
  * bench/bench_motion.c solves a linear program over ALL piecewise-constant jerk profiles (60
- * steps) and finds none 2 % shorter. A general proof for moving SCURVE starts is NOT claimed
+ * steps) and finds none 1 % shorter. A general proof for moving SCURVE starts is NOT claimed
  * (Ruckig lists further profile shapes for general target states).
  *
  * Synchronisation (settings.sync):
