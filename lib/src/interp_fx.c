@@ -55,15 +55,17 @@ static uint64_t abs_u64(int64_t v)
 
 /* Unit quaternion v/|v| of an int64 4-vector of any scale (the format cancels), rounded to
  * nearest per component. Returns 0 (and identity) for the zero vector.
- * The vector is first scaled by a power of two so that its largest component is in
- * [2^29, 2^30] (one rounding, <= 2^-30 relative to that component); the sum of squares is then
- * exact in 64 bits (<= 2^62), its square root is taken with 2^(k/2) extra bits (N >= 2^31, so
- * 2^-32 relative), and each component is one rounded 64-bit division. */
+ * The vector is scaled by a power of two so that its largest component is in [2^30, 2^31]:
+ * exact for every int32 input (a quaternion input is never rounded here), one rounding of
+ * <= 2^-31 relative for the wide internal sums. The squares are then exact (<= 2^62) and
+ * summed as quarters (n4 = |w|^2/4 <= 2^62, truncation 2^-60 relative); the square root is
+ * taken with 2^(k/2) extra bits (N >= 2^31: 2^-32 relative), and each component is one
+ * rounded 64-bit division: <= 0.75 LSB from the exact unit vector for an int32 input. */
 static int unit_from_i64(const int64_t v[4], qo_quat_q30 *out)
 {
-    uint64_t m = 0, n2 = 0, N, num, q;
+    uint64_t m = 0, n4 = 0, N, num, q;
     int64_t w[4];
-    unsigned sh = 0, k = 0;
+    unsigned sh = 0, k;
     int i;
     for (i = 0; i < 4; i++) {
         uint64_t av = abs_u64(v[i]);
@@ -73,23 +75,22 @@ static int unit_from_i64(const int64_t v[4], qo_quat_q30 *out)
         *out = identity_q();
         return 0;
     }
-    if (m > ((uint64_t)1 << 30)) {
-        while ((m >> sh) > ((uint64_t)1 << 30)) sh++;
-        /* m >> sh in (2^29, 2^30]; after rounding the largest is at most 2^30. */
+    if (m > ((uint64_t)1 << 31)) {
+        while ((m >> sh) > ((uint64_t)1 << 31)) sh++;
+        /* m >> sh in (2^30, 2^31]; after rounding the largest is at most 2^31. */
         for (i = 0; i < 4; i++) w[i] = rshift_round(v[i], sh);
     } else {
-        while ((m << sh) < ((uint64_t)1 << 29)) sh++;
+        while ((m << sh) < ((uint64_t)1 << 30)) sh++;
         for (i = 0; i < 4; i++) w[i] = v[i] * ((int64_t)1 << sh);   /* exact, no shift of < 0 */
     }
-    for (i = 0; i < 4; i++) n2 += (uint64_t)(w[i] * w[i]);
-    /* n2 in [2^58, 2^62]: the largest even k with n2 * 2^k < 2^64 is 2 or 4. */
-    if (n2 < ((uint64_t)1 << 60)) k = 4;
-    else if (n2 < ((uint64_t)1 << 62)) k = 2;
-    N = qo_fx_sqrt_u64(n2 << k);   /* |w| * 2^(k/2), >= 2^31 */
+    for (i = 0; i < 4; i++) n4 += (uint64_t)(w[i] * w[i]) >> 2;
+    /* n4 in [2^58, 2^62]: the largest even k with n4 * 2^k < 2^64 (at most 4). */
+    k = (n4 < ((uint64_t)1 << 60)) ? 4u : (n4 < ((uint64_t)1 << 62)) ? 2u : 0u;
+    N = qo_fx_sqrt_u64(n4 << k);   /* |w|/2 * 2^(k/2), >= 2^31 */
     for (i = 0; i < 4; i++) {
         qo_q30 c;
-        /* |w_i| * 2^(30 + k/2) <= 2^30 * 2^32 (k == 4 only when every |w_i| < 2^30). */
-        num = abs_u64(w[i]) << (30u + k / 2u);
+        /* w_i 2^30 / |w| = w_i 2^(29 + k/2) / N; |w_i| 2^(29 + k/2) <= 2^31 * 2^31. */
+        num = abs_u64(w[i]) << (29u + k / 2u);
         q = (num + N / 2u) / N;
         c = (qo_q30)q;   /* <= 2^30 */
         if (w[i] < 0) c = -c;
