@@ -25,11 +25,12 @@
 #define LIMIT_RAD 1e-6
 
 enum {
-    C_Q2M, C_M2Q, C_M2Q_ORTHO_EXACT, C_M2Q_ORTHO_NOISY, C_ORTHO_NOISY, C_AA2Q, C_Q2AA,
+    C_Q2M, C_M2Q, C_M2Q_DRIFT, C_M2Q_ORTHO_EXACT, C_M2Q_ORTHO_NOISY, C_ORTHO_NOISY, C_AA2Q, C_Q2AA,
     C_RV2Q, C_Q2RV, C_Q2M2Q, C_COUNT
 };
 static const char *const names[C_COUNT] = {
-    "quat_to_mat3", "quat_from_mat3", "quat_from_mat3_ortho (rotation)",
+    "quat_to_mat3", "quat_from_mat3", "quat_from_mat3 (drift 1e-5)",
+    "quat_from_mat3_ortho (rotation)",
     "quat_from_mat3_ortho (noise 1e-2)", "mat3_orthonormalize (noise 1e-2)",
     "quat_from_axis_angle", "quat_to_axis_angle", "quat_from_rotvec", "quat_to_rotvec",
     "quat -> mat3 -> quat",
@@ -75,6 +76,14 @@ static void measure(ref_quat rq, ref_rng *rng)
     record(C_M2Q, ref_quat_angle_between(ref_quat_from_f32(q2), ref_mat3_to_quat(&near)), s);
     s = qo_quat_from_mat3_ortho_f32(&mf, &q2);
     record(C_M2Q_ORTHO_EXACT, ref_quat_angle_between(ref_quat_from_f32(q2), ref_mat3_to_quat(&near)), s);
+
+    /* Slightly drifted matrix (accepted by the strict path): vs its nearest rotation. */
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++) mn.m[i][j] = mf.m[i][j] + (float)ref_rng_range(rng, -1e-5, 1e-5);
+    rmd = ref_mat3_from_f32(&mn);
+    near = ref_mat3_nearest_rotation(&rmd);
+    s = qo_quat_from_mat3_f32(&mn, &q2);
+    record(C_M2Q_DRIFT, ref_quat_angle_between(ref_quat_from_f32(q2), ref_mat3_to_quat(&near)), s);
 
     /* Drifted matrix: uniform noise of 1e-2 on every entry, repaired by the ortho path. */
     for (i = 0; i < 3; i++)

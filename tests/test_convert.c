@@ -19,6 +19,12 @@
 
 /* Rotation error budget for one float32 conversion: round-off is ~1e-7 rad. */
 #define TOL_RAD 1e-6
+/* A status check inside a loop over cases: names the call and the case on failure. */
+#define EXPECT_OK(call, n) do { \
+        qo_status st_ = (call); \
+        if (st_ != QO_OK) fail_msg("%s: status %d in case %d", #call, (int)st_, (int)(n)); \
+    } while (0)
+
 #define N_RANDOM 2000
 
 static qo_quat_f32 qf(float w, float x, float y, float z)
@@ -121,6 +127,12 @@ static const struct edge_rot edges[] = {
 };
 #define N_EDGES (sizeof edges / sizeof edges[0])
 
+static ref_quat rscale_q(ref_quat q, double s)
+{
+    q.w *= s; q.x *= s; q.y *= s; q.z *= s;
+    return q;
+}
+
 static ref_quat edge_quat(size_t k)
 {
     ref_vec3 a = { edges[k].ax, edges[k].ay, edges[k].az };
@@ -199,7 +211,7 @@ static void test_quat_to_mat3_vs_double(void **state)
         rq.w *= sc; rq.x *= sc; rq.y *= sc; rq.z *= sc;
         if (n % 2) { rq.w = -rq.w; rq.x = -rq.x; rq.y = -rq.y; rq.z = -rq.z; }
         q = ref_quat_to_f32(rq);
-        assert_int_equal(qo_quat_to_mat3_f32(q, &m), QO_OK);
+        EXPECT_OK(qo_quat_to_mat3_f32(q, &m), n);
         rm = ref_quat_to_mat3(ref_quat_from_f32(q));
         for (i = 0; i < 3; i++)
             for (j = 0; j < 3; j++)
@@ -217,7 +229,7 @@ static void test_quat_to_mat3_vs_double(void **state)
         /* Same rotation as qo_quat_rotate_f32 (of the normalised q). */
         {
             qo_quat_f32 qn;
-            assert_int_equal(qo_quat_normalize_f32(q, &qn), QO_OK);
+            EXPECT_OK(qo_quat_normalize_f32(q, &qn), n);
             a = qo_mat3_mul_vec3_f32(&m, v);
             b = qo_quat_rotate_f32(qn, v);
             if (fabsf(a.x - b.x) > 2e-6f || fabsf(a.y - b.y) > 2e-6f || fabsf(a.z - b.z) > 2e-6f)
@@ -339,7 +351,7 @@ static void test_quat_from_mat3_edges(void **state)
 
 static void test_quat_from_mat3_non_rotations(void **state)
 {
-    struct { const char *name; qo_mat3_f32 m; qo_status st; } cases[12];
+    struct { const char *name; qo_mat3_f32 m; qo_status st; } cases[13];
     qo_mat3_f32 r;
     size_t n = 0, k;
     int i, j;
@@ -400,6 +412,29 @@ static void test_quat_from_mat3_non_rotations(void **state)
     }
 }
 
+/* Accepted but drifted matrices (max |M^T M - I| up to the 1e-4 tolerance) give the quaternion
+ * of their NEAREST rotation, not whatever the direct formula lands on. */
+static void test_quat_from_mat3_drifted(void **state)
+{
+    static const double amp[] = { 1e-7, 3e-7, 1e-6, 1e-5, 3e-5 };
+    ref_rng rng = { 45 };
+    size_t a;
+    int n, i, j;
+    (void)state;
+    for (a = 0; a < sizeof amp / sizeof amp[0]; a++) {
+        for (n = 0; n < 400; n++) {
+            qo_mat3_f32 m = rand_rot_f32(&rng, NULL);
+            ref_mat3 md, near;
+            for (i = 0; i < 3; i++)
+                for (j = 0; j < 3; j++) m.m[i][j] += (float)ref_rng_range(&rng, -amp[a], amp[a]);
+            md = ref_mat3_from_f32(&m);
+            near = ref_mat3_nearest_rotation(&md);
+            if (max_orth_error(&m) > 1e-4) continue; /* refused by contract, tested elsewhere */
+            check_from_mat3("drifted", n, &m, ref_mat3_to_quat(&near));
+        }
+    }
+}
+
 static void test_mat3_round_trip(void **state)
 {
     ref_rng rng = { 51 };
@@ -409,8 +444,8 @@ static void test_mat3_round_trip(void **state)
         qo_quat_f32 q = ref_quat_to_f32(ref_rng_quat(&rng)), q2;
         qo_mat3_f32 m;
         double err;
-        assert_int_equal(qo_quat_to_mat3_f32(q, &m), QO_OK);
-        assert_int_equal(qo_quat_from_mat3_f32(&m, &q2), QO_OK);
+        EXPECT_OK(qo_quat_to_mat3_f32(q, &m), n);
+        EXPECT_OK(qo_quat_from_mat3_f32(&m, &q2), n);
         err = ref_quat_angle_between(ref_quat_from_f32(q), ref_quat_from_f32(q2));
         if (err > TOL_RAD) {
             print_q("q", q);
@@ -420,9 +455,49 @@ static void test_mat3_round_trip(void **state)
     }
 }
 
+/* Every conversion on the edge table, both signs of q: the rotation survives. */
+static void test_edges_all_conversions(void **state)
+{
+    size_t k;
+    int sgn;
+    (void)state;
+    for (k = 0; k < N_EDGES; k++) {
+        for (sgn = -1; sgn <= 1; sgn += 2) {
+            ref_quat rq = rscale_q(edge_quat(k), sgn);
+            qo_quat_f32 q = ref_quat_to_f32(rq), q2;
+            ref_quat qd = ref_quat_from_f32(q);
+            qo_mat3_f32 m;
+            qo_vec3_f32 ax, rv;
+            float ang;
+            ref_mat3 rm = ref_quat_to_mat3(qd), mm;
+            double e_m, e_aa, e_rv, e_back, th;
+            ref_quat b_aa, b_rv = { 1.0, 0.0, 0.0, 0.0 };
+            EXPECT_OK(qo_quat_to_mat3_f32(q, &m), k);
+            mm = ref_mat3_from_f32(&m);
+            e_m = ref_mat3_rotation_distance(&rm, &mm);
+            EXPECT_OK(qo_quat_to_axis_angle_f32(q, &ax, &ang), k);
+            b_aa = ref_quat_from_axis_angle(ref_vec3_from_f32(ax), ang);
+            e_aa = ref_quat_angle_between(b_aa, qd);
+            EXPECT_OK(qo_quat_to_rotvec_f32(q, &rv), k);
+            th = sqrt((double)rv.x * rv.x + (double)rv.y * rv.y + (double)rv.z * rv.z);
+            if (th > 0.0) b_rv = ref_quat_from_axis_angle(ref_vec3_from_f32(rv), th);
+            e_rv = ref_quat_angle_between(b_rv, qd);
+            EXPECT_OK(qo_quat_from_rotvec_f32(rv, &q2), k);
+            e_back = ref_quat_angle_between(ref_quat_from_f32(q2), qd);
+            if (e_m > TOL_RAD || e_aa > TOL_RAD || e_rv > TOL_RAD || e_back > TOL_RAD ||
+                !(ang >= 0.0f && ang <= 3.14159274f) || th > REF_PI + 1e-6) {
+                print_q("q", q);
+                fail_msg("edge %s (sign %d): errors mat3 %.3g, axis-angle %.3g, rotvec %.3g, "
+                         "rotvec->quat %.3g rad; angle %.9g, |rv| %.9g",
+                         edges[k].name, sgn, e_m, e_aa, e_rv, e_back, ang, th);
+            }
+        }
+    }
+}
+
 /* ---- orthonormalisation ---- */
 
-static void check_ortho(const char *name, int n, const qo_mat3_f32 *m)
+static void check_ortho_tol(const char *name, int n, const qo_mat3_f32 *m, double tol)
 {
     qo_mat3_f32 r;
     ref_mat3 rm = ref_mat3_from_f32(m), ref, got;
@@ -436,7 +511,7 @@ static void check_ortho(const char *name, int n, const qo_mat3_f32 *m)
     ref = ref_mat3_nearest_rotation(&rm);
     got = ref_mat3_from_f32(&r);
     err = ref_mat3_rotation_distance(&ref, &got);
-    if (err > TOL_RAD || max_orth_error(&r) > 1e-6 || qo_mat3_det_f32(&r) < 0.999f) {
+    if (err > tol || max_orth_error(&r) > 1e-6 || qo_mat3_det_f32(&r) < 0.999f) {
         print_m("m", m);
         print_m("got", &r);
         fail_msg("orthonormalize %s (case %d): %.3g rad from the double polar factor, orth %.3g",
@@ -445,9 +520,28 @@ static void check_ortho(const char *name, int n, const qo_mat3_f32 *m)
     /* The "caller asks for it" path lands on the same rotation. */
     st = qo_quat_from_mat3_ortho_f32(m, &q);
     qerr = ref_quat_angle_between(ref_quat_from_f32(q), ref_mat3_to_quat(&ref));
-    if (st != QO_OK || qerr > TOL_RAD || q.w < 0.0f)
+    if (st != QO_OK || qerr > tol || q.w < 0.0f)
         fail_msg("quat_from_mat3_ortho %s (case %d): status %d, error %.3g rad", name, n, (int)st,
                  qerr);
+}
+
+static void check_ortho(const char *name, int n, const qo_mat3_f32 *m)
+{
+    check_ortho_tol(name, n, m, TOL_RAD);
+}
+
+/* U diag(s1, s2, s3) V^T with random rotations U, V, rounded to float. */
+static qo_mat3_f32 rand_svd_f32(ref_rng *rng, double s1, double s2, double s3)
+{
+    ref_mat3 u = ref_quat_to_mat3(ref_rng_quat(rng)), v = ref_quat_to_mat3(ref_rng_quat(rng));
+    ref_mat3 d = { { { 0 } } }, vt, t;
+    int i, j;
+    d.m[0][0] = s1; d.m[1][1] = s2; d.m[2][2] = s3;
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++) vt.m[i][j] = v.m[j][i];
+    t = ref_mat3_mul(&u, &d);
+    t = ref_mat3_mul(&t, &vt);
+    return ref_mat3_to_f32(&t);
 }
 
 static void test_orthonormalize_perturbed(void **state)
@@ -475,8 +569,22 @@ static void test_orthonormalize_perturbed(void **state)
             for (j = 0; j < 3; j++) s.m[i][j] = m.m[i][j] * sc[n % 4];
         check_ortho("uniformly scaled", n, &s);
         for (i = 0; i < 3; i++)
-            for (j = 0; j < 3; j++) s.m[i][j] = m.m[i][j] * (j == 0 ? 100.0f : j == 1 ? 1.0f : 0.01f);
-        check_ortho("stretched 100:1:0.01", n, &s);
+            for (j = 0; j < 3; j++) s.m[i][j] = m.m[i][j] * (j == 0 ? 30.0f : j == 1 ? 1.0f : 0.1f);
+        check_ortho("stretched 30:1:0.1", n, &s);
+    }
+    /* Strongly stretched: singular values log-uniform in [1e-3, 1]. The nearest rotation is
+     * itself sensitive here (moves by |dM|/(s2+s3)): the documented error bound is
+     * ~4e-8 s1/(s2+s3); allow 3x that. */
+    for (n = 0; n < 600; n++) {
+        double s[3], t;
+        qo_mat3_f32 m;
+        for (i = 0; i < 3; i++) s[i] = pow(10.0, ref_rng_range(&rng, -3.0, 0.0));
+        /* sort descending */
+        if (s[0] < s[1]) { t = s[0]; s[0] = s[1]; s[1] = t; }
+        if (s[1] < s[2]) { t = s[1]; s[1] = s[2]; s[2] = t; }
+        if (s[0] < s[1]) { t = s[0]; s[0] = s[1]; s[1] = t; }
+        m = rand_svd_f32(&rng, s[0], s[1], s[2]);
+        check_ortho_tol("stretched U diag(s) V^T", n, &m, 5e-7 + 1.2e-7 * s[0] / (s[1] + s[2]));
     }
     /* An exact rotation and the identity come back (to round-off), and in place works. */
     {
@@ -495,7 +603,7 @@ static void test_orthonormalize_perturbed(void **state)
 
 static void test_orthonormalize_rejects(void **state)
 {
-    struct { const char *name; qo_mat3_f32 m; qo_status st; } cases[9];
+    struct { const char *name; qo_mat3_f32 m; qo_status st; } cases[13];
     size_t n = 0, k;
     ref_rng rng = { 71 };
     qo_mat3_f32 r = rand_rot_f32(&rng, NULL);
@@ -516,6 +624,16 @@ static void test_orthonormalize_rejects(void **state)
     cases[n].m = mf(1, 0, 0, 0, 1, 0, 0, 0, 0); n++;
     cases[n].name = "just singular: sigma3 = 1e-7"; cases[n].st = QO_E_NOT_ROTATION;
     cases[n].m = mf(1, 0, 0, 0, 1, 0, 0, 0, 1e-7f); n++;
+    /* Near rank 1: float32 cofactors have no correct digits (this once converged to a
+     * rotation pi away from the true one); must be refused, not guessed. */
+    cases[n].name = "U diag(1, 7e-5, 7e-5) V^T"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = rand_svd_f32(&rng, 1.0, 7e-5, 7e-5); n++;
+    cases[n].name = "U diag(1, 3e-4, 3e-4) V^T"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = rand_svd_f32(&rng, 1.0, 3e-4, 3e-4); n++;
+    cases[n].name = "U diag(1, 1, 1e-4) V^T"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = rand_svd_f32(&rng, 1.0, 1.0, 1e-4); n++;
+    cases[n].name = "U diag(100, 1, 0.01) V^T (condition 1e4)"; cases[n].st = QO_E_NOT_ROTATION;
+    cases[n].m = rand_svd_f32(&rng, 100.0, 1.0, 0.01); n++;
     cases[n].name = "NaN"; cases[n].st = QO_E_NONFINITE;
     cases[n].m = mf(1, 0, 0, 0, NAN, 0, 0, 0, 1); n++;
     cases[n].name = "Inf"; cases[n].st = QO_E_NONFINITE;
@@ -565,7 +683,7 @@ static void test_axis_angle_from_vs_double(void **state)
         ref_quat expect = ref_quat_from_axis_angle(ref_vec3_from_f32(af), ang);
         qo_quat_f32 q;
         double err;
-        assert_int_equal(qo_quat_from_axis_angle_f32(af, ang, &q), QO_OK);
+        EXPECT_OK(qo_quat_from_axis_angle_f32(af, ang, &q), n);
         /* Componentwise (the sign is part of the contract: no canonicalisation here). */
         err = fabs(q.w - expect.w) + fabs(q.x - expect.x) + fabs(q.y - expect.y) +
               fabs(q.z - expect.z);
@@ -624,7 +742,7 @@ static void test_axis_angle_to(void **state)
         double err, alen;
         rq.w *= sc; rq.x *= sc; rq.y *= sc; rq.z *= sc;
         q = ref_quat_to_f32(rq);
-        assert_int_equal(qo_quat_to_axis_angle_f32(q, &ax, &ang), QO_OK);
+        EXPECT_OK(qo_quat_to_axis_angle_f32(q, &ax, &ang), n);
         alen = sqrt((double)ax.x * ax.x + (double)ax.y * ax.y + (double)ax.z * ax.z);
         back = ref_quat_from_axis_angle(ref_vec3_from_f32(ax), ang);
         err = ref_quat_angle_between(back, ref_quat_from_f32(q));
@@ -708,7 +826,7 @@ static void test_rotvec_vs_double(void **state)
         ref_vec3 rb;
         qo_quat_f32 q;
         double err;
-        assert_int_equal(qo_quat_from_rotvec_f32(rv, &q), QO_OK);
+        EXPECT_OK(qo_quat_from_rotvec_f32(rv, &q), n);
         err = fabs(q.w - expect.w) + fabs(q.x - expect.x) + fabs(q.y - expect.y) +
               fabs(q.z - expect.z);
         if (err > 2e-6)
@@ -716,7 +834,7 @@ static void test_rotvec_vs_double(void **state)
                      rv.z, err);
         /* to: from an independent random quaternion, vs the double rotation vector. */
         q = ref_quat_to_f32(ref_rng_quat(&rng));
-        assert_int_equal(qo_quat_to_rotvec_f32(q, &back), QO_OK);
+        EXPECT_OK(qo_quat_to_rotvec_f32(q, &back), n);
         rb = ref_rotvec(ref_quat_from_f32(q));
         err = fabs(back.x - rb.x) + fabs(back.y - rb.y) + fabs(back.z - rb.z);
         if (err > 2e-6 || sqrt((double)back.x * back.x + (double)back.y * back.y +
@@ -777,6 +895,23 @@ static void test_rotvec_edges(void **state)
     assert_true(v.x == 0.0f && v.y == 0.0f && fabs(v.z - REF_PI) < 1e-6);
     assert_int_equal(qo_quat_to_rotvec_f32(qf(-1e-7f, 0, 1, 0), &v), QO_OK);
     assert_true(v.y < 0.0f && fabs(-v.y - (REF_PI - 2e-7)) < 1e-6);
+    /* Around the series switch (|v| = 1e-3): relative precision on both sides. */
+    {
+        static const struct { float vn; double rel; } t[] = {
+            { 1e-4f, 1.5e-7 }, { 5e-4f, 1.5e-7 }, { 9.99e-4f, 1.5e-7 }, { 1.001e-3f, 4e-7 },
+            { 1e-2f, 4e-7 },
+        };
+        size_t k;
+        for (k = 0; k < sizeof t / sizeof t[0]; k++) {
+            qo_quat_f32 qq = qf(sqrtf(1.0f - t[k].vn * t[k].vn), 0.6f * t[k].vn, 0, -0.8f * t[k].vn);
+            ref_vec3 e = ref_rotvec(ref_quat_from_f32(qq));
+            double en = sqrt(e.x * e.x + e.z * e.z);
+            assert_int_equal(qo_quat_to_rotvec_f32(qq, &v), QO_OK);
+            if (fabs(v.x - e.x) > t[k].rel * en || fabs(v.z - e.z) > t[k].rel * en || v.y != 0.0f)
+                fail_msg("to_rotvec |v| = %g: (%.9g %.9g) vs (%.9g %.9g)", t[k].vn, v.x, v.z, e.x,
+                         e.z);
+        }
+    }
     v = vf(9, 9, 9);
     assert_int_equal(qo_quat_to_rotvec_f32(qf(0, 0, 0, 0), &v), QO_E_DEGENERATE);
     assert_true(v.x == 0.0f && v.y == 0.0f && v.z == 0.0f);
@@ -797,8 +932,8 @@ static void test_rotvec_round_trip(void **state)
         qo_vec3_f32 rv = ref_vec3_to_f32(ref_rotvec(c)), back;
         qo_quat_f32 q;
         double err;
-        assert_int_equal(qo_quat_from_rotvec_f32(rv, &q), QO_OK);
-        assert_int_equal(qo_quat_to_rotvec_f32(q, &back), QO_OK);
+        EXPECT_OK(qo_quat_from_rotvec_f32(rv, &q), n);
+        EXPECT_OK(qo_quat_to_rotvec_f32(q, &back), n);
         err = fabs(back.x - rv.x) + fabs(back.y - rv.y) + fabs(back.z - rv.z);
         /* Away from pi the map is well conditioned; near pi the canonical flip may move rv to
          * its antipode -rv*(2pi-|rv|)/|rv| (the same rotation): compare as rotations there. */
@@ -824,6 +959,8 @@ int main(void)
         cmocka_unit_test(test_quat_from_mat3_random),
         cmocka_unit_test(test_quat_from_mat3_edges),
         cmocka_unit_test(test_quat_from_mat3_non_rotations),
+        cmocka_unit_test(test_quat_from_mat3_drifted),
+        cmocka_unit_test(test_edges_all_conversions),
         cmocka_unit_test(test_mat3_round_trip),
         cmocka_unit_test(test_orthonormalize_perturbed),
         cmocka_unit_test(test_orthonormalize_rejects),

@@ -15,6 +15,12 @@
 #include "common/ref.h"
 #include "qorient/quat.h"
 
+/* A status check inside a loop over cases: names the call and the case on failure. */
+#define EXPECT_OK(call, n) do { \
+        qo_status st_ = (call); \
+        if (st_ != QO_OK) fail_msg("%s: status %d in case %d", #call, (int)st_, (int)(n)); \
+    } while (0)
+
 #define N_RANDOM 2000
 
 static qo_quat_f32 qf(float w, float x, float y, float z)
@@ -498,8 +504,8 @@ static void test_exp_log_round_trip(void **state)
         /* exp(log q) = q for any non-zero q. */
         qo_quat_f32 q = ref_quat_to_f32(rand_q_scaled(&rng)), l, back, p;
         double nq = ref_quat_norm(ref_quat_from_f32(q));
-        assert_int_equal(qo_quat_log_f32(q, &l), QO_OK);
-        assert_int_equal(qo_quat_exp_f32(l, &back), QO_OK);
+        EXPECT_OK(qo_quat_log_f32(q, &l), n);
+        EXPECT_OK(qo_quat_exp_f32(l, &back), n);
         if (qdiff(back, ref_quat_from_f32(q)) > 2e-6 * nq) {
             print_q("q", q);
             print_q("exp(log q)", back);
@@ -512,8 +518,8 @@ static void test_exp_log_round_trip(void **state)
             double s = ref_rng_range(&rng, 0, 3.1) / sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
             p = qf(0, (float)(d.x * s), (float)(d.y * s), (float)(d.z * s));
         }
-        assert_int_equal(qo_quat_exp_f32(p, &back), QO_OK);
-        assert_int_equal(qo_quat_log_f32(back, &l), QO_OK);
+        EXPECT_OK(qo_quat_exp_f32(p, &back), n);
+        EXPECT_OK(qo_quat_log_f32(back, &l), n);
         /* d(log)/dq grows like 1/sin|v| towards pi: allow for it. */
         if (qdiff(l, ref_quat_from_f32(p)) > 2e-6 / sin(fmax(0.04, qo_quat_norm_f32(p)))) {
             print_q("p", p);
@@ -544,8 +550,8 @@ static void test_integrate(void **state)
         qo_quat_f32 q = ref_quat_to_f32(q0), one;
         qo_vec3_f32 om = ref_vec3_to_f32(w);
         double err_many, err_one;
-        for (s = 0; s < steps; s++) assert_int_equal(qo_quat_integrate_f32(q, om, dt, &q), QO_OK);
-        assert_int_equal(qo_quat_integrate_f32(ref_quat_to_f32(q0), om, (float)tt, &one), QO_OK);
+        for (s = 0; s < steps; s++) EXPECT_OK(qo_quat_integrate_f32(q, om, dt, &q), n);
+        EXPECT_OK(qo_quat_integrate_f32(ref_quat_to_f32(q0), om, (float)tt, &one), n);
         err_many = ref_quat_angle_between(ref_quat_from_f32(q), expect);
         err_one = ref_quat_angle_between(ref_quat_from_f32(one), expect);
         /* One exact step: round-off only. 1000 steps: round-off accumulates (~1e-7 per step
@@ -556,7 +562,7 @@ static void test_integrate(void **state)
                      w.x, w.y, w.z, err_one, steps, err_many);
         }
         /* Backwards over the same time returns to q0. */
-        assert_int_equal(qo_quat_integrate_f32(one, om, -(float)tt, &o), QO_OK);
+        EXPECT_OK(qo_quat_integrate_f32(one, om, -(float)tt, &o), n);
         if (ref_quat_angle_between(ref_quat_from_f32(o), q0) > 1e-6)
             fail_msg("integrate case %d: backwards does not return to q0 (%.3g rad)", n,
                      ref_quat_angle_between(ref_quat_from_f32(o), q0));

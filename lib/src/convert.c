@@ -13,9 +13,16 @@
 #define CONV_NEWTON_STEP_TOL 1e-6f
 /* Below this step size Higham's scale factor no longer helps and only adds rounding. */
 #define CONV_NEWTON_SCALE_UNTIL 1e-2f
-/* Frobenius condition number |A|_F |A^-1|_F above which a matrix counts as rank-deficient:
- * float32 inversion would leave more than ~1e-2 relative error in the first step. */
-#define CONV_COND_MAX 1e5f
+/* Frobenius condition number |A|_F |A^-1|_F above which a matrix counts as rank-deficient.
+ * Measured (random rotations U, V, M = U diag(1, s, s) V^T): the float32 iteration's error is
+ * ~2e-8/s rad down to s = 1e-4, and at s = 7e-5 it can converge to a rotation pi away (the
+ * float cofactors of a matrix that close to rank 1 have no correct digits). 3e3 rejects
+ * s < ~5e-4: a factor of 7 of margin. */
+#define CONV_COND_MAX 3e3f
+
+/* Largest max|M^T M - I| that qo_quat_from_mat3_f32 converts without projecting onto the
+ * nearest rotation first: ~4 float32 ulps of 1, above the ~2e-7 of a rounded rotation. */
+#define CONV_SHEPPERD_DIRECT_TOL 5e-7f
 
 static qo_vec3_f32 vec3(float x, float y, float z)
 {
@@ -288,13 +295,24 @@ static qo_quat_f32 mat3_to_quat_pivot(const qo_mat3_f32 *m)
 qo_status qo_quat_from_mat3_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     qo_quat_f32 q;
+    qo_mat3_f32 r;
+    float orth;
     if (out == NULL) return QO_E_NULL;
     *out = qo_quat_identity_f32();
     if (m == NULL) return QO_E_NULL;
     if (!mat3_is_finite(m)) return QO_E_NONFINITE;
-    if (!(mat3_orthogonality_error(m) <= QO_MAT3_ROTATION_TOL_F32)) return QO_E_NOT_ROTATION;
+    orth = mat3_orthogonality_error(m);
+    if (!(orth <= QO_MAT3_ROTATION_TOL_F32)) return QO_E_NOT_ROTATION;
     /* Orthonormal within tolerance means det is +-1 +- 2e-4: the sign test is reliable. */
     if (!(qo_mat3_det_f32(m) > 0.0f)) return QO_E_NOT_ROTATION;
+    /* Shepperd on a matrix off by e = max|M^T M - I| lands up to ~1.6 e rad from the nearest
+     * rotation (measured). A float32-rounded rotation has e ~ 2e-7 and goes straight through;
+     * anything further off (but accepted) is first projected onto the nearest rotation, which
+     * takes one or two Newton steps at this distance. */
+    if (orth > CONV_SHEPPERD_DIRECT_TOL) {
+        if (qo_mat3_orthonormalize_f32(m, &r) != QO_OK) return QO_E_NOT_ROTATION;
+        m = &r;
+    }
     q = mat3_to_quat_pivot(m);
     if (qo_quat_normalize_f32(q, &q) != QO_OK) return QO_E_NOT_ROTATION;
     *out = qo_quat_canonical_f32(q);

@@ -10,8 +10,29 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "qorient/euler.h"
+#include "qorient/status.h"
+
 /* Subcommands: argv[0] is the subcommand name. Return the process exit status. */
 int qo_cli_version(int argc, char **argv);
+int qo_cli_convert(int argc, char **argv);
+int qo_cli_slerp(int argc, char **argv);
+int qo_cli_gimbal(int argc, char **argv);
+
+/* Rotation representations of `qorient convert`. */
+enum rep { REP_QUAT, REP_MATRIX, REP_ROTVEC, REP_AXISANGLE, REP_EULER };
+struct rep_spec {
+    enum rep kind;
+    qo_euler_seq seq;   /* REP_EULER only */
+};
+
+/* The --fixed paths (fixed.c): the input record v (as read, degrees if `degrees`) converted
+ * with the fixed-point core; o receives the output record (Euler: 3 angles + lock flag) and *n
+ * its length. Inputs are converted to fixed point at the boundary, rounding and saturating;
+ * a value that does not fit its format is an error, never silently clipped. */
+qo_status qo_cli_convert_fixed(const struct rep_spec *from, const struct rep_spec *to,
+                               const double *v, int degrees, double *o, size_t *n);
+qo_status qo_cli_slerp_fixed(const double *v, double *o);
 
 /* Splits `line` in place into numbers separated by blanks and/or commas. Writes at most `max`
  * values to out and their count to *n. Returns 0 on success, -1 if a field is not a number

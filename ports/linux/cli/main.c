@@ -12,6 +12,9 @@ struct qo_cli_cmd {
 
 /* One line per subcommand; keep sorted by the order a newcomer meets them. */
 static const struct qo_cli_cmd cmds[] = {
+    { "convert", qo_cli_convert, "convert rotations: quat, matrix, rotvec, axisangle, euler:SEQ" },
+    { "slerp", qo_cli_slerp, "spherical linear interpolation of quaternion pairs" },
+    { "gimbal", qo_cli_gimbal, "joint angles of a 2/3-axis gimbal along a quaternion keyframe path" },
     { "version", qo_cli_version, "print the version" },
 };
 

@@ -1,0 +1,155 @@
+/*
+ * qorient/gimbal.h - orientation paths for 2- and 3-axis gimbals and spherical wrists, float32.
+ *
+ * A path is a list of quaternion keyframes at times, interpolated on the sphere (piecewise
+ * slerp, or the Shoemake keyframe spline of qorient/interp.h). A gimbal turns each sampled
+ * orientation into the mechanism's own joint angles for an axis sequence (outer to inner, in
+ * scipy's naming: intrinsic "ZYX" is a yaw-pitch-roll head; a 2-axis pan-tilt head drives a1
+ * and a2 of its sequence, and a3 is then the part of the orientation it cannot produce - about
+ * 0 on a pointing path), choosing the solution nearest the
+ * previous sample (no jumps, continuous joints keep counting turns), holding the free angle
+ * steady inside a band around the singular configuration, and only then position- and
+ * rate-limiting each joint. Every sample reports the lock margin and which joints a limit
+ * clipped.
+ *
+ * Index:
+ *   qo_path_interp                        QO_PATH_SLERP | QO_PATH_SPLINE
+ *   qo_orient_path_f32                    caller-allocated path over caller arrays
+ *   qo_orient_path_init_f32               validate keys/times, align signs, spline controls
+ *   qo_orient_path_sample_f32             unit quaternion at time t
+ *   qo_gimbal_settings_f32 / _default_f32 sequence, hold band, rate and position limits
+ *   qo_gimbal_f32                         the per-mechanism state (previous sample)
+ *   qo_gimbal_init_f32                    validate settings, start without a previous sample
+ *   qo_gimbal_reset_f32                   start from known joint angles (e.g. read from encoders)
+ *   qo_gimbal_step_f32                    one sample: orientation -> joint angles + report
+ *
+ * Units: times in seconds, angles in radians, rates in rad/s.
+ */
+#ifndef QORIENT_GIMBAL_H
+#define QORIENT_GIMBAL_H
+
+#include "qorient/euler.h"
+#include "qorient/status.h"
+#include "qorient/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum qo_path_interp {
+    QO_PATH_SLERP = 0,   /* piecewise slerp: constant rate per segment, C0 at the keys */
+    QO_PATH_SPLINE = 1   /* Shoemake spline through the keys (C1 in the segment parameter) */
+} qo_path_interp;
+
+/* An orientation path. All pointers are caller storage that must outlive the path; fill it
+ * with qo_orient_path_init_f32, do not write the members yourself. */
+typedef struct qo_orient_path_f32 {
+    const float *t;      /* n key times, s, strictly increasing */
+    qo_quat_f32 *keys;   /* n keys: normalised and sign-aligned copies of the caller's keys */
+    qo_quat_f32 *a, *b;  /* n spline control points each (QO_PATH_SPLINE only) */
+    size_t n;
+    qo_path_interp interp;
+} qo_orient_path_f32;
+
+/*
+ * Builds a path through n keyframes (keys_in[i] reached at t[i]).
+ *   keys:  caller storage for n quaternions; receives normalised keys with each one's sign
+ *          flipped to the hemisphere of the previous one, so the path takes the short way
+ *          between neighbours (may be the same array as keys_in).
+ *   a, b:  caller storage for n quaternions each when interp is QO_PATH_SPLINE (the spline's
+ *          control points); ignored (may be NULL) for QO_PATH_SLERP.
+ * The spline is Shoemake's over the segment index, so with unequal key spacing the angular
+ * rate jumps at the keys by the ratio of the neighbouring durations (C1 in the parameter, not
+ * in time); use evenly spaced keys where rate continuity matters.
+ * Returns QO_OK; QO_E_NULL (path, t, keys_in, keys, or a/b for the spline); QO_E_TOO_FEW
+ * (n < 2); QO_E_NONFINITE (a NaN/Inf time or key component); QO_E_ORDER (times not strictly
+ * increasing); QO_E_DEGENERATE (a zero key); QO_E_ARG (unknown interp). On error the path
+ * is left with n = 0, which qo_orient_path_sample_f32 rejects.
+ */
+qo_status qo_orient_path_init_f32(qo_orient_path_f32 *path, const float *t,
+                                  const qo_quat_f32 *keys_in, size_t n, qo_path_interp interp,
+                                  qo_quat_f32 *keys, qo_quat_f32 *a, qo_quat_f32 *b);
+
+/*
+ * Unit quaternion of the path at time t (s). Before the first key the path holds the first
+ * key, after the last it holds the last (a path is a motion that starts and ends at rest).
+ * Returns QO_OK; QO_E_NULL; QO_E_STATE (path not initialised); QO_E_NONFINITE (t NaN/Inf).
+ * On error *out is the identity.
+ */
+qo_status qo_orient_path_sample_f32(const qo_orient_path_f32 *path, float t, qo_quat_f32 *out);
+
+/* Gimbal settings. */
+typedef struct qo_gimbal_settings_f32 {
+    qo_euler_seq seq;   /* the mechanism's axes, outer to inner (scipy naming) */
+    float band;         /* rad, [0, pi/2]: inside this margin from the singular configuration
+                           the free angle is held where it was (see qo_quat_to_euler_near_f32) */
+    float vmax;         /* rad/s, > 0: per-joint rate limit; +INFINITY for none */
+    float min[3];       /* rad: joint position limits (may be -INFINITY) */
+    float max[3];       /* rad: (may be +INFINITY); min[i] <= max[i] */
+} qo_gimbal_settings_f32;
+
+/* ZYX (yaw-pitch-roll head), band 1 degree, no rate limit, no position limits. */
+extern const qo_gimbal_settings_f32 qo_gimbal_settings_default_f32;
+
+/* A gimbal: its settings and the previous sample. */
+typedef struct qo_gimbal_f32 {
+    qo_gimbal_settings_f32 s;
+    qo_euler_f32 prev;   /* joint angles last commanded */
+    float t_prev;        /* time of the last sample, s */
+    qo_euler_f32 prev2;  /* the commanded angles before that (for the branch prediction) */
+    float t_prev2;
+    int started;         /* 0 until the first sample or a reset */
+    int have2;           /* 1 when prev2 holds a sample */
+} qo_gimbal_f32;
+
+/* One commanded sample. */
+typedef struct qo_gimbal_sample_f32 {
+    qo_euler_f32 angles;  /* commanded joint angles a1 (outer) .. a3 (inner), rad */
+    float margin;         /* rad: angle of the requested orientation from the singular
+                             configuration (qo_euler_info_f32.margin) */
+    int locked;           /* 1 when margin <= band: the free angle was held */
+    unsigned clipped;     /* bit i set when joint i+1 was rate- or position-limited, so the
+                             commanded angles lag (or stop short of) the requested orientation */
+} qo_gimbal_sample_f32;
+
+/*
+ * Validates settings and starts the gimbal without a previous sample (the first step then
+ * takes the principal decomposition, scipy's ranges, and applies no rate limit).
+ * Returns QO_OK; QO_E_NULL; QO_E_ARG (bad seq); QO_E_RANGE (band outside [0, pi/2]);
+ * QO_E_LIMIT (vmax not > 0 or NaN, a NaN limit, or min > max); on error the gimbal is
+ * initialised with the default settings and must not be used until a successful init.
+ */
+qo_status qo_gimbal_init_f32(qo_gimbal_f32 *g, const qo_gimbal_settings_f32 *s);
+
+/*
+ * Declares the mechanism's present joint angles (e.g. read from its encoders) at time t: the
+ * next step decomposes nearest them and rate-limits from them.
+ * Returns QO_OK; QO_E_NULL; QO_E_NONFINITE (an angle or t is not finite). On error the state
+ * is unchanged.
+ */
+qo_status qo_gimbal_reset_f32(qo_gimbal_f32 *g, qo_euler_f32 angles, float t);
+
+/*
+ * One sample: the requested orientation q (need not be unit) at time t (s, strictly
+ * increasing from step to step) -> commanded joint angles, lock margin and clip flags.
+ * The decomposition is taken nearest a PREDICTION of this sample: a1 and a2 extrapolated
+ * linearly from the last two commanded samples (the step ratio capped at 4), a3 the last
+ * commanded a3. Off lock this picks the branch the joints are moving along; inside the band it
+ * is what lets the middle joint carry on through the singular value (a pitch sweep through 90
+ * degrees continues to 91, 92...) instead of reflecting back, while the free angle a3 is held
+ * exactly where it was.
+ * Order of operations: nearest decomposition (hold band) -> position limits -> rate limit
+ * (|change| <= vmax*dt per joint, always the last word: no step ever exceeds it, even after a
+ * reset outside the position limits). The commanded angles become the next step's reference,
+ * so after a clip the joints catch up at the rate limit, never in a jump.
+ * Returns QO_OK; QO_E_NULL; QO_E_STATE (not initialised); QO_E_NONFINITE (NaN/Inf in q or
+ * t); QO_E_DEGENERATE (q zero); QO_E_ORDER (t not after the previous sample's). On error the
+ * joints hold: out->angles = the previous commanded angles ((0,0,0) before the first), margin
+ * 0, locked 0, clipped 0, and the state is unchanged.
+ */
+qo_status qo_gimbal_step_f32(qo_gimbal_f32 *g, float t, qo_quat_f32 q, qo_gimbal_sample_f32 *out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* QORIENT_GIMBAL_H */

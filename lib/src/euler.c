@@ -1,0 +1,319 @@
+/* Euler angles, float32. See qorient/euler.h for the contract of each function.
+ *
+ * Internally every convention is reduced to one intrinsic form
+ *     q = q_i(t1) * q_j(t2) * q_k(t3)
+ * intrinsic "IJK" (a1, a2, a3): (i, j, k) = the axes as written, t = (a1, a2, a3);
+ * extrinsic "ijk" (a1, a2, a3): q = q_k(a3) q_j(a2) q_i(a1), i.e. axes reversed, t1 = a3, t3 = a1.
+ * The decomposition of that form follows Bernardes & Viollet (2022), derived afresh here for
+ * our Hamilton, active convention (the derivation is summarised next to the code).
+ */
+#include "qorient/euler.h"
+#include "qorient/quat.h"
+
+#include <math.h>
+
+#define HALF_PI_F 1.57079632679490f
+/* 2*pi split for Cody-Waite reduction: HI has 8 significant bits, so k*HI is exact for
+ * |k| < 2^16 and the reduction of a few thousand turns keeps full float accuracy. */
+#define TWO_PI_HI 6.28125f
+#define TWO_PI_LO 0.00193530717958648f
+#define INV_TWO_PI_F 0.159154943091895f
+/* pi split the same way, for the second solution's a + pi. */
+#define PI_HI 3.140625f
+#define PI_LO 0.000967653589793116f
+
+/* Axes of the 12 base sequences (enum order); 0 = x, 1 = y, 2 = z. */
+static const unsigned char seq_axes[12][3] = {
+    {0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0},
+    {0, 1, 0}, {0, 2, 0}, {1, 0, 1}, {1, 2, 1}, {2, 0, 2}, {2, 1, 2},
+};
+
+static const char *const seq_names[QO_EULER_SEQ_COUNT_] = {
+    "xyz", "xzy", "yxz", "yzx", "zxy", "zyx", "xyx", "xzx", "yxy", "yzy", "zxz", "zyz",
+    "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX", "XYX", "XZX", "YXY", "YZY", "ZXZ", "ZYZ",
+};
+
+static int seq_valid(qo_euler_seq seq)
+{
+    /* unsigned compare: also right where enums are unsigned chars (-fshort-enums on ARM EABI) */
+    return (unsigned)seq < (unsigned)QO_EULER_SEQ_COUNT_;
+}
+
+qo_status qo_euler_seq_parse(const char *s, qo_euler_seq *out)
+{
+    int ax[3], i, upper = 0;
+    if (out == NULL) return QO_E_NULL;
+    *out = QO_EULER_SEQ_COUNT_;
+    if (s == NULL) return QO_E_NULL;
+    for (i = 0; i < 3; i++) {
+        char c = s[i];
+        int up;
+        if (c >= 'x' && c <= 'z') { ax[i] = c - 'x'; up = 0; }
+        else if (c >= 'X' && c <= 'Z') { ax[i] = c - 'X'; up = 1; }
+        else return QO_E_ARG; /* also stops at the terminator of a short string */
+        if (i == 0) upper = up;
+        else if (up != upper) return QO_E_ARG;
+    }
+    if (s[3] != '\0') return QO_E_ARG;
+    for (i = 0; i < 12; i++) {
+        if (seq_axes[i][0] == ax[0] && seq_axes[i][1] == ax[1] && seq_axes[i][2] == ax[2]) {
+            *out = (qo_euler_seq)(i + (upper ? 12 : 0));
+            return QO_OK;
+        }
+    }
+    return QO_E_ARG; /* two consecutive equal axes */
+}
+
+const char *qo_euler_seq_name(qo_euler_seq seq)
+{
+    return seq_valid(seq) ? seq_names[seq] : "invalid";
+}
+
+int qo_euler_seq_is_intrinsic(qo_euler_seq seq)
+{
+    return seq_valid(seq) && (int)seq >= 12;
+}
+
+int qo_euler_seq_is_proper(qo_euler_seq seq)
+{
+    return seq_valid(seq) && ((int)seq % 12) >= 6;
+}
+
+/* Rotation by angle t (rad) about coordinate axis `axis`. */
+static qo_quat_f32 elem_quat(int axis, float t)
+{
+    qo_quat_f32 q = { 0.0f, 0.0f, 0.0f, 0.0f };
+    float h = 0.5f * t;
+    float s = sinf(h);
+    q.w = cosf(h);
+    if (axis == 0) q.x = s;
+    else if (axis == 1) q.y = s;
+    else q.z = s;
+    return q;
+}
+
+static float quat_comp(qo_quat_f32 q, int axis)
+{
+    return axis == 0 ? q.x : (axis == 1 ? q.y : q.z);
+}
+
+qo_status qo_quat_from_euler_f32(qo_euler_seq seq, qo_euler_f32 e, qo_quat_f32 *out)
+{
+    const unsigned char *ax;
+    qo_quat_f32 q1, q2, q3;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_f32();
+    if (!seq_valid(seq)) return QO_E_ARG;
+    if (!isfinite(e.a1) || !isfinite(e.a2) || !isfinite(e.a3)) return QO_E_NONFINITE;
+    ax = seq_axes[(int)seq % 12];
+    q1 = elem_quat(ax[0], e.a1);
+    q2 = elem_quat(ax[1], e.a2);
+    q3 = elem_quat(ax[2], e.a3);
+    if ((int)seq >= 12) *out = qo_quat_mul_f32(qo_quat_mul_f32(q1, q2), q3); /* body axes */
+    else *out = qo_quat_mul_f32(q3, qo_quat_mul_f32(q2, q1));                /* world axes */
+    return QO_OK;
+}
+
+/* a + 2*pi*k for the integer k that brings it nearest ref. The small correction k*LO goes in
+ * first while the value is still small, the exact k*HI last: one rounding at the size of the
+ * result, not three. */
+static float unwrap_toward(float a, float ref)
+{
+    float k = roundf((ref - a) * INV_TWO_PI_F);
+    return (a + k * TWO_PI_LO) + k * TWO_PI_HI;
+}
+
+/* a + pi with one rounding (PI_F itself is 8.7e-8 off pi). */
+static float add_pi(float a)
+{
+    return (a + PI_LO) + PI_HI;
+}
+
+/* arg(u + iv)^2 = 2 arg(u + iv), already in [-pi, pi] (no wrap, no 2*pi constant error). */
+static float double_arg(float u, float v)
+{
+    return atan2f(2.0f * u * v, (u - v) * (u + v));
+}
+
+/* The full (unlocked) decomposition of q, plus the lock margin. */
+typedef struct decomp {
+    qo_euler_f32 e;  /* principal solution, scipy ranges */
+    float margin;    /* rad, [0, pi/2] */
+} decomp;
+
+/* Every quantity below is a ratio or an angle of q's components, so q needs no normalising
+ * (which would round each component once more): an exact power-of-two scaling is enough to
+ * keep the squares away from overflow and underflow. Requires q finite and non-zero. */
+static qo_quat_f32 scale_pow2(qo_quat_f32 q)
+{
+    float m = fabsf(q.w);
+    float f = 1.0f;
+    if (fabsf(q.x) > m) m = fabsf(q.x);
+    if (fabsf(q.y) > m) m = fabsf(q.y);
+    if (fabsf(q.z) > m) m = fabsf(q.z);
+    while (m < 0x1p-20f) { m *= 0x1p40f; f *= 0x1p40f; }
+    while (m > 0x1p20f) { m *= 0x1p-40f; f *= 0x1p-40f; }
+    q.w *= f; q.x *= f; q.y *= f; q.z *= f;
+    return q;
+}
+
+static decomp decompose(qo_quat_f32 q, qo_euler_seq seq)
+{
+    const unsigned char *ax = seq_axes[(int)seq % 12];
+    int intrinsic = (int)seq >= 12;
+    int i = intrinsic ? ax[0] : ax[2];
+    int j = ax[1];
+    int k = intrinsic ? ax[2] : ax[0];
+    /* eps = +1 when e_i x e_j = +e_(third axis), i.e. (i, j, .) is cyclic. */
+    float eps = (j == (i + 1) % 3) ? 1.0f : -1.0f;
+    float t1, t2, t3, n1, n2, lo, hi;
+    decomp r;
+    if (i == k) {
+        /* Proper, l = the remaining axis. Expanding q_i(t1) q_j(t2) q_i(t3) with c = cos(t2/2),
+         * s = sin(t2/2), S = (t1 + t3)/2, D = (t1 - t3)/2:
+         *   w = c cos S,  q_i = c sin S,  q_j = s cos D,  eps q_l = s sin D.
+         * So t2 = 2 atan2(|(q_j, q_l)|, |(w, q_i)|) in [0, pi]: singular at 0 (D undefined)
+         * and pi (S undefined). t1 = S + D and t3 = S - D are the arguments of the complex
+         * products (a + ib)(c + id) and (a + ib)(c - id): one atan2 each, in [-pi, pi]. */
+        int l = 3 - i - j;
+        float a = q.w, b = quat_comp(q, i), c = quat_comp(q, j), d = eps * quat_comp(q, l);
+        n1 = sqrtf(a * a + b * b);
+        n2 = sqrtf(c * c + d * d);
+        t2 = 2.0f * atan2f(n2, n1);
+        t1 = atan2f(b * c + a * d, a * c - b * d);
+        t3 = atan2f(b * c - a * d, a * c + b * d);
+    } else {
+        /* Tait-Bryan. With t3' = eps t3 and (x, y, z) = (q_i, q_j, eps q_k), the product
+         * q_i(t1) q_j(t2) q_k(t3) is the even-permutation one, and
+         *   a = w - y = sqrt2 cos(p/2) cos D,   b = x + z = sqrt2 sin(p/2) sin S,
+         *   c = w + y = sqrt2 sin(p/2) cos S,   d = z - x = -sqrt2 cos(p/2) sin D,
+         * where p = t2 + pi/2, S = (t1 + t3')/2, D = (t1 - t3')/2. So p = 2 atan2(n2, n1) with
+         * n1 = |(a,d)|, n2 = |(b,c)|, i.e. t2 = atan2(n2^2 - n1^2, 2 n1 n2) in [-pi/2, pi/2]
+         * (one atan2, no pi/2 constant): singular at -pi/2 (n2 = 0, S undefined) and +pi/2
+         * (n1 = 0, D undefined). t1 = S + D = arg((c + ib)(a - id)),
+         * t3' = S - D = arg((c + ib)(a + id)). */
+        float x = quat_comp(q, i), y = quat_comp(q, j), z = eps * quat_comp(q, k);
+        float a = q.w - y, b = x + z, c = q.w + y, d = z - x;
+        n1 = sqrtf(a * a + d * d);
+        n2 = sqrtf(b * b + c * c);
+        t2 = atan2f((n2 - n1) * (n2 + n1), 2.0f * n1 * n2);
+        t1 = atan2f(b * a - c * d, c * a + b * d);
+        t3 = eps * atan2f(b * a + c * d, c * a - b * d);
+    }
+    /* The distance to the nearer singularity straight from the two norms (no subtraction
+     * from pi, so it keeps its accuracy down to 0). */
+    lo = n1 < n2 ? n1 : n2;
+    hi = n1 < n2 ? n2 : n1;
+    r.margin = 2.0f * atan2f(lo, hi);
+    r.e.a2 = t2;
+    r.e.a1 = intrinsic ? t1 : t3;
+    r.e.a3 = intrinsic ? t3 : t1;
+    return r;
+}
+
+/* Given a2 and a3, the a1 whose composition is nearest q: with q = A1 * rest (intrinsic) or
+ * rest * A1 (extrinsic), p = the part of q left for A1 and a1 = 2 atan2(p . axis, p.w), which
+ * maximises |<q_axis(a1), p>|. Result in [-pi, pi]. */
+static float fit_a1(qo_quat_f32 q, qo_euler_seq seq, float a2, float a3)
+{
+    const unsigned char *ax = seq_axes[(int)seq % 12];
+    qo_quat_f32 c2 = qo_quat_conj_f32(elem_quat(ax[1], a2));
+    qo_quat_f32 c3 = qo_quat_conj_f32(elem_quat(ax[2], a3));
+    qo_quat_f32 p;
+    if ((int)seq >= 12) p = qo_quat_mul_f32(qo_quat_mul_f32(q, c3), c2); /* q = q1 q2 q3 */
+    else p = qo_quat_mul_f32(c2, qo_quat_mul_f32(c3, q));                /* q = q3 q2 q1 */
+    return double_arg(p.w, quat_comp(p, ax[0]));
+}
+
+static void set_error_outputs(qo_euler_f32 *out, qo_euler_info_f32 *info)
+{
+    out->a1 = out->a2 = out->a3 = 0.0f;
+    if (info != NULL) { info->locked = 0; info->margin = 0.0f; }
+}
+
+/* Shared argument checks; on success *qn is q scaled by a power of two (same rotation). */
+static qo_status check_args(qo_quat_f32 q, qo_euler_seq seq, float band, qo_quat_f32 *qn)
+{
+    *qn = q;
+    if (!seq_valid(seq)) return QO_E_ARG;
+    if (!isfinite(band)) return QO_E_NONFINITE;
+    if (!qo_quat_is_finite_f32(q)) return QO_E_NONFINITE;
+    if (q.w == 0.0f && q.x == 0.0f && q.y == 0.0f && q.z == 0.0f) return QO_E_DEGENERATE;
+    if (!(band >= 0.0f && band <= HALF_PI_F)) return QO_E_RANGE;
+    *qn = scale_pow2(q);
+    return QO_OK;
+}
+
+qo_status qo_quat_to_euler_band_f32(qo_quat_f32 q, qo_euler_seq seq, float band_rad,
+                                    qo_euler_f32 *out, qo_euler_info_f32 *info)
+{
+    qo_quat_f32 qn;
+    qo_status st;
+    decomp r;
+    if (out == NULL) return QO_E_NULL;
+    set_error_outputs(out, info);
+    st = check_args(q, seq, band_rad, &qn);
+    if (st != QO_OK) return st;
+    r = decompose(qn, seq);
+    if (r.margin <= band_rad) {
+        /* scipy's choice: a3 = 0, a1 takes the determined sum/difference. */
+        r.e.a3 = 0.0f;
+        r.e.a1 = fit_a1(qn, seq, r.e.a2, 0.0f);
+    }
+    *out = r.e;
+    if (info != NULL) { info->locked = r.margin <= band_rad; info->margin = r.margin; }
+    return QO_OK;
+}
+
+qo_status qo_quat_to_euler_f32(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f32 *out,
+                               qo_euler_info_f32 *info)
+{
+    return qo_quat_to_euler_band_f32(q, seq, QO_EULER_LOCK_BAND_F32, out, info);
+}
+
+static float sq(float v) { return v * v; }
+
+qo_status qo_quat_to_euler_near_f32(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f32 prev,
+                                    float band, qo_euler_f32 *out, qo_euler_info_f32 *info)
+{
+    qo_quat_f32 qn;
+    qo_status st;
+    decomp r;
+    qo_euler_f32 p, alt;
+    float alt2;
+    int prev_ok = isfinite(prev.a1) && isfinite(prev.a2) && isfinite(prev.a3);
+    if (out == NULL) return QO_E_NULL;
+    set_error_outputs(out, info);
+    if (!prev_ok) return seq_valid(seq) ? QO_E_NONFINITE : QO_E_ARG;
+    st = check_args(q, seq, band, &qn);
+    if (st != QO_OK) {
+        *out = prev; /* hold the joint */
+        return st;
+    }
+    r = decompose(qn, seq);
+    /* The second solution: (a1 + pi, pi - a2, a3 + pi) Tait-Bryan, (a1 + pi, -a2, a3 + pi)
+     * proper (a rotation by pi about the first axis conjugates the middle one into its
+     * negative, and the two pi's combine into the identity). */
+    alt2 = qo_euler_seq_is_proper(seq) ? -r.e.a2 : add_pi(-r.e.a2);
+    p.a2 = unwrap_toward(r.e.a2, prev.a2);
+    alt.a2 = unwrap_toward(alt2, prev.a2);
+    if (r.margin <= band) {
+        /* Locked: keep prev's split (a3 = prev.a3), take the middle angle of the branch
+         * nearer prev and fit a1 to it. */
+        if (fabsf(alt.a2 - prev.a2) < fabsf(p.a2 - prev.a2)) p.a2 = alt.a2;
+        p.a3 = prev.a3;
+        p.a1 = unwrap_toward(fit_a1(qn, seq, p.a2, p.a3), prev.a1);
+    } else {
+        p.a1 = unwrap_toward(r.e.a1, prev.a1);
+        p.a3 = unwrap_toward(r.e.a3, prev.a3);
+        alt.a1 = unwrap_toward(add_pi(r.e.a1), prev.a1);
+        alt.a3 = unwrap_toward(add_pi(r.e.a3), prev.a3);
+        if (sq(alt.a1 - prev.a1) + sq(alt.a2 - prev.a2) + sq(alt.a3 - prev.a3) <
+            sq(p.a1 - prev.a1) + sq(p.a2 - prev.a2) + sq(p.a3 - prev.a3)) {
+            p = alt;
+        }
+    }
+    *out = p;
+    if (info != NULL) { info->locked = r.margin <= band; info->margin = r.margin; }
+    return QO_OK;
+}

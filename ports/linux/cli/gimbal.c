@@ -1,0 +1,234 @@
+/*
+ * qorient gimbal [OPTIONS] [FILE|-]
+ * Reads quaternion keyframes `t,w,x,y,z`, interpolates them on the sphere and writes the
+ * mechanism's joint angles `t,a1,a2,a3,margin,lock,clipped` at a fixed rate.
+ */
+#include "cli.h"
+
+#include <getopt.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "qorient/gimbal.h"
+
+static void gimbal_usage(FILE *f)
+{
+    fputs("usage: qorient gimbal [OPTIONS] [FILE|-]\n"
+          "\n"
+          "Reads orientation keyframes, one per line 't,w,x,y,z' (time in s, quaternion scalar\n"
+          "first; commas and/or blanks; '#' comments), interpolates them on the quaternion sphere\n"
+          "and writes, at a fixed rate from the first key time to the last (and on while a rate\n"
+          "limit still holds a joint back), the joint angles of a\n"
+          "2- or 3-axis gimbal:\n"
+          "  t,a1,a2,a3,margin,lock,clipped\n"
+          "a1..a3   joint angles, outer to inner, of the mechanism's axis sequence, nearest the\n"
+          "         previous sample (no jumps; continuous joints keep counting turns)\n"
+          "margin   angle of the requested orientation from the singular configuration\n"
+          "lock     1 inside the hold band (the free angle a3 is held steady), else 0\n"
+          "clipped  bit mask of joints a rate or position limit held back (1 = a1, 2 = a2, 4 = a3)\n"
+          "\n"
+          "options:\n"
+          "  -s, --seq SEQ       axes outer to inner, scipy naming (default ZYX: yaw, pitch, roll)\n"
+          "  -r, --rate HZ       output rate (default 100)\n"
+          "  -i, --interp KIND   slerp (piecewise, default) or spline (Shoemake, C1 through keys)\n"
+          "  -b, --band DEG      hold band around the singular configuration, degrees (default 1)\n"
+          "  -v, --vmax V        joint rate limit, rad/s (deg/s with --degrees); default none\n"
+          "  -d, --degrees       write angles and margin in degrees, read --vmax in deg/s\n"
+          "  -h, --help          this text\n"
+          "\n"
+          "Errors (non-monotonic times, wrong column count, non-numbers, a zero quaternion, bad\n"
+          "options) are reported on standard error naming the line; the exit status is then 1\n"
+          "(2 for usage errors) and nothing is written.\n"
+          "\n"
+          "example: pitch straight through the ZYX singularity\n"
+          "  printf '0 1 0 0 0\\n2 0.7071068 0 0.7071068 0\\n4 0 0 1 0\\n' | qorient gimbal --rate 10\n", f);
+}
+
+static int parse_positive(const char *s, double *v)
+{
+    char *end;
+    *v = strtod(s, &end);
+    return end != s && *end == '\0' && isfinite(*v) && *v > 0;
+}
+
+int qo_cli_gimbal(int argc, char **argv)
+{
+    static const struct option opts[] = {
+        { "seq", required_argument, NULL, 's' },
+        { "rate", required_argument, NULL, 'r' },
+        { "interp", required_argument, NULL, 'i' },
+        { "band", required_argument, NULL, 'b' },
+        { "vmax", required_argument, NULL, 'v' },
+        { "degrees", no_argument, NULL, 'd' },
+        { "help", no_argument, NULL, 'h' },
+        { NULL, 0, NULL, 0 },
+    };
+    const double deg = 3.14159265358979323846 / 180.0;
+    qo_gimbal_settings_f32 gs = qo_gimbal_settings_default_f32;
+    qo_path_interp interp = QO_PATH_SLERP;
+    double rate = 100.0, band_deg = 1.0, vmax = INFINITY, v;
+    int degrees = 0, ch, rc = 1;
+    FILE *in = stdin;
+    float *t = NULL;
+    qo_quat_f32 *keys = NULL, *ks = NULL, *a = NULL, *b = NULL;
+    size_t n = 0, cap = 0, lcap = 0;
+    char *line = NULL;
+    unsigned long lineno = 0;
+    qo_orient_path_f32 path;
+    qo_gimbal_f32 g;
+    qo_status st;
+
+    while ((ch = getopt_long(argc, argv, "s:r:i:b:v:dh", opts, NULL)) != -1) {
+        switch (ch) {
+        case 's':
+            if (qo_euler_seq_parse(optarg, &gs.seq) != QO_OK) {
+                fprintf(stderr, "qorient gimbal: --seq: '%s' is not a sequence (e.g. ZYX, zyx, ZXZ)\n", optarg);
+                return 2;
+            }
+            break;
+        case 'r':
+            if (!parse_positive(optarg, &rate)) {
+                fprintf(stderr, "qorient gimbal: --rate: '%s' is not a positive number\n", optarg);
+                return 2;
+            }
+            break;
+        case 'i':
+            if (strcmp(optarg, "slerp") == 0) interp = QO_PATH_SLERP;
+            else if (strcmp(optarg, "spline") == 0) interp = QO_PATH_SPLINE;
+            else {
+                fprintf(stderr, "qorient gimbal: --interp: '%s' is not slerp or spline\n", optarg);
+                return 2;
+            }
+            break;
+        case 'b': {
+            char *end;
+            band_deg = strtod(optarg, &end);
+            if (end == optarg || *end != '\0' || !(band_deg >= 0.0 && band_deg <= 90.0)) {
+                fprintf(stderr, "qorient gimbal: --band: '%s' is not an angle in [0, 90] degrees\n", optarg);
+                return 2;
+            }
+            break;
+        }
+        case 'v':
+            if (!parse_positive(optarg, &v)) {
+                fprintf(stderr, "qorient gimbal: --vmax: '%s' is not a positive number\n", optarg);
+                return 2;
+            }
+            vmax = v;
+            break;
+        case 'd': degrees = 1; break;
+        case 'h': gimbal_usage(stdout); return 0;
+        default: gimbal_usage(stderr); return 2;
+        }
+    }
+    if (argc - optind > 1) {
+        fprintf(stderr, "qorient gimbal: at most one input file\n");
+        return 2;
+    }
+    if (argc - optind == 1 && strcmp(argv[optind], "-") != 0) {
+        in = fopen(argv[optind], "r");
+        if (in == NULL) {
+            fprintf(stderr, "qorient gimbal: cannot open '%s'\n", argv[optind]);
+            return 1;
+        }
+    }
+    gs.band = (float)(band_deg * deg);
+    gs.vmax = (float)(degrees && isfinite(vmax) ? vmax * deg : vmax);
+
+    while (qo_cli_getline(&line, &lcap, in) >= 0) {
+        double f[6];
+        size_t m;
+        int prc;
+        lineno++;
+        prc = qo_cli_parse_numbers(line, f, 6, &m);
+        if (prc == 0 && m == 0) continue;
+        if (prc == -1) {
+            fprintf(stderr, "qorient gimbal: line %lu: not a number\n", lineno);
+            goto out;
+        }
+        if (prc == -2 || m != 5) {
+            fprintf(stderr, "qorient gimbal: line %lu: expected 5 numbers (t,w,x,y,z), got %s%zu\n",
+                    lineno, prc == -2 ? "more than " : "", m);
+            goto out;
+        }
+        if (!isfinite(f[0]) || !isfinite(f[1]) || !isfinite(f[2]) || !isfinite(f[3]) || !isfinite(f[4])) {
+            fprintf(stderr, "qorient gimbal: line %lu: %s\n", lineno, qo_status_str(QO_E_NONFINITE));
+            goto out;
+        }
+        if (f[1] == 0 && f[2] == 0 && f[3] == 0 && f[4] == 0) {
+            fprintf(stderr, "qorient gimbal: line %lu: %s\n", lineno, qo_status_str(QO_E_DEGENERATE));
+            goto out;
+        }
+        if (n > 0 && !((float)f[0] > t[n - 1])) {
+            fprintf(stderr, "qorient gimbal: line %lu: time %g is not after the previous key's\n", lineno, f[0]);
+            goto out;
+        }
+        if (n == cap) {
+            size_t nc = cap ? 2 * cap : 64;
+            float *nt = realloc(t, nc * sizeof *t);
+            qo_quat_f32 *nk;
+            if (nt == NULL) goto oom;
+            t = nt;
+            nk = realloc(keys, nc * sizeof *keys);
+            if (nk == NULL) goto oom;
+            keys = nk;
+            cap = nc;
+        }
+        t[n] = (float)f[0];
+        keys[n].w = (float)f[1]; keys[n].x = (float)f[2]; keys[n].y = (float)f[3]; keys[n].z = (float)f[4];
+        n++;
+    }
+    if (n < 2) {
+        fprintf(stderr, "qorient gimbal: need at least 2 keyframes, got %zu\n", n);
+        goto out;
+    }
+    ks = malloc(n * sizeof *ks);
+    a = malloc(n * sizeof *a);
+    b = malloc(n * sizeof *b);
+    if (ks == NULL || a == NULL || b == NULL) goto oom;
+    st = qo_orient_path_init_f32(&path, t, keys, n, interp, ks, a, b);
+    if (st == QO_OK) st = qo_gimbal_init_f32(&g, &gs);
+    if (st != QO_OK) {
+        fprintf(stderr, "qorient gimbal: %s\n", qo_status_str(st));
+        goto out;
+    }
+    {
+        /* Sample times t0 + k/rate computed from k (no accumulated rounding), then the last key
+         * time itself if the grid does not land on it. */
+        double t0 = t[0], t1 = t[n - 1], s = degrees ? 1.0 / deg : 1.0;
+        unsigned long k, kmax = (unsigned long)floor((t1 - t0) * rate + 1e-9);
+        int extra = t0 + (double)kmax / rate < t1 - 1e-9;
+        /* After the last key the path holds it; while a rate limit still holds a joint back
+         * the samples go on (on the same grid) until every joint has arrived: the motion has
+         * ended when the joints are where the path ends, not when the path does. Bounded by
+         * one hour of catching up. */
+        unsigned long kcatch = kmax + (unsigned long)(3600.0 * rate);
+        qo_gimbal_sample_f32 o;
+        o.clipped = 0;
+        for (k = 0; k <= kmax + (unsigned long)extra || (o.clipped && k <= kcatch); k++) {
+            double tt = k <= kmax ? t0 + (double)k / rate : k == kmax + 1 && extra ? t1 : t0 + (double)(k - (unsigned long)extra) / rate;
+            qo_quat_f32 q;
+            st = qo_orient_path_sample_f32(&path, (float)tt, &q);
+            if (st == QO_OK) st = qo_gimbal_step_f32(&g, (float)tt, q, &o);
+            if (st != QO_OK) {
+                fprintf(stderr, "qorient gimbal: t=%g: %s\n", tt, qo_status_str(st));
+                goto out;
+            }
+            qo_cli_print_f32(stdout, (float)tt); putchar(',');
+            qo_cli_print_f32(stdout, (float)(o.angles.a1 * s)); putchar(',');
+            qo_cli_print_f32(stdout, (float)(o.angles.a2 * s)); putchar(',');
+            qo_cli_print_f32(stdout, (float)(o.angles.a3 * s)); putchar(',');
+            qo_cli_print_f32(stdout, (float)(o.margin * s));
+            printf(",%d,%u\n", o.locked, o.clipped);
+        }
+    }
+    rc = 0;
+    goto out;
+oom:
+    fprintf(stderr, "qorient gimbal: out of memory\n");
+out:
+    if (in != stdin) fclose(in);
+    free(line); free(t); free(keys); free(ks); free(a); free(b);
+    return rc;
+}
