@@ -49,6 +49,10 @@
  *     3.7e-9 rad); the weights sin(u th)/th come from a degree-20 sinc series in Q1.31 with
  *     64-bit products, accurate in RELATIVE terms however small th is.
  *   - No heap, no static state; all storage is the caller's or a bounded stack array.
+ *   - Cost on Cortex-M0+ (arm-none-eabi-gcc -O2, tools/core-check.sh -fstack-usage): 8.1 kB of
+ *     code for the module (plus fxmath), deepest stack path about 0.9 kB (qo_quat_bezier_q30 ->
+ *     de Casteljau -> slerp -> normalise). No division by a run-time value other than 64-bit
+ *     integer divisions (__aeabi_uldivmod on Cortex-M0+).
  */
 #ifndef QORIENT_INTERP_FX_H
 #define QORIENT_INTERP_FX_H
@@ -99,7 +103,7 @@ qo_status qo_quat_nlerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 
  * The rotation from a to out is t times the rotation from a to b.
  * th is 2*atan2(|a - b'|, |a + b'|) with both lengths from exact 64-bit sums of squares, so it
  * keeps its absolute accuracy (a few 1e-9 rad) at th -> 0, where acos(dot) of a Q1.30 dot
- * product would give 0 for every th below 4e-5. The weights w(u) = sin(u th)/th = u * sinc(u th)
+ * product would give 0 for every th below 3e-5. The weights w(u) = sin(u th)/th = u * sinc(u th)
  * come from the Taylor series of sinc (degree 20, truncation < 1e-11) evaluated in Q1.31 with
  * 64-bit products: no division by a vanishing sin(th), and no separate small-angle branch;
  * identical inputs (th == 0) give w(u) = u exactly, i.e. the normalised lerp, which is a.
