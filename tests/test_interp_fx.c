@@ -686,6 +686,92 @@ static void test_spline_vs_double_and_through_keys(void **state)
     }
 }
 
+/* Body-frame rotation vector 2 log(conj(p) x) in double, short way. */
+static void rotvec(dq p, dq x, double v[3])
+{
+    dq d;
+    double vn, k;
+    p = dq_unit(p);
+    x = dq_unit(x);
+    if (dq_dot(p, x) < 0) x = dq_neg(x);
+    d = dq_mul(dq_conj(p), x);
+    vn = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+    k = (vn > 0) ? 2 * atan2(vn, d.w) / vn : 2.0;
+    v[0] = d.x * k; v[1] = d.y * k; v[2] = d.z * k;
+}
+/* One-sided second-order angular velocity at s0 from r(s0 + sg h), r(s0 + sg 2h):
+ * (4 r(h) - r(2h)) / (2h) = w - r''' h^2 / 3. */
+static void omega_side(const double r1[3], const double r2[3], double h, double sg, double w[3])
+{
+    int i;
+    for (i = 0; i < 3; i++) w[i] = sg * (4 * r1[i] - r2[i]) / (2 * h);
+}
+static double vdist(const double a[3], const double b[3])
+{
+    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+/* C1 at every join, as test_interp.c: the angular velocity just left and just right of each
+ * inner key agrees within a tolerance derived per join from the measured sample error e
+ * (10e/h) and the truncation of the stencil estimated on the double construction; piecewise
+ * slerp through the same keys must then show a jump far above it (the check can fail).
+ * h = 1/64 is exact in float and in Q16.16. */
+static void test_spline_c1(void **state)
+{
+    const core *c = CORE(state);
+    dq k[MAXK], a[MAXK], b[MAXK], q[MAXK], da[MAXK], db[MAXK], f[5], g[5], dref[5];
+    const double h = 1.0 / 64;
+    int it, j;
+    size_t n, i;
+    rng_seed(0xC1C1ull);
+    for (it = 0; it < 30; it++) {
+        n = 3 + (size_t)(it % (MAXK - 2));
+        rand_keys(c, k, n, 1.5);
+        d_align(k, n, q);
+        d_spline_controls(q, n, da, db);
+        assert_int_equal(c->spline_controls(k, n, a, b), QO_OK);
+        for (i = 1; i + 1 < n; i++) {
+            double s0 = (double)i, e = 0, trunc, tol, jump;
+            double rl1[3], rl2[3], rr1[3], rr2[3], wl[3], wr[3], w1l[3], w1r[3], w2l[3], w2r[3];
+            dq m2 = d_spline_eval(q, da, db, n, s0 - 4 * h);
+            dq p2 = d_spline_eval(q, da, db, n, s0 + 4 * h);
+            for (j = 0; j < 5; j++) { /* s0-2h .. s0+2h */
+                double s = s0 + (j - 2) * h;
+                size_t seg = (j < 2) ? i - 1 : i;
+                assert_int_equal(c->spline_eval(k, a, b, n, s, &f[j]), QO_OK);
+                dref[j] = d_spline_eval(q, da, db, n, s);
+                if (rot_err(dref[j], f[j]) > e) e = rot_err(dref[j], f[j]);
+                assert_int_equal(c->slerp(k[seg], k[seg + 1], s - (double)seg, &g[j]), QO_OK);
+            }
+            rotvec(f[2], f[1], rl1); rotvec(f[2], f[0], rl2);
+            rotvec(f[2], f[3], rr1); rotvec(f[2], f[4], rr2);
+            omega_side(rl1, rl2, h, -1, wl);
+            omega_side(rr1, rr2, h, 1, wr);
+            /* truncation from the double construction: stencil at h vs at 2h */
+            rotvec(dref[2], dref[1], rl1); rotvec(dref[2], dref[0], rl2);
+            rotvec(dref[2], dref[3], rr1); rotvec(dref[2], dref[4], rr2);
+            omega_side(rl1, rl2, h, -1, w1l); omega_side(rr1, rr2, h, 1, w1r);
+            rotvec(dref[2], dref[0], rl1); rotvec(dref[2], m2, rl2);
+            rotvec(dref[2], dref[4], rr1); rotvec(dref[2], p2, rr2);
+            omega_side(rl1, rl2, 2 * h, -1, w2l); omega_side(rr1, rr2, 2 * h, 1, w2r);
+            trunc = 2 * (vdist(w1l, w2l) + vdist(w1r, w2r)) / 3;
+            tol = 10 * e / h + 2 * trunc + 1e-9;
+            jump = vdist(wl, wr);
+            CHECK(jump <= tol, "%s C1 at key %u of %u: |w_left - w_right| = %.3g > tol %.3g "
+                  "(e=%.3g, trunc=%.3g)", c->name, (unsigned)i, (unsigned)n, jump, tol, e,
+                  trunc);
+            /* sensitivity: piecewise slerp has a velocity jump at the key */
+            rotvec(g[2], g[1], rl1); rotvec(g[2], g[0], rl2);
+            rotvec(g[2], g[3], rr1); rotvec(g[2], g[4], rr2);
+            omega_side(rl1, rl2, h, -1, wl);
+            omega_side(rr1, rr2, h, 1, wr);
+            CHECK(vdist(wl, wr) > 10 * tol, "%s C1 check too weak: piecewise slerp jump %.3g vs "
+                  "tol %.3g at key %u", c->name, vdist(wl, wr), tol, (unsigned)i);
+        }
+    }
+}
+
 /* Flipping the sign of any keys (and scaling them) gives the same rotations everywhere. */
 static void test_spline_sign_invariance(void **state)
 {
@@ -1114,6 +1200,7 @@ int main(void)
         BOTH(test_nlerp),
         BOTH(test_bezier),
         BOTH(test_spline_vs_double_and_through_keys),
+        BOTH(test_spline_c1),
         BOTH(test_spline_sign_invariance),
         BOTH(test_spline_end_rule_and_swing_back),
         cmocka_unit_test(test_fx_normalisation),
