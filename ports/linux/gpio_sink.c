@@ -323,9 +323,9 @@ qo_status qo_gpio_sink_write(void *ctx, const float *targets, size_t n, uint64_t
 qo_sink qo_gpio_sink_as_sink(qo_gpio_sink *g)
 {
     qo_sink s;
+    memset(&s, 0, sizeof s); /* flush, close, stats, service: none */
     s.ctx = g;
     s.write = qo_gpio_sink_write;
-    s.service = NULL;
     return s;
 }
 

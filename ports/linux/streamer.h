@@ -59,26 +59,15 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "qorient/sink.h"
 #include "qorient/status.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-#ifndef QO_SINK_DEFINED
-#define QO_SINK_DEFINED
-/*
- * A consumer of joint targets. write() gets the n targets (joint units: rad or m) of one tick
- * and the tick number (0, 1, ...; skipped periods do not get numbers); it returns QO_OK or the
- * port status of the failure. service() is optional (may be NULL): reconnects and other slow
- * housekeeping, called after the tick's deadline work.
- */
-typedef struct qo_sink {
-    void *ctx;
-    qo_status (*write)(void *ctx, const float *targets, size_t n, uint64_t tick);
-    void (*service)(void *ctx); /* optional, may be NULL: reconnect etc., called after the tick's deadline work */
-} qo_sink;
-#endif
+/* The consumer of joint targets is a qo_sink (qorient/sink.h): write() gets the n targets of
+ * one tick and the tick number; service() (optional) is called after the tick's deadline work. */
 
 /*
  * Producer: write the n joint targets for time t_seconds (seconds since the streamer's time
