@@ -1050,6 +1050,29 @@ static void test_fx_vs_f32(void **state)
         e = dist4(dq_from_f(fn), dq_from_x(xn));
         CHECK(e <= 1e-6, "fixed vs float32 nlerp %.3g t=%g", e, (double)t);
     }
+    /* spline through the same keys (float keys converted at the boundary) */
+    for (i = 0; i < 100; i++) {
+        qo_quat_f32 fk[MAXK], fa[MAXK], fb[MAXK], fo;
+        qo_quat_q30 xk[MAXK], xa[MAXK], xb[MAXK], xo;
+        dq p = rand_unit();
+        size_t n = 2 + (size_t)(i % (MAXK - 1)), j;
+        for (j = 0; j < n; j++) {
+            if (j) p = dq_mul(p, rand_axis_rot(rng_range(0.05, 2.0)));
+            fk[j] = f_from(dq_scale(rng_u() < 0.4 ? dq_neg(p) : p, rng_range(0.5, 1.9)));
+            xk[j] = qo_quat_q30_from_f32(fk[j]);
+        }
+        assert_int_equal(qo_quat_spline_controls_f32(fk, n, fa, fb), QO_OK);
+        assert_int_equal(qo_quat_spline_controls_q30(xk, n, xa, xb), QO_OK);
+        for (j = 0; j <= 4 * (n - 1); j++) { /* s = j/4: exact in float and Q16.16 */
+            double e;
+            assert_int_equal(qo_quat_spline_eval_f32(fk, fa, fb, n, (float)j / 4.0f, &fo), QO_OK);
+            assert_int_equal(qo_quat_spline_eval_q30(xk, xa, xb, n, (qo_q16)(j << 14), &xo),
+                             QO_OK);
+            e = dist4(dq_from_f(fo), dq_from_x(xo));
+            CHECK(e <= 3e-6, "fixed vs float32 spline n=%u s=%g: %.3g", (unsigned)n,
+                  (double)j / 4.0, e);
+        }
+    }
 }
 
 /* Key alignment: signs, in place, errors. */
