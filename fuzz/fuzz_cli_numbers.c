@@ -1,0 +1,65 @@
+/*
+ * fuzz/fuzz_cli_numbers.c - the command's number parser qo_cli_parse_numbers
+ * (ports/linux/cli/cli.h) on raw text: first byte = max (0..31), the rest the line, copied
+ * into an exactly sized buffer (and out[] exactly max doubles) so ASan sees any overrun.
+ * Properties from the header: returns 0, -1 or -2; *n <= max; a blank or '#' line gives
+ * *n == 0 with 0; on 0 the fields are exactly the non-empty comma/blank separated tokens and
+ * each value is what strtod reads from its token (an independent split done here).
+ */
+#include "fuzz_common.h"
+#include "linux/cli/cli.h"
+
+#ifndef QO_FUZZ_ENTRY
+#define QO_FUZZ_ENTRY LLVMFuzzerTestOneInput
+#endif
+
+int QO_FUZZ_ENTRY(const uint8_t *data, size_t size);
+
+int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
+{
+    size_t max, n = 12345, len, i, k;
+    char *line, *copy, *p;
+    double *out;
+    int rc;
+
+    if (size == 0) return 0;
+    max = data[0] % 32u;
+    len = size - 1;
+    line = malloc(len + 1);
+    copy = malloc(len + 1);
+    out = malloc(max ? max * sizeof *out : 1);
+    if (line == NULL || copy == NULL || out == NULL) abort();
+    memcpy(line, data + 1, len);
+    line[len] = '\0';
+    memcpy(copy, line, len + 1);
+
+    rc = qo_cli_parse_numbers(line, out, max, &n);
+    QO_FUZZ_CHECK(rc == 0 || rc == -1 || rc == -2, "parse_numbers returned %d", rc);
+    QO_FUZZ_CHECK(n <= max, "parse_numbers n %zu > max %zu", n, max);
+    p = copy + strspn(copy, " \t");
+    if (*p == '\0' || *p == '#') QO_FUZZ_CHECK(rc == 0 && n == 0, "blank/comment line gave rc %d n %zu", rc, n);
+    if (rc == 0) {
+        /* independent split: tokens between blanks/commas; the line's own string ends at
+         * its first NUL, as for the parser */
+        k = 0;
+        if (*p != '#') {
+            char *tok = strtok(p, " \t,");
+            while (tok != NULL) {
+                char *e;
+                double v = strtod(tok, &e);
+                QO_FUZZ_CHECK(*e == '\0' && e != tok, "accepted token '%s' that strtod does not read whole", tok);
+                QO_FUZZ_CHECK(k < n, "parse_numbers missed token %zu '%s'", k, tok);
+                QO_FUZZ_CHECK(memcmp(&v, &out[k], sizeof v) == 0 || (v != v && out[k] != out[k]),
+                              "token %zu '%s': %.17g, strtod %.17g", k, tok, out[k], v);
+                k++;
+                tok = strtok(NULL, " \t,");
+            }
+        }
+        QO_FUZZ_CHECK(k == n, "parse_numbers gave %zu values for %zu tokens", n, k);
+    }
+    for (i = 0; i < n; i++) (void)out[i];
+    free(line);
+    free(copy);
+    free(out);
+    return 0;
+}

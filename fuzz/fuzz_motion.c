@@ -1,0 +1,125 @@
+/*
+ * fuzz/fuzz_motion.c - limited moves (qorient/motion.h, motion_fx.h): 1..4 joints with fuzzed
+ * limits (vmax/amax/jmax/range/wrap, also zero, negative, NaN, Inf, denormal), both profiles
+ * and every sync (and one bad value of each), then a fuzzed sequence of set_target,
+ * set_limits, brake and sample calls at fuzzed times, and the Q16.16 export and sampler.
+ * Properties from the header: documented statuses; a failed init leaves n = 0 (every later
+ * call QO_E_STATE); *clamped is 0 on error; every sample with QO_OK (or QO_E_RANGE, which
+ * also gives the state at t0) is finite; while no limit was changed and no brake or NaN
+ * target happened, |vel| <= vmax and |acc| <= amax (1e-3 relative slack); the export and its
+ * sampler return documented statuses.
+ */
+#include "fuzz_common.h"
+#include "qorient/motion.h"
+#include "qorient/motion_fx.h"
+
+#ifndef QO_FUZZ_ENTRY
+#define QO_FUZZ_ENTRY LLVMFuzzerTestOneInput
+#endif
+
+#define FUZZ_MO_MAXN 4
+
+static qo_motion_limits_f32 fuzz_motion_limits(qo_fz *f, uint8_t how)
+{
+    qo_motion_limits_f32 l = qo_motion_limits_default;
+    if (how & 1u) { l.vmax = qo_fz_f32(f); l.amax = qo_fz_f32(f); l.jmax = qo_fz_f32(f); }
+    else { l.vmax = 1.0f + (float)(qo_fz_u8(f) % 50u); l.amax = 1.0f + (float)(qo_fz_u8(f) % 50u); l.jmax = 5.0f + (float)(qo_fz_u8(f) % 200u); }
+    if (how & 2u) { l.pmin = qo_fz_f32(f); l.pmax = qo_fz_f32(f); }
+    if (how & 4u) l.wrap = (how & 8u) ? qo_fz_f32(f) : 6.28318548f;
+    return l;
+}
+
+int QO_FUZZ_ENTRY(const uint8_t *data, size_t size);
+
+int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
+{
+    qo_fz f = qo_fz_init(data, size);
+    uint8_t h0 = qo_fz_u8(&f);
+    size_t n = 1u + (h0 & 3u), i;
+    qo_motion_joint_f32 joints[FUZZ_MO_MAXN];
+    qo_motion_limits_f32 lim[FUZZ_MO_MAXN];
+    qo_motion_settings_f32 set;
+    qo_motion_planner_f32 pl;
+    float start[FUZZ_MO_MAXN], tg[FUZZ_MO_MAXN], pos[FUZZ_MO_MAXN], vel[FUZZ_MO_MAXN], acc[FUZZ_MO_MAXN];
+    float t0 = (h0 & 0x80u) ? qo_fz_f32(&f) : 0.0f;
+    qo_motion_seg_q16 segs[FUZZ_MO_MAXN * QO_MOTION_Q16_SEGS];
+    qo_motion_table_q16 table;
+    qo_status st;
+    uint32_t cl;
+    int ops, steady = 1;
+
+    set.profile = (qo_motion_profile)((h0 >> 2) % 3u);
+    set.sync = (qo_motion_sync)((h0 >> 4) % 4u);
+    for (i = 0; i < n; i++) {
+        lim[i] = fuzz_motion_limits(&f, qo_fz_u8(&f));
+        start[i] = qo_fz_f32(&f);
+    }
+    st = qo_motion_init_f32(&pl, joints, n, lim, start, t0, &set);
+    QO_FUZZ_CHECK(st == QO_OK || st == QO_E_ARG || st == QO_E_LIMIT || st == QO_E_NONFINITE, "motion_init status %d", (int)st);
+    if (st != QO_OK) {
+        QO_FUZZ_CHECK(pl.n == 0, "motion_init error left n = %zu", pl.n);
+        QO_FUZZ_CHECK(qo_motion_sample_f32(&pl, 0.0f, pos, vel, acc) == QO_E_STATE, "sample after failed init");
+        cl = 99u;
+        QO_FUZZ_CHECK(qo_motion_set_target_f32(&pl, 0.0f, start, &cl) == QO_E_STATE && cl == 0u, "set_target after failed init");
+        return 0;
+    }
+
+    for (ops = 0; ops < 12 && f.n > 0; ops++) {
+        uint8_t op = qo_fz_u8(&f);
+        float t = ((op & 0x30u) == 0x30u) ? qo_fz_f32(&f) : pl.t0 + (float)(qo_fz_u8(&f)) * 0.05f;
+        switch (op & 3u) {
+        case 0:
+            for (i = 0; i < n; i++) tg[i] = (op & 0x40u) ? qo_fz_f32(&f) : start[i] + (float)((int)qo_fz_u8(&f) - 128) * 0.1f;
+            cl = 99u;
+            st = qo_motion_set_target_f32(&pl, t, tg, &cl);
+            QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_ORDER, "set_target status %d", (int)st);
+            if (st != QO_OK) QO_FUZZ_CHECK(cl == 0u, "set_target error %d with clamped %u", (int)st, (unsigned)cl);
+            if (st == QO_E_NONFINITE) steady = 0;   /* brakes: no sync, may exceed nothing, but re-plans */
+            break;
+        case 1:
+            i = qo_fz_u8(&f) % (n + 1u);   /* n is out of range */
+            lim[0] = fuzz_motion_limits(&f, qo_fz_u8(&f));
+            st = qo_motion_set_limits_f32(&pl, t, i, &lim[0]);
+            QO_FUZZ_CHECK(st == QO_OK || st == QO_E_RANGE || st == QO_E_NONFINITE || st == QO_E_ORDER || st == QO_E_LIMIT,
+                          "set_limits status %d", (int)st);
+            if (st == QO_OK || st == QO_E_LIMIT) steady = 0;
+            break;
+        case 2:
+            st = qo_motion_brake_f32(&pl, t);
+            QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_ORDER, "brake status %d", (int)st);
+            if (st == QO_OK) steady = 0;
+            break;
+        default:
+            st = qo_motion_sample_f32(&pl, t, pos, vel, acc);
+            QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_RANGE, "sample status %d", (int)st);
+            for (i = 0; i < n; i++) {
+                const qo_motion_limits_f32 *l = &pl.joints[i].lim;
+                QO_FUZZ_CHECK(isfinite(pos[i]) && isfinite(vel[i]) && isfinite(acc[i]),
+                              "sample joint %zu at %.9g: pos %g vel %g acc %g (vmax %g amax %g jmax %g)", i, (double)t,
+                              (double)pos[i], (double)vel[i], (double)acc[i], (double)l->vmax, (double)l->amax,
+                              (double)l->jmax);
+                if (steady && st == QO_OK)
+                    QO_FUZZ_CHECK(fabsf(vel[i]) <= l->vmax * 1.001f + 1e-6f && fabsf(acc[i]) <= l->amax * 1.001f + 1e-6f,
+                                  "sample joint %zu at %.9g: vel %g acc %g over vmax %g amax %g", i, (double)t,
+                                  (double)vel[i], (double)acc[i], (double)l->vmax, (double)l->amax);
+            }
+            break;
+        }
+        QO_FUZZ_CHECK(isfinite(qo_motion_duration_f32(&pl)) && qo_motion_duration_f32(&pl) >= 0.0f,
+                      "duration %g", (double)qo_motion_duration_f32(&pl));
+    }
+
+    st = qo_motion_export_q16(&pl, &table, segs, (h0 & 0x40u) ? n * QO_MOTION_Q16_SEGS : n * QO_MOTION_Q16_SEGS - 1u);
+    QO_FUZZ_CHECK(st == QO_OK || st == QO_E_OVERFLOW || st == QO_E_CAPACITY, "export_q16 status %d", (int)st);
+    if (st == QO_E_CAPACITY) {
+        QO_FUZZ_CHECK(table.n == 0, "export_q16 capacity error left n = %zu", (size_t)table.n);
+    } else {
+        qo_q16 qp[FUZZ_MO_MAXN], qv[FUZZ_MO_MAXN], qa[FUZZ_MO_MAXN];
+        int r;
+        for (r = 0; r < 6; r++) {
+            st = qo_motion_sample_q16(&table, qo_fz_i32(&f), qp, qv, qa);
+            QO_FUZZ_CHECK(st == QO_OK || st == QO_E_RANGE || st == QO_E_OVERFLOW, "sample_q16 status %d", (int)st);
+        }
+    }
+    return 0;
+}

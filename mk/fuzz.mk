@@ -1,0 +1,58 @@
+# mk/fuzz.mk - libFuzzer targets (clang + Debian's libclang-rt), included by the Makefile.
+#
+#   make fuzz                  builds every fuzz/fuzz_*.c and runs each for FUZZ_SECONDS (default 10)
+#   make fuzz FUZZ_SECONDS=600 FUZZ_TARGETS="quat regmap"   a long run of some targets
+#   make fuzz-ci               the short run of .ci/run: FUZZ_CI_SECONDS (default 15) per target
+#   make fuzz-build            build only (build/fuzz/fuzz_NAME)
+#
+# Each target runs on a working corpus build/fuzz/corpus/NAME (new units land there) seeded
+# from the committed fuzz/corpus/NAME and fuzz/regress/NAME; a crash or property violation
+# leaves its input in build/fuzz/artifacts/ (copy it to fuzz/regress/NAME/ to keep it as a
+# regression test: tests/test_fuzz_regress.c replays both directories under `make test`).
+# fuzz/run.sh prints the executions per target (libFuzzer's stat::number_of_executed_units)
+# and a last line "N passed, M failed"; it exits non-zero on any finding.
+#
+# Everything (core, ports, CLI except its main.c) is rebuilt with clang into build/fuzz with
+# -fsanitize=fuzzer-no-link,address,undefined, so libFuzzer sees coverage in the code under
+# test, not only in the harness.
+
+FUZZ_CC       ?= clang
+FUZZ_SECONDS  ?= 10
+FUZZ_CI_SECONDS ?= 15
+FUZZ_TARGETS  ?=
+FUZZ_BUILD    := $(BUILD)/fuzz
+FUZZ_SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+FUZZ_CFLAGS   := $(STD) $(WARN) $(FPFLAGS) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link
+FUZZ_SRC      := $(sort $(wildcard fuzz/fuzz_*.c))
+FUZZ_NAMES    := $(FUZZ_SRC:fuzz/fuzz_%.c=%)
+FUZZ_BIN      := $(FUZZ_NAMES:%=$(FUZZ_BUILD)/fuzz_%)
+FUZZ_LIB_SRC  := $(CORE_SRC) $(PORT_SRC) $(filter-out ports/linux/cli/main.c,$(CLI_SRC))
+FUZZ_LIB_OBJ  := $(FUZZ_LIB_SRC:%.c=$(FUZZ_BUILD)/obj/%.o)
+
+.PHONY: fuzz fuzz-ci fuzz-build
+
+fuzz-build: $(FUZZ_BIN)
+
+fuzz: $(FUZZ_BIN)
+	@FUZZ_BUILD=$(FUZZ_BUILD) sh fuzz/run.sh $(FUZZ_SECONDS) $(or $(FUZZ_TARGETS),$(FUZZ_NAMES))
+
+fuzz-ci: $(FUZZ_BIN)
+	@FUZZ_BUILD=$(FUZZ_BUILD) sh fuzz/run.sh $(FUZZ_CI_SECONDS) $(or $(FUZZ_TARGETS),$(FUZZ_NAMES))
+
+$(FUZZ_BUILD)/obj/lib/%.o: lib/%.c
+	@mkdir -p $(@D)
+	$(FUZZ_CC) -MMD -MP $(FUZZ_CFLAGS) $(CPPFLAGS_CORE) -c $< -o $@
+
+$(FUZZ_BUILD)/obj/ports/%.o: ports/%.c
+	@mkdir -p $(@D)
+	$(FUZZ_CC) -MMD -MP $(FUZZ_CFLAGS) $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports $(PKG_CFLAGS) -c $< -o $@
+
+$(FUZZ_BUILD)/libqo_fuzz.a: $(FUZZ_LIB_OBJ)
+	rm -f $@ && ar rcs $@ $^
+
+$(FUZZ_BUILD)/obj/fuzz/%.o: fuzz/%.c
+	@mkdir -p $(@D)
+	$(FUZZ_CC) -MMD -MP $(FUZZ_CFLAGS) $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports -Ifuzz $(PKG_CFLAGS) -c $< -o $@
+
+$(FUZZ_BUILD)/fuzz_%: $(FUZZ_BUILD)/obj/fuzz/fuzz_%.o $(FUZZ_BUILD)/libqo_fuzz.a
+	$(FUZZ_CC) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ $< $(FUZZ_BUILD)/libqo_fuzz.a $(PKG_LIBS) -lm -pthread -lutil
