@@ -50,6 +50,9 @@
 #define QO_FUZZ_ENTRY fuzz_one_fx_orient
 #include "../fuzz/fuzz_fx_orient.c"
 #undef QO_FUZZ_ENTRY
+#define QO_FUZZ_ENTRY fuzz_one_interp_fx
+#include "../fuzz/fuzz_interp_fx.c"
+#undef QO_FUZZ_ENTRY
 #define QO_FUZZ_ENTRY fuzz_one_spline
 #include "../fuzz/fuzz_spline.c"
 #undef QO_FUZZ_ENTRY
@@ -172,6 +175,7 @@ static fuzz_target targets[] = {
     { "cli_convert", fuzz_one_cli_convert, 17 },
     { "cli_plan_keys", fuzz_one_cli_plan_keys, 17 },
     { "cli_plan_moves", fuzz_one_cli_plan_moves, 17 },
+    { "interp_fx", fuzz_one_interp_fx, 1 },
 };
 
 #define T(i, name) { "replay " name, replay_target, NULL, NULL, &targets[i] }, \
@@ -183,6 +187,7 @@ int main(void)
         T(0, "quat"), T(1, "convert"), T(2, "euler"), T(3, "interp"), T(4, "gimbal"), T(5, "fxmath"),
         T(6, "fx_orient"), T(7, "regmap"), T(8, "spline"), T(9, "motion"), T(10, "modbus_pack"),
         T(11, "cli_numbers"), T(12, "cli_convert"), T(13, "cli_plan_keys"), T(14, "cli_plan_moves"),
+        T(15, "interp_fx"),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
