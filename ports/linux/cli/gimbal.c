@@ -197,13 +197,22 @@ int qo_cli_gimbal(int argc, char **argv)
         /* Sample times t0 + k/rate computed from k (no accumulated rounding), then the last key
          * time itself if the grid does not land on it. */
         double t0 = t[0], t1 = t[n - 1], s = degrees ? 1.0 / deg : 1.0;
-        unsigned long k, kmax = (unsigned long)floor((t1 - t0) * rate + 1e-9);
-        int extra = t0 + (double)kmax / rate < t1 - 1e-9;
+        double span_n = floor((t1 - t0) * rate + 1e-9);
+        unsigned long k, kmax;
+        int extra;
+        /* As `qorient plan`: more than 1e9 samples is refused (key times up to 3e38 s would
+         * otherwise overflow the conversion to unsigned long, which is undefined). */
+        if (!(span_n <= 1e9)) {
+            fprintf(stderr, "qorient gimbal: %.0f samples: lower --rate\n", span_n + 1.0);
+            goto out;
+        }
+        kmax = (unsigned long)span_n;
+        extra = t0 + (double)kmax / rate < t1 - 1e-9;
         /* After the last key the path holds it; while a rate limit still holds a joint back
          * the samples go on (on the same grid) until every joint has arrived: the motion has
          * ended when the joints are where the path ends, not when the path does. Bounded by
          * one hour of catching up. */
-        unsigned long kcatch = kmax + (unsigned long)(3600.0 * rate);
+        unsigned long kcatch = kmax + (unsigned long)(3600.0 * rate < 1e9 ? 3600.0 * rate : 1e9);
         qo_gimbal_sample_f32 o;
         o.clipped = 0;
         for (k = 0; k <= kmax + (unsigned long)extra || (o.clipped && k <= kcatch); k++) {
