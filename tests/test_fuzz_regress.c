@@ -74,6 +74,9 @@
 #define QO_FUZZ_ENTRY fuzz_one_cli_plan_keys
 #include "../fuzz/fuzz_cli_plan_keys.c"
 #undef QO_FUZZ_ENTRY
+#define QO_FUZZ_ENTRY fuzz_one_cli_gimbal
+#include "../fuzz/fuzz_cli_gimbal.c"
+#undef QO_FUZZ_ENTRY
 #define QO_FUZZ_ENTRY fuzz_one_cli_plan_moves
 #include "../fuzz/fuzz_cli_plan_moves.c"
 #undef QO_FUZZ_ENTRY
@@ -176,6 +179,7 @@ static fuzz_target targets[] = {
     { "cli_plan_keys", fuzz_one_cli_plan_keys, 17 },
     { "cli_plan_moves", fuzz_one_cli_plan_moves, 17 },
     { "interp_fx", fuzz_one_interp_fx, 1 },
+    { "cli_gimbal", fuzz_one_cli_gimbal, 17 },
 };
 
 #define T(i, name) { "replay " name, replay_target, NULL, NULL, &targets[i] }, \
@@ -187,7 +191,7 @@ int main(void)
         T(0, "quat"), T(1, "convert"), T(2, "euler"), T(3, "interp"), T(4, "gimbal"), T(5, "fxmath"),
         T(6, "fx_orient"), T(7, "regmap"), T(8, "spline"), T(9, "motion"), T(10, "modbus_pack"),
         T(11, "cli_numbers"), T(12, "cli_convert"), T(13, "cli_plan_keys"), T(14, "cli_plan_moves"),
-        T(15, "interp_fx"),
+        T(15, "interp_fx"), T(16, "cli_gimbal"),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
