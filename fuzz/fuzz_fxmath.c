@@ -117,13 +117,19 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     {
         int64_t t[4];
         int64_t r;
-        double exact;
         unsigned sh = 8u + (unsigned)((uint32_t)d % 33u);
         t[0] = (int64_t)a * b; t[1] = (int64_t)c * d; t[2] = (int64_t)a * d; t[3] = (int64_t)b * c;
+        int64_t hs = 0, ls = 0, one = (int64_t)1 << sh;
+        int q;
         r = qo_fx_sum_round_i64(t, 4, sh);
-        exact = ((double)t[0] + (double)t[1] + (double)t[2] + (double)t[3]) / ldexp(1.0, (int)sh);
-        QO_FUZZ_CHECK(fabs((double)r - floor(exact + 0.5)) <= 1.0 + fabs(exact) * 1e-15,
-                      "sum_round(shift %u) = %lld, reference %.3f", sh, (long long)r, exact);
+        /* exact reference: each term = h * 2^sh + l with 0 <= l < 2^sh (floor division) */
+        for (q = 0; q < 4; q++) {
+            int64_t h = t[q] >> sh;   /* arithmetic shift: floor */
+            hs += h;
+            ls += t[q] - h * one;
+        }
+        hs += (ls + (one >> 1)) >> sh;   /* round half up */
+        QO_FUZZ_CHECK(r == hs, "sum_round(shift %u) = %lld, exact %lld", sh, (long long)r, (long long)hs);
     }
 
     /* division */
