@@ -5,7 +5,7 @@
  * paths are reached, not only the saturating ones. Properties from the headers: documented
  * statuses; on error the documented value; on QO_OK unit quaternions within a few LSB of
  * unit length, angles in their Q3.28 ranges, rotation matrices orthonormal, the Hamilton
- * product within 0.5 LSB of the exact one (or QO_E_OVERFLOW when it saturated), and Euler
+ * product equal to the exact sum rounded once (or QO_E_OVERFLOW when it saturated), and Euler
  * angles that compose back to q (1e-6 rad, plus 2*margin when locked).
  */
 #include "fuzz_common.h"
@@ -62,6 +62,20 @@ static double fuzz_fxo_angle(qo_quat_q30 q, qo_quat_q30 c)
     double ry = cw * qy + cx * qz - cy * qw - cz * qx;
     double rz = cw * qz - cx * qy + cy * qx - cz * qw;
     return 2.0 * atan2(sqrt(rx * rx + ry * ry + rz * rz), fabs(rw));
+}
+
+/* round((p0 + p1 + p2 + p3) / 2^30), ties toward +inf, exactly (|p| <= 2^62 each). */
+static int64_t fuzz_fxo_sum4(int64_t p0, int64_t p1, int64_t p2, int64_t p3)
+{
+    int64_t p[4], hs = 0, ls = 0;
+    int i;
+    p[0] = p0; p[1] = p1; p[2] = p2; p[3] = p3;
+    for (i = 0; i < 4; i++) {
+        int64_t h = p[i] >> 30;   /* arithmetic shift: floor */
+        hs += h;
+        ls += p[i] - h * ((int64_t)1 << 30);
+    }
+    return hs + ((ls + ((int64_t)1 << 29)) >> 30);
 }
 
 static void fuzz_fxo_euler_ok(qo_quat_q30 q, qo_euler_seq seq, qo_euler_q28 e, qo_euler_info_q28 info,
@@ -129,18 +143,18 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     st = qo_quat_mul_q30_checked(a, b, &o);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_OVERFLOW, "mul_checked status %d", (int)st);
     {
-        double ex[4];
+        /* exact: round(sum / 2^30), ties toward +inf, from a split of each product */
+        int64_t ex[4];
         int sat = 0;
-        ex[0] = ((double)a.w * b.w - (double)a.x * b.x - (double)a.y * b.y - (double)a.z * b.z) / FUZZ_FXO_ONE;
-        ex[1] = ((double)a.w * b.x + (double)a.x * b.w + (double)a.y * b.z - (double)a.z * b.y) / FUZZ_FXO_ONE;
-        ex[2] = ((double)a.w * b.y - (double)a.x * b.z + (double)a.y * b.w + (double)a.z * b.x) / FUZZ_FXO_ONE;
-        ex[3] = ((double)a.w * b.z + (double)a.x * b.y - (double)a.y * b.x + (double)a.z * b.w) / FUZZ_FXO_ONE;
+        ex[0] = fuzz_fxo_sum4((int64_t)a.w * b.w, -(int64_t)a.x * b.x, -(int64_t)a.y * b.y, -(int64_t)a.z * b.z);
+        ex[1] = fuzz_fxo_sum4((int64_t)a.w * b.x, (int64_t)a.x * b.w, (int64_t)a.y * b.z, -(int64_t)a.z * b.y);
+        ex[2] = fuzz_fxo_sum4((int64_t)a.w * b.y, -(int64_t)a.x * b.z, (int64_t)a.y * b.w, (int64_t)a.z * b.x);
+        ex[3] = fuzz_fxo_sum4((int64_t)a.w * b.z, (int64_t)a.x * b.y, -(int64_t)a.y * b.x, (int64_t)a.z * b.w);
         for (k = 0; k < 4; k++) {
             int32_t got = k == 0 ? o.w : k == 1 ? o.x : k == 2 ? o.y : o.z;
-            if (ex[k] >= 2147483647.5) { sat = 1; QO_FUZZ_CHECK(got == INT32_MAX, "mul component %d not saturated", k); }
-            else if (ex[k] < -2147483648.5) { sat = 1; QO_FUZZ_CHECK(got == INT32_MIN, "mul component %d not saturated", k); }
-            else QO_FUZZ_CHECK(fabs(got - ex[k]) <= 0.5 + 1e-6 * fabs(ex[k]) / 2147483648.0 + 1e-3,
-                               "mul component %d = %d, exact %.3f", k, got, ex[k]);
+            if (ex[k] > INT32_MAX) { sat = 1; QO_FUZZ_CHECK(got == INT32_MAX, "mul component %d not saturated", k); }
+            else if (ex[k] < INT32_MIN) { sat = 1; QO_FUZZ_CHECK(got == INT32_MIN, "mul component %d not saturated", k); }
+            else QO_FUZZ_CHECK(got == ex[k], "mul component %d = %d, exact %lld", k, got, (long long)ex[k]);
         }
         if (!sat) QO_FUZZ_CHECK(st == QO_OK, "mul_checked reported overflow without saturation");
         un2 = qo_quat_mul_q30(a, b);
