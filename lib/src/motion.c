@@ -182,12 +182,28 @@ static float root(const rctx *c, float a, float b, float fa, float fb, float xa,
     return b;
 }
 
-/* Minimum-time extremum velocity vc and cruise tc for displacement dp (see motion.h). */
+/* Keeps the candidate profile of smallest duration. */
+static void consider(float vc, float tc, float dur, float *bv, float *bt, float *bd)
+{
+    if (dur < *bd) {
+        *bv = vc;
+        *bt = tc;
+        *bd = dur;
+    }
+}
+
+/* Minimum-time extremum velocity vc and cruise tc for displacement dp (see motion.h).
+ * The displacement D(vc) of the zero-cruise profile is monotone on [-vmax, min(0, vn)] and on
+ * [max(0, vn), vmax], vn being the velocity the start reaches by ramping a0 to zero; between
+ * 0 and vn the profile stops in two stages (velocity change to vc, then stop) and D has one
+ * interior extremum (located by golden section). Every monotone piece whose ends bracket dp
+ * gives a root; the root (or the cruise at +-vmax) of smallest duration wins. */
 static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_limits_f32 *l, float *vc,
                       float *tc)
 {
     rctx c;
-    float flo, fhi, xlo, xhi, x;
+    float pt[5], fp[5], xp[5], vn, bv = 0.0f, bt = 0.0f, bd = INFINITY, x;
+    unsigned np = 0, i;
     c.scurve = scurve;
     c.mode = 0;
     c.v0 = v0;
@@ -195,34 +211,98 @@ static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_
     c.dp = dp;
     c.T = 0.0f;
     c.l = l;
-    fhi = resid(&c, l->vmax, &xhi);
-    if (fhi <= 0.0f) {
-        *vc = l->vmax;
-        *tc = -fhi / l->vmax;
-        return;
+    vn = scurve ? v0 + a0 * fabsf(a0) / (2.0f * l->jmax) : v0;
+    vn = fminf(fmaxf(vn, -l->vmax), l->vmax);
+    pt[np++] = -l->vmax;
+    if (fminf(0.0f, vn) > pt[np - 1]) pt[np++] = fminf(0.0f, vn);
+    if (fmaxf(0.0f, vn) > pt[np - 1]) pt[np++] = fmaxf(0.0f, vn);
+    if (l->vmax > pt[np - 1]) pt[np++] = l->vmax;
+    for (i = 0; i < np; i++) fp[i] = resid(&c, pt[i], &xp[i]);
+    /* Cruising at +-vmax when even the fastest peak falls short. */
+    if (fp[np - 1] <= 0.0f) consider(l->vmax, -fp[np - 1] / l->vmax, xp[np - 1] - fp[np - 1] / l->vmax, &bv, &bt, &bd);
+    if (fp[0] >= 0.0f) consider(-l->vmax, fp[0] / l->vmax, xp[0] + fp[0] / l->vmax, &bv, &bt, &bd);
+    /* Outer pieces first: a single velocity extremum beyond vn (or a reversal) reaches dp
+     * faster than stopping in two stages, so the middle piece is searched only when neither
+     * outer piece brackets dp (e.g. a0 already braking, dp between the two stops' reach). */
+    for (i = 0; i + 1 < np; i++) {
+        int outer = pt[i + 1] <= fminf(0.0f, vn) || pt[i] >= fmaxf(0.0f, vn);
+        if (!outer) continue;
+        if (fp[i] == 0.0f) consider(pt[i], 0.0f, xp[i], &bv, &bt, &bd);
+        if (fp[i + 1] == 0.0f) consider(pt[i + 1], 0.0f, xp[i + 1], &bv, &bt, &bd);
+        if (fp[i] != 0.0f && fp[i + 1] != 0.0f && (fp[i] < 0.0f) != (fp[i + 1] < 0.0f)) {
+            float r = root(&c, pt[i], pt[i + 1], fp[i], fp[i + 1], xp[i], xp[i + 1], &x);
+            consider(r, 0.0f, x, &bv, &bt, &bd);
+        }
     }
-    flo = resid(&c, -l->vmax, &xlo);
-    if (flo >= 0.0f) {
-        *vc = -l->vmax;
-        *tc = flo / l->vmax;
-        return;
+    /* The two-stage middle piece: split it at its extremum when it has one. */
+    if (!(bd < INFINITY) && vn != 0.0f && fabsf(vn) > 1e-6f * l->vmax) {
+        unsigned k = 1; /* pt[k-1], pt[k] = the middle piece [min(0, vn), max(0, vn)] */
+        float lo, hi, fm, xm;
+        while (k + 1 < np && pt[k] != fmaxf(0.0f, vn)) k++;
+        lo = pt[k - 1];
+        hi = pt[k];
+        float dlo = fp[k - 1], dhi = fp[k];
+        fm = resid(&c, 0.5f * (lo + hi), &xm);
+        if (fm > fmaxf(dlo, dhi) || fm < fminf(dlo, dhi)) {
+            const float g = 0.381966f;
+            float sgn = fm > fmaxf(dlo, dhi) ? 1.0f : -1.0f, a = lo, b = hi;
+            float x1 = a + g * (b - a), x2 = b - g * (b - a), f1, f2, dum;
+            unsigned it;
+            f1 = sgn * resid(&c, x1, &dum);
+            f2 = sgn * resid(&c, x2, &dum);
+            for (it = 0; it < 24; it++) {
+                if (f1 > f2) {
+                    b = x2;
+                    x2 = x1;
+                    f2 = f1;
+                    x1 = a + g * (b - a);
+                    f1 = sgn * resid(&c, x1, &dum);
+                } else {
+                    a = x1;
+                    x1 = x2;
+                    f1 = f2;
+                    x2 = b - g * (b - a);
+                    f2 = sgn * resid(&c, x2, &dum);
+                }
+            }
+            for (i = np; i > k; i--) {
+                pt[i] = pt[i - 1];
+                fp[i] = fp[i - 1];
+                xp[i] = xp[i - 1];
+            }
+            pt[k] = f1 > f2 ? x1 : x2;
+            fp[k] = resid(&c, pt[k], &xp[k]);
+            np++;
+        }
     }
-    /* The displacement grows monotonically with vc: one root in (-vmax, vmax). */
-    *vc = root(&c, -l->vmax, l->vmax, flo, fhi, xlo, xhi, &x);
-    *tc = 0.0f;
-    {
-        /* A root a float ulp away from the velocity the start state reaches anyway (vnat)
-         * would add a pulse of 2 sqrt(eps / jmax) seconds: take vnat itself when it is a root to
-         * float precision, and let a short cruise absorb the residual when its sign allows. */
-        float vn = scurve ? v0 + a0 * fabsf(a0) / (2.0f * l->jmax) : v0, fn, xn;
-        if (vn >= -l->vmax && vn <= l->vmax && vn != *vc) {
-            fn = resid(&c, vn, &xn);
-            if (fabsf(fn) <= 1e-6f * (fabsf(dp) + (fabsf(v0) + l->vmax) * xn)) {
-                *vc = vn;
-                if (vn != 0.0f && -fn / vn >= 0.0f) *tc = -fn / vn;
+    if (!(bd < INFINITY)) {
+        for (i = 0; i < np; i++) {
+            if (fp[i] == 0.0f) consider(pt[i], 0.0f, xp[i], &bv, &bt, &bd);
+            if (i + 1 < np && fp[i] != 0.0f && fp[i + 1] != 0.0f && (fp[i] < 0.0f) != (fp[i + 1] < 0.0f)) {
+                float r = root(&c, pt[i], pt[i + 1], fp[i], fp[i + 1], xp[i], xp[i + 1], &x);
+                consider(r, 0.0f, x, &bv, &bt, &bd);
             }
         }
     }
+    {
+        /* A root a float ulp away from the velocity the start state reaches anyway (vn)
+         * would add a pulse of 2 sqrt(eps / jmax) seconds: take vn itself when it is a root to
+         * float precision, and let a short cruise absorb the residual when its sign allows. */
+        float fn, xn, tn = 0.0f;
+        fn = resid(&c, vn, &xn);
+        if (fabsf(fn) <= 2e-7f * (fabsf(dp) + (fabsf(v0) + l->vmax) * xn)) {
+            if (vn != 0.0f && -fn / vn >= 0.0f) tn = -fn / vn;
+            consider(vn, tn, xn + tn - 1e-6f * xn, &bv, &bt, &bd);
+        }
+    }
+    if (!(bd < INFINITY)) {
+        /* Not reachable for finite inputs (the pieces cover [-vmax, vmax] and the cruises
+         * the rest); stop as a defined answer. */
+        bv = 0.0f;
+        bt = 0.0f;
+    }
+    *vc = bv;
+    *tc = bt;
 }
 
 /* A profile of exactly duration T >= the minimum: lower |vc| from vc* toward 0 (the residual
