@@ -346,6 +346,10 @@ int qo_cli_plan_moves(int argc, char **argv)
                 fprintf(stderr, "qorient plan: line %ld: no straight line from the current state, time sync used\n",
                         ln);
             for (i = 0; i < pl.n; i++)
+                if (pl.unsynced & ((uint32_t)1 << i))
+                    fprintf(stderr, "qorient plan: line %ld: joint %zu cannot take the common duration from its "
+                            "state; it arrives early\n", ln, i + 1);
+            for (i = 0; i < pl.n; i++)
                 if (mask & ((uint32_t)1 << i))
                     fprintf(stderr, "qorient plan: line %ld: joint %zu target %g clamped to %g\n", ln, i + 1,
                             num[i + 1], (double)pl.joints[i].goal);
