@@ -32,17 +32,24 @@
  * With the target at rest, every such profile is: a fastest velocity change from (v0, a0) to a
  * velocity extremum vc with a = 0 (<= 3 phases: ramp, hold amax, ramp), a cruise at vc (only
  * when |vc| = vmax), and a fastest stop from (vc, 0) to (0, 0) (<= 3 phases). The planner finds
- * the vc whose displacement equals the distance (the displacement is monotone in vc; solved on
- * [-vmax, vmax] by the Illinois method: regula falsi that keeps a bracket like bisection, at most
- * QO_MOTION_BISECT_ITERS steps, typically 5-12), and cruises at +-vmax when
- * even vc = +-vmax falls short. For TRAPEZOID this family provably contains the minimum-time
- * solution (double integrator, state bound on v). For SCURVE it contains the minimum-time
- * rest-to-rest solution (checked against the closed form in tests/test_motion.c) and, for moving
- * starts, the profiles of Reflexxes Type IV for a target at rest; tests/test_motion.c also checks
- * numerically that no profile of the family with a shorter duration reaches the target, and
+ * the vc whose displacement D(vc) equals the distance. D is monotone on [-vmax, min(0, vn)] and
+ * on [max(0, vn), vmax], vn being the velocity reached by ramping a0 straight to zero; between
+ * 0 and vn the joint stops in two stages and D has one interior extremum. The outer pieces are
+ * solved first (a single extremum beyond vn, or a reversal, is the faster way when it exists);
+ * the middle piece is split at its extremum (golden section) and solved only when they give no
+ * root. Each root is found by the Illinois method (regula falsi that keeps a bracket like
+ * bisection), at most QO_MOTION_BISECT_ITERS steps, typically 5-12; the shortest candidate wins,
+ * and a cruise at +-vmax is used when even vc = +-vmax falls short. For TRAPEZOID this family
+ * provably contains the minimum-time solution (double integrator, state bound on v). For SCURVE
+ * it contains the minimum-time rest-to-rest solution (checked against the closed form in
+ * tests/test_motion.c) and, for moving starts, the profiles of Reflexxes Type IV for a target at
+ * rest. Evidence for moving SCURVE starts: tests/test_motion.c checks that no member of the
+ * family (dense double-precision search over vc, cruise at any vc, refined near vn) is shorter;
  * bench/bench_motion.c solves a linear program over ALL piecewise-constant jerk profiles (40
- * steps) and finds none 1 % shorter. A general proof for moving SCURVE starts is NOT claimed
- * (Ruckig lists further profile shapes for general target states).
+ * steps, limits checked at step ends and mid-steps, any solution verified densely) and finds
+ * none 1 % shorter (that check caught, and now guards, a case where the two-stage stop had been
+ * chosen over a faster pulse). A general proof for moving SCURVE starts is NOT claimed (Ruckig
+ * lists further profile shapes for general target states).
  *
  * Synchronisation (settings.sync):
  *   - QO_MOTION_SYNC_NONE: each joint takes its own minimum time.
