@@ -60,7 +60,8 @@ typedef struct qo_motion_table_q16 {
  * Samples every joint at local time t (Q16.16 seconds since the plan start) into n-element
  * arrays: positions (Q16.16 u), velocities (Q16.16 u/s), accelerations (Q16.16 u/s^2); vel and
  * acc may be NULL.
- * Returns QO_OK; QO_E_NULL (table, its segs or pos NULL: outputs untouched if NULL, else 0);
+ * Returns QO_OK; QO_E_NULL (table or pos NULL: nothing is written; table->segs NULL: every
+ * output is 0);
  * QO_E_STATE (table->n == 0); QO_E_RANGE (t < 0: the state at t = 0 is given);
  * QO_E_OVERFLOW (a value saturated to the Q16.16 range; the others are still exact).
  */
