@@ -745,6 +745,43 @@ static void test_nonfinite_brakes(void **state)
     }
 }
 
+/* qo_motion_brake_f32: the fastest stop from a moving state, continuous, goals become the
+ * rest positions, later targets plan from rest again. */
+static void test_brake_api(void **state)
+{
+    int prof;
+    (void)state;
+    for (prof = 0; prof < 2; prof++) {
+        qo_motion_planner_f32 pl;
+        qo_motion_joint_f32 jts[2];
+        qo_motion_limits_f32 l[2] = { qo_motion_limits_default, qo_motion_limits_default };
+        qo_motion_settings_f32 st = { (qo_motion_profile)prof, QO_MOTION_SYNC_TIME };
+        float p0[2] = { 0, 0 }, tg[2] = { 10, -4 }, b[3][2], a[3][2], pos[2], vel[2];
+        size_t i;
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 2, l, p0, 0.0f, &st), QO_OK);
+        assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, tg, NULL), QO_OK);
+        qo_motion_sample_f32(&pl, 3.0f, b[0], b[1], b[2]);
+        assert_int_equal(qo_motion_brake_f32(&pl, 3.0f), QO_OK);
+        assert_true(pl.braking);
+        assert_int_equal(qo_motion_sync_used(&pl), QO_MOTION_SYNC_NONE);
+        qo_motion_sample_f32(&pl, 3.0f, a[0], a[1], a[2]);
+        for (i = 0; i < 2; i++) {
+            assert_true(a[0][i] == b[0][i] && a[1][i] == b[1][i]);
+            assert_true(jts[i].goal == jts[i].final);
+            /* stops well short of the target */
+            assert_true(fabs(jts[i].final - tg[i]) > 1.0);
+        }
+        check_plan(&pl, "brake api", prof, 1000);
+        assert_false(qo_motion_done_f32(&pl, 3.0f));
+        assert_true(qo_motion_done_f32(&pl, qo_motion_end_time_f32(&pl)));
+        qo_motion_sample_f32(&pl, 100.0f, pos, vel, NULL);
+        assert_true(vel[0] == 0.0f && vel[1] == 0.0f);
+        assert_int_equal(qo_motion_brake_f32(&pl, 1.0f), QO_E_ORDER);
+        assert_int_equal(qo_motion_brake_f32(&pl, NAN), QO_E_NONFINITE);
+        assert_int_equal(qo_motion_brake_f32(NULL, 1.0f), QO_E_NULL);
+    }
+}
+
 static void test_bad_args(void **state)
 {
     qo_motion_planner_f32 pl;
@@ -883,6 +920,10 @@ static void test_q16_sampler(void **state)
         assert_int_equal(qo_motion_sample_q16(NULL, 0, p, NULL, NULL), QO_E_NULL);
         assert_int_equal(qo_motion_sample_q16(&tab, 0, p, NULL, NULL), QO_E_STATE);
         assert_int_equal(qo_motion_export_q16(NULL, &tab, NULL, 0), QO_E_NULL);
+        tab.n = 1;
+        p[0] = 77;
+        assert_int_equal(qo_motion_sample_q16(&tab, 0, p, NULL, NULL), QO_E_NULL);
+        assert_int_equal(p[0], 0);
     }
     {
         qo_motion_planner_f32 pl;
@@ -1027,6 +1068,7 @@ int main(void)
         cmocka_unit_test(test_wrap_short_way),
         cmocka_unit_test(test_clamp_report),
         cmocka_unit_test(test_nonfinite_brakes),
+        cmocka_unit_test(test_brake_api),
         cmocka_unit_test(test_bad_args),
         cmocka_unit_test(test_edges),
         cmocka_unit_test(test_q16_sampler),
