@@ -79,12 +79,13 @@ static int parse_list(const char *arg, const char *opt, double *out, size_t *n)
     return 0;
 }
 
-/* Spreads a 1- or N-element list to N joints. */
-static int spread(const char *opt, const double *in, size_t nin, size_t n, double *out)
+/* Spreads a 1- or N-element list to N joints (N comes from the first line, `ln`). */
+static int spread(const char *opt, const double *in, size_t nin, size_t n, double *out, long ln)
 {
     size_t i;
     if (nin != 1 && nin != n) {
-        fprintf(stderr, "qorient plan: %s has %zu values for %zu joints (give 1 or %zu)\n", opt, nin, n, n);
+        fprintf(stderr, "qorient plan: line %ld has %zu joints but %s has %zu values (give 1 or %zu)\n", ln, n, opt,
+                nin, n);
         return -1;
     }
     for (i = 0; i < n; i++) out[i] = in[nin == 1 ? 0 : i];
@@ -227,6 +228,22 @@ int qo_cli_plan_moves(int argc, char **argv)
         fputs(plan_usage, stderr);
         return 2;
     }
+    {
+        /* Limits must be > 0 (finite was checked while parsing): say so before reading input. */
+        const struct { const char *name; const double *v; size_t n; } lists[3] = {
+            { "--vmax", vl, nv }, { "--amax", al, na }, { "--jmax", jl, nj }
+        };
+        size_t li, i;
+        for (li = 0; li < 3; li++) {
+            for (i = 0; i < lists[li].n; i++) {
+                if (!(lists[li].v[i] > 0.0)) {
+                    fprintf(stderr, "qorient plan: %s value %zu is %g: limits must be > 0\n", lists[li].name, i + 1,
+                            lists[li].v[i]);
+                    return 2;
+                }
+            }
+        }
+    }
     if (optind + 1 < argc) {
         fprintf(stderr, "qorient plan: one input file at most\n");
         return 2;
@@ -277,9 +294,9 @@ int qo_cli_plan_moves(int argc, char **argv)
             double v[PM_MAX], a[PM_MAX], j[PM_MAX], lo[PM_MAX], hi[PM_MAX];
             float start[PM_MAX];
             qo_status st;
-            if (spread("--vmax", vl, nv, nn, v) || spread("--amax", al, na, nn, a) ||
-                (nj && spread("--jmax", jl, nj, nn, j)) || (nmn && spread("--min", mn, nmn, nn, lo)) ||
-                (nmx && spread("--max", mx, nmx, nn, hi))) {
+            if (spread("--vmax", vl, nv, nn, v, ln) || spread("--amax", al, na, nn, a, ln) ||
+                (nj && spread("--jmax", jl, nj, nn, j, ln)) || (nmn && spread("--min", mn, nmn, nn, lo, ln)) ||
+                (nmx && spread("--max", mx, nmx, nn, hi, ln))) {
                 status = 2;
                 break;
             }
@@ -296,8 +313,8 @@ int qo_cli_plan_moves(int argc, char **argv)
                     status = 2;
                 }
                 if (lim[i].pmin > lim[i].pmax) {
-                    fprintf(stderr, "qorient plan: joint %zu: --min %g > --max %g\n", i + 1, (double)lim[i].pmin,
-                            (double)lim[i].pmax);
+                    fprintf(stderr, "qorient plan: line %ld: joint %zu: --min %g > --max %g\n", ln, i + 1,
+                            (double)lim[i].pmin, (double)lim[i].pmax);
                     status = 2;
                 }
                 start[i] = (float)num[i + 1];
