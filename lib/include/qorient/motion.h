@@ -102,7 +102,7 @@
  * rest; the remaining step is the solver residual (~1e-7 relative in position, float32
  * rounding in v and a).
  * Absolute times are float32 too: keep the caller's time origin recent (ulp(1000 s) = 61 us).
- * Resources (arm-none-eabi-gcc -O2, Cortex-M4F): ~6.4 KB code, worst stack of a re-plan ~1 KB
+ * Resources (arm-none-eabi-gcc -O2, Cortex-M4F): ~8.9 KB code, worst stack of a re-plan ~1.3 KB
  * (independent of N: per-joint scratch lives in the joint struct), 236 B per joint; no heap, no
  * static mutable state: planners never interfere. A re-plan costs O(N) root searches.
  */
