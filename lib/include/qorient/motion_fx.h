@@ -15,7 +15,7 @@
  *   - outputs: Q16.16 user units (u, u/s, u/s^2), range [-32768, 32768), LSB 1.53e-5.
  *   - segment coefficients: int64 Q31.32 (value = raw / 2^32).
  *
- * Code: ~1.9 KB on Cortex-M0+ (arm-none-eabi-gcc -O2), under 100 B of stack.
+ * Code: ~1.9 KB on Cortex-M0+ (arm-none-eabi-gcc -O2), ~130 B of stack.
  *
  * Each joint has QO_MOTION_Q16_SEGS segments (unused ones repeat the final rest segment); a
  * segment k holds its start time tk and c0 = p, c1 = v, c2 = a/2, c3 = j/6 at tk, and the
