@@ -64,8 +64,9 @@
  *     1e-3..1e3; never in bench/bench_motion.c's cases).
  *   - QO_MOTION_SYNC_PHASE: straight line in joint space: p_i(t) = p0_i + d_i s(t), one scalar
  *     profile s: 0 -> 1 with limits min_i(vmax_i/|d_i|) etc. Possible only when every joint's
- *     (v0, a0) is proportional to its displacement d_i (all at rest is the usual case, within a
- *     relative 1e-5 of the joint's vmax / amax); otherwise the plan falls back to TIME and
+ *     (v0, a0) is proportional to its displacement d_i (all at rest is the usual case), within
+ *     1e-6 of max(vmax, |v0|) and max(amax, |a0|), which bounds the velocity / acceleration
+ *     step the straight line may introduce; otherwise the plan falls back to TIME and
  *     qo_motion_sync_used() says so. The straight line can take longer than TIME sync, because
  *     the binding limit may come from different joints for v, a and j.
  *
