@@ -782,6 +782,32 @@ static void test_brake_api(void **state)
     }
 }
 
+/* Shifting the time origin keeps the motion: the same instant samples the same state. */
+static void test_shift_time(void **state)
+{
+    qo_motion_planner_f32 pl;
+    qo_motion_joint_f32 jts[2];
+    qo_motion_limits_f32 l[2] = { qo_motion_limits_default, qo_motion_limits_default };
+    float p0[2] = { 0, 1 }, tg[2] = { 3, -2 }, b[3][2], a[3][2];
+    int k;
+    size_t i;
+    (void)state;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 2, l, p0, 1000.0f, NULL), QO_OK);
+    assert_int_equal(qo_motion_set_target_f32(&pl, 1000.0f, tg, NULL), QO_OK);
+    for (k = 0; k < 5; k++) {
+        float t = 1000.0f + 0.75f * (float)k;
+        qo_motion_sample_f32(&pl, t, b[0], b[1], b[2]);
+        assert_int_equal(qo_motion_shift_time_f32(&pl, 1000.0f), QO_OK);
+        qo_motion_sample_f32(&pl, t - 1000.0f, a[0], a[1], a[2]);
+        for (i = 0; i < 2; i++)
+            assert_true(a[0][i] == b[0][i] && a[1][i] == b[1][i] && a[2][i] == b[2][i]);
+        assert_int_equal(qo_motion_shift_time_f32(&pl, -1000.0f), QO_OK);
+    }
+    assert_int_equal(qo_motion_shift_time_f32(&pl, NAN), QO_E_NONFINITE);
+    assert_true(pl.t0 == 1000.0f);
+    assert_int_equal(qo_motion_shift_time_f32(NULL, 1.0f), QO_E_NULL);
+}
+
 static void test_bad_args(void **state)
 {
     qo_motion_planner_f32 pl;
@@ -1069,6 +1095,7 @@ int main(void)
         cmocka_unit_test(test_clamp_report),
         cmocka_unit_test(test_nonfinite_brakes),
         cmocka_unit_test(test_brake_api),
+        cmocka_unit_test(test_shift_time),
         cmocka_unit_test(test_bad_args),
         cmocka_unit_test(test_edges),
         cmocka_unit_test(test_q16_sampler),

@@ -806,6 +806,15 @@ int qo_motion_done_f32(const qo_motion_planner_f32 *pl, float t)
     return t - pl->t0 >= pl->duration;
 }
 
+qo_status qo_motion_shift_time_f32(qo_motion_planner_f32 *pl, float dt)
+{
+    if (pl == NULL) return QO_E_NULL;
+    if (pl->n == 0 || pl->joints == NULL) return QO_E_STATE;
+    if (!isfinite(dt)) return QO_E_NONFINITE;
+    pl->t0 -= dt;
+    return QO_OK;
+}
+
 qo_motion_sync qo_motion_sync_used(const qo_motion_planner_f32 *pl)
 {
     return pl ? pl->sync_used : QO_MOTION_SYNC_NONE;

@@ -13,6 +13,7 @@
  *   qo_motion_end_time_f32          absolute time at which every joint is at rest
  *   qo_motion_done_f32              1 once t has reached the end time
  *   qo_motion_sync_used             which synchronisation the last plan really used
+ *   qo_motion_shift_time_f32        move the time origin (keep float32 times small in long runs)
  *   qo_motion_export_q16            the current plan as a fixed-point table (see motion_fx.h)
  *
  * What it does. Each joint is a scalar in the user's unit (rad, deg, counts: "u") with limits
@@ -261,6 +262,16 @@ int qo_motion_done_f32(const qo_motion_planner_f32 *pl, float t);
 /* The synchronisation the current plan really used (PHASE may have fallen back to TIME; a
  * safety stop reports NONE). NONE for NULL. */
 qo_motion_sync qo_motion_sync_used(const qo_motion_planner_f32 *pl);
+
+/*
+ * Moves the planner's time origin by dt seconds: afterwards the instant that was time t is
+ * time t - dt (only the stored plan start moves; the motion is unchanged). Long-running callers
+ * use it to keep their float32 times small (ulp(1000 s) = 61 us), e.g. shifting by the current
+ * time at each re-plan and then re-planning at time 0.
+ * Returns QO_OK; QO_E_NULL; QO_E_STATE (not initialised); QO_E_NONFINITE (dt NaN/Inf, nothing
+ * changed).
+ */
+qo_status qo_motion_shift_time_f32(qo_motion_planner_f32 *pl, float dt);
 
 /*
  * Exports the current plan to a fixed-point table for qo_motion_sample_q16 (motion_fx.h):

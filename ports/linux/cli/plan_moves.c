@@ -94,7 +94,8 @@ static int spread(const char *opt, const double *in, size_t nin, size_t n, doubl
 
 struct pm_out {
     qo_motion_planner_f32 *pl;
-    double t_origin;           /* input time of the first line: the core's time 0 */
+    double t_first;            /* input time of the first line: the output grid's anchor */
+    double t_origin;           /* input time that is the core's time 0 (the last re-plan) */
     double t_next;             /* next output time */
     double period;
     long k;                    /* samples written */
@@ -138,7 +139,7 @@ static void emit_until(struct pm_out *o, double until)
     while (o->t_next < until) {
         emit_row(o, o->t_next);
         o->k++;
-        o->t_next = o->t_origin + (double)o->k * o->period;
+        o->t_next = o->t_first + (double)o->k * o->period;
     }
 }
 
@@ -338,6 +339,7 @@ int qo_cli_plan_moves(int argc, char **argv)
             started = 1;
             t_prev = num[0];
             o->t_origin = num[0];
+            o->t_first = num[0];
             o->t_next = num[0];
             o->k = 0;
             after_plan(o);
@@ -354,7 +356,10 @@ int qo_cli_plan_moves(int argc, char **argv)
             uint32_t mask = 0;
             qo_status st;
             for (i = 0; i < pl.n; i++) tg[i] = (float)num[i + 1];
-            st = qo_motion_set_target_f32(&pl, (float)(num[0] - o->t_origin), tg, &mask);
+            /* Keep the core's float32 times small in long runs: time 0 = this re-plan. */
+            qo_motion_shift_time_f32(&pl, (float)(num[0] - o->t_origin));
+            o->t_origin = num[0];
+            st = qo_motion_set_target_f32(&pl, 0.0f, tg, &mask);
             if (st != QO_OK) {
                 fprintf(stderr, "qorient plan: line %ld: %s\n", ln, qo_status_str(st));
                 status = 1;
@@ -381,7 +386,7 @@ int qo_cli_plan_moves(int argc, char **argv)
         while (!qo_motion_done_f32(&pl, (float)(o->t_next - o->t_origin))) {
             emit_row(o, o->t_next);
             o->k++;
-            o->t_next = o->t_origin + (double)o->k * o->period;
+            o->t_next = o->t_first + (double)o->k * o->period;
         }
         emit_row(o, o->t_next);
     } else if (!started && status == 0) {
