@@ -1002,7 +1002,8 @@ static void test_fx_normalisation(void **state)
 {
     static const qo_quat_q30 edge[] = {
         { 1, 0, 0, 0 }, { 0, 0, 0, -1 }, { 1, 1, 0, 0 }, { 1, -1, 1, -1 },
-        { INT32_MIN, INT32_MIN, INT32_MIN, INT32_MIN }, { INT32_MAX, INT32_MAX, INT32_MAX, INT32_MAX },
+        { INT32_MIN, INT32_MIN, INT32_MIN, INT32_MIN },
+        { INT32_MAX, INT32_MAX, INT32_MAX, INT32_MAX },
         { INT32_MIN, 0, 0, 1 }, { INT32_MAX, INT32_MIN, 3, -7 }, { 3, 0, 0, 4 },
         { QO_Q30_ONE / 2, QO_Q30_ONE / 2, QO_Q30_ONE / 2, QO_Q30_ONE / 2 },
     };

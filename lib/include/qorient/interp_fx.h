@@ -50,9 +50,9 @@
  *     small th is.
  *   - No heap, no static state; all storage is the caller's or a bounded stack array.
  *   - Cost on Cortex-M0+ (arm-none-eabi-gcc -O2, tools/core-check.sh -fstack-usage): 8.3 kB of
- *     code for the module (plus fxmath, quat_fx), deepest stack path about 0.9 kB (qo_quat_bezier_q30 ->
- *     de Casteljau -> slerp -> normalise). No division by a run-time value other than 64-bit
- *     integer divisions (__aeabi_uldivmod on Cortex-M0+).
+ *     code for the module (plus fxmath, quat_fx), deepest stack path about 0.9 kB
+ *     (qo_quat_bezier_q30 -> de Casteljau -> slerp -> normalise). The only divisions are
+ *     64-bit integer ones (__aeabi_uldivmod on Cortex-M0+).
  */
 #ifndef QORIENT_INTERP_FX_H
 #define QORIENT_INTERP_FX_H
