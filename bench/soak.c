@@ -15,10 +15,11 @@
  * unit quaternions (splitmix64, fixed seed) rounded to float, against the same product in
  * double (tests/common/ref.c) of the same float r_i. Variants: never renormalised, and
  * renormalised with qo_quat_normalize_f32 every 1e6, 1000 and 1 steps. Figures per variant:
- * |norm - 1| at the end and its maximum, the norm relative to the double product's norm
- * (which itself drifts, as the float r_i are not exactly unit), and the orientation error
+ * |norm - 1| at the end and its maximum (sampled every 1000 steps), and the orientation error
  * (angle between the float and double results, both normalised) at the end and its maximum
- * at the 1e5-step checkpoints.
+ * at the 1e5-step checkpoints. The double product is renormalised every 1000 steps (the float
+ * r_i are not exactly unit, so its norm would drift too; that is not the question); its final
+ * norm is printed as a check.
  *
  * Usage: soak [--short]    --short: 2e4 ticks and 1e5 compositions (for valgrind).
  * Exit status 1 when an error counter is not 0, memory grew between the middle and the end,
