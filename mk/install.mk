@@ -170,8 +170,11 @@ install-check: all shared
 	    $$($(QO_CHK_PC) --libs qorient-ports | sed 's/-lqorient\b/-Wl,-Bstatic -lqorient -Wl,-Bdynamic/') \
 	    $$($(PKG_CONFIG) --libs libmodbus libgpiod inih)
 	$(QO_CHK)/consumer_ports
-	@LC_ALL=C.UTF-8 MANWIDTH=80 man -l $(QO_CHK_ROOT)$(MANDIR)/man1/qorient.1 2>&1 >/dev/null | \
-	    { ! grep . ; } || { echo "install-check: FAIL: man -l reported the above"; exit 1; }
+	@if command -v groff >/dev/null 2>&1; then \
+	    w=$$(groff -man -Tutf8 -ww -z $(QO_CHK_ROOT)$(MANDIR)/man1/qorient.1 2>&1); \
+	    test -z "$$w" || { echo "install-check: FAIL: groff -man -ww: $$w"; exit 1; }; \
+	    echo "install-check: man1/qorient.1 formats without a warning (groff -man -ww)"; \
+	 else echo "install-check: groff not installed: man1/qorient.1 not formatted"; fi
 	$(QO_CHK_ROOT)$(BINDIR)/qorient version
 	@echo "install-check: all ok"
 

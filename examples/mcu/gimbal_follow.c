@@ -25,7 +25,9 @@
  *
  * Porting: everything that touches hardware is between the HARDWARE markers below
  * (hw_systick_start, hw_pwm_write_us, hw_lock_led, hw_setpoint_poll, hw_wait_for_interrupt).
- * The SysTick registers are architectural (the same on every Cortex-M); the PWM is your
+ * Define QO_EX_EXTERNAL_HW to leave that block out and define those five static functions
+ * before including this file: tests/test_example_mcu.c runs the example on the host that way,
+ * with a simulated clock and its own setpoints. The SysTick registers are architectural (the same on every Cortex-M); the PWM is your
  * timer's. Your vendor's startup file provides the vector table that calls SysTick_Handler
  * (on the RP2040 SDK the name is isr_systick). The demo setpoint source replays a fixed list.
  *
@@ -49,7 +51,7 @@
 #define QO_EX_TICK_HZ 1024u           /* SysTick rate; 2^16 / 1024 = 64 exactly */
 #define QO_EX_TICK_Q16 64             /* Q16.16 seconds per tick */
 #define QO_EX_TICK_MAX ((1u << 25) - 1u) /* ticks that still fit Q16.16 seconds (32767 s) */
-#define QO_EX_SETPOINT_TICKS (2u * QO_EX_TICK_HZ) /* demo: a new setpoint every 2 s */
+#define QO_EX_SETPOINT_TICKS (3u * QO_EX_TICK_HZ) /* demo: a new setpoint every 3 s */
 
 /* A constant Q1.30 value from a decimal literal, rounded at compile time (no run-time float). */
 #define QO_EX_Q30(x) ((qo_q30)((x) >= 0 ? (x) * 1073741824.0 + 0.5 : (x) * 1073741824.0 - 0.5))
@@ -79,6 +81,7 @@ static const struct gimbal_plan *volatile g_active;
 static volatile uint32_t g_ticks;
 
 /* ================================ HARDWARE (board-specific) ================================ */
+#ifndef QO_EX_EXTERNAL_HW
 
 #ifndef QO_EX_CPU_HZ
 #define QO_EX_CPU_HZ 48000000u        /* core clock that feeds SysTick */
@@ -143,6 +146,7 @@ static int hw_setpoint_poll(qo_quat_q30 *q)
     return 1;
 }
 
+#endif /* QO_EX_EXTERNAL_HW */
 /* ============================== END HARDWARE ============================================== */
 
 /* Q16.16 radians -> servo pulse in us, clamped to the servo's range. */
@@ -183,6 +187,17 @@ static const qo_motion_limits_f32 g_limits[QO_EX_AXES] = {
     { 3.0f, 20.0f, 200.0f, -1.66f, 1.66f, 0.0f },
     { 4.0f, 30.0f, 300.0f, -0.8f, 0.8f, 0.0f },
 };
+
+/* An angle and the same angle +-2 pi give the same pose. When the solution nearest the previous
+ * angles lies beyond a joint's range, the one a turn back is taken if it is inside: a yaw joint
+ * with end stops then goes the long way round instead of pressing against its stop. */
+static qo_q28 into_range(qo_q28 a, const qo_motion_limits_f32 *lim)
+{
+    const qo_q28 lo = qo_q28_from_f32(lim->pmin), hi = qo_q28_from_f32(lim->pmax);
+    if (a > hi && (int64_t)a - QO_Q28_TWO_PI >= lo) return a - QO_Q28_TWO_PI;
+    if (a < lo && (int64_t)a + QO_Q28_TWO_PI <= hi) return a + QO_Q28_TWO_PI;
+    return a;
+}
 
 /* Exports the planner's current plan into the table the interrupt is not using and publishes
  * it. t0_tick is the tick the plan's local time 0 corresponds to. */
@@ -249,9 +264,9 @@ int main(void)
         if (st != QO_OK && st != QO_E_OVERFLOW) continue;
         hw_lock_led(info.locked);
 
-        target[0] = qo_q28_to_f32(e.a1);
-        target[1] = qo_q28_to_f32(e.a2);
-        target[2] = qo_q28_to_f32(e.a3);
+        target[0] = qo_q28_to_f32(into_range(e.a1, &g_limits[0]));
+        target[1] = qo_q28_to_f32(into_range(e.a2, &g_limits[1]));
+        target[2] = qo_q28_to_f32(into_range(e.a3, &g_limits[2]));
         /* Re-plan from the state at t_now (continuous position, velocity, acceleration).
          * The interrupt keeps sampling the old table until publish(): the two plans share the
          * state at t_now, and in the few ms the re-plan takes they part by only ~jmax dt^3 / 6.
