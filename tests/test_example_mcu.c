@@ -84,7 +84,10 @@ static int hw_setpoint_poll(qo_quat_q30 *q)
     return 1;
 }
 
-static double pulse_rad(uint32_t us) { return ((double)us - 1500.0) / (1000.0 / 3.14159265358979323846); }
+static double pulse_rad(uint32_t us)
+{
+    return ((double)us - 1500.0) / (1000.0 / 3.14159265358979323846);
+}
 
 /* The pose expected just before setpoint k+1: setpoint k, or for a corrupt frame the one before. */
 static const struct setpoint *expected(size_t k)
@@ -112,14 +115,14 @@ static void check_pose(size_t k)
     }
     if (e->pitch == 90.0) { /* lock: roll held at the previous setpoint's -10 deg, LED on */
         if (fabs(pulse_rad(sim_pwm[2]) - (-10.0 * DEG)) > 0.004 || !sim_led) {
-            print_error("setpoint %zu at gimbal lock: roll %.4f rad (want the held -0.1745), LED %d\n",
-                        k, pulse_rad(sim_pwm[2]), sim_led);
+            print_error("setpoint %zu at gimbal lock: roll %.4f rad (want the held -0.1745), "
+                        "LED %d\n", k, pulse_rad(sim_pwm[2]), sim_led);
             sim_failures++;
         }
     }
     if (e->yaw == -160.0 && pulse_rad(sim_pwm[0]) > 0.0) {
-        print_error("setpoint %zu: yaw %.4f rad: pressed against the +stop instead of going round\n",
-                    k, pulse_rad(sim_pwm[0]));
+        print_error("setpoint %zu: yaw %.4f rad: pressed against the +stop instead of going "
+                    "round\n", k, pulse_rad(sim_pwm[0]));
         sim_failures++;
     }
 }
@@ -134,10 +137,12 @@ static void hw_wait_for_interrupt(void)
         const uint32_t step_max = 3u;
         uint32_t d;
         if (sim_pwm[a] < 500u || sim_pwm[a] > 2500u) {
-            print_error("tick %u: axis %u pulse %u us outside 500..2500\n", (unsigned)g_ticks, a, sim_pwm[a]);
+            print_error("tick %u: axis %u pulse %u us outside 500..2500\n", (unsigned)g_ticks, a,
+                        sim_pwm[a]);
             sim_failures++;
         }
-        d = sim_pwm[a] > sim_prev_pwm[a] ? sim_pwm[a] - sim_prev_pwm[a] : sim_prev_pwm[a] - sim_pwm[a];
+        d = sim_pwm[a] > sim_prev_pwm[a] ? sim_pwm[a] - sim_prev_pwm[a]
+                                         : sim_prev_pwm[a] - sim_pwm[a];
         if (sim_have_pwm && d > step_max) {
             print_error("tick %u: axis %u jumped %u us (%u -> %u)\n", (unsigned)g_ticks, a, d,
                         sim_prev_pwm[a], sim_pwm[a]);
@@ -146,7 +151,8 @@ static void hw_wait_for_interrupt(void)
         sim_prev_pwm[a] = sim_pwm[a];
     }
     sim_have_pwm = 1;
-    if (g_ticks % SIM_PERIOD == SIM_PERIOD - 1u && g_ticks > SIM_PERIOD) check_pose(g_ticks / SIM_PERIOD - 1u);
+    if (g_ticks % SIM_PERIOD == SIM_PERIOD - 1u && g_ticks > SIM_PERIOD)
+        check_pose(g_ticks / SIM_PERIOD - 1u);
     if (g_ticks >= (SIM_N + 1u) * SIM_PERIOD) longjmp(sim_done, 1);
 }
 

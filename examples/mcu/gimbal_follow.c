@@ -6,14 +6,15 @@
  *   - Setpoints arrive as quaternions in Q1.30 (from a host link, a joystick, a sensor fusion).
  *     qo_quat_to_euler_near_q30 (euler_fx.h) turns each one into the gimbal's joint angles -
  *     yaw, pitch, roll: intrinsic ZYX, outer to inner axis - choosing the solution nearest the
- *     previous setpoint's angles, so no joint takes the long way round, and inside the hold band
- *     around pitch = +-90 deg (gimbal lock) the roll joint is held where it is.
+ *     previous setpoint's angles (so no joint turns further than it must; a joint with end stops
+ *     goes round the other way when the short way is beyond its stop, see into_range), and
+ *     inside the hold band around pitch = +-90 deg (gimbal lock) the roll joint stays put.
  *   - The main loop re-plans a jerk-limited move of the three joints from their current
  *     position, velocity and acceleration (motion.h, float32: no jump when a setpoint arrives
  *     mid-move) and exports it as a fixed-point table (qo_motion_export_q16).
  *   - The SysTick interrupt samples that table with qo_motion_sample_q16 (motion_fx.h): integer
  *     arithmetic only, so on a Cortex-M0+ without FPU the interrupt never runs soft-float code
- *     and its duration does not depend on the plan. It writes the angles as servo pulses.
+ *     and its duration is short and bounded. It writes the angles as servo pulses.
  *   - Two tables and one pointer: the main loop fills the table the interrupt is NOT reading and
  *     then publishes it with one aligned 32-bit store; the interrupt reads the pointer once per
  *     tick. On a single core that is all the synchronisation needed (no lock, no disabling of
@@ -27,16 +28,18 @@
  * (hw_systick_start, hw_pwm_write_us, hw_lock_led, hw_setpoint_poll, hw_wait_for_interrupt).
  * Define QO_EX_EXTERNAL_HW to leave that block out and define those five static functions
  * before including this file: tests/test_example_mcu.c runs the example on the host that way,
- * with a simulated clock and its own setpoints. The SysTick registers are architectural (the same on every Cortex-M); the PWM is your
- * timer's. Your vendor's startup file provides the vector table that calls SysTick_Handler
- * (on the RP2040 SDK the name is isr_systick). The demo setpoint source replays a fixed list.
+ * with a simulated clock and its own setpoints. The SysTick registers are architectural (the
+ * same on every Cortex-M); the PWM is your timer's. Your vendor's startup file provides the
+ * vector table that calls SysTick_Handler (on the RP2040 SDK the name is isr_systick). The
+ * demo setpoint source replays a fixed list.
  *
  * Build (what tools/check-examples.sh does), e.g. for an RP2040 / STM32G0 class part:
  *   arm-none-eabi-gcc -mcpu=cortex-m0plus -mthumb -mfloat-abi=soft -std=c99 -O2 -Wall -Wextra \
  *       -Werror -ffp-contract=off -Ilib/include -c examples/mcu/gimbal_follow.c
- * then link with the core (every .c file in lib/src, or the CMake target `qorient`), -lm and your startup
- * code. Cost: the re-plan runs in float32 (software floating point on an M0+) in the main loop,
- * never in the interrupt; the interrupt's sampler is the integer code of motion_fx.c.
+ * then link with the core (every .c file in lib/src, or the CMake target `qorient`), -lm and
+ * your startup code. Cost: the re-plan runs in float32 (software floating point on an M0+)
+ * in the main loop, never in the interrupt; the interrupt's sampler is the integer code of
+ * motion_fx.c.
  */
 #include <stddef.h>
 #include <stdint.h>
@@ -125,17 +128,24 @@ static void hw_wait_for_interrupt(void)
 static int hw_setpoint_poll(qo_quat_q30 *q)
 {
     static const qo_quat_q30 demo[] = {
-        { QO_EX_Q30(0.707106781), 0, 0, QO_EX_Q30(0.707106781) },                    /* 90, 0, 0 */
+        /* 90, 0, 0 */
+        { QO_EX_Q30(0.707106781), 0, 0, QO_EX_Q30(0.707106781) },
+        /* 90, 30, -10 */
         { QO_EX_Q30(0.664463024), QO_EX_Q30(-0.241844763), QO_EX_Q30(0.122787804),
-          QO_EX_Q30(0.696364240) },                                                   /* 90, 30, -10 */
-        { QO_EX_Q30(0.707106781), 0, QO_EX_Q30(0.707106781), 0 },                    /* 0, 90, 0: lock */
+          QO_EX_Q30(0.696364240) },
+        /* 0, 90, 0: gimbal lock */
+        { QO_EX_Q30(0.707106781), 0, QO_EX_Q30(0.707106781), 0 },
+        /* -60, -20, 25 */
         { QO_EX_Q30(0.851444315), QO_EX_Q30(0.099828525), QO_EX_Q30(-0.253394743),
-          QO_EX_Q30(-0.448182941) },                                                  /* -60, -20, 25 */
+          QO_EX_Q30(-0.448182941) },
+        /* 160, 10, 0 */
         { QO_EX_Q30(0.172987394), QO_EX_Q30(-0.085831651), QO_EX_Q30(0.015134436),
-          QO_EX_Q30(0.981060262) },                                                   /* 160, 10, 0 */
+          QO_EX_Q30(0.981060262) },
+        /* -160, 10, 0: yaw goes round the other way (its stops are at +-172 deg) */
         { QO_EX_Q30(0.172987394), QO_EX_Q30(0.085831651), QO_EX_Q30(0.015134436),
-          QO_EX_Q30(-0.981060262) },                                                  /* -160, 10, 0 */
-        { QO_Q30_ONE, 0, 0, 0 },                                                      /* level */
+          QO_EX_Q30(-0.981060262) },
+        /* level */
+        { QO_Q30_ONE, 0, 0, 0 },
     };
     static uint32_t next_tick = QO_EX_SETPOINT_TICKS;
     static size_t next;

@@ -170,7 +170,8 @@ int main(int argc, char **argv)
     mv.replan_pending = argc == 3;
     mv.st = &st;
     printf("stream_modbus: %zu joint(s) from %s, %.3f s to the %s target at %.0f Hz\n", n,
-           s == QO_OK ? "their feedback" : "0 (no feedback)", (double)qo_motion_duration_f32(&mv.pl),
+           s == QO_OK ? "their feedback" : "0 (no feedback)",
+           (double)qo_motion_duration_f32(&mv.pl),
            mv.replan_pending ? "first" : "final", EX_RATE_HZ);
 
     qo_streamer_config_default(&cfg);

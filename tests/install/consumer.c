@@ -43,10 +43,10 @@ int main(void)
     check(strcmp(qo_status_str(QO_OK), "ok") == 0, "qo_status_str(QO_OK) is \"ok\"", 0, 0);
 
     /* float32 core: angles -> quaternion against the double product, and back. */
-    check(qo_quat_from_euler_f32(QO_EULER_ZYX, e, &q) == QO_OK, "qo_quat_from_euler_f32 status", 0, 0);
+    check(qo_quat_from_euler_f32(QO_EULER_ZYX, e, &q) == QO_OK, "qo_quat_from_euler_f32", 0, 0);
     err = fabs(q.w - qw) + fabs(q.x - qx) + fabs(q.y - qy) + fabs(q.z - qz);
     check(err < 1e-6, "quaternion from ZYX (0.3, -0.2, 0.1) vs double", err, 0);
-    check(qo_quat_to_euler_f32(q, QO_EULER_ZYX, &back, NULL) == QO_OK, "qo_quat_to_euler_f32 status", 0, 0);
+    check(qo_quat_to_euler_f32(q, QO_EULER_ZYX, &back, NULL) == QO_OK, "to_euler_f32", 0, 0);
     check(fabs(back.a1 - y) < 1e-6, "yaw back", back.a1, y);
     check(fabs(back.a2 - p) < 1e-6, "pitch back", back.a2, p);
     check(fabs(back.a3 - r) < 1e-6, "roll back", back.a3, r);
@@ -54,7 +54,7 @@ int main(void)
     /* fixed-point core: the double quaternion in Q1.30 -> Q3.28 angles. */
     qf.w = (qo_q30)lround(qw * 1073741824.0); qf.x = (qo_q30)lround(qx * 1073741824.0);
     qf.y = (qo_q30)lround(qy * 1073741824.0); qf.z = (qo_q30)lround(qz * 1073741824.0);
-    check(qo_quat_to_euler_q30(qf, QO_EULER_ZYX, &ef, &info) == QO_OK, "qo_quat_to_euler_q30 status", 0, 0);
+    check(qo_quat_to_euler_q30(qf, QO_EULER_ZYX, &ef, &info) == QO_OK, "to_euler_q30", 0, 0);
     check(fabs(ef.a1 / 268435456.0 - y) < 1e-7, "fixed yaw", ef.a1 / 268435456.0, y);
     check(fabs(ef.a2 / 268435456.0 - p) < 1e-7, "fixed pitch", ef.a2 / 268435456.0, p);
     check(fabs(ef.a3 / 268435456.0 - r) < 1e-7, "fixed roll", ef.a3 / 268435456.0, r);
@@ -68,12 +68,13 @@ int main(void)
         qo_q16 pq[2];
         qo_spline_f32 s;
         qo_spline_q16 sq;
-        check(qo_spline_coef_len(2, 3) <= 64 && qo_spline_q16_len(2, 3) <= 96, "storage sizes", 0, 0);
+        check(qo_spline_coef_len(2, 3) <= 64 && qo_spline_q16_len(2, 3) <= 96, "storage", 0, 0);
         check(qo_spline_init_f32(2, 3, t, pk, &qo_spline_settings_default, coef, 64, &s) == QO_OK,
               "qo_spline_init_f32 status", 0, 0);
-        check(qo_spline_sample_f32(&s, 1.0f, pos, NULL, NULL, NULL) == QO_OK, "sample status", 0, 0);
-        check(fabs(pos[0] - 2.0) < 1e-6 && fabs(pos[1] + 1.0) < 1e-6, "float sample at key 1", pos[0], 2.0);
-        check(qo_spline_to_q16_f32(&s, table, 96, &sq) == QO_OK, "qo_spline_to_q16_f32 status", 0, 0);
+        check(qo_spline_sample_f32(&s, 1.0f, pos, NULL, NULL, NULL) == QO_OK, "sample", 0, 0);
+        check(fabs(pos[0] - 2.0) < 1e-6 && fabs(pos[1] + 1.0) < 1e-6, "float sample at key 1",
+              pos[0], 2.0);
+        check(qo_spline_to_q16_f32(&s, table, 96, &sq) == QO_OK, "qo_spline_to_q16_f32", 0, 0);
         check(qo_spline_sample_q16(&sq, 5 * QO_Q16_ONE / 2, pq, NULL, NULL, NULL) == QO_OK,
               "qo_spline_sample_q16 status", 0, 0);
         check(pq[0] == QO_Q16_ONE / 2 && pq[1] == QO_Q16_ONE / 4, "fixed sample at the last key",

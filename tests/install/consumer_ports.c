@@ -31,7 +31,8 @@ int main(void)
         return 1;
     }
     s = qo_modbus_parse_spec("rtu:/dev/ttyAMA0,115200,8N1", &spec);
-    if (s != QO_OK || spec.transport != QO_MODBUS_RTU || spec.baud != 115200 || spec.parity != 'N') {
+    if (s != QO_OK || spec.transport != QO_MODBUS_RTU || spec.baud != 115200 ||
+        spec.parity != 'N') {
         printf("consumer_ports: FAIL: qo_modbus_parse_spec: %s\n", qo_status_str(s));
         return 1;
     }
@@ -48,7 +49,8 @@ int main(void)
             return 1;
         }
     }
-    printf("consumer_ports: qorient-ports: map of %zu joints (%s, %s), RTU spec %s %d baud, mock sink: ok\n",
+    printf("consumer_ports: qorient-ports: map of %zu joints (%s, %s), RTU spec %s %d baud, "
+           "mock sink: ok\n",
            map.n_joints, map.joints[0].name, map.joints[1].name, spec.device, spec.baud);
     return 0;
 }
