@@ -22,7 +22,8 @@
 #                       header alone, then builds tests/install/consumer.c through pkg-config
 #                       (PKG_CONFIG_PATH and PKG_CONFIG_SYSROOT_DIR pointing into the tree)
 #                       statically and against the shared library, and
-#                       tests/install/consumer_ports.c against qorient-ports, and runs them
+#                       tests/install/consumer_ports.c against qorient-ports, runs them, and
+#                       finally uninstalls and checks that no file is left
 #   make shared         build/libqorient.so.X.Y.Z and its links in build/ only
 #   make examples       the host examples (examples/pi) into build/examples; the MCU examples
 #                       are compiled by tools/check-examples.sh (arm-none-eabi-gcc)
@@ -106,13 +107,17 @@ endef
 install: all shared
 	$(call qo_install_to,$(DESTDIR))
 
-# Only our files; the standard directories stay (rmdir -p of our own subdirectories only).
+# Only our files ($(1) = DESTDIR); the standard directories stay.
+define qo_uninstall_from
+	rm -f $(1)$(BINDIR)/qorient $(1)$(MANDIR)/man1/qorient.1 \
+	    $(1)$(LIBDIR)/libqorient.a $(1)$(LIBDIR)/libqorient_ports.a \
+	    $(1)$(LIBDIR)/$(QO_SOFILE) $(1)$(LIBDIR)/$(QO_SONAME) $(1)$(LIBDIR)/libqorient.so \
+	    $(1)$(PKGCONFIGDIR)/qorient.pc $(1)$(PKGCONFIGDIR)/qorient-ports.pc
+	rm -rf $(1)$(INCLUDEDIR)/qorient
+endef
+
 uninstall:
-	rm -f $(DESTDIR)$(BINDIR)/qorient $(DESTDIR)$(MANDIR)/man1/qorient.1 \
-	    $(DESTDIR)$(LIBDIR)/libqorient.a $(DESTDIR)$(LIBDIR)/libqorient_ports.a \
-	    $(DESTDIR)$(LIBDIR)/$(QO_SOFILE) $(DESTDIR)$(LIBDIR)/$(QO_SONAME) $(DESTDIR)$(LIBDIR)/libqorient.so \
-	    $(DESTDIR)$(PKGCONFIGDIR)/qorient.pc $(DESTDIR)$(PKGCONFIGDIR)/qorient-ports.pc
-	rm -rf $(DESTDIR)$(INCLUDEDIR)/qorient
+	$(call qo_uninstall_from,$(DESTDIR))
 
 # ---- install-check ----
 QO_CHK      := $(BUILD)/install-check
@@ -176,6 +181,10 @@ install-check: all shared
 	    echo "install-check: man1/qorient.1 formats without a warning (groff -man -ww)"; \
 	 else echo "install-check: groff not installed: man1/qorient.1 not formatted"; fi
 	$(QO_CHK_ROOT)$(BINDIR)/qorient version
+	$(call qo_uninstall_from,$(QO_CHK_ROOT))
+	@left=$$(find $(QO_CHK_ROOT) -type f -o -type l); test -z "$$left" || \
+	    { echo "install-check: FAIL: uninstall left: $$left"; exit 1; }
+	@echo "install-check: uninstall removed every installed file"
 	@echo "install-check: all ok"
 
 # ---- host examples ----
