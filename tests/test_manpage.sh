@@ -1,5 +1,5 @@
 #!/bin/sh
-# The manual page ports/linux/cli/qorient.1 against the command: every subcommand has its
+# The manual page ports/linux/cli/qorient.1 against the command: its version, every subcommand has its
 # section, every option any --help text shows is documented in the page, and the page formats
 # without a warning (groff -ww, when groff is installed; mandoc -T lint when mandoc is).
 Q=${QORIENT:-build/qorient}
@@ -25,6 +25,10 @@ for c in $cmds; do
         grep -q -- "$o\b" "$T/man.txt" && ok || bad "qorient $c: option $o of --help is not in $MAN"
     done
 done
+
+# the page's title line names the command's version
+v=$($Q version | sed -n 's/^qorient //p')
+grep -q "^\.TH QORIENT 1 .* \"qorient $v\"" "$MAN" && ok || bad "the .TH line does not say \"qorient $v\""
 
 if command -v groff >/dev/null 2>&1; then
     w=$(groff -man -Tutf8 -ww -z "$MAN" 2>&1)
