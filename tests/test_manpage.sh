@@ -1,7 +1,7 @@
 #!/bin/sh
-# The manual page ports/linux/cli/qorient.1 against the command: its version, every subcommand has its
-# section, every option any --help text shows is documented in the page, and the page formats
-# without a warning (groff -ww, when groff is installed; mandoc -T lint when mandoc is).
+# The manual page ports/linux/cli/qorient.1 against the command: its version, every subcommand
+# has its section, every option any --help text shows is documented in the page, and the page
+# formats without a warning (groff -ww, when groff is installed; mandoc -T lint when mandoc is).
 Q=${QORIENT:-build/qorient}
 MAN=ports/linux/cli/qorient.1
 pass=0; fail=0
