@@ -3,7 +3,8 @@
 # loopback TCP: the example is built here (against the build's libqorient_ports.a and
 # libqorient.a), streams a move with explicit targets and then its demo move (re-planned
 # mid-move), and must exit 0 with the simulator's log showing every joint's final target;
-# usage errors exit 2 and an unreachable drive exits 1.
+# usage errors exit 2; an unreachable drive, a missing serial device and an RTU rate above the
+# line's wire budget exit 1.
 Q=${QORIENT:-build/qorient}
 B=$(dirname "$Q")
 MAP=examples/maps/six_int32.ini
@@ -81,6 +82,16 @@ stop_sim
 "$EX" $MAP tcp://127.0.0.1:1 > /dev/null 2> "$T/err"; rc=$?
 [ "$rc" = 1 ] && grep -q "cannot reach the drives at tcp://127.0.0.1:1" "$T/err" && ok || \
     bad "unreachable drive: rc=$rc $(cat "$T/err")"
+
+# RTU: 2 Leadshine drives x 8 registers need two FC16 of 25 bytes + replies + 4 t3.5 per tick:
+# more than 10 ms at 19200 8E1, so 100 Hz is refused before any device is opened
+"$EX" examples/maps/leadshine_cs2rs_pr.ini rtu:/dev/qorient-no-such-tty,19200,8E1 > /dev/null 2> "$T/err"; rc=$?
+[ "$rc" = 1 ] && grep -q "100 Hz needs more than .* at most [0-9.]* Hz" "$T/err" && ok || \
+    bad "RTU rate over the wire budget: rc=$rc $(cat "$T/err")"
+# ... while six int32 joints fit at 115200 8N1, and the missing device is named
+"$EX" $MAP rtu:/dev/qorient-no-such-tty,115200,8N1 > /dev/null 2> "$T/err"; rc=$?
+[ "$rc" = 1 ] && grep -q "cannot reach the drives at rtu:/dev/qorient-no-such-tty" "$T/err" && ok || \
+    bad "RTU missing device: rc=$rc $(cat "$T/err")"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

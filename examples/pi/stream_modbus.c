@@ -11,8 +11,11 @@
  *             mid-move to its final target 0.1 (j + 1) (-1)^j.
  *
  * What it does, and which part of qorient does it:
- *   1. qo_regmap_load reads the map; qo_modbus_sink_open connects, sends the drives' init
- *      writes and seeds its rate limit from the feedback registers (linux/modbus_sink.h);
+ *   1. qo_regmap_load reads the map; on RTU, qo_wire_budget_compute says how long one tick's
+ *      requests take on the serial line (linux/wire_budget.h): a rate the line cannot carry
+ *      is refused, and the reply timeout covers the longest request; qo_modbus_sink_open
+ *      connects, sends the drives' init writes and seeds its rate limit from the feedback
+ *      registers (linux/modbus_sink.h);
  *   2. qo_modbus_sink_read_feedback gives the joints' actual positions (0 where the map has no
  *      feedback register): the motion starts where the drives are, not where we think they are;
  *   3. a jerk-limited, time-synchronised move of all joints (qorient/motion.h, S-curve: every
@@ -44,6 +47,7 @@
 #include "linux/modbus_sink.h"
 #include "linux/regmap.h"
 #include "linux/streamer.h"
+#include "linux/wire_budget.h"
 
 #define EX_RATE_HZ 100.0         /* streaming rate */
 #define EX_HOLD_S 0.2            /* keep sending the final target this long after arriving */
@@ -98,6 +102,9 @@ int main(int argc, char **argv)
     static qo_regmap map;        /* ~20 KiB: not on the stack */
     static struct move mv;
     static qo_streamer st;
+    static qo_wire_budget wb;    /* ~10 KiB */
+    qo_modbus_spec spec;
+    double longest_us = 0.0;
     qo_motion_limits_f32 lim[QO_REGMAP_MAX_JOINTS];
     float start[QO_REGMAP_MAX_JOINTS], first[QO_REGMAP_MAX_JOINTS];
     qo_modbus_sink_settings ss = qo_modbus_sink_settings_default;
@@ -144,9 +151,29 @@ int main(int argc, char **argv)
         lim[j].pmax = (float)map.joints[j].max;
     }
 
-    /* Replies must come within the period, so one slow drive cannot eat the next tick;
-     * connecting happens before the loop and may take longer. */
-    ss.response_timeout_us = (uint32_t)(0.8 * 1e6 / EX_RATE_HZ);
+    /* What one tick costs on a serial line (TCP has no such bound). */
+    if (qo_modbus_parse_spec(argv[2], &spec) != QO_OK) {
+        fprintf(stderr, "stream_modbus: '%s' is not tcp://HOST:PORT or rtu:DEVICE,BAUD,8N1\n",
+                argv[2]);
+        return usage();
+    }
+    if (qo_wire_budget_compute(&map, &spec, 0.0, &wb) != QO_OK) {
+        fprintf(stderr, "stream_modbus: %s: cannot group the registers into requests\n", argv[1]);
+        return 1;
+    }
+    if (spec.transport == QO_MODBUS_RTU && EX_RATE_HZ > wb.max_rate_hz) {
+        fprintf(stderr, "stream_modbus: %.0f Hz needs more than %s carries (%.0f us per tick, "
+                "at most %.1f Hz): raise the baud rate or lower EX_RATE_HZ\n", EX_RATE_HZ,
+                argv[2], wb.tick_us, wb.max_rate_hz);
+        return 1;
+    }
+    for (j = 0; j < wb.n_requests; j++)
+        if (wb.req[j].time_us > longest_us) longest_us = wb.req[j].time_us;
+
+    /* Replies must come within the period, so one slow drive cannot eat the next tick - but
+     * on RTU the timeout also runs while the request itself is on the wire. Connecting
+     * happens before the loop and may take longer. */
+    ss.response_timeout_us = (uint32_t)fmax(0.8 * 1e6 / EX_RATE_HZ, longest_us + 1000.0);
     ss.byte_timeout_us = ss.response_timeout_us;
     ss.open_timeout_us = 500000u;
     s = qo_modbus_sink_open(argv[2], &map, &ss, &sink);
