@@ -200,7 +200,11 @@ static inline double qo_fz_cli_prescan(const uint8_t *in, size_t n, double *t_lo
     while (line != NULL) {
         char *nl = strchr(line, '\n');
         size_t k, m;
+        size_t ll;
         if (nl) *nl = '\0';
+        /* as qo_cli_getline: trailing CR/LF removed */
+        ll = strlen(line);
+        while (ll > 0 && (line[ll - 1] == '\r' || line[ll - 1] == '\n')) line[--ll] = '\0';
         if (qo_cli_parse_numbers(line, v, 64, &m) == -2) {
             m = 64;
             big = HUGE_VAL;   /* more columns than scanned: magnitude unknown */
