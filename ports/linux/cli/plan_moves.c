@@ -263,11 +263,11 @@ int qo_cli_plan_moves(int argc, char **argv)
     o->period = 1.0 / rate;
 
     while ((len = qo_cli_getline(&line, &cap, in)) >= 0) {
-        double num[PM_MAX + 2];
+        double num[PM_MAX + 1];
         size_t n = 0, i;
         int rc;
         ln++;
-        rc = qo_cli_parse_numbers(line, num, PM_MAX + 2, &n);
+        rc = qo_cli_parse_numbers(line, num, PM_MAX + 1, &n); /* t and at most PM_MAX positions */
         if (rc == 0 && n == 0) continue;
         if (rc == -1) {
             fprintf(stderr, "qorient plan: line %ld: not a number\n", ln);
