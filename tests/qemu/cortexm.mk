@@ -4,7 +4,8 @@
 #
 #   make -f tests/qemu/cortexm.mk QT=m0|m4f|m7 TESTS="test_quat test_euler ..." [-j2]
 #
-# Outputs: build/qemu-QT/TEST.elf (one per test), build/qemu-QT/libqorient.a, build/qemu-QT/warnings.log
+# Outputs: build/qemu-QT/TEST.elf (one per test), build/qemu-QT/selftest.elf (the shim's own test),
+# build/qemu-QT/libqorient.a
 # The core is built with the project's core flags and -Werror; the test sources with the host
 # test flags minus -Werror (their warnings under newlib's types are reported, not fatal).
 
@@ -42,7 +43,7 @@ COMMON_SRC := $(sort $(wildcard tests/common/*.c))
 CORE_OBJ   := $(CORE_SRC:%.c=$(OUT)/obj/%.o)
 COMMON_OBJ := $(COMMON_SRC:%.c=$(OUT)/obj/%.o)
 SHIM_OBJ   := $(OUT)/obj/tests/qemu/cmocka.o $(OUT)/obj/tests/qemu/startup.o
-ELF        := $(TESTS:%=$(OUT)/%.elf)
+ELF        := $(TESTS:%=$(OUT)/%.elf) $(OUT)/selftest.elf
 
 .PHONY: all
 .SECONDARY:
@@ -54,7 +55,7 @@ $(OUT)/obj/lib/%.o: lib/%.c
 
 $(OUT)/obj/tests/qemu/%.o: tests/qemu/%.c
 	@mkdir -p $(@D)
-	$(CC) -MMD -MP $(CPU) $(STD) $(WARN) -Werror $(FPFLAGS) $(OPT) -c $< -o $@
+	$(CC) -MMD -MP $(CPU) $(STD) $(WARN) -Werror $(FPFLAGS) $(OPT) -isystem tests/qemu -c $< -o $@
 
 # Test sources: the shim is found as <cmocka.h> first, as a system header like the real one.
 $(OUT)/obj/tests/%.o: tests/%.c
@@ -69,5 +70,9 @@ $(OUT)/libqorient.a: $(CORE_OBJ)
 $(OUT)/%.elf: $(OUT)/obj/tests/%.o $(COMMON_OBJ) $(SHIM_OBJ) $(OUT)/libqorient.a tests/qemu/cm.ld
 	$(CC) $(CPU) $(SPECS) -T tests/qemu/cm.ld $(MEM) -Wl,--gc-sections -o $@ \
 	    $< $(COMMON_OBJ) $(SHIM_OBJ) $(OUT)/libqorient.a -lm
+
+# The shim's own test (tests/qemu/selftest.c): run first, must report exactly what it expects.
+$(OUT)/selftest.elf: $(OUT)/obj/tests/qemu/selftest.o $(SHIM_OBJ) tests/qemu/cm.ld
+	$(CC) $(CPU) $(SPECS) -T tests/qemu/cm.ld $(MEM) -Wl,--gc-sections -o $@ $< $(SHIM_OBJ) -lm
 
 -include $(shell find $(OUT) -name '*.d' 2>/dev/null)

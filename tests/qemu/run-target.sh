@@ -114,10 +114,26 @@ m0|m4f|m7)
     make -k -j2 -s -f tests/qemu/cortexm.mk QT="$T" TESTS="$core" >"$LOGS/build.log" 2>&1
     w=$(grep -c 'warning:' "$LOGS/build.log")
     [ "$w" -gt 0 ] && echo "  ($w compiler warnings in test sources for $T, see $LOGS/build.log)"
+    QSYS="qemu-system-arm -M $BOARD -nographic -monitor none -serial none -semihosting-config enable=on,target=native"
+    # The shim must report exactly what its self-test expects before its reports are believed.
+    log=$LOGS/selftest.log
+    if [ -f "$OUT/selftest.elf" ]; then
+        timeout -k 10 60 $QSYS -kernel "$OUT/selftest.elf" >"$log" 2>&1; rc=$?
+    else
+        rc=build; echo "selftest.elf did not build" >"$log"
+    fi
+    want=$(sed -n 's/^#define SELFTEST_\(PASS\|FAIL\|SKIP\) \([0-9]*\)$/\2/p' tests/qemu/selftest.c | tr '\n' ' ' | sed 's/ $//')
+    got="$(sed -n 's/^\[  PASSED  \] \([0-9]*\) test.*/\1/p' "$log") $(sed -n 's/^\[  FAILED  \] \([0-9]*\) test.*/\1/p' "$log") $(sed -n 's/^\[  SKIPPED \] \([0-9]*\) test.*/\1/p' "$log")"
+    if [ "$rc" = 0 ] && [ "$got" = "$want" ]; then
+        echo "  shim self-test: ok (passed, failed, skipped = $got as expected; not counted)"
+    else
+        failed=$((failed + 1)); problems="$problems shim-selftest"
+        echo "  shim self-test: FAILED (rc $rc, passed/failed/skipped '$got', want '$want'), see $log"
+        echo "shim-selftest 0 1 0 SELFTEST FAILED" >>"$SUMMARY"
+    fi
     for n in $core; do
         if [ ! -f "$OUT/$n.elf" ]; then build_failed "$n" "$LOGS/build.log"; continue; fi
-        run "$n" bin qemu-system-arm -M "$BOARD" -nographic -monitor none -serial none \
-            -semihosting-config enable=on,target=native -kernel "$OUT/$n.elf"
+        run "$n" bin $QSYS -kernel "$OUT/$n.elf"
     done
     ;;
 aarch64|armhf)
