@@ -90,7 +90,7 @@ for a in $need_linux; do make_sysroot "$a"; done
 mkdir -p build
 RES=build/qemu-results.md
 {
-    echo "| target | emulator | programs run | tests passed | tests failed | skipped programs | time |"
+    echo "| target | emulator | programs | tests passed | tests failed | programs skipped | time: target total wall / tests' CPU |"
     echo "|---|---|---|---|---|---|---|"
 } >"$RES"
 total_p=0; total_f=0; bad=""
@@ -105,6 +105,7 @@ for t in $TARGETS; do
     f=$(awk '$2 != "skipped" { s += $3 } END { print s + 0 }' "$sum")
     n=$(awk '$2 != "skipped"' "$sum" | wc -l)
     k=$(awk '$2 == "skipped" { printf "%s%s", sep, $1; sep = ", " }' "$sum")
+    c=$(awk '$2 != "skipped" { s += $5 } END { printf "%.0f", s }' "$sum")
     case $t in
     m0) emu="qemu-system-arm microbit (Cortex-M0, soft float)";;
     m4f) emu="qemu-system-arm mps2-an386 (Cortex-M4F)";;
@@ -112,7 +113,7 @@ for t in $TARGETS; do
     aarch64) emu="qemu-aarch64 -cpu cortex-a72";;
     armhf) emu="qemu-arm -cpu cortex-a7";;
     esac
-    echo "| $t | $emu | $n | $p | $f | ${k:-none} | $dt s |" >>"$RES"
+    echo "| $t | $emu | $n | $p | $f | ${k:-none} | $dt s / $c s |" >>"$RES"
     total_p=$((total_p + p)); total_f=$((total_f + f))
     [ "$rc" -ne 0 ] && bad="$bad $t"
 done

@@ -29,9 +29,11 @@ SUMMARY=$OUT/summary.txt
 : >"$SUMMARY"
 
 now() { date +%s.%N; }
-# CPU seconds used so far by finished children (user + sys): unlike wall time, not inflated
-# when the machine is shared.
-cpu() { times | tail -1 | awk '{ n = 0; for (i = 1; i <= NF; i++) { split($i, a, "m"); n += a[1] * 60 + a[2] } printf "%.2f", n }'; }
+# CPU seconds used so far by finished children (user + sys), from `times` run in this shell
+# (in a $(...) subshell it would count the subshell's children only): unlike wall time, not
+# inflated when the machine is shared.
+TIMES=$LOGS/.times
+cpu_of() { tail -1 "$1" | awk '{ n = 0; for (i = 1; i <= NF; i++) { split($i, a, "m"); n += a[1] * 60 + a[2] } printf "%.2f", n }'; }
 secs() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.1f", b - a }'; }
 
 # A core test includes only C99 headers, <cmocka.h>, "qorient/..." and "common/..." (the core and
@@ -59,10 +61,10 @@ count() {
 run() {
     name=$1; kind=$2; shift 2
     log=$LOGS/$name.log
-    t0=$(now); c0=$(cpu)
+    times >"$TIMES"; c0=$(cpu_of "$TIMES"); t0=$(now)
     timeout -k 10 "$TMO" "$@" >"$log" 2>&1
     rc=$?
-    dt=$(secs "$t0" "$(now)"); dc=$(secs "$c0" "$(cpu)")
+    times >"$TIMES"; dt=$(secs "$t0" "$(now)"); dc=$(secs "$c0" "$(cpu_of "$TIMES")")
     set -- $(count "$log" "$kind")
     p=$1; f=$2; note=""
     if [ "$rc" -eq 124 ] || [ "$rc" -eq 137 ]; then
