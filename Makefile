@@ -34,6 +34,8 @@ PKG_CFLAGS := $(shell $(PKG_CONFIG) --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   := $(shell $(PKG_CONFIG) --libs $(PKGS) 2>/dev/null)
 CMOCKA_LIBS := $(shell $(PKG_CONFIG) --libs cmocka 2>/dev/null || echo -lcmocka)
 PORT_DEFS  := -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
+# libgpiod v2 where installed (pkg-config says so), else the v1 API of Debian bookworm.
+PORT_DEFS  += $(shell $(PKG_CONFIG) --atleast-version=2 libgpiod 2>/dev/null && echo -DQO_GPIOD_V2)
 
 CORE_SRC  := $(sort $(wildcard lib/src/*.c))
 FX_SRC    := $(sort $(wildcard lib/src/*_fx.c))
@@ -52,7 +54,7 @@ SPORT_OBJ := $(PORT_SRC:%.c=$(BUILD)/san/%.o)
 SCOMMON_OBJ := $(TEST_COMMON:%.c=$(BUILD)/san/%.o)
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all lib test core-check clean tests-build figures
+.PHONY: all lib test test-run test-vm core-check clean tests-build figures
 # Keep the sanitizer objects between runs (they are intermediates of the test pattern rule).
 .SECONDARY:
 all: $(BUILD)/libqorient.a $(BUILD)/libqorient_ports.a $(BUILD)/qorient
@@ -110,10 +112,20 @@ figures: $(BENCH_BIN)
 
 tests-build: $(TEST_BIN) $(BUILD)/qorient
 
-# Runs every cmocka program and every shell test; tests/run.sh prints the totals and fails on
-# any failure.
-test: tests-build
+# `make test` first installs missing Debian packages (tools/deps.sh: sudo when not root), then
+# builds in a fresh make so pkg-config sees them. test-run: runs every cmocka program and every
+# shell test; tests/run.sh prints the totals and fails on any failure.
+test:
+	@sh tools/deps.sh test
+	@$(MAKE) --no-print-directory test-run
+
+test-run: tests-build
 	@QORIENT=$(BUILD)/qorient sh tests/run.sh $(TEST_BIN) -- $(TEST_SH)
+
+# The GPIO sink against the kernel's gpio-sim in a QEMU VM (needs root-free qemu, downloads
+# Debian's kernel packages once into build/vm).
+test-vm:
+	sh tests/vm/run-gpiosim.sh
 
 # ---- core portability and hygiene (also run by .ci/run) ----
 core-check:

@@ -18,6 +18,7 @@ int qo_cli_version(int argc, char **argv);
 int qo_cli_convert(int argc, char **argv);
 int qo_cli_slerp(int argc, char **argv);
 int qo_cli_gimbal(int argc, char **argv);
+int qo_cli_sim(int argc, char **argv);
 
 /* Rotation representations of `qorient convert`. */
 enum rep { REP_QUAT, REP_MATRIX, REP_ROTVEC, REP_AXISANGLE, REP_EULER };

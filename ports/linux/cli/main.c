@@ -16,6 +16,7 @@ static const struct qo_cli_cmd cmds[] = {
     { "slerp", qo_cli_slerp, "spherical linear interpolation of quaternion pairs" },
     { "gimbal", qo_cli_gimbal, "joint angles of a 2/3-axis gimbal along a quaternion keyframe path" },
     { "version", qo_cli_version, "print the version" },
+    { "sim", qo_cli_sim, "simulated Modbus servo drive bank (register map, lag, faults)" },
 };
 
 static void usage(FILE *f)

@@ -1,0 +1,216 @@
+/*
+ * ports/linux/gpio_sink.h - a qo_sink that turns joint targets into step/dir pulses (or, as a
+ * demo-grade option, hobby-servo PWM) on GPIO lines, through libgpiod or a fake backend.
+ *
+ * Index:
+ *   qo_gpio_line                  how a line is found: chip (name, path or label) + offset, or line name
+ *   qo_gpio_joint                 per joint: kind, lines, steps per unit, max rate, dir setup, invert
+ *   qo_gpio_sink_config           period, pulse window, step high time, joints
+ *   qo_gpio_backend               pin toggling table: open, set_value, close (+ clock, sleep)
+ *   qo_gpio_sink_config_default() defaults for the config and for one joint
+ *   qo_gpio_sink_open()           check the config, open every line through the backend
+ *   qo_gpio_sink_write()          one tick: emit the owed steps / servo frame (the qo_sink write)
+ *   qo_gpio_sink_as_sink()        the qo_sink wrapping a sink (service = NULL)
+ *   qo_gpio_sink_position()       steps emitted so far for a step/dir joint
+ *   qo_gpio_sink_close()          drive step lines low and close every line
+ *   qo_gpio_libgpiod_backend()    the libgpiod backend (v1 API default, v2 when QO_GPIOD_V2)
+ *
+ * Step/dir model. Each joint keeps `position`, the signed count of steps emitted (positive =
+ * positive joint direction). A tick with target x owes round(x * steps_per_unit) - position
+ * steps (round half away from zero). It emits at most as many as fit the tick's pulse window
+ * at the joint's max rate, and NEVER more: whatever is not emitted stays owed, and since the
+ * next tick recomputes what is owed from its own target, the remainder is carried without a
+ * burst (a stalled or jumping target is followed at max_rate, not faster). Precisely:
+ *   - the window is [start, start + window * period), start = the backend clock when write is
+ *     called; every pulse (rise to fall) lies inside it, so write returns before
+ *     start + window * period and the streamer keeps (1 - window) of the period for itself;
+ *   - consecutive rising edges of a joint are at least 1/max_rate_hz apart, also across ticks
+ *     and also when an edge was late (the emitter reschedules from the ACTUAL edge times);
+ *   - the n steps of a tick are spread evenly: rise_i = first + i * max(span / n, 1/max_rate),
+ *     where first is the earliest allowed rise and span runs from first to the window end
+ *     minus the high time;
+ *   - when the direction changes, the dir line is set at the start of the tick and the first
+ *     rise comes dir_setup_us later (at least); the dir line never changes while step is high.
+ *     Direction level: 1 for positive steps, 0 for negative; invert_dir swaps them.
+ * Step pulses are step_high_us high. Writes block for up to window * period while pulses go
+ * out: user-space edges (one ioctl each) are only good for low rates (a few kHz at most, with
+ * jitter of tens to hundreds of us on non-RT kernels).
+ *
+ * Servo PWM (QO_GPIO_SERVO_PWM, demo grade). One line per joint; every servo_frame_us (20000
+ * = 50 Hz) a tick starts a pulse of width center + x * us_per_unit, clamped to [min, max] us
+ * (1000..2000 typical). The pulse is timed by a user-space sleep, so its width jitters by the
+ * wake-up latency (each us is ~0.1-0.2 degrees on a hobby servo): use hardware PWM or a
+ * PCA9685 for anything but a demo. Frames are started by ticks, so the tick period must divide
+ * the frame reasonably (e.g. 100-250 Hz); the pulse must fit the window (checked at open).
+ *
+ * Threads: a sink is used by one thread (the streamer's). The backend table is not called
+ * concurrently by the sink.
+ */
+#ifndef QORIENT_GPIO_SINK_H
+#define QORIENT_GPIO_SINK_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "qorient/status.h"
+#include "linux/streamer.h" /* qo_sink */
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define QO_GPIO_MAX_JOINTS 32u
+#define QO_GPIO_MAX_LINES (2u * QO_GPIO_MAX_JOINTS)
+
+/*
+ * A line: if `name` is not NULL the line is searched by its name (label) on every chip;
+ * otherwise `chip` names the chip (a path "/dev/gpiochip0", a name "gpiochip0", or a chip
+ * label such as "pinctrl-rp1", the robust choice on a Pi 5) and `offset` the line on it.
+ */
+typedef struct qo_gpio_line {
+    const char *chip;
+    unsigned offset;
+    const char *name;
+} qo_gpio_line;
+
+typedef enum qo_gpio_joint_kind {
+    QO_GPIO_STEP_DIR = 0,
+    QO_GPIO_SERVO_PWM = 1
+} qo_gpio_joint_kind;
+
+typedef struct qo_gpio_joint {
+    qo_gpio_joint_kind kind;
+    qo_gpio_line step;          /* step line; for a servo, the PWM line */
+    qo_gpio_line dir;           /* step/dir only */
+    double steps_per_unit;      /* steps per joint unit (rad or m), finite, > 0 */
+    double max_rate_hz;         /* max step rate, finite, > 0 */
+    double dir_setup_us;        /* min time from a dir change to the next rise, [0, 1e6] */
+    int invert_dir;             /* nonzero: dir level 0 for positive steps */
+    double servo_center_us;     /* servo: pulse width at target 0 */
+    double servo_us_per_unit;   /* servo: width change per joint unit (sign = direction) */
+    double servo_min_us, servo_max_us; /* servo: clamp, 0 < min <= max */
+} qo_gpio_joint;
+
+typedef struct qo_gpio_sink_config {
+    double period_s;            /* the streamer period (s), finite, (0, 10] */
+    double window;              /* fraction of the period pulses may use, (0, 1]; default 0.75 */
+    double step_high_us;        /* step pulse high time, > 0, < 1/max_rate_hz; default 5 */
+    double servo_frame_us;      /* servo frame, default 20000 (50 Hz) */
+    size_t n_joints;            /* 1..QO_GPIO_MAX_JOINTS */
+    qo_gpio_joint joint[QO_GPIO_MAX_JOINTS];
+} qo_gpio_sink_config;
+
+/*
+ * The pin backend. open() requests `line` as an output driven to `initial` (0/1) and returns a
+ * small handle >= 0; set_value() drives it; close() releases it. now_ns/sleep_until_ns are the
+ * clock the pulses are timed with (NULL: CLOCK_MONOTONIC and clock_nanosleep TIMER_ABSTIME);
+ * sleep_until_ns returns 0 or an errno value (EINTR is retried by the sink).
+ * A test backend records edges with the fake clock's timestamps.
+ */
+typedef struct qo_gpio_backend {
+    void *ctx;
+    qo_status (*open)(void *ctx, const qo_gpio_line *line, int initial, int *handle);
+    qo_status (*set_value)(void *ctx, int handle, int value);
+    void (*close)(void *ctx, int handle);
+    uint64_t (*now_ns)(void *ctx);
+    int (*sleep_until_ns)(void *ctx, uint64_t abs_ns);
+} qo_gpio_backend;
+
+/* Per-joint state; private. */
+typedef struct qo_gpio_joint_state {
+    int step_h, dir_h;
+    int64_t position;
+    int dir_level;
+    uint64_t dir_time_ns;       /* when the dir line last changed */
+    uint64_t last_rise_ns;
+    int have_rise;
+    uint64_t min_spacing_ns, high_ns, setup_ns;
+    uint64_t servo_next_frame_ns;
+    int servo_started;
+    uint64_t servo_width_ns;
+} qo_gpio_joint_state;
+
+typedef struct qo_gpio_sink {
+    qo_gpio_sink_config cfg;
+    qo_gpio_backend be;
+    qo_gpio_joint_state js[QO_GPIO_MAX_JOINTS];
+    uint64_t period_ns, window_ns;
+    int open;
+} qo_gpio_sink;
+
+/*
+ * Defaults: cfg with period 0.002 s (500 Hz), window 0.75, step_high_us 5, servo frame 20000,
+ * n_joints 0 and every joint = *joint_out defaults; joint_out (may be NULL) gets a step/dir
+ * joint with 200 steps/unit, 1000 Hz, dir setup 5 us, no invert, servo 1500 +- 500 us/unit
+ * clamped to 1000..2000. Lines are left empty (chip NULL, name NULL). NULL cfg is ignored.
+ */
+void qo_gpio_sink_config_default(qo_gpio_sink_config *cfg, qo_gpio_joint *joint_out);
+
+/*
+ * Checks cfg, then opens every line through be (step lines low; dir lines at level 0, which
+ * counts as a direction change at open time for the setup delay). On any failure the lines
+ * already opened are closed again. Returns QO_OK; QO_E_NULL (g, cfg, be or a required backend
+ * function NULL, or a joint with neither chip nor name); QO_E_TOO_FEW (n_joints 0);
+ * QO_E_CAPACITY (n_joints > QO_GPIO_MAX_JOINTS); QO_E_LIMIT (period, window, rate, steps per
+ * unit, high time, setup or servo widths not finite or out of range); QO_E_ARG (unknown joint
+ * kind); QO_E_CONFIG (high time not below 1/max rate, high time + dir setup not below the
+ * window, a servo pulse that does not fit the window or the frame, or the backend could not
+ * find a chip/line); QO_E_IO (the backend failed otherwise).
+ * On error g is not open (write returns QO_E_STATE).
+ */
+qo_status qo_gpio_sink_open(qo_gpio_sink *g, const qo_gpio_sink_config *cfg,
+                            const qo_gpio_backend *be);
+
+/*
+ * One tick (the qo_sink write; ctx is the qo_gpio_sink). targets[j] in joint units; n must be
+ * cfg.n_joints. Emits the pulses as described above and returns when the last one is done.
+ * Returns QO_OK; QO_E_NULL; QO_E_STATE (not open); QO_E_ARG (n differs: nothing emitted);
+ * QO_E_NONFINITE (a target NaN/Inf: that joint holds, the others run); QO_E_RANGE (a target
+ * whose step count exceeds +-2^53: that joint holds); QO_E_IO (a set_value failed: that joint
+ * stops for this tick; position counts only the rises that succeeded). The first error wins.
+ */
+qo_status qo_gpio_sink_write(void *ctx, const float *targets, size_t n, uint64_t tick);
+
+/* The qo_sink of g (write = qo_gpio_sink_write, service = NULL). */
+qo_sink qo_gpio_sink_as_sink(qo_gpio_sink *g);
+
+/*
+ * Steps emitted so far by a step/dir joint (signed, positive direction +1). Returns QO_OK;
+ * QO_E_NULL; QO_E_STATE (not open); QO_E_RANGE (joint index out of range or a servo joint).
+ * *steps is 0 on error.
+ */
+qo_status qo_gpio_sink_position(const qo_gpio_sink *g, size_t joint, int64_t *steps);
+
+/* Drives every step/PWM line low, closes all lines; g is then not open. NULL ignored. */
+void qo_gpio_sink_close(qo_gpio_sink *g);
+
+/* ---- libgpiod backend ------------------------------------------------------------------ */
+
+/* Storage of the libgpiod backend (one per sink); members private. */
+typedef struct qo_gpio_libgpiod {
+    void *chip[QO_GPIO_MAX_LINES];
+    void *line[QO_GPIO_MAX_LINES];   /* v1: struct gpiod_line *; v2: struct gpiod_line_request * */
+    unsigned offset[QO_GPIO_MAX_LINES];
+    int used[QO_GPIO_MAX_LINES];
+    const char *consumer;
+} qo_gpio_libgpiod;
+
+/*
+ * Fills *be with the libgpiod backend using *store (zeroed here) and consumer name `consumer`
+ * (NULL: "qorient"); real clock. Built against the libgpiod v1 API (1.6.x, Debian bookworm)
+ * unless QO_GPIOD_V2 is defined (set it when `pkg-config --atleast-version=2 libgpiod`); with
+ * neither QO_GPIOD_V1 nor QO_GPIOD_V2 defined the header decides (only v1 defines
+ * GPIOD_LINE_BULK_MAX_LINES). The backend's open returns QO_E_CONFIG when the chip or line
+ * does not exist, QO_E_IO when the request fails (busy, permission), QO_E_CAPACITY when more
+ * than QO_GPIO_MAX_LINES lines are open. Returns QO_OK or QO_E_NULL.
+ */
+qo_status qo_gpio_libgpiod_backend(qo_gpio_libgpiod *store, const char *consumer,
+                                   qo_gpio_backend *be);
+
+/* "v1" or "v2": which libgpiod API this build uses. */
+const char *qo_gpio_libgpiod_api(void);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* QORIENT_GPIO_SINK_H */

@@ -1,0 +1,756 @@
+#include "linux/modbus_sink.h"
+
+#include <arpa/inet.h>
+#include <errno.h>
+#include <stdio.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+const qo_modbus_sink_settings qo_modbus_sink_settings_default = {
+    20000u,                 /* response_timeout_us */
+    5000u,                  /* byte_timeout_us */
+    5u,                     /* fail_threshold */
+    QO_MODBUS_ON_FAIL_HOLD, /* on_fail */
+    50000u,                 /* reconnect_min_us */
+    2000000u,               /* reconnect_max_us */
+    0,                      /* rs485 */
+    1                       /* seed_from_feedback */
+};
+
+/* ---- spec ------------------------------------------------------------------------------ */
+
+static int parse_int(const char *s, size_t len, long lo, long hi, long *out)
+{
+    char buf[24];
+    char *end;
+    long v;
+    if (len == 0 || len >= sizeof buf) return -1;
+    memcpy(buf, s, len);
+    buf[len] = '\0';
+    if (buf[0] < '0' || buf[0] > '9') return -1;
+    errno = 0;
+    v = strtol(buf, &end, 10);
+    if (errno != 0 || *end != '\0' || v < lo || v > hi) return -1;
+    *out = v;
+    return 0;
+}
+
+qo_status qo_modbus_parse_spec(const char *text, qo_modbus_spec *out)
+{
+    if (out == NULL) return QO_E_NULL;
+    memset(out, 0, sizeof *out);
+    if (text == NULL) return QO_E_NULL;
+    if (strncmp(text, "tcp://", 6) == 0) {
+        const char *h = text + 6, *colon = strrchr(h, ':');
+        size_t hl = colon != NULL ? (size_t)(colon - h) : strlen(h);
+        long port = 502;
+        if (hl >= sizeof out->host) goto bad;
+        if (colon != NULL && parse_int(colon + 1, strlen(colon + 1), 0, 65535, &port) != 0) goto bad;
+        out->transport = QO_MODBUS_TCP;
+        if (hl == 0) strcpy(out->host, "127.0.0.1");
+        else {
+            memcpy(out->host, h, hl);
+            out->host[hl] = '\0';
+        }
+        out->port = (int)port;
+        return QO_OK;
+    }
+    if (strncmp(text, "rtu:", 4) == 0) {
+        const char *d = text + 4, *c1 = strchr(d, ',');
+        size_t dl = c1 != NULL ? (size_t)(c1 - d) : strlen(d);
+        long baud = 19200;
+        out->transport = QO_MODBUS_RTU;
+        out->parity = 'E';
+        out->data_bits = 8;
+        out->stop_bits = 1;
+        if (dl == 0 || dl >= sizeof out->device) goto bad;
+        memcpy(out->device, d, dl);
+        out->device[dl] = '\0';
+        if (c1 != NULL) {
+            const char *b = c1 + 1, *c2 = strchr(b, ',');
+            size_t bl = c2 != NULL ? (size_t)(c2 - b) : strlen(b);
+            if (parse_int(b, bl, 1, 10000000, &baud) != 0) goto bad;
+            if (c2 != NULL) {
+                const char *f = c2 + 1;
+                char p;
+                if (strlen(f) != 3 || f[0] < '5' || f[0] > '8' || (f[2] != '1' && f[2] != '2'))
+                    goto bad;
+                p = f[1];
+                if (p == 'n') p = 'N';
+                if (p == 'e') p = 'E';
+                if (p == 'o') p = 'O';
+                if (p != 'N' && p != 'E' && p != 'O') goto bad;
+                out->data_bits = f[0] - '0';
+                out->parity = p;
+                out->stop_bits = f[2] - '0';
+            }
+        }
+        out->baud = (int)baud;
+        return QO_OK;
+    }
+bad:
+    memset(out, 0, sizeof *out);
+    return QO_E_CONFIG;
+}
+
+modbus_t *qo_modbus_new_ctx(const qo_modbus_spec *spec)
+{
+    if (spec == NULL) return NULL;
+    if (spec->transport == QO_MODBUS_TCP) {
+        struct in_addr a;
+        char port[16];
+        /* modbus_new_tcp takes IPv4 literals only; names and IPv6 go through the _pi API. */
+        if (inet_pton(AF_INET, spec->host, &a) == 1) return modbus_new_tcp(spec->host, spec->port);
+        snprintf(port, sizeof port, "%d", spec->port);
+        return modbus_new_tcp_pi(spec->host, port);
+    }
+    if (spec->transport == QO_MODBUS_RTU)
+        return modbus_new_rtu(spec->device, spec->baud, spec->parity, spec->data_bits,
+                              spec->stop_bits);
+    return NULL;
+}
+
+/* ---- sink ------------------------------------------------------------------------------ */
+
+struct item {
+    size_t joint;     /* joint index */
+    unsigned offset;  /* register offset inside the group */
+};
+
+struct group {
+    unsigned slave;
+    unsigned gap_us;
+    uint16_t start;
+    unsigned count;
+    uint16_t regs[QO_REGMAP_MAX_REGISTERS]; /* constants pre-filled; joints packed per tick */
+    size_t first_item, n_items;
+};
+
+struct jstate {
+    int have;          /* lo/hi known */
+    double lo, hi;     /* raw values the drive may hold */
+    double cmd;        /* raw value packed this tick */
+    double step;       /* max_step in raw units, 0 = unlimited */
+    double tlo, thi;   /* type range */
+};
+
+struct qo_modbus_sink {
+    const qo_regmap *map;
+    qo_modbus_sink_settings set;
+    qo_modbus_spec spec;
+    modbus_t *ctx;
+    int connected, closed, disabled;
+    struct group *groups;
+    size_t n_groups;
+    struct item *items;
+    struct jstate *js;
+    uint32_t backoff_us;
+    unsigned bus_failures; /* consecutive ticks failed on the bus (argument errors excluded) */
+    struct timespec next_attempt;
+    qo_modbus_sink_stats st;
+};
+
+static void now_ts(struct timespec *t)
+{
+    clock_gettime(CLOCK_MONOTONIC, t);
+}
+
+static int ts_before(const struct timespec *a, const struct timespec *b)
+{
+    return a->tv_sec < b->tv_sec || (a->tv_sec == b->tv_sec && a->tv_nsec < b->tv_nsec);
+}
+
+static void sleep_us(unsigned us)
+{
+    struct timespec d;
+    if (us == 0) return;
+    d.tv_sec = (time_t)(us / 1000000u);
+    d.tv_nsec = (long)(us % 1000000u) * 1000L;
+    while (nanosleep(&d, &d) != 0 && errno == EINTR) {
+    }
+}
+
+/* Maps a failed libmodbus call (errno) to a status; *uncertain says whether the request may
+ * have been applied (anything but an exception reply). */
+static qo_status classify(int err, int *uncertain, qo_modbus_sink *s)
+{
+    *uncertain = 1;
+    if (err > MODBUS_ENOBASE && err <= MODBUS_ENOBASE + MODBUS_EXCEPTION_GATEWAY_TARGET) {
+        *uncertain = 0;
+        s->st.exceptions++;
+        return QO_E_PROTOCOL;
+    }
+    switch (err) {
+    case ETIMEDOUT:
+        s->st.timeouts++;
+        return QO_E_TIMEOUT;
+    case EMBBADCRC: case EMBBADDATA: case EMBBADEXC: case EMBUNKEXC: case EMBMDATA:
+    case EMBBADSLAVE:
+        s->st.protocol_errors++;
+        return QO_E_PROTOCOL;
+    case ECONNRESET: case EPIPE: case EBADF: case ENOTCONN: case ECONNREFUSED: case ENOTSOCK:
+    case ECONNABORTED: case ENETDOWN: case ENETUNREACH: case EHOSTUNREACH: case ENXIO:
+        return QO_E_DISCONNECTED;
+    default:
+        return QO_E_IO;
+    }
+}
+
+static void link_down(qo_modbus_sink *s)
+{
+    if (s->connected) {
+        s->st.disconnects++;
+        modbus_close(s->ctx);
+    }
+    s->connected = 0;
+    s->st.common.connected = 0;
+    now_ts(&s->next_attempt); /* first reconnection may be tried at once */
+}
+
+/* One request's bookkeeping after a libmodbus call that returned rc. */
+static qo_status after_request(qo_modbus_sink *s, int rc, int *uncertain)
+{
+    int err = errno;
+    qo_status st;
+    s->st.requests++;
+    *uncertain = 0;
+    if (rc >= 0) return QO_OK;
+    s->st.requests_failed++;
+    st = classify(err, uncertain, s);
+    if (s->spec.transport == QO_MODBUS_TCP && (err == EMBBADDATA || err == EMBBADSLAVE)) {
+        /* On TCP this is a stale reply (an earlier request's, after a timeout): the reply
+         * to this request is still on its way. Consume it (bounded by the response timeout)
+         * so the link is back in step now instead of staying one reply behind. */
+        uint8_t rsp[MODBUS_TCP_MAX_ADU_LENGTH];
+        (void)modbus_receive_confirmation(s->ctx, rsp);
+    }
+    /* A late or partial reply must not be read as the answer to the next request. */
+    modbus_flush(s->ctx);
+    s->st.last_error = st;
+    return st;
+}
+
+static qo_status send_writes(qo_modbus_sink *s, int disable)
+{
+    size_t i, k;
+    int unc;
+    for (i = 0; i < s->map->n_slaves; i++) {
+        const qo_regmap_slave *sl = &s->map->slaves[i];
+        const qo_reg_write *w = disable ? sl->disable : sl->init;
+        size_t n = disable ? sl->n_disable : sl->n_init;
+        for (k = 0; k < n; k++) {
+            qo_status st;
+            int rc;
+            modbus_set_slave(s->ctx, (int)sl->id);
+            rc = modbus_write_register(s->ctx, w[k].address, w[k].value);
+            st = after_request(s, rc, &unc);
+            sleep_us(sl->gap_us);
+            if (st != QO_OK) return st;
+        }
+    }
+    return QO_OK;
+}
+
+static qo_status read_joint_feedback(qo_modbus_sink *s, size_t i, double *raw)
+{
+    const qo_regmap_joint *j = &s->map->joints[i];
+    uint16_t regs[2] = { 0, 0 };
+    int rc, unc;
+    qo_status st;
+    const qo_regmap_slave *sl = qo_regmap_find_slave(s->map, j->slave);
+    *raw = 0.0;
+    modbus_set_slave(s->ctx, (int)j->slave);
+    rc = modbus_read_registers(s->ctx, j->feedback, (int)qo_reg_type_width(j->fmt.type), regs);
+    st = after_request(s, rc, &unc);
+    if (sl != NULL) sleep_us(sl->gap_us);
+    if (st != QO_OK) return st;
+    return qo_reg_unpack_raw(j->fmt.type, j->fmt.order, regs, raw);
+}
+
+static qo_status seed_from_feedback(qo_modbus_sink *s)
+{
+    size_t i;
+    for (i = 0; i < s->map->n_joints; i++) {
+        double raw;
+        qo_status st;
+        if (s->js[i].have || !s->map->joints[i].has_feedback) continue;
+        st = read_joint_feedback(s, i, &raw);
+        if (st != QO_OK) return st;
+        s->js[i].have = 1;
+        s->js[i].lo = s->js[i].hi = raw;
+    }
+    return QO_OK;
+}
+
+/* Connects and brings the drives to the sink's state. Leaves the link closed on failure. */
+static qo_status do_connect(qo_modbus_sink *s)
+{
+    qo_status st;
+    int err;
+    modbus_close(s->ctx);
+    if (modbus_connect(s->ctx) != 0) {
+        err = errno;
+        s->st.last_error = err == ETIMEDOUT ? QO_E_TIMEOUT : QO_E_DISCONNECTED;
+        return s->st.last_error;
+    }
+    if (s->spec.transport == QO_MODBUS_RTU && s->set.rs485)
+        (void)modbus_rtu_set_serial_mode(s->ctx, MODBUS_RTU_RS485);
+    modbus_flush(s->ctx);
+    s->connected = 1;
+    st = send_writes(s, s->disabled);
+    if (st == QO_OK && s->set.seed_from_feedback) st = seed_from_feedback(s);
+    if (st != QO_OK) {
+        modbus_close(s->ctx);
+        s->connected = 0;
+        return st;
+    }
+    s->st.common.connected = 1;
+    s->st.common.consecutive_failures = 0;
+    s->bus_failures = 0;
+    s->backoff_us = 0;
+    s->st.backoff_us = 0;
+    return QO_OK;
+}
+
+static int cmp_cell(const void *a, const void *b)
+{
+    const unsigned *x = a, *y = b; /* {slave, address, width, kind/index} */
+    if (x[0] != y[0]) return x[0] < y[0] ? -1 : 1;
+    if (x[1] != y[1]) return x[1] < y[1] ? -1 : 1;
+    return 0;
+}
+
+/* Builds the FC16 groups: cells (joint targets and constants) sorted by slave and address,
+ * merged while strictly contiguous and within the slave's max_registers. */
+static qo_status build_groups(qo_modbus_sink *s)
+{
+    const qo_regmap *m = s->map;
+    size_t nc = 0, i, k, max_cells = m->n_joints;
+    unsigned (*cells)[5];
+    for (i = 0; i < m->n_slaves; i++) max_cells += m->slaves[i].n_constant;
+    cells = calloc(max_cells, sizeof *cells);
+    s->groups = calloc(max_cells, sizeof *s->groups);
+    s->items = calloc(m->n_joints, sizeof *s->items);
+    if (cells == NULL || s->groups == NULL || s->items == NULL) {
+        free(cells);
+        return QO_E_CAPACITY;
+    }
+    for (i = 0; i < m->n_joints; i++) {
+        cells[nc][0] = m->joints[i].slave;
+        cells[nc][1] = m->joints[i].address;
+        cells[nc][2] = (unsigned)qo_reg_type_width(m->joints[i].fmt.type);
+        cells[nc][3] = 1; /* joint */
+        cells[nc][4] = (unsigned)i;
+        nc++;
+    }
+    for (i = 0; i < m->n_slaves; i++) {
+        for (k = 0; k < m->slaves[i].n_constant; k++) {
+            cells[nc][0] = m->slaves[i].id;
+            cells[nc][1] = m->slaves[i].constant[k].address;
+            cells[nc][2] = 1;
+            cells[nc][3] = 0; /* constant */
+            cells[nc][4] = m->slaves[i].constant[k].value;
+            nc++;
+        }
+    }
+    qsort(cells, nc, sizeof *cells, cmp_cell);
+    s->n_groups = 0;
+    {
+        size_t nitems = 0;
+        struct group *g = NULL;
+        for (i = 0; i < nc; i++) {
+            const qo_regmap_slave *sl = qo_regmap_find_slave(m, cells[i][0]);
+            unsigned maxr = sl != NULL ? sl->max_registers : QO_REGMAP_MAX_REGISTERS;
+            if (g == NULL || g->slave != cells[i][0] || g->start + g->count != cells[i][1] ||
+                g->count + cells[i][2] > maxr) {
+                g = &s->groups[s->n_groups++];
+                g->slave = cells[i][0];
+                g->gap_us = sl != NULL ? sl->gap_us : 0;
+                g->start = (uint16_t)cells[i][1];
+                g->count = 0;
+                g->first_item = nitems;
+                g->n_items = 0;
+            }
+            if (cells[i][3] == 1) {
+                s->items[nitems].joint = cells[i][4];
+                s->items[nitems].offset = g->count;
+                nitems++;
+                g->n_items++;
+            } else {
+                g->regs[g->count] = (uint16_t)cells[i][4];
+            }
+            g->count += cells[i][2];
+        }
+    }
+    free(cells);
+    s->st.groups = (unsigned)s->n_groups;
+    return QO_OK;
+}
+
+qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
+                              const qo_modbus_sink_settings *settings, qo_modbus_sink **out)
+{
+    qo_modbus_sink *s;
+    qo_status st;
+    size_t i;
+    if (out == NULL) return QO_E_NULL;
+    *out = NULL;
+    if (spec == NULL || map == NULL) return QO_E_NULL;
+    if (settings == NULL) settings = &qo_modbus_sink_settings_default;
+    if (map->n_joints == 0 || map->n_joints > QO_REGMAP_MAX_JOINTS) return QO_E_CONFIG;
+    if (settings->response_timeout_us == 0 || settings->reconnect_min_us == 0 ||
+        settings->fail_threshold == 0)
+        return QO_E_LIMIT;
+    if (settings->response_timeout_us > 10000000u || settings->byte_timeout_us > 10000000u ||
+        settings->reconnect_max_us < settings->reconnect_min_us ||
+        (settings->on_fail != QO_MODBUS_ON_FAIL_HOLD && settings->on_fail != QO_MODBUS_ON_FAIL_DISABLE))
+        return QO_E_CONFIG;
+    /* A map may be built by hand rather than by qo_regmap_load: check what the sink relies on. */
+    for (i = 0; i < map->n_slaves; i++)
+        if (map->slaves[i].max_registers < 1 || map->slaves[i].max_registers > QO_REGMAP_MAX_REGISTERS)
+            return QO_E_CONFIG;
+    for (i = 0; i < map->n_joints; i++) {
+        const qo_regmap_joint *j = &map->joints[i];
+        const qo_regmap_slave *sl = qo_regmap_find_slave(map, j->slave);
+        size_t w = qo_reg_type_width(j->fmt.type);
+        double raw;
+        if (w == 0 || qo_reg_raw_from_value(&j->fmt, 0.0, &raw) != QO_OK ||
+            (size_t)j->address + w > 65536u || j->slave < 1 || j->slave > 255 ||
+            !(j->max_step >= 0.0) || !isfinite(j->max_step) || j->min > j->max ||
+            (sl != NULL && w > sl->max_registers))
+            return QO_E_CONFIG;
+    }
+    s = calloc(1, sizeof *s);
+    if (s == NULL) return QO_E_CAPACITY;
+    s->map = map;
+    s->set = *settings;
+    s->st.last_error = QO_OK;
+    st = qo_modbus_parse_spec(spec, &s->spec);
+    if (st == QO_OK && (s->spec.transport == QO_MODBUS_TCP && s->spec.port == 0)) st = QO_E_CONFIG;
+    if (st == QO_OK) {
+        s->js = calloc(map->n_joints, sizeof *s->js);
+        if (s->js == NULL) st = QO_E_CAPACITY;
+    }
+    if (st == QO_OK) st = build_groups(s);
+    if (st == QO_OK) {
+        for (i = 0; i < map->n_joints; i++) {
+            const qo_regmap_joint *j = &map->joints[i];
+            s->js[i].step = j->max_step * fabs(j->fmt.scale);
+            (void)qo_reg_type_range(j->fmt.type, &s->js[i].tlo, &s->js[i].thi);
+        }
+        s->ctx = qo_modbus_new_ctx(&s->spec);
+        if (s->ctx == NULL) st = QO_E_CONFIG;
+    }
+    if (st == QO_OK) {
+        uint32_t r = settings->response_timeout_us, b = settings->byte_timeout_us;
+        modbus_set_error_recovery(s->ctx, MODBUS_ERROR_RECOVERY_NONE);
+        modbus_set_response_timeout(s->ctx, r / 1000000u, r % 1000000u);
+        modbus_set_byte_timeout(s->ctx, b / 1000000u, b % 1000000u);
+        st = do_connect(s);
+    }
+    if (st != QO_OK) {
+        qo_modbus_sink_free(s);
+        return st;
+    }
+    *out = s;
+    return QO_OK;
+}
+
+/* Raw value for joint i this tick, within max_step of every value the drive may hold. */
+static void limit_joint(qo_modbus_sink *s, size_t i, double target, uint16_t *regs)
+{
+    const qo_regmap_joint *j = &s->map->joints[i];
+    struct jstate *q = &s->js[i];
+    double v = target, raw, packed;
+    int limited = 0;
+    qo_status st;
+    if (v < j->min) v = j->min;
+    if (v > j->max) v = j->max;
+    if (v != target) {
+        s->st.clamped++;
+        limited = 1;
+    }
+    (void)qo_reg_raw_from_value(&j->fmt, v, &raw); /* finite: checked by the caller */
+    if (raw < q->tlo || raw > q->thi) {
+        raw = raw < q->tlo ? q->tlo : q->thi;
+        s->st.saturated++;
+        limited = 1;
+    }
+    if (q->have && q->step > 0.0) {
+        double a = q->hi - q->step, b = q->lo + q->step;
+        int tries;
+        if (raw < a || raw > b) {
+            raw = raw < a ? a : b;
+            s->st.rate_limited++;
+            limited = 1;
+        }
+        st = qo_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
+        /* Rounding to the register's resolution must not push the step past max_step. */
+        for (tries = 0; tries < 4 && (packed > b || packed < a); tries++) {
+            if (j->fmt.type == QO_REG_FLOAT32)
+                raw = (double)nextafterf((float)packed, packed > b ? -INFINITY : INFINITY);
+            else
+                raw = packed > b ? floor(b) : ceil(a);
+            st = qo_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
+        }
+    } else {
+        st = qo_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
+    }
+    (void)st;
+    q->cmd = packed;
+    if (limited) s->st.common.limited++;
+}
+
+static void fail_action(qo_modbus_sink *s)
+{
+    s->st.actions++;
+    if (s->set.on_fail == QO_MODBUS_ON_FAIL_DISABLE) {
+        s->disabled = 1;
+        s->st.disabled = 1;
+        if (s->connected) (void)send_writes(s, 1); /* best effort: the link is failing */
+    }
+    link_down(s);
+}
+
+/* A rejected call (bad arguments, wrong state): counted, but it says nothing about the bus. */
+static qo_status rejected(qo_modbus_sink *s, qo_status st)
+{
+    s->st.common.writes_failed++;
+    s->st.common.consecutive_failures++;
+    s->st.last_error = st;
+    return st;
+}
+
+static qo_status tick_result(qo_modbus_sink *s, qo_status st)
+{
+    if (st == QO_OK) {
+        s->st.common.writes_ok++;
+        s->st.common.consecutive_failures = 0;
+        s->bus_failures = 0;
+        return QO_OK;
+    }
+    s->st.common.writes_failed++;
+    s->st.common.consecutive_failures++;
+    s->bus_failures++;
+    s->st.last_error = st;
+    if (st == QO_E_DISCONNECTED && s->connected) {
+        link_down(s);
+        if (s->set.on_fail == QO_MODBUS_ON_FAIL_DISABLE) {
+            s->disabled = 1;
+            s->st.disabled = 1;
+            s->st.actions++;
+        }
+    } else if (s->connected && s->bus_failures >= s->set.fail_threshold) {
+        fail_action(s);
+    }
+    return st;
+}
+
+qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n,
+                               uint64_t tick)
+{
+    size_t g, i;
+    qo_status st = QO_OK;
+    (void)tick;
+    if (s == NULL) return QO_E_NULL;
+    s->st.common.writes++;
+    if (targets == NULL) return rejected(s, QO_E_NULL);
+    if (s->closed || s->disabled) return rejected(s, QO_E_STATE);
+    if (n != s->map->n_joints) return rejected(s, QO_E_RANGE);
+    for (i = 0; i < n; i++)
+        if (!isfinite(targets[i])) return rejected(s, QO_E_NONFINITE);
+    if (!s->connected) return tick_result(s, QO_E_DISCONNECTED);
+    for (g = 0; g < s->n_groups && st == QO_OK; g++) {
+        struct group *gr = &s->groups[g];
+        int rc, unc;
+        for (i = 0; i < gr->n_items; i++) {
+            const struct item *it = &s->items[gr->first_item + i];
+            limit_joint(s, it->joint, (double)targets[it->joint], gr->regs + it->offset);
+        }
+        modbus_set_slave(s->ctx, (int)gr->slave);
+        rc = modbus_write_registers(s->ctx, gr->start, (int)gr->count, gr->regs);
+        st = after_request(s, rc, &unc);
+        for (i = 0; i < gr->n_items; i++) {
+            struct jstate *q = &s->js[s->items[gr->first_item + i].joint];
+            if (st == QO_OK) {
+                q->have = 1;
+                q->lo = q->hi = q->cmd;
+            } else if (unc && q->have) {
+                /* The drive may hold the old or the new value: keep both reachable. */
+                if (q->cmd < q->lo) q->lo = q->cmd;
+                if (q->cmd > q->hi) q->hi = q->cmd;
+            }
+        }
+        sleep_us(gr->gap_us);
+    }
+    return tick_result(s, st);
+}
+
+qo_status qo_modbus_sink_service(qo_modbus_sink *s)
+{
+    struct timespec now;
+    qo_status st;
+    if (s == NULL) return QO_E_NULL;
+    if (s->closed) return QO_E_STATE;
+    if (s->connected) return QO_OK;
+    now_ts(&now);
+    if (ts_before(&now, &s->next_attempt)) return QO_E_DISCONNECTED;
+    s->st.reconnect_attempts++;
+    st = do_connect(s);
+    if (st == QO_OK) {
+        s->st.common.reconnects++;
+        return QO_OK;
+    }
+    {
+        uint64_t b = s->backoff_us == 0 ? s->set.reconnect_min_us : (uint64_t)s->backoff_us * 2u;
+        if (b > s->set.reconnect_max_us) b = s->set.reconnect_max_us;
+        s->backoff_us = (uint32_t)b;
+        s->st.backoff_us = s->backoff_us;
+        now_ts(&s->next_attempt);
+        s->next_attempt.tv_sec += (time_t)(b / 1000000u);
+        s->next_attempt.tv_nsec += (long)(b % 1000000u) * 1000L;
+        if (s->next_attempt.tv_nsec >= 1000000000L) {
+            s->next_attempt.tv_sec++;
+            s->next_attempt.tv_nsec -= 1000000000L;
+        }
+    }
+    return st;
+}
+
+qo_status qo_modbus_sink_enable(qo_modbus_sink *s)
+{
+    qo_status st = QO_OK;
+    if (s == NULL) return QO_E_NULL;
+    if (s->closed) return QO_E_STATE;
+    if (s->connected) {
+        st = send_writes(s, 0);
+        if (st != QO_OK) return st;
+    }
+    s->disabled = 0;
+    s->st.disabled = 0;
+    s->st.common.consecutive_failures = 0;
+    s->bus_failures = 0;
+    return QO_OK;
+}
+
+qo_status qo_modbus_sink_seed(qo_modbus_sink *s, const float *positions, size_t n)
+{
+    size_t i;
+    if (s == NULL || positions == NULL) return QO_E_NULL;
+    if (n != s->map->n_joints) return QO_E_RANGE;
+    for (i = 0; i < n; i++)
+        if (!isfinite(positions[i])) return QO_E_NONFINITE;
+    for (i = 0; i < n; i++) {
+        const qo_regmap_joint *j = &s->map->joints[i];
+        uint16_t regs[2];
+        double raw, packed;
+        (void)qo_reg_raw_from_value(&j->fmt, (double)positions[i], &raw);
+        (void)qo_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
+        s->js[i].have = 1;
+        s->js[i].lo = s->js[i].hi = packed;
+    }
+    return QO_OK;
+}
+
+qo_status qo_modbus_sink_read_feedback(qo_modbus_sink *s, float *out, size_t n)
+{
+    size_t i;
+    qo_status st = QO_OK;
+    if (out == NULL) return QO_E_NULL;
+    for (i = 0; i < n; i++) out[i] = NAN;
+    if (s == NULL) return QO_E_NULL;
+    if (n != s->map->n_joints) return QO_E_RANGE;
+    if (s->closed) return QO_E_STATE;
+    if (!s->connected) return QO_E_DISCONNECTED;
+    for (i = 0; i < n && st == QO_OK; i++) {
+        double raw, v;
+        if (!s->map->joints[i].has_feedback) continue;
+        st = read_joint_feedback(s, i, &raw);
+        if (st == QO_OK) st = qo_reg_value_from_raw(&s->map->joints[i].fmt, raw, &v);
+        if (st == QO_OK) out[i] = (float)v;
+    }
+    if (st != QO_OK)
+        for (i = 0; i < n; i++) out[i] = NAN;
+    return st;
+}
+
+qo_status qo_modbus_sink_get_stats(const qo_modbus_sink *s, qo_modbus_sink_stats *out)
+{
+    if (out == NULL) return QO_E_NULL;
+    memset(out, 0, sizeof *out);
+    if (s == NULL) return QO_E_NULL;
+    *out = s->st;
+    return QO_OK;
+}
+
+void qo_modbus_sink_close(qo_modbus_sink *s)
+{
+    if (s == NULL || s->closed) return;
+    if (s->ctx != NULL) modbus_close(s->ctx);
+    s->connected = 0;
+    s->closed = 1;
+    s->st.common.connected = 0;
+}
+
+void qo_modbus_sink_free(qo_modbus_sink *s)
+{
+    if (s == NULL) return;
+    qo_modbus_sink_close(s);
+    if (s->ctx != NULL) modbus_free(s->ctx);
+    free(s->groups);
+    free(s->items);
+    free(s->js);
+    free(s);
+}
+
+static qo_status sink_write(void *ctx, const float *targets, size_t n, uint64_t tick)
+{
+    return qo_modbus_sink_write(ctx, targets, n, tick);
+}
+
+static qo_status sink_flush(void *ctx)
+{
+    qo_modbus_sink *s = ctx;
+    if (s == NULL) return QO_E_NULL;
+    if (s->closed) return QO_E_STATE;
+    return QO_OK; /* every write is sent at once: nothing is buffered */
+}
+
+static void sink_close(void *ctx)
+{
+    qo_modbus_sink_close(ctx);
+}
+
+static void sink_service(void *ctx)
+{
+    /* Reconnection with backoff; its status shows up in the statistics, not here. */
+    (void)qo_modbus_sink_service(ctx);
+}
+
+static qo_status sink_stats(void *ctx, qo_sink_stats *out)
+{
+    const qo_modbus_sink *s = ctx;
+    if (out == NULL) return QO_E_NULL;
+    if (s == NULL) {
+        memset(out, 0, sizeof *out);
+        return QO_E_NULL;
+    }
+    *out = s->st.common;
+    return QO_OK;
+}
+
+qo_status qo_modbus_sink_as_sink(qo_modbus_sink *s, qo_sink *out)
+{
+    if (out == NULL) return QO_E_NULL;
+    memset(out, 0, sizeof *out);
+    if (s == NULL) return QO_E_NULL;
+    out->ctx = s;
+    out->write = sink_write;
+    out->flush = sink_flush;
+    out->close = sink_close;
+    out->stats = sink_stats;
+    out->service = sink_service;
+    return QO_OK;
+}

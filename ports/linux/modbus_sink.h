@@ -1,0 +1,187 @@
+/*
+ * ports/linux/modbus_sink.h - a qo_sink that streams joint targets to drives over Modbus
+ * RTU or TCP (libmodbus), using a register map (linux/regmap.h).
+ *
+ * Index:
+ *   qo_modbus_spec, qo_modbus_parse_spec()   "tcp://HOST:PORT" / "rtu:DEVICE,BAUD,8N1"
+ *   qo_modbus_new_ctx()                       a libmodbus context for a parsed spec
+ *   qo_modbus_sink_settings, qo_modbus_sink_settings_default
+ *   qo_modbus_sink_open()        connect, send the slaves' init writes, seed from feedback
+ *   qo_modbus_sink_as_sink()     the generic qo_sink view
+ *   qo_modbus_sink_write()       one tick: limit, pack, FC16 per contiguous run
+ *   qo_modbus_sink_service()     reconnect with backoff, outside the periodic deadline
+ *   qo_modbus_sink_enable()      leave the "disabled" state after the disable action
+ *   qo_modbus_sink_seed()        tell the sink where the drives are (no feedback registers)
+ *   qo_modbus_sink_read_feedback()  read the feedback registers (FC03)
+ *   qo_modbus_sink_get_stats()   counters
+ *   qo_modbus_sink_close()       drop the link (idempotent); qo_modbus_sink_free() frees
+ *
+ * What one write() does, in order:
+ *   1. every target is checked (NaN/Inf -> nothing is sent), clamped to the joint's
+ *      [min, max] and converted to register units;
+ *   2. rate limit, in register units after rounding, so the drive NEVER receives a change
+ *      bigger than max_step from what it may hold. The sink remembers, per joint, the range
+ *      [lo, hi] of values the drive may hold: one value after a confirmed write, both the old
+ *      and the new value after a write whose outcome is unknown (timeout, garbled reply,
+ *      lost link). A new value is always within max_step of every value in that range, so
+ *      after a fault the stream resumes from the last value actually written and walks
+ *      toward the new target at max_step per tick. A Modbus exception reply means "not
+ *      applied" and leaves the range as it was. Before the first write the range is seeded
+ *      from the feedback registers (when the map has them) or from qo_modbus_sink_seed();
+ *      a joint with neither gets its first target unlimited (and that is counted nowhere:
+ *      give the map feedback registers or call seed if that matters);
+ *   3. the targets and the slaves' constant registers are packed (linux/modbus_pack.h) and
+ *      sent as one FC16 per run of strictly contiguous registers of one slave, split at the
+ *      slave's max_registers (never inside a 32-bit value); runs go out in slave, then
+ *      address order, each followed by the slave's gap_us of silence;
+ *   4. the tick stops at the first failed request, modbus_flush() drops any stale reply,
+ *      and the failure is counted. On TCP a reply with the wrong transaction id (the late
+ *      answer to an earlier, timed-out request) is followed by one more bounded receive to
+ *      consume this request's own reply, so the link is in step again at once. A tick thus
+ *      costs at most two response timeouts (plus the gaps).
+ * libmodbus's own error recovery is NONE: its LINK mode can loop for ever.
+ *
+ * After `fail_threshold` consecutive failed ticks (or at once when the link is lost) the
+ * sink closes the link and takes its failure action: HOLD leaves the drives on their last
+ * target; DISABLE first sends every slave's `disable` writes (best effort) and then refuses
+ * writes (QO_E_STATE) until qo_modbus_sink_enable(). While the link is down write() returns
+ * QO_E_DISCONNECTED at once, without touching the bus; qo_modbus_sink_service() (called by
+ * the streamer after its deadline work) reconnects with exponential backoff, resends the
+ * init writes (the disable writes instead, while disabled) and clears the failure count.
+ *
+ * Threads: a sink is used by one thread at a time (libmodbus contexts are not thread-safe).
+ */
+#ifndef QORIENT_MODBUS_SINK_H
+#define QORIENT_MODBUS_SINK_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include <modbus.h>
+
+#include "qorient/sink.h"
+#include "qorient/status.h"
+#include "linux/regmap.h"
+
+typedef enum qo_modbus_transport { QO_MODBUS_TCP = 0, QO_MODBUS_RTU } qo_modbus_transport;
+
+#define QO_MODBUS_SPEC_MAX 128
+
+typedef struct qo_modbus_spec {
+    qo_modbus_transport transport;
+    char host[QO_MODBUS_SPEC_MAX];   /* TCP: address or name (IPv4 literal for the sim) */
+    int port;                        /* TCP: 0..65535 (0 = ephemeral, listen side only) */
+    char device[QO_MODBUS_SPEC_MAX]; /* RTU: serial device path */
+    int baud;                        /* RTU: > 0 */
+    char parity;                     /* RTU: 'N', 'E' or 'O' */
+    int data_bits;                   /* RTU: 5..8 */
+    int stop_bits;                   /* RTU: 1 or 2 */
+} qo_modbus_spec;
+
+/* Parses "tcp://HOST:PORT" (PORT optional, default 502; HOST may be empty: 127.0.0.1) or
+ * "rtu:DEVICE[,BAUD[,FRAME]]" with FRAME = data bits, parity N/E/O, stop bits, e.g. "8N1"
+ * (defaults 19200 and 8E1, the Modbus serial line default). Returns QO_OK, QO_E_NULL or
+ * QO_E_CONFIG (*out zeroed on error). */
+qo_status qo_modbus_parse_spec(const char *text, qo_modbus_spec *out);
+
+/* A libmodbus context for the spec, or NULL (bad spec or libmodbus failure): modbus_new_tcp
+ * for an IPv4 literal, modbus_new_tcp_pi for a host name or IPv6 address (client side only:
+ * the simulator listens on IPv4 literals), modbus_new_rtu for a serial device. */
+modbus_t *qo_modbus_new_ctx(const qo_modbus_spec *spec);
+
+typedef enum qo_modbus_fail_action {
+    QO_MODBUS_ON_FAIL_HOLD = 0, /* drives keep their last target; resume after reconnect */
+    QO_MODBUS_ON_FAIL_DISABLE   /* send the disable writes; stay disabled until enable() */
+} qo_modbus_fail_action;
+
+typedef struct qo_modbus_sink_settings {
+    uint32_t response_timeout_us; /* first reply byte (and TCP connect); keep it below the
+                                     control period; 1..10000000. On RTU it also covers the
+                                     request's own wire time: at 19200 8E1 a 6 x int32 FC16
+                                     (33 bytes) takes 19 ms before the drive can answer */
+    uint32_t byte_timeout_us;     /* between reply bytes; 0 = whole reply within the response
+                                     timeout */
+    unsigned fail_threshold;      /* consecutive failed ticks before the action; >= 1 */
+    qo_modbus_fail_action on_fail;
+    uint32_t reconnect_min_us;    /* first backoff after a failed reconnection; >= 1 */
+    uint32_t reconnect_max_us;    /* backoff ceiling; >= reconnect_min_us */
+    int rs485;                    /* RTU: try MODBUS_RTU_RS485 mode (failure is ignored:
+                                     ptys and many USB adapters refuse it) */
+    int seed_from_feedback;       /* read feedback registers at (re)connect to seed the rate
+                                     limit of joints never written */
+} qo_modbus_sink_settings;
+
+/* 20 ms response, 5 ms byte timeout, threshold 5, HOLD, backoff 50 ms .. 2 s, no RS485 ioctl,
+ * seed from feedback. */
+extern const qo_modbus_sink_settings qo_modbus_sink_settings_default;
+
+typedef struct qo_modbus_sink_stats {
+    qo_sink_stats common;        /* writes, ok, failed, consecutive, limited, reconnects */
+    uint64_t requests;           /* Modbus requests sent (FC16 + FC06 + FC03) */
+    uint64_t requests_failed;
+    uint64_t timeouts;           /* ETIMEDOUT */
+    uint64_t exceptions;         /* exception replies */
+    uint64_t protocol_errors;    /* bad CRC, wrong slave, bad data, ... */
+    uint64_t disconnects;        /* links found down (or closed after the threshold) */
+    uint64_t reconnect_attempts;
+    uint64_t rate_limited;       /* joint values changed by max_step */
+    uint64_t clamped;            /* joint values changed by min/max */
+    uint64_t saturated;          /* joint values changed by the register type's range */
+    uint64_t actions;            /* failure actions taken */
+    unsigned groups;             /* FC16 requests per tick */
+    int disabled;                /* 1 while in the disabled state */
+    qo_status last_error;        /* last failure, QO_OK if none yet */
+    uint32_t backoff_us;         /* current reconnection backoff */
+} qo_modbus_sink_stats;
+
+typedef struct qo_modbus_sink qo_modbus_sink;
+
+/* Validates settings (NULL = defaults) and `map` (kept by pointer: it must outlive the sink),
+ * connects to `spec`, sends the init writes and seeds from feedback.
+ * Returns QO_OK with *out set; on error *out is NULL and nothing stays open:
+ * QO_E_NULL; QO_E_CONFIG (bad spec, empty map, bad settings); QO_E_LIMIT (a zero timeout);
+ * QO_E_IO, QO_E_TIMEOUT, QO_E_DISCONNECTED, QO_E_PROTOCOL (connection or init failed). */
+qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
+                              const qo_modbus_sink_settings *settings, qo_modbus_sink **out);
+
+/* Fills *out (write, flush, close, stats) with ctx = s. close is qo_modbus_sink_close, so
+ * the object still needs qo_modbus_sink_free. QO_E_NULL if either is NULL (*out zeroed). */
+qo_status qo_modbus_sink_as_sink(qo_modbus_sink *s, qo_sink *out);
+
+/* One tick; see the header comment. `targets` holds map->n_joints values in joint units.
+ * Returns QO_OK; QO_E_NULL; QO_E_RANGE (n != number of joints); QO_E_NONFINITE (nothing
+ * sent); QO_E_STATE (closed, or disabled); QO_E_DISCONNECTED (link down, nothing sent);
+ * QO_E_TIMEOUT; QO_E_PROTOCOL (exception or malformed reply); QO_E_IO (other errors). */
+qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n,
+                               uint64_t tick);
+
+/* Reconnection, outside the deadline. When the link is up: QO_OK at once. When down and the
+ * backoff has not expired: QO_E_DISCONNECTED at once. Otherwise one attempt (bounded by the
+ * response timeout per request): QO_OK when reconnected, else its error and a doubled
+ * backoff. QO_E_NULL, QO_E_STATE after close. */
+qo_status qo_modbus_sink_service(qo_modbus_sink *s);
+
+/* Leaves the disabled state: resends the init writes when connected (else they go with the
+ * next reconnection). QO_OK, QO_E_NULL, QO_E_STATE (closed), or the bus error (still
+ * disabled). */
+qo_status qo_modbus_sink_enable(qo_modbus_sink *s);
+
+/* Declares the drives' current positions (joint units, n = number of joints) as the start of
+ * the rate limit. QO_OK, QO_E_NULL, QO_E_RANGE, QO_E_NONFINITE (nothing changed). */
+qo_status qo_modbus_sink_seed(qo_modbus_sink *s, const float *positions, size_t n);
+
+/* Reads every joint's feedback registers (FC03) into out[0..n-1] in joint units; joints
+ * without feedback get NaN. QO_OK, QO_E_NULL, QO_E_RANGE, QO_E_STATE, QO_E_DISCONNECTED or
+ * the bus error (out is all NaN then). */
+qo_status qo_modbus_sink_read_feedback(qo_modbus_sink *s, float *out, size_t n);
+
+/* Copies the counters (zeroed when s is NULL). QO_OK or QO_E_NULL. */
+qo_status qo_modbus_sink_get_stats(const qo_modbus_sink *s, qo_modbus_sink_stats *out);
+
+/* Closes the link; later writes return QO_E_STATE. Idempotent; NULL is ignored. */
+void qo_modbus_sink_close(qo_modbus_sink *s);
+
+/* Closes and frees. NULL is ignored. */
+void qo_modbus_sink_free(qo_modbus_sink *s);
+
+#endif /* QORIENT_MODBUS_SINK_H */

@@ -1,0 +1,105 @@
+#include "mock/mock_sink.h"
+
+#include <string.h>
+
+static qo_status mock_write(void *ctx, const float *targets, size_t n, uint64_t tick)
+{
+    qo_mock_sink *m = ctx;
+    size_t i;
+    qo_status st = QO_OK;
+    if (m == NULL) return QO_E_NULL;
+    m->stats.writes++;
+    if (m->closed) st = QO_E_STATE;
+    else if (targets == NULL) st = QO_E_NULL;
+    else if (n != m->n_joints) st = QO_E_RANGE;
+    else {
+        for (i = 0; i < m->n_fail_ticks; i++)
+            if (m->fail_ticks[i] == tick) st = m->fail_status;
+    }
+    if (st == QO_OK) {
+        if (m->count >= m->max_records) {
+            m->dropped++;
+            st = QO_E_CAPACITY;
+        } else {
+            memcpy(m->values + m->count * m->n_joints, targets, n * sizeof *targets);
+            if (m->ticks != NULL) m->ticks[m->count] = tick;
+            m->count++;
+        }
+    }
+    if (st == QO_OK) {
+        m->stats.writes_ok++;
+        m->stats.consecutive_failures = 0;
+    } else {
+        m->stats.writes_failed++;
+        m->stats.consecutive_failures++;
+    }
+    return st;
+}
+
+static qo_status mock_flush(void *ctx)
+{
+    qo_mock_sink *m = ctx;
+    if (m == NULL) return QO_E_NULL;
+    if (m->closed) return QO_E_STATE;
+    m->flushes++;
+    return QO_OK;
+}
+
+static void mock_close(void *ctx)
+{
+    qo_mock_sink *m = ctx;
+    if (m != NULL) {
+        m->closed = 1;
+        m->stats.connected = 0;
+    }
+}
+
+static qo_status mock_stats(void *ctx, qo_sink_stats *out)
+{
+    const qo_mock_sink *m = ctx;
+    if (out == NULL) return QO_E_NULL;
+    if (m == NULL) {
+        memset(out, 0, sizeof *out);
+        return QO_E_NULL;
+    }
+    *out = m->stats;
+    return QO_OK;
+}
+
+qo_status qo_mock_sink_init(qo_mock_sink *m, size_t n_joints, float *values, uint64_t *ticks,
+                            size_t max_records, qo_sink *sink)
+{
+    if (sink != NULL) memset(sink, 0, sizeof *sink);
+    if (m == NULL) return QO_E_NULL;
+    memset(m, 0, sizeof *m);
+    if (values == NULL || sink == NULL) return QO_E_NULL;
+    if (n_joints == 0 || max_records == 0) return QO_E_TOO_FEW;
+    m->n_joints = n_joints;
+    m->values = values;
+    m->ticks = ticks;
+    m->max_records = max_records;
+    m->fail_status = QO_E_IO;
+    m->stats.connected = 1;
+    sink->ctx = m;
+    sink->write = mock_write;
+    sink->flush = mock_flush;
+    sink->close = mock_close;
+    sink->stats = mock_stats;
+    return QO_OK;
+}
+
+qo_status qo_mock_sink_fail_on(qo_mock_sink *m, const uint64_t *fail_ticks, size_t n,
+                               qo_status st)
+{
+    if (m == NULL || (fail_ticks == NULL && n > 0)) return QO_E_NULL;
+    m->fail_ticks = n > 0 ? fail_ticks : NULL;
+    m->n_fail_ticks = n;
+    m->fail_status = st == QO_OK ? QO_E_IO : st;
+    return QO_OK;
+}
+
+const float *qo_mock_sink_row(const qo_mock_sink *m, size_t i)
+{
+    if (m == NULL || i >= m->count) return NULL;
+    return m->values + i * m->n_joints;
+}

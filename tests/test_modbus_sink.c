@@ -1,0 +1,785 @@
+/* The Modbus sink against the real simulator: loopback TCP on an ephemeral port and RTU over
+ * a pseudo-terminal pair joined by a relay thread (which can inject garbage bytes).
+ * For every run: the simulator's log of received targets shows no step above max_step (the
+ * bound is checked from the simulator's initial position onward, across every fault), the
+ * stream recovers after the fault, and the final targets are reached exactly (to the
+ * register resolution). Targets move faster than max_step so the limit is always in play. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <math.h>
+#include <errno.h>
+#include <poll.h>
+#include <pthread.h>
+#include <pty.h>
+#include <termios.h>
+#include <time.h>
+#include <unistd.h>
+#include <cmocka.h>
+
+#include "linux/modbus_sink.h"
+#include "linux/sim.h"
+
+#define NJ 6
+#define NTICKS 300
+#define FINAL_TICKS 100
+
+static qo_regmap map; /* large: keep off the stack */
+
+static void load_six(void)
+{
+    char err[256];
+    qo_status st = qo_regmap_load("examples/maps/six_int32.ini", &map, err, sizeof err);
+    if (st != QO_OK) fail_msg("map: %s", err);
+}
+
+static qo_modbus_sink_settings test_settings(void)
+{
+    qo_modbus_sink_settings s = qo_modbus_sink_settings_default;
+    /* Generous for loopback (replies take ~0.1 ms) so a loaded CI machine does not turn into
+     * spurious timeouts; faults that must time out are longer (delay 150 ms). */
+    s.response_timeout_us = 100000;
+    s.byte_timeout_us = 20000;
+    s.fail_threshold = 3;
+    s.reconnect_min_us = 1000;
+    s.reconnect_max_us = 20000;
+    return s;
+}
+
+static double final_target(size_t i)
+{
+    return 0.3 * (double)(i + 1) - 1.0;
+}
+
+/* Targets at tick k: a fast sine (0.25 rad/tick peak, 5x max_step), then the final values. */
+static void targets_at(unsigned k, float *t)
+{
+    size_t i;
+    for (i = 0; i < NJ; i++)
+        t[i] = k < NTICKS - FINAL_TICKS ? (float)(2.5 * sin(0.1 * k + (double)i))
+                                        : (float)final_target(i);
+}
+
+struct run_result {
+    unsigned ok, failed, last_failed_tick;
+};
+
+/* Streams NTICKS ticks, calling service after each write as a streamer does after its
+ * deadline work. A service that must wait for its backoff returns at once, so a bounded
+ * number of extra service calls at the end lets a pending reconnection finish. */
+static struct run_result stream(qo_modbus_sink *s)
+{
+    struct run_result r = { 0, 0, 0 };
+    unsigned k;
+    float t[NJ];
+    for (k = 0; k < NTICKS; k++) {
+        qo_status st;
+        targets_at(k, t);
+        st = qo_modbus_sink_write(s, t, NJ, k);
+        if (st == QO_OK) r.ok++;
+        else {
+            r.failed++;
+            r.last_failed_tick = k;
+        }
+        (void)qo_modbus_sink_service(s);
+    }
+    return r;
+}
+
+/* Reads the simulator's CSV log: every step per joint within max_step (joint units, checked
+ * in double from the decoded register values) starting from the initial position 0; returns
+ * the largest step/max_step ratio and the last value per joint. */
+static double check_log(FILE *log, const qo_regmap *m, double *last, unsigned *lines)
+{
+    char line[256];
+    double worst = 0.0;
+    size_t i;
+    *lines = 0;
+    for (i = 0; i < m->n_joints; i++) last[i] = 0.0;
+    rewind(log);
+    assert_non_null(fgets(line, sizeof line, log));
+    assert_string_equal(line, "t_s,request,slave,joint_index,joint,value\n");
+    while (fgets(line, sizeof line, log) != NULL) {
+        double t, v, ratio;
+        unsigned long long req;
+        unsigned slave;
+        size_t ji;
+        char name[64];
+        if (sscanf(line, "%lf,%llu,%u,%zu,%63[^,],%lf", &t, &req, &slave, &ji, name, &v) != 6)
+            fail_msg("log line not parsed: %s", line);
+        if (ji >= m->n_joints || strcmp(name, m->joints[ji].name) != 0)
+            fail_msg("log line with a wrong joint: %s", line);
+        ratio = fabs(v - last[ji]) / m->joints[ji].max_step;
+        if (ratio > 1.0 + 1e-9)
+            fail_msg("joint %s: step %.9g -> %.9g exceeds max_step %.9g (request %llu)", name,
+                     last[ji], v, m->joints[ji].max_step, req);
+        if (ratio > worst) worst = ratio;
+        last[ji] = v;
+        (*lines)++;
+    }
+    return worst;
+}
+
+static void check_final(qo_sim *sim, const char *what)
+{
+    size_t i;
+    for (i = 0; i < NJ; i++) {
+        double tgt, pos;
+        assert_int_equal(qo_sim_get_joint(sim, i, &tgt, &pos), QO_OK);
+        if (fabs(tgt - final_target(i)) > 0.5e-3 + 1e-12)
+            fail_msg("%s: joint %u: simulator target %.9g, want %.9g", what, (unsigned)i, tgt,
+                     final_target(i));
+    }
+}
+
+static qo_sim *start_tcp_sim(FILE *log, const qo_sim_fault *fault, double lag, char *spec,
+                             size_t spec_len)
+{
+    qo_sim *sim = NULL;
+    qo_sim_settings ss = qo_sim_settings_default;
+    ss.log = log;
+    ss.lag_s = lag;
+    ss.seed = 7;
+    if (fault != NULL) ss.fault = *fault;
+    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, &ss, &sim), QO_OK);
+    assert_true(qo_sim_port(sim) > 0);
+    snprintf(spec, spec_len, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+    return sim;
+}
+
+static void test_tcp_clean_stream(void **state)
+{
+    FILE *log = tmpfile();
+    qo_sim *sim;
+    qo_modbus_sink *s = NULL;
+    qo_modbus_sink_settings set = test_settings();
+    qo_modbus_sink_stats st;
+    qo_sink generic;
+    qo_sink_stats gs;
+    struct run_result r;
+    double last[NJ], worst;
+    float fb[NJ];
+    unsigned lines;
+    char spec[64];
+    size_t i;
+    (void)state;
+    load_six();
+    assert_non_null(log);
+    sim = start_tcp_sim(log, NULL, 0.0, spec, sizeof spec);
+    assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+    assert_int_equal(qo_modbus_sink_as_sink(s, &generic), QO_OK);
+    r = stream(s);
+    assert_int_equal(r.failed, 0);
+    assert_int_equal(r.ok, NTICKS);
+    assert_int_equal(qo_modbus_sink_get_stats(s, &st), QO_OK);
+    assert_int_equal(st.groups, 1); /* six contiguous int32 = one FC16 of 12 registers */
+    assert_true(st.rate_limited > 0);
+    assert_int_equal(st.requests, NTICKS + NJ); /* + six feedback reads at open */
+    assert_int_equal(qo_sink_get_stats(&generic, &gs), QO_OK);
+    assert_int_equal(gs.writes_ok, NTICKS);
+    assert_int_equal(gs.connected, 1);
+    /* lag 0: the feedback registers hold the target */
+    assert_int_equal(qo_modbus_sink_read_feedback(s, fb, NJ), QO_OK);
+    for (i = 0; i < NJ; i++)
+        if (fabs((double)fb[i] - final_target(i)) > 0.5e-3 + 1e-6)
+            fail_msg("feedback %u: %g want %g", (unsigned)i, (double)fb[i], final_target(i));
+    qo_sink_close(&generic);
+    qo_sink_close(&generic);
+    assert_int_equal(qo_modbus_sink_write(s, fb, NJ, 0), QO_E_STATE);
+    assert_int_equal(qo_modbus_sink_service(s), QO_E_STATE);
+    qo_modbus_sink_free(s);
+    qo_sim_stop(sim);
+    worst = check_log(log, &map, last, &lines);
+    assert_int_equal(lines, NTICKS * NJ);
+    assert_true(worst > 0.99); /* the limit was reached, and never passed */
+    {
+        /* with the sink closed and the sim stopped the final targets are in the log */
+        for (i = 0; i < NJ; i++)
+            if (fabs(last[i] - final_target(i)) > 0.5e-3 + 1e-12)
+                fail_msg("joint %u: last %g want %g", (unsigned)i, last[i], final_target(i));
+    }
+    fclose(log);
+}
+
+struct fault_case {
+    const char *name;
+    qo_sim_fault fault;
+};
+
+static void test_tcp_faults(void **state)
+{
+    static const struct fault_case cases[] = {
+        { "delay 150 ms x2 (timeouts, late replies)", { QO_SIM_FAULT_DELAY, 150, 0.0, 60, 2 } },
+        { "drop x4 (applied, no reply)", { QO_SIM_FAULT_DROP, 0, 0.0, 60, 4 } },
+        { "exception x4 (not applied)", { QO_SIM_FAULT_EXCEPTION, 0, 0.0, 60, 4 } },
+        { "close x1 (disconnect mid-stream)", { QO_SIM_FAULT_CLOSE, 0, 0.0, 60, 1 } },
+        { "close x3 (reconnects fail too)", { QO_SIM_FAULT_CLOSE, 0, 0.0, 60, 3 } },
+        { "drop 3% of requests", { QO_SIM_FAULT_DROP, 0, 0.03, 0, 0 } },
+        { "exception 10% of requests", { QO_SIM_FAULT_EXCEPTION, 0, 0.10, 0, 0 } },
+    };
+    size_t c;
+    (void)state;
+    load_six();
+    for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        FILE *log = tmpfile();
+        qo_sim *sim;
+        qo_modbus_sink *s = NULL;
+        qo_modbus_sink_settings set = test_settings();
+        qo_modbus_sink_stats st;
+        qo_sim_stats sst;
+        struct run_result r;
+        double last[NJ];
+        unsigned lines;
+        char spec[64];
+        int tries;
+        assert_non_null(log);
+        sim = start_tcp_sim(log, NULL, 0.02, spec, sizeof spec);
+        assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+        /* faults start after open: `after` counts requests from here */
+        assert_int_equal(qo_sim_set_fault(sim, &cases[c].fault), QO_OK);
+        r = stream(s);
+        /* a share-based fault may hit the last ticks: finish with fault-free ticks */
+        {
+            qo_sim_fault none = { QO_SIM_FAULT_NONE, 0, 0.0, 0, 0 };
+            float t[NJ];
+            unsigned k;
+            assert_int_equal(qo_sim_set_fault(sim, &none), QO_OK);
+            targets_at(NTICKS - 1, t);
+            for (tries = 0, k = 0; tries < 200 && k < 3; tries++) {
+                if (qo_modbus_sink_service(s) != QO_OK) continue;
+                if (qo_modbus_sink_write(s, t, NJ, NTICKS + (unsigned)tries) == QO_OK) k++;
+            }
+            if (k < 3) fail_msg("%s: stream did not recover", cases[c].name);
+        }
+        assert_int_equal(qo_modbus_sink_get_stats(s, &st), QO_OK);
+        assert_int_equal(qo_sim_get_stats(sim, &sst), QO_OK);
+        if (sst.faults == 0 || r.failed == 0)
+            fail_msg("%s: no fault seen (sim faults %llu, failed ticks %u)", cases[c].name,
+                     (unsigned long long)sst.faults, r.failed);
+        if (cases[c].fault.share == 0.0 && r.last_failed_tick > NTICKS - FINAL_TICKS)
+            fail_msg("%s: failures lasted until tick %u", cases[c].name, r.last_failed_tick);
+        if (cases[c].fault.kind == QO_SIM_FAULT_CLOSE && st.common.reconnects == 0)
+            fail_msg("%s: no reconnection", cases[c].name);
+        if (getenv("QO_DEBUG")) printf("%s: failed %u timeouts %llu proto %llu exc %llu disc %llu reconn %llu\n", cases[c].name, r.failed, (unsigned long long)st.timeouts, (unsigned long long)st.protocol_errors, (unsigned long long)st.exceptions, (unsigned long long)st.disconnects, (unsigned long long)st.common.reconnects);
+        if (cases[c].fault.kind == QO_SIM_FAULT_DELAY && st.timeouts == 0)
+            fail_msg("%s: no timeout counted", cases[c].name);
+        if (cases[c].fault.kind == QO_SIM_FAULT_EXCEPTION && st.exceptions == 0)
+            fail_msg("%s: no exception counted", cases[c].name);
+        check_final(sim, cases[c].name);
+        qo_modbus_sink_free(s);
+        qo_sim_stop(sim);
+        (void)check_log(log, &map, last, &lines);
+        {
+            size_t i;
+            for (i = 0; i < NJ; i++)
+                if (fabs(last[i] - final_target(i)) > 0.5e-3 + 1e-12)
+                    fail_msg("%s: joint %u last logged %g want %g", cases[c].name, (unsigned)i,
+                             last[i], final_target(i));
+        }
+        fclose(log);
+    }
+}
+
+static const char *disable_map =
+    "[slave.1]\n"
+    "init = 200=1\n"
+    "disable = 200=0, 201=0x40\n"
+    "constant = 4=0x10\n"
+    "[joint.a]\nslave = 1\naddress = 0\ntype = int32\nscale = 1000\nmax_step = 0.05\n"
+    "feedback = 100\n"
+    "[joint.b]\nslave = 1\naddress = 2\ntype = int16\nscale = 100\nmax_step = 0.05\n"
+    "feedback = 102\n";
+
+static void test_disable_action_and_enable(void **state)
+{
+    char err[256], spec[64];
+    qo_sim *sim = NULL;
+    qo_modbus_sink *s = NULL;
+    qo_modbus_sink_settings set = test_settings();
+    qo_sim_settings ss = qo_sim_settings_default;
+    qo_sim_fault exc = { QO_SIM_FAULT_EXCEPTION, 0, 0.0, 0, 3 };
+    qo_modbus_sink_stats st;
+    uint16_t reg;
+    float t[2] = { 1.0f, -1.0f };
+    unsigned k;
+    int tries;
+    (void)state;
+    assert_int_equal(qo_regmap_parse(disable_map, "disable.ini", &map, err, sizeof err), QO_OK);
+    ss.lag_s = 0.0;
+    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, &ss, &sim), QO_OK);
+    snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+    set.on_fail = QO_MODBUS_ON_FAIL_DISABLE;
+    assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+    assert_int_equal(qo_sim_get_register(sim, 1, 200, &reg), QO_OK);
+    assert_int_equal(reg, 1); /* init write */
+    for (k = 0; k < 5; k++) assert_int_equal(qo_modbus_sink_write(s, t, 2, k), QO_OK);
+    assert_int_equal(qo_sim_get_register(sim, 1, 4, &reg), QO_OK);
+    assert_int_equal(reg, 0x10); /* constant register written with the targets */
+    /* the next three requests get exceptions: three failed ticks = the threshold */
+    exc.after = 0;
+    exc.share = 1.0;
+    assert_int_equal(qo_sim_set_fault(sim, &exc), QO_OK);
+    for (k = 0; k < 3; k++) assert_int_equal(qo_modbus_sink_write(s, t, 2, 10 + k), QO_E_PROTOCOL);
+    exc.kind = QO_SIM_FAULT_NONE;
+    exc.share = 0.0;
+    assert_int_equal(qo_sim_set_fault(sim, &exc), QO_OK);
+    assert_int_equal(qo_modbus_sink_get_stats(s, &st), QO_OK);
+    assert_int_equal(st.disabled, 1);
+    assert_int_equal(st.actions, 1);
+    assert_int_equal(st.common.connected, 0);
+    assert_int_equal(qo_modbus_sink_write(s, t, 2, 20), QO_E_STATE);
+    /* reconnection sends the disable writes again; still disabled */
+    for (tries = 0; tries < 100 && qo_modbus_sink_service(s) != QO_OK; tries++) {
+    }
+    assert_int_equal(qo_modbus_sink_service(s), QO_OK);
+    assert_int_equal(qo_sim_get_register(sim, 1, 201, &reg), QO_OK);
+    assert_int_equal(reg, 0x40);
+    assert_int_equal(qo_sim_get_register(sim, 1, 200, &reg), QO_OK);
+    assert_int_equal(reg, 0);
+    assert_int_equal(qo_modbus_sink_write(s, t, 2, 21), QO_E_STATE);
+    assert_int_equal(qo_modbus_sink_enable(s), QO_OK);
+    assert_int_equal(qo_sim_get_register(sim, 1, 200, &reg), QO_OK);
+    assert_int_equal(reg, 1);
+    for (k = 0; k < 40; k++) assert_int_equal(qo_modbus_sink_write(s, t, 2, 30 + k), QO_OK);
+    {
+        double tgt, pos;
+        assert_int_equal(qo_sim_get_joint(sim, 0, &tgt, &pos), QO_OK);
+        assert_true(fabs(tgt - 1.0) < 1e-9);
+        assert_int_equal(qo_sim_get_joint(sim, 1, &tgt, &pos), QO_OK);
+        assert_true(fabs(tgt + 1.0) < 1e-9);
+    }
+    qo_modbus_sink_free(s);
+    qo_sim_stop(sim);
+}
+
+/* Grouping: contiguous registers of one slave in one FC16, split at max_registers (never
+ * inside a 32-bit value), gaps never filled, one request per run. */
+static const char *group_map =
+    "[slave.1]\nmax_registers = 4\nconstant = 5=77\n"
+    "[slave.2]\n"
+    "[joint.a]\nslave = 1\naddress = 0\ntype = int32\n"
+    "[joint.b]\nslave = 1\naddress = 2\ntype = int16\n"
+    "[joint.c]\nslave = 1\naddress = 3\ntype = float32\n"
+    "[joint.d]\nslave = 2\naddress = 10\ntype = uint16\n"
+    "[joint.e]\nslave = 2\naddress = 12\ntype = int16\n";
+
+static void test_grouping(void **state)
+{
+    char err[256], spec[64];
+    qo_sim *sim = NULL;
+    qo_modbus_sink *s = NULL;
+    qo_modbus_sink_settings set = test_settings();
+    qo_modbus_sink_stats st;
+    qo_sim_stats a, b;
+    uint16_t reg;
+    float t[5] = { 1000.0f, -5.0f, 2.5f, 65535.0f, -32768.0f };
+    size_t i;
+    (void)state;
+    assert_int_equal(qo_regmap_parse(group_map, "group.ini", &map, err, sizeof err), QO_OK);
+    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, NULL, &sim), QO_OK);
+    snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+    assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+    assert_int_equal(qo_sim_get_stats(sim, &a), QO_OK);
+    assert_int_equal(qo_modbus_sink_write(s, t, 5, 0), QO_OK);
+    assert_int_equal(qo_sim_get_stats(sim, &b), QO_OK);
+    /* slave 1: [a(2) b(1)] then [c(2) const(1)] (4 would split c); slave 2: d, e (gap at 11) */
+    assert_int_equal(qo_modbus_sink_get_stats(s, &st), QO_OK);
+    assert_int_equal(st.groups, 4);
+    assert_int_equal(b.requests - a.requests, 4);
+    assert_int_equal(qo_sim_get_register(sim, 1, 5, &reg), QO_OK);
+    assert_int_equal(reg, 77);
+    assert_int_equal(qo_sim_get_register(sim, 2, 11, &reg), QO_OK);
+    assert_int_equal(reg, 0); /* the gap is never written */
+    for (i = 0; i < 5; i++) {
+        double tgt, pos;
+        assert_int_equal(qo_sim_get_joint(sim, i, &tgt, &pos), QO_OK);
+        if (tgt != (double)t[i]) fail_msg("joint %u: %g want %g", (unsigned)i, tgt, (double)t[i]);
+    }
+    qo_modbus_sink_free(s);
+    qo_sim_stop(sim);
+}
+
+static void test_arguments_and_specs(void **state)
+{
+    qo_modbus_spec sp;
+    qo_modbus_sink *s = (qo_modbus_sink *)&sp;
+    qo_modbus_sink_settings set = test_settings();
+    qo_sim *sim = NULL;
+    char spec[64];
+    float t[NJ] = { 0, 0, 0, 0, 0, 0 };
+    qo_sim_stats a, b;
+    (void)state;
+    assert_int_equal(qo_modbus_parse_spec("tcp://10.0.0.2:1502", &sp), QO_OK);
+    assert_int_equal(sp.transport, QO_MODBUS_TCP);
+    assert_string_equal(sp.host, "10.0.0.2");
+    assert_int_equal(sp.port, 1502);
+    assert_int_equal(qo_modbus_parse_spec("tcp://:7", &sp), QO_OK);
+    assert_string_equal(sp.host, "127.0.0.1");
+    assert_int_equal(qo_modbus_parse_spec("tcp://host", &sp), QO_OK);
+    assert_int_equal(sp.port, 502);
+    assert_int_equal(qo_modbus_parse_spec("rtu:/dev/ttyUSB0,115200,8N1", &sp), QO_OK);
+    assert_int_equal(sp.transport, QO_MODBUS_RTU);
+    assert_string_equal(sp.device, "/dev/ttyUSB0");
+    assert_int_equal(sp.baud, 115200);
+    assert_int_equal(sp.parity, 'N');
+    assert_int_equal(sp.data_bits, 8);
+    assert_int_equal(sp.stop_bits, 1);
+    assert_int_equal(qo_modbus_parse_spec("rtu:/dev/ttyS1,9600,7O2", &sp), QO_OK);
+    assert_int_equal(sp.parity, 'O');
+    assert_int_equal(sp.data_bits, 7);
+    assert_int_equal(sp.stop_bits, 2);
+    assert_int_equal(qo_modbus_parse_spec("rtu:/dev/ttyS1", &sp), QO_OK);
+    assert_int_equal(sp.baud, 19200);
+    assert_int_equal(sp.parity, 'E');
+    {
+        static const char *bad[] = { "udp://x:1", "tcp://x:70000", "tcp://x:", "tcp://x:1a",
+                                     "rtu:", "rtu:/dev/x,0", "rtu:/dev/x,9600,8X1",
+                                     "rtu:/dev/x,9600,9N1", "rtu:/dev/x,9600,8N3",
+                                     "rtu:/dev/x,96k", "" };
+        size_t i;
+        for (i = 0; i < sizeof bad / sizeof bad[0]; i++)
+            if (qo_modbus_parse_spec(bad[i], &sp) != QO_E_CONFIG || sp.port != 0)
+                fail_msg("spec '%s' accepted", bad[i]);
+    }
+    assert_int_equal(qo_modbus_parse_spec(NULL, &sp), QO_E_NULL);
+    load_six();
+    /* open errors leave *out NULL */
+    assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:0", &map, &set, &s), QO_E_CONFIG);
+    assert_null(s);
+    set.response_timeout_us = 0;
+    assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_LIMIT);
+    set = test_settings();
+    set.reconnect_max_us = 10;
+    assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_CONFIG);
+    set = test_settings();
+    /* a host name goes through modbus_new_tcp_pi; the simulator wants an IPv4 literal */
+    assert_int_equal(qo_modbus_parse_spec("tcp://localhost:1", &sp), QO_OK);
+    {
+        modbus_t *ctx = qo_modbus_new_ctx(&sp);
+        assert_non_null(ctx);
+        modbus_free(ctx);
+        assert_int_equal(qo_sim_start("tcp://localhost:0", &map, NULL, &sim), QO_E_CONFIG);
+        assert_null(sim);
+    }
+    /* port 1 on loopback: nobody listens */
+    assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_DISCONNECTED);
+    assert_null(s);
+    assert_int_equal(qo_modbus_sink_open(NULL, &map, &set, &s), QO_E_NULL);
+    /* hand-made maps are checked: bad type, zero scale, NaN max_step, too few registers */
+    map.joints[2].fmt.type = QO_REG_TYPE_COUNT_;
+    assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_CONFIG);
+    load_six();
+    map.joints[2].fmt.scale = 0.0;
+    assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_CONFIG);
+    load_six();
+    map.joints[2].max_step = NAN;
+    assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_CONFIG);
+    load_six();
+    map.slaves[0].max_registers = 1; /* an int32 cannot be split */
+    assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_CONFIG);
+    assert_null(s);
+    load_six();
+    /* bad ticks send nothing */
+    sim = start_tcp_sim(NULL, NULL, 0.0, spec, sizeof spec);
+    assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+    assert_int_equal(qo_sim_get_stats(sim, &a), QO_OK);
+    t[3] = NAN;
+    assert_int_equal(qo_modbus_sink_write(s, t, NJ, 0), QO_E_NONFINITE);
+    t[3] = INFINITY;
+    assert_int_equal(qo_modbus_sink_write(s, t, NJ, 0), QO_E_NONFINITE);
+    t[3] = 0.0f;
+    assert_int_equal(qo_modbus_sink_write(s, t, NJ - 1, 0), QO_E_RANGE);
+    assert_int_equal(qo_modbus_sink_write(s, NULL, NJ, 0), QO_E_NULL);
+    assert_int_equal(qo_modbus_sink_write(NULL, t, NJ, 0), QO_E_NULL);
+    assert_int_equal(qo_modbus_sink_write(s, t, NJ, 0), QO_OK);
+    assert_int_equal(qo_sim_get_stats(sim, &b), QO_OK);
+    assert_int_equal(b.requests - a.requests, 1);
+    /* clamping to [min, max]: 10 rad -> 3.2 (walked there at max_step), seed from a value */
+    {
+        float far[NJ] = { 10, 10, 10, 10, 10, 10 }, seed[NJ] = { 3.2f, 3.2f, 3.2f, 3.2f, 3.2f, 3.2f };
+        double tgt, pos;
+        qo_modbus_sink_stats st;
+        assert_int_equal(qo_modbus_sink_seed(s, seed, NJ), QO_OK);
+        assert_int_equal(qo_modbus_sink_write(s, far, NJ, 1), QO_OK);
+        assert_int_equal(qo_sim_get_joint(sim, 2, &tgt, &pos), QO_OK);
+        assert_true(fabs(tgt - 3.2) < 1e-9);
+        assert_int_equal(qo_modbus_sink_get_stats(s, &st), QO_OK);
+        assert_int_equal(st.clamped, NJ);
+        seed[1] = NAN;
+        assert_int_equal(qo_modbus_sink_seed(s, seed, NJ), QO_E_NONFINITE);
+        assert_int_equal(qo_modbus_sink_seed(s, seed, 2), QO_E_RANGE);
+    }
+    qo_modbus_sink_free(s);
+    qo_modbus_sink_free(NULL);
+    qo_modbus_sink_close(NULL);
+    qo_sim_stop(sim);
+}
+
+/* The worked Leadshine example map end to end: init writes, the PR0 block of 8 registers in
+ * one FC16 per drive (constants around the high-first int32 target), invert on the tilt
+ * drive. Expected registers are computed here from the manual's layout. */
+static void test_leadshine_example_map(void **state)
+{
+    char err[256], spec[64];
+    qo_sim *sim = NULL;
+    qo_modbus_sink *s = NULL;
+    qo_modbus_sink_settings set = test_settings();
+    qo_modbus_sink_stats st;
+    qo_sim_stats a, b;
+    float t[2] = { 0.0f, 0.0f };
+    const double scale = 10000.0 / (2.0 * 3.14159265358979323846);
+    unsigned k;
+    uint16_t reg;
+    (void)state;
+    assert_int_equal(qo_regmap_load("examples/maps/leadshine_cs2rs_pr.ini", &map, err, sizeof err),
+                     QO_OK);
+    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, NULL, &sim), QO_OK);
+    snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+    assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+    assert_int_equal(qo_sim_get_register(sim, 1, 0x0405, &reg), QO_OK);
+    assert_int_equal(reg, 1);
+    assert_int_equal(qo_sim_get_register(sim, 2, 0x0405, &reg), QO_OK);
+    assert_int_equal(reg, 1);
+    /* walk to pan 0.5 rad, tilt 0.3 rad at 0.02 rad per tick: 25 and 15 ticks */
+    t[0] = 0.5f;
+    t[1] = 0.3f;
+    assert_int_equal(qo_sim_get_stats(sim, &a), QO_OK);
+    for (k = 0; k < 30; k++) assert_int_equal(qo_modbus_sink_write(s, t, 2, k), QO_OK);
+    assert_int_equal(qo_sim_get_stats(sim, &b), QO_OK);
+    assert_int_equal(qo_modbus_sink_get_stats(s, &st), QO_OK);
+    assert_int_equal(st.groups, 2);
+    assert_int_equal(b.requests - a.requests, 60);
+    {
+        static const uint16_t consts[][2] = { { 0x6200, 1 }, { 0x6203, 1500 }, { 0x6204, 20 },
+                                              { 0x6205, 20 }, { 0x6206, 0 }, { 0x6207, 0x10 } };
+        unsigned sl;
+        size_t i;
+        for (sl = 1; sl <= 2; sl++) {
+            int32_t want = (int32_t)lround((sl == 1 ? 1.0 : -1.0) * (double)t[sl - 1] * scale);
+            uint16_t hi, lo;
+            for (i = 0; i < 6; i++) {
+                assert_int_equal(qo_sim_get_register(sim, sl, consts[i][0], &reg), QO_OK);
+                if (reg != consts[i][1])
+                    fail_msg("slave %u register 0x%04X = %u want %u", sl, consts[i][0], reg,
+                             consts[i][1]);
+            }
+            assert_int_equal(qo_sim_get_register(sim, sl, 0x6201, &hi), QO_OK);
+            assert_int_equal(qo_sim_get_register(sim, sl, 0x6202, &lo), QO_OK);
+            if ((int32_t)(((uint32_t)hi << 16) | lo) != want)
+                fail_msg("slave %u target %d want %d", sl, (int32_t)(((uint32_t)hi << 16) | lo),
+                         want);
+        }
+    }
+    qo_modbus_sink_free(s);
+    qo_sim_stop(sim);
+}
+
+static double mono_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + (double)t.tv_nsec * 1e-9;
+}
+
+/* The simulator's first-order lag against exp(-t/tau) computed here: the position read at
+ * a time known to within [before, after] of a write known to within [wa, wb] must lie
+ * between the two bounds of 1 - exp(-dt/tau). The feedback registers carry it (FC03). */
+static void test_sim_first_order_lag(void **state)
+{
+    const double tau = 0.05;
+    qo_sim *sim = NULL;
+    qo_sim_settings ss = qo_sim_settings_default;
+    qo_modbus_sink *s = NULL;
+    qo_modbus_sink_settings set = test_settings();
+    char spec[64];
+    float t[NJ] = { 0.05f, 0.05f, 0.05f, 0.05f, 0.05f, 0.05f }, fb[NJ];
+    double wa, wb, elapsed = 0.0;
+    int reads = 0;
+    (void)state;
+    load_six();
+    ss.lag_s = tau;
+    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, &ss, &sim), QO_OK);
+    snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+    assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+    wa = mono_s();
+    assert_int_equal(qo_modbus_sink_write(s, t, NJ, 0), QO_OK); /* step 0 -> 0.05 (= max_step) */
+    wb = mono_s();
+    while (elapsed < 0.15 && reads < 100000) {
+        double tgt, pos, b0, b1, lo, hi;
+        b0 = mono_s();
+        assert_int_equal(qo_sim_get_joint(sim, 3, &tgt, &pos), QO_OK);
+        b1 = mono_s();
+        lo = 0.05 * (1.0 - exp(-fmax(b0 - wb, 0.0) / tau));
+        hi = 0.05 * (1.0 - exp(-(b1 - wa) / tau));
+        if (tgt != 0.05 || pos < lo - 1e-12 || pos > hi + 1e-12)
+            fail_msg("lag: at %.4f s target %.9g position %.9g outside [%.9g, %.9g]", b0 - wa,
+                     tgt, pos, lo, hi);
+        elapsed = b1 - wa;
+        reads++;
+    }
+    /* after 3 tau the feedback register shows ~95 % of the step (0.5e-3 resolution) */
+    {
+        double r0 = mono_s(), r1, lo, hi;
+        assert_int_equal(qo_modbus_sink_read_feedback(s, fb, NJ), QO_OK);
+        r1 = mono_s();
+        lo = 0.05 * (1.0 - exp(-(r0 - wb) / tau)) - 0.5e-3; /* register resolution 1e-3 */
+        hi = 0.05 * (1.0 - exp(-(r1 - wa) / tau)) + 0.5e-3;
+        if ((double)fb[3] < lo - 1e-7 || (double)fb[3] > hi + 1e-7)
+            fail_msg("feedback %.9g outside [%.9g, %.9g]", (double)fb[3], lo, hi);
+    }
+    qo_modbus_sink_free(s);
+    qo_sim_stop(sim);
+}
+
+/* ---- RTU over two pty pairs joined by a relay thread ------------------------------------ */
+
+struct relay {
+    int ma, mb;          /* masters: A = simulator side, B = sink side */
+    int sa, sb;          /* slaves kept open so the masters never read EIO */
+    char path_a[64], path_b[64];
+    pthread_t th;
+    pthread_mutex_t mu;
+    int stop;
+    int junk_to_sink, junk_to_sim; /* chunks still to prefix with garbage */
+};
+
+static void *relay_main(void *arg)
+{
+    struct relay *r = arg;
+    static const uint8_t junk[3] = { 0x5A, 0xA5, 0x11 };
+    for (;;) {
+        struct pollfd pf[2];
+        uint8_t buf[512];
+        int i, stop;
+        pthread_mutex_lock(&r->mu);
+        stop = r->stop;
+        pthread_mutex_unlock(&r->mu);
+        if (stop) break;
+        pf[0].fd = r->ma;
+        pf[1].fd = r->mb;
+        pf[0].events = pf[1].events = POLLIN;
+        pf[0].revents = pf[1].revents = 0;
+        if (poll(pf, 2, 10) <= 0) continue;
+        for (i = 0; i < 2; i++) {
+            ssize_t n;
+            int to = i == 0 ? r->mb : r->ma, inject = 0;
+            if (!(pf[i].revents & POLLIN)) continue;
+            n = read(pf[i].fd, buf, sizeof buf);
+            if (n <= 0) continue;
+            pthread_mutex_lock(&r->mu);
+            if (i == 0 && r->junk_to_sink > 0) { r->junk_to_sink--; inject = 1; }
+            if (i == 1 && r->junk_to_sim > 0) { r->junk_to_sim--; inject = 1; }
+            pthread_mutex_unlock(&r->mu);
+            if (inject && write(to, junk, sizeof junk) != (ssize_t)sizeof junk) continue;
+            if (write(to, buf, (size_t)n) != n) continue;
+        }
+    }
+    return NULL;
+}
+
+static void relay_open(struct relay *r)
+{
+    struct termios raw;
+    memset(r, 0, sizeof *r);
+    pthread_mutex_init(&r->mu, NULL);
+    assert_int_equal(openpty(&r->ma, &r->sa, r->path_a, NULL, NULL), 0);
+    assert_int_equal(openpty(&r->mb, &r->sb, r->path_b, NULL, NULL), 0);
+    assert_int_equal(tcgetattr(r->ma, &raw), 0);
+    cfmakeraw(&raw);
+    assert_int_equal(tcsetattr(r->ma, TCSANOW, &raw), 0);
+    assert_int_equal(tcsetattr(r->mb, TCSANOW, &raw), 0);
+    assert_int_equal(pthread_create(&r->th, NULL, relay_main, r), 0);
+}
+
+static void relay_close(struct relay *r)
+{
+    pthread_mutex_lock(&r->mu);
+    r->stop = 1;
+    pthread_mutex_unlock(&r->mu);
+    pthread_join(r->th, NULL);
+    close(r->ma);
+    close(r->mb);
+    close(r->sa);
+    close(r->sb);
+    pthread_mutex_destroy(&r->mu);
+}
+
+static void test_rtu_pty_with_garbage(void **state)
+{
+    struct relay r;
+    FILE *log = tmpfile();
+    qo_sim *sim = NULL;
+    qo_modbus_sink *s = NULL;
+    qo_modbus_sink_settings set = test_settings();
+    qo_sim_settings ss = qo_sim_settings_default;
+    qo_modbus_sink_stats st;
+    qo_sim_stats sst;
+    double last[NJ];
+    unsigned lines, k, failed = 0, last_fail = 0;
+    char spec[128];
+    (void)state;
+    load_six();
+    assert_non_null(log);
+    relay_open(&r);
+    ss.log = log;
+    ss.lag_s = 0.02;
+    snprintf(spec, sizeof spec, "rtu:%s,115200,8N1", r.path_a);
+    assert_int_equal(qo_sim_start(spec, &map, &ss, &sim), QO_OK);
+    assert_int_equal(qo_sim_port(sim), 0);
+    snprintf(spec, sizeof spec, "rtu:%s,115200,8N1", r.path_b);
+    set.rs485 = 1; /* refused by a pty (ENOTTY): must be harmless */
+    assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+    for (k = 0; k < NTICKS; k++) {
+        float t[NJ];
+        if (k == 50 || k == 51) {
+            pthread_mutex_lock(&r.mu);
+            r.junk_to_sink = 1; /* garbage before the next reply */
+            pthread_mutex_unlock(&r.mu);
+        }
+        if (k == 100 || k == 130) {
+            pthread_mutex_lock(&r.mu);
+            r.junk_to_sim = 1; /* garbage before the next request */
+            pthread_mutex_unlock(&r.mu);
+        }
+        targets_at(k, t);
+        if (qo_modbus_sink_write(s, t, NJ, k) != QO_OK) {
+            failed++;
+            last_fail = k;
+        }
+        (void)qo_modbus_sink_service(s);
+    }
+    assert_int_equal(qo_modbus_sink_get_stats(s, &st), QO_OK);
+    assert_int_equal(qo_sim_get_stats(sim, &sst), QO_OK);
+    if (failed == 0 || failed > 20 || last_fail > NTICKS - FINAL_TICKS)
+        fail_msg("garbage: %u failed ticks, last at %u (protocol errors %llu, timeouts %llu, "
+                 "sim bad frames %llu)", failed, last_fail,
+                 (unsigned long long)st.protocol_errors, (unsigned long long)st.timeouts,
+                 (unsigned long long)sst.bad_frames);
+    assert_true(sst.bad_frames >= 1);
+    check_final(sim, "rtu garbage");
+    qo_modbus_sink_free(s);
+    qo_sim_stop(sim);
+    relay_close(&r);
+    (void)check_log(log, &map, last, &lines);
+    assert_true(lines >= (NTICKS - 20) * NJ);
+    fclose(log);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_tcp_clean_stream),
+        cmocka_unit_test(test_tcp_faults),
+        cmocka_unit_test(test_disable_action_and_enable),
+        cmocka_unit_test(test_grouping),
+        cmocka_unit_test(test_arguments_and_specs),
+        cmocka_unit_test(test_sim_first_order_lag),
+        cmocka_unit_test(test_leadshine_example_map),
+        cmocka_unit_test(test_rtu_pty_with_garbage),
+    };
+    return cmocka_run_group_tests_name("modbus_sink", tests, NULL, NULL);
+}

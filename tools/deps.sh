@@ -1,0 +1,30 @@
+#!/bin/sh
+# Installs the Debian packages a make target needs, when they are missing.
+#   sh tools/deps.sh build|test|demo
+# On Debian bookworm / Raspberry Pi OS: uses apt-get, through sudo when not root (sudo asks for
+# your password; nothing is installed without it). Set QO_NO_INSTALL=1 to only list what is
+# missing and fail instead.
+set -eu
+BUILD="build-essential pkg-config libmodbus-dev libgpiod-dev libinih-dev"
+TEST="$BUILD libcmocka-dev"
+DEMO="$BUILD gnuplot-nox"
+case ${1:-build} in
+build) want=$BUILD;;
+test) want=$TEST;;
+demo) want=$DEMO;;
+*) echo "usage: tools/deps.sh build|test|demo" >&2; exit 2;;
+esac
+missing=""
+for p in $want; do
+    dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"
+done
+[ -z "$missing" ] && exit 0
+echo "qorient: the '${1:-build}' target needs these Debian packages:$missing"
+if [ "${QO_NO_INSTALL:-0}" = 1 ] || ! command -v apt-get >/dev/null 2>&1; then
+    echo "qorient: install them (apt-get install$missing) and run make again" >&2
+    exit 1
+fi
+if [ "$(id -u)" = 0 ]; then SUDO=""; else SUDO="sudo"; echo "qorient: installing with sudo (you may be asked for your password)"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -q
+$SUDO apt-get install -y -q --no-install-recommends $missing
