@@ -41,7 +41,7 @@ build_one() {
 # (one valgrind run per kernel: only that function is collected, Ir / BK_N).
 callgrind() {
     b=$OBJ/$1/bench
-    for k in $(nm "$b" | awk -v p="$2" '$2 == "T" && $3 ~ p && $3 !~ /_(load|set)$/ { print $3 }' | sort); do
+    for k in $(nm "$b" | awk -v p="$2" '($2 == "T" || $2 == "t") && $3 ~ p && $3 !~ /_(load|set)$/ { print $3 }' | sort); do
         valgrind --tool=callgrind --callgrind-out-file="$OBJ/cg.out" --toggle-collect="$k" \
             "$b" --once 2> "$OBJ/cg.log"
         awk -v k="${k#bk_}" '/^(summary|totals):/ { printf "ir\t%s\t%.1f\n", k, $2 / 1024; exit }' "$OBJ/cg.out"
