@@ -26,6 +26,8 @@
 #ifndef QORIENT_FXCONV_H
 #define QORIENT_FXCONV_H
 
+#include <float.h>
+
 #include "qorient/status.h"
 #include "qorient/types.h"
 
@@ -38,8 +40,11 @@ static inline qo_status qo_fx_from_f32_scaled(float v, float scale, int32_t *out
 {
     float s, frac;
     int32_t t;
-    if (v != v) { *out = 0; return QO_E_NONFINITE; }
-    if (v - v != 0.0f) { *out = v > 0.0f ? INT32_MAX : INT32_MIN; return QO_E_NONFINITE; }
+    /* Ordered comparisons only (clean under -Wfloat-equal): NaN fails both, Inf one. */
+    if (!(v <= FLT_MAX && v >= -FLT_MAX)) {
+        *out = v > 0.0f ? INT32_MAX : v < 0.0f ? INT32_MIN : 0;
+        return QO_E_NONFINITE;
+    }
     s = v * scale;   /* exact unless it overflows to Inf, which saturates below */
     if (s >= 2147483648.0f) { *out = INT32_MAX; return QO_E_OVERFLOW; }
     if (s < -2147483648.0f) { *out = INT32_MIN; return QO_E_OVERFLOW; }

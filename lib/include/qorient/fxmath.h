@@ -36,26 +36,36 @@
  * Rounding: "rounded" means round to nearest with ties toward +infinity (add half an LSB,
  * then floor), unless a function says otherwise. Saturation clamps to [INT32_MIN, INT32_MAX].
  *
- * Methods, accuracy and size (measured by bench/accuracy_fx.c against double libm over the
- * whole domain; sizes are Cortex-M0+ -O2 Thumb code, see the report):
- *   mul/add/sub/neg:   exact result rounded once (mul: <= 0.5 LSB), saturated.
- *   div:               64-bit integer division with remainder-based rounding (<= 0.5 LSB);
- *                      on Cortex-M0+ this calls the compiler's integer __aeabi_uldivmod.
- *   sqrt_u64/sqrt_q30: bit-by-bit (digit-by-digit) integer square root, 32 iterations, then
- *                      exact rounding from the remainder: correctly rounded (<= 0.5 LSB).
- *   rsqrt_q30:         exact square root then one rounded 64-bit division: <= 1 LSB.
- *   sincos:            argument reduced mod pi/2 in Q3.60 with a 62-bit pi/2 (the reduction
- *                      itself is exact to 2^-60 for every Q3.28 input), then Taylor polynomials
- *                      on [-pi/4, pi/4] (sin to x^11, cos to x^12, truncation < 1e-11) by
- *                      Horner in Q1.31 with 64-bit products: <= 1 LSB of Q1.30 (typ. 0.5).
- *                      No table.
- *   atan2:             octant folding to t = min/max in [0, 1]; t is rotated by the nearest of
- *                      atan(k/8), k = 0..8 (a 9-entry const table, 72 bytes) using the exact
- *                      integer rotation (8x + ky, 8y - kx), so one division gives |t'| <= 1/16;
- *                      then atan(t') by its odd series to t'^9 in Q1.31. <= 1 LSB of Q3.28
- *                      (3.7e-9 rad; libfixmath's fix16_atan2 is off by up to 1e-2 rad).
- *   asin/acos:         atan2 of (x, sqrt(1 - x^2)) with 1 - x^2 formed exactly in Q2.60, so the
- *                      ends +-1 and the neighbourhood of +-1 keep full accuracy: <= 1 LSB.
+ * Methods, accuracy and size. "worst" = measured by bench/accuracy_fx.c against double libm
+ * (strided sweeps of the whole int32 domain + 4M random inputs); "bytes" = Thumb code for
+ * Cortex-M0+ at -O2 (arm-none-eabi-gcc 12, -ffunction-sections; integer helpers
+ * __aeabi_lmul / __aeabi_(u)ldivmod from libgcc not counted). No RAM tables, no static state.
+ *   mul_q30/q28/q16    exact 64-bit product, rounded once, saturated.  worst 0.5 LSB. 76 bytes.
+ *   add/sub/neg, sat   saturating.  exact.  32-64 bytes.
+ *   sum_round_i64      exact hi/lo split sum, one rounding.  exact.  324 bytes.
+ *   div_q30/q28/q16    64-bit integer division, remainder rounding.  worst 0.5 LSB. 164 bytes.
+ *   sqrt_u64           digit-by-digit integer root (32 steps) + exact rounding from the
+ *                      remainder: correctly rounded.  180 bytes.
+ *   sqrt_q30           sqrt_u64(x << 30).  worst 0.5 LSB (correctly rounded).  196 bytes.
+ *   rsqrt_q30          correctly rounded sqrt of x * 2^32 or 2^34, one rounded division.
+ *                      worst 0.99 LSB.  352 bytes.
+ *   norm3/norm4_q30    exact 64-bit sum of squares + sqrt_u64.  worst 0.5 LSB.  272/304 bytes.
+ *   sincos (q28, half, q60)  reduction mod pi/2 in Q3.60 with a 61-bit pi/2 (exact to 2^-60
+ *                      for every input), then Taylor polynomials on [-pi/4, pi/4] (sin to
+ *                      r^11, cos to r^12; truncation < 1e-11): the leading r and 1 kept exact
+ *                      in Q2.62, r^2 exact in 64 bits, only the correction terms through a
+ *                      Q1.31 Horner evaluation, one final rounding to Q1.30.
+ *                      worst 0.94 LSB (sincos_q28), 0.98 LSB (half).  1110 bytes, 11 consts.
+ *   atan2_q28          octant folding to t = min/max in [0, 1]; the nearest k = 0..8 is
+ *                      taken and (x, y) rotated by -atan(k/8) EXACTLY in integers
+ *                      (8x + ky, 8y - kx), so one division gives |t'| <= 1/16; then
+ *                      atan(t') = t'(1 - t'^2/3 + t'^4/5 - t'^6/7) in Q1.31 plus the 9-entry
+ *                      atan(k/8) const table (72 bytes). worst 0.67 LSB of Q3.28 (2.5e-9 rad;
+ *                      libfixmath's fix16_atan2 is off by up to 1e-2 rad). 692 bytes.
+ *   asin/acos_q28      atan2 of (x, sqrt(1 - x^2)) with 1 - x^2 exact in Q2.60, so +-1 and
+ *                      their neighbourhood keep full accuracy. worst 0.77 LSB. 220/250 bytes.
+ *   wrap_pi_q28        one exact 2pi step in Q3.60. worst 0.07 LSB. 76 bytes.
+ * The whole of fxmath_fx.c is 5.1 kB of Cortex-M0+ code.
  * Portability: the fixed core needs two's-complement int32_t/int64_t and an arithmetic right
  * shift of negative values (true of gcc and clang on every target); fxmath_fx.c checks this at
  * compile time.

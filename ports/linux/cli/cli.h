@@ -19,6 +19,12 @@ int qo_cli_convert(int argc, char **argv);
 int qo_cli_slerp(int argc, char **argv);
 int qo_cli_gimbal(int argc, char **argv);
 int qo_cli_sim(int argc, char **argv);
+int qo_cli_plan_keys(int argc, char **argv);
+/* `qorient plan --profile trapezoid|scurve` (plan_moves.c). */
+int qo_cli_plan_moves(int argc, char **argv);
+/* `qorient plan`: --profile trapezoid|scurve go to plan_moves, the rest to plan_keys. */
+int qo_cli_plan(int argc, char **argv);
+int qo_cli_stream(int argc, char **argv);
 
 /* Rotation representations of `qorient convert`. */
 enum rep { REP_QUAT, REP_MATRIX, REP_ROTVEC, REP_AXISANGLE, REP_EULER };

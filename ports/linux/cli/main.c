@@ -14,9 +14,10 @@ struct qo_cli_cmd {
 static const struct qo_cli_cmd cmds[] = {
     { "convert", qo_cli_convert, "convert rotations: quat, matrix, rotvec, axisangle, euler:SEQ" },
     { "slerp", qo_cli_slerp, "spherical linear interpolation of quaternion pairs" },
+    { "plan", qo_cli_plan_keys, "sample a multi-joint trajectory through keyframes" },
     { "gimbal", qo_cli_gimbal, "joint angles of a 2/3-axis gimbal along a quaternion keyframe path" },
-    { "version", qo_cli_version, "print the version" },
     { "sim", qo_cli_sim, "simulated Modbus servo drive bank (register map, lag, faults)" },
+    { "version", qo_cli_version, "print the version" },
 };
 
 static void usage(FILE *f)

@@ -1,0 +1,312 @@
+/* accuracy_euler_fx - measured accuracy of the fixed-point Euler conversions (Q1.30
+ * quaternions, Q3.28 angles), all 24 conventions: the figures of bench/accuracy_euler.c for
+ * the fixed core.
+ *
+ *   make build/bench/accuracy_euler_fx && build/bench/accuracy_euler_fx [N]
+ *
+ * For N (default 20000, at least 10000) fixed-seed random cases per convention it measures,
+ * against a double-precision reference (products of elementary rotations, written here):
+ *   - from_euler: angle between the Q1.30 quaternion and the double one of the same Q3.28
+ *     angles, and the largest component error (LSB of Q1.30);
+ *   - to_euler, generic: uniformly random rotations rounded to Q1.30; the returned Q3.28
+ *     angles composed in double vs the Q1.30 input rotation (the "recomposition error");
+ *   - to_euler at lock: middle angle exactly singular, built in double and rounded to Q1.30,
+ *     and built by qo_quat_from_euler_q30 with the Q3.28 nearest the singular angle;
+ *   - singular rotations whose components were then moved by up to 2 LSB each (how much
+ *     fixed-point noise the lock band absorbs);
+ *   - to_euler near lock: middle angle 1e-9 ... 0.035 rad off singular, both sides;
+ *   - the gimbal-lock flag: the largest margin at which it was raised, the largest margin seen
+ *     at an exactly singular input, and whether every exactly singular input was flagged;
+ *   - the nearest-solution variant with random prev, generic inputs;
+ *   - time per call of to_euler / from_euler (host, informative only).
+ * Exit status 1 if a goal is missed: generic <= 1e-6 rad (also from_euler and the nearest
+ * variant), at/near lock <= 1e-5 rad, the flag never raised more than 2 degrees from the
+ * singularity, always raised at an exact singularity (all three ways of building one).
+ */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+#include "qorient/euler_fx.h"
+#include "qorient/fxmath.h"
+
+#define PI_D 3.14159265358979323846
+#define Q30 1073741824.0
+#define Q28 268435456.0
+
+static const char *const k_names[24] = {
+    "xyz", "xzy", "yxz", "yzx", "zxy", "zyx", "xyx", "xzx", "yxy", "yzy", "zxz", "zyz",
+    "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX", "XYX", "XZX", "YXY", "YZY", "ZXZ", "ZYZ",
+};
+
+static uint64_t rng_state = 0x5EED0E17ull;
+static uint64_t rng_next(void)
+{
+    uint64_t z = (rng_state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+static double uni(double lo, double hi)
+{
+    return lo + (hi - lo) * ((double)(rng_next() >> 11) * (1.0 / 9007199254740992.0));
+}
+
+typedef struct dq { double w, x, y, z; } dq;
+
+static dq dq_mul(dq a, dq b)
+{
+    dq r;
+    r.w = a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z;
+    r.x = a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y;
+    r.y = a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x;
+    r.z = a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w;
+    return r;
+}
+
+static dq dq_axis(char c, double t)
+{
+    dq q = { cos(t / 2), 0, 0, 0 };
+    double s = sin(t / 2);
+    if (c == 'x' || c == 'X') q.x = s;
+    else if (c == 'y' || c == 'Y') q.y = s;
+    else q.z = s;
+    return q;
+}
+
+static dq ref_quat(int seq, double a1, double a2, double a3)
+{
+    const char *n = k_names[seq];
+    dq q1 = dq_axis(n[0], a1), q2 = dq_axis(n[1], a2), q3 = dq_axis(n[2], a3);
+    if (n[0] >= 'X' && n[0] <= 'Z') return dq_mul(dq_mul(q1, q2), q3);
+    return dq_mul(q3, dq_mul(q2, q1));
+}
+
+static int32_t fx(double v, double scale)
+{
+    double r = floor(v * scale + 0.5);
+    if (r > 2147483647.0) r = 2147483647.0;
+    if (r < -2147483648.0) r = -2147483648.0;
+    return (int32_t)r;
+}
+
+/* The exact rotation of a Q1.30 quaternion, normalised in double. */
+static dq dq_from_fx(qo_quat_q30 q)
+{
+    dq r = { q.w / Q30, q.x / Q30, q.y / Q30, q.z / Q30 };
+    double n = sqrt(r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z);
+    r.w /= n; r.x /= n; r.y /= n; r.z /= n;
+    return r;
+}
+
+static qo_quat_q30 fx_from_dq(dq q)
+{
+    qo_quat_q30 r;
+    r.w = fx(q.w, Q30); r.x = fx(q.x, Q30); r.y = fx(q.y, Q30); r.z = fx(q.z, Q30);
+    return r;
+}
+
+static double dq_angle(dq a, dq b)
+{
+    dq c = { a.w, -a.x, -a.y, -a.z };
+    dq d = dq_mul(c, b);
+    return 2.0 * atan2(sqrt(d.x * d.x + d.y * d.y + d.z * d.z), fabs(d.w));
+}
+
+static double recomp(int seq, qo_euler_q28 e, dq q)
+{
+    return dq_angle(ref_quat(seq, e.a1 / Q28, e.a2 / Q28, e.a3 / Q28), q);
+}
+
+static int proper(int seq) { return k_names[seq][0] == k_names[seq][2]; }
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void upd(double *worst, double v, int seq, int *worst_seq)
+{
+    if (v > *worst) { *worst = v; if (worst_seq) *worst_seq = seq; }
+}
+
+int main(int argc, char **argv)
+{
+    static const double offs[] = { 1e-9, 5e-9, 2e-8, 5e-8, 1e-7, 1.5e-7, 3e-7, 1e-6, 1e-5,
+                                   1e-4, 1e-3, 0.01, 0.035 };
+    const double two_deg = 2.0 * PI_D / 180.0;
+    long n_per = argc > 1 ? atol(argv[1]) : 20000;
+    double w_from = 0, w_from_lsb = 0, w_gen = 0, w_lock = 0, w_near_in = 0, w_near_out = 0;
+    double w_nearfn = 0, max_flag_margin = 0, max_exact_margin = 0, max_exact_margin_f = 0;
+    double max_noisy_margin = 0;
+    long n_exact = 0, n_exact_flagged = 0, n_flagged_total = 0, n_cases = 0;
+    long n_noisy = 0, n_noisy_flagged = 0, n_bad_status = 0;
+    int s_from = 0, s_gen = 0, s_lock = 0, s_near = 0, seq;
+    int ok = 1;
+    long i;
+    if (n_per < 10000) n_per = 10000;
+
+    for (seq = 0; seq < 24; seq++) {
+        qo_euler_seq sq = (qo_euler_seq)seq;
+        for (i = 0; i < n_per; i++) {
+            qo_euler_q28 e, o;
+            qo_euler_info_q28 info;
+            qo_quat_q30 qf;
+            dq r, rr;
+            double nn, s, a1, a3, a2, d;
+            int k, which, side;
+
+            /* from_euler (every tenth case over the whole Q3.28 range, [-8, 8) rad) */
+            {
+                double span = (i % 10 == 0) ? 7.999 : PI_D;
+                e.a1 = fx(uni(-span, span), Q28); e.a2 = fx(uni(-span, span), Q28);
+                e.a3 = fx(uni(-span, span), Q28);
+                if (qo_quat_from_euler_q30(sq, e, &qf) != QO_OK) n_bad_status++;
+                r = ref_quat(seq, e.a1 / Q28, e.a2 / Q28, e.a3 / Q28);
+                upd(&w_from, dq_angle(dq_from_fx(qf), r), seq, &s_from);
+                d = fabs(qf.w - r.w * Q30);
+                if (fabs(qf.x - r.x * Q30) > d) d = fabs(qf.x - r.x * Q30);
+                if (fabs(qf.y - r.y * Q30) > d) d = fabs(qf.y - r.y * Q30);
+                if (fabs(qf.z - r.z * Q30) > d) d = fabs(qf.z - r.z * Q30);
+                upd(&w_from_lsb, d, 0, NULL);
+            }
+
+            /* generic: uniform random rotation */
+            do {
+                r.w = uni(-1, 1); r.x = uni(-1, 1); r.y = uni(-1, 1); r.z = uni(-1, 1);
+                nn = r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z;
+            } while (nn > 1.0 || nn < 1e-4);
+            nn = sqrt(nn);
+            r.w /= nn; r.x /= nn; r.y /= nn; r.z /= nn;
+            qf = fx_from_dq(r);
+            r = dq_from_fx(qf);
+            if (qo_quat_to_euler_q30(qf, sq, &o, &info) != QO_OK) n_bad_status++;
+            n_cases++;
+            if (info.locked) { n_flagged_total++; upd(&max_flag_margin, info.margin / Q28, 0, NULL); }
+            upd(&w_gen, recomp(seq, o, r), seq, &s_gen);
+
+            /* nearest-solution variant, generic, prev a random nearby-ish triple */
+            {
+                qo_euler_q28 prev;
+                prev.a1 = o.a1 + fx(uni(-2, 2), Q28); prev.a2 = o.a2 + fx(uni(-2, 2), Q28);
+                prev.a3 = o.a3 + fx(uni(-2, 2), Q28);
+                if (qo_quat_to_euler_near_q30(qf, sq, prev, QO_EULER_LOCK_BAND_Q28, &o, &info) != QO_OK)
+                    n_bad_status++;
+                upd(&w_nearfn, recomp(seq, o, r), seq, NULL);
+            }
+
+            /* exactly singular, built in double and rounded to Q1.30 */
+            a1 = uni(-PI_D, PI_D); a3 = uni(-PI_D, PI_D);
+            which = (int)(rng_next() & 1);
+            s = proper(seq) ? (which ? PI_D : 0.0) : (which ? PI_D / 2 : -PI_D / 2);
+            qf = fx_from_dq(ref_quat(seq, a1, s, a3));
+            r = dq_from_fx(qf);
+            qo_quat_to_euler_q30(qf, sq, &o, &info);
+            n_exact++; n_cases++;
+            if (info.locked) { n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin / Q28, 0, NULL); }
+            upd(&max_exact_margin, info.margin / Q28, 0, NULL);
+            upd(&w_lock, recomp(seq, o, r), seq, &s_lock);
+
+            /* exactly singular, as a user would build it: from_euler_q30 with the Q3.28
+             * nearest the singular middle angle */
+            {
+                qo_euler_q28 se;
+                se.a1 = fx(uni(-PI_D, PI_D), Q28); se.a2 = fx(s, Q28); se.a3 = fx(uni(-PI_D, PI_D), Q28);
+                qo_quat_from_euler_q30(sq, se, &qf);
+                rr = ref_quat(seq, se.a1 / Q28, s, se.a3 / Q28);
+                qo_quat_to_euler_q30(qf, sq, &o, &info);
+                n_exact++; n_cases++;
+                if (info.locked) { n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin / Q28, 0, NULL); }
+                upd(&max_exact_margin_f, info.margin / Q28, 0, NULL);
+                /* against the exactly singular rotation the angles were meant to describe */
+                upd(&w_lock, recomp(seq, o, rr), seq, &s_lock);
+            }
+            /* exactly singular rotation with every component then moved by up to 2 LSB
+             * (noise from an upstream fixed-point computation, e.g. a filter's output) */
+            {
+                qf = fx_from_dq(ref_quat(seq, uni(-PI_D, PI_D), s, uni(-PI_D, PI_D)));
+                qf.w += (int32_t)(rng_next() % 5) - 2; qf.x += (int32_t)(rng_next() % 5) - 2;
+                qf.y += (int32_t)(rng_next() % 5) - 2; qf.z += (int32_t)(rng_next() % 5) - 2;
+                r = dq_from_fx(qf);
+                qo_quat_to_euler_q30(qf, sq, &o, &info);
+                n_noisy++; n_exact++; n_cases++;
+                if (info.locked) { n_noisy_flagged++; n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin / Q28, 0, NULL); }
+                upd(&max_noisy_margin, info.margin / Q28, 0, NULL);
+                upd(info.locked ? &w_near_in : &w_near_out, recomp(seq, o, r), seq, NULL);
+            }
+
+            /* near lock */
+            k = (int)(rng_next() % (sizeof offs / sizeof offs[0]));
+            side = (int)(rng_next() & 1);
+            a2 = s + ((s > 0) ? -1.0 : 1.0) * (side ? -offs[k] : offs[k]);
+            a1 = uni(-PI_D, PI_D); a3 = uni(-PI_D, PI_D);
+            qf = fx_from_dq(ref_quat(seq, a1, a2, a3));
+            r = dq_from_fx(qf);
+            qo_quat_to_euler_q30(qf, sq, &o, &info);
+            n_cases++;
+            if (info.locked) {
+                n_flagged_total++;
+                upd(&max_flag_margin, info.margin / Q28, 0, NULL);
+                upd(&w_near_in, recomp(seq, o, r), seq, &s_near);
+            } else {
+                upd(&w_near_out, recomp(seq, o, r), seq, &s_near);
+            }
+        }
+    }
+
+    printf("accuracy_euler_fx: %ld cases per convention x 24 conventions (seed 0x5EED0E17)\n", n_per);
+    printf("  lock band QO_EULER_LOCK_BAND_Q28      = %d LSB = %.3g rad\n",
+           (int)QO_EULER_LOCK_BAND_Q28, QO_EULER_LOCK_BAND_Q28 / Q28);
+    printf("  from_euler worst error                 = %.3g rad (%s), %.2f LSB per component   goal <= 1e-6\n",
+           w_from, k_names[s_from], w_from_lsb);
+    printf("  to_euler generic worst recomposition   = %.3g rad (%s)   goal <= 1e-6\n", w_gen, k_names[s_gen]);
+    printf("  to_euler_near generic worst recomp.    = %.3g rad         goal <= 1e-6\n", w_nearfn);
+    printf("  to_euler at exact lock worst recomp.   = %.3g rad (%s)   goal <= 1e-5\n", w_lock, k_names[s_lock]);
+    printf("  near lock, flagged, worst recomp.      = %.3g rad         goal <= 1e-5\n", w_near_in);
+    printf("  near lock, not flagged, worst recomp.  = %.3g rad (%s)   goal <= 1e-5\n", w_near_out, k_names[s_near]);
+    printf("  exactly singular inputs flagged        = %ld of %ld\n", n_exact_flagged, n_exact);
+    printf("  largest margin at an exact singularity = %.3g rad (rounded from double), %.3g rad (via from_euler_q30)\n",
+           max_exact_margin, max_exact_margin_f);
+    printf("  singular + up to 2 LSB per component   = %ld of %ld flagged, largest margin %.3g rad\n",
+           n_noisy_flagged, n_noisy, max_noisy_margin);
+    printf("  largest margin at which lock flagged   = %.3g rad (%.3g deg)   goal <= 2 deg\n",
+           max_flag_margin, max_flag_margin * 180.0 / PI_D);
+    printf("  flagged in total                       = %ld of %ld decompositions\n", n_flagged_total, n_cases);
+    printf("  unexpected non-OK statuses             = %ld\n", n_bad_status);
+
+    /* speed (host, informative) */
+    {
+        const int reps = 2000000;
+        volatile int32_t sink = 0;
+        qo_quat_q30 q = { 858993459, 107374182, -536870912, 322122547 };
+        qo_euler_q28 e = { 80530637, -107374182, 322122547 }, o;
+        double t0 = now_s(), t1, t2;
+        int rep;
+        for (rep = 0; rep < reps; rep++) {
+            q.x = 107374182 + (rep & 255) * 1000;
+            qo_quat_to_euler_q30(q, QO_EULER_ZYX, &o, NULL);
+            sink += o.a1;
+        }
+        t1 = now_s();
+        for (rep = 0; rep < reps; rep++) {
+            qo_quat_q30 qq;
+            e.a1 = (rep & 255) * 268435;
+            qo_quat_from_euler_q30(QO_EULER_ZYX, e, &qq);
+            sink += qq.w;
+        }
+        t2 = now_s();
+        printf("  host time per call: to_euler %.1f ns, from_euler %.1f ns (-O2, informative)\n",
+               1e9 * (t1 - t0) / reps, 1e9 * (t2 - t1) / reps);
+        (void)sink;
+    }
+
+    if (w_from > 1e-6 || w_gen > 1e-6 || w_nearfn > 1e-6) ok = 0;
+    if (w_lock > 1e-5 || w_near_in > 1e-5 || w_near_out > 1e-5) ok = 0;
+    if (max_flag_margin > two_deg || n_exact_flagged != n_exact || n_bad_status != 0) ok = 0;
+    printf("accuracy_euler_fx: %s\n", ok ? "all goals met" : "GOAL MISSED");
+    return ok ? 0 : 1;
+}

@@ -1,0 +1,266 @@
+/*
+ * qorient/motion.h - online, limit-respecting point-to-point motion for N joints (float32).
+ *
+ * Index:
+ *   qo_motion_settings_default      const default settings (SCURVE, TIME sync)
+ *   qo_motion_limits_default        const default limits of one joint (all 1, no range, no wrap)
+ *   qo_motion_init_f32              set up a planner over caller arrays, at rest at given positions
+ *   qo_motion_set_target_f32        re-plan from the sampled state at t_now to new targets
+ *   qo_motion_set_limits_f32        change one joint's limits at t_now (bad limits -> brake)
+ *   qo_motion_brake_f32             stop every joint as fast as its limits allow, from t_now
+ *   qo_motion_sample_f32            position, velocity, acceleration of every joint at time t
+ *   qo_motion_duration_f32          seconds from the last re-plan until every joint is at rest
+ *   qo_motion_end_time_f32          absolute time at which every joint is at rest
+ *   qo_motion_done_f32              1 once t has reached the end time
+ *   qo_motion_sync_used             which synchronisation the last plan really used
+ *   qo_motion_export_q16            the current plan as a fixed-point table (see motion_fx.h)
+ *
+ * What it does. Each joint is a scalar in the user's unit (rad, deg, counts: "u") with limits
+ * vmax [u/s], amax [u/s^2], jmax [u/s^3], an optional position range [pmin, pmax] and an
+ * optional wrap period (continuous joint). A plan takes every joint from its current state
+ * (position p0, velocity v0, acceleration a0) to its target position AT REST (v = 0, a = 0):
+ *   - QO_MOTION_TRAPEZOID: acceleration-limited, the velocity is a trapezoid (or triangle);
+ *     the acceleration jumps between -amax, 0 and +amax (jerk unlimited, jmax unused).
+ *   - QO_MOTION_SCURVE: jerk-limited seven-phase profile: acceleration ramps at +-jmax, so
+ *     position, velocity and acceleration are continuous.
+ * Any start state is accepted, including |v0| > vmax or |a0| > amax (the profile first brings
+ * them back inside the limits as fast as jmax / amax allow) and motion away from the target.
+ *
+ * Profile structure and why it is time-optimal. A minimum-time control for a chain of
+ * integrators with box bounds is bang-bang (Pontryagin): the highest derivative sits at a bound
+ * (+-jmax, or +-amax for TRAPEZOID) or the path rides a state bound (|a| = amax, |v| = vmax).
+ * With the target at rest, every such profile is: a fastest velocity change from (v0, a0) to a
+ * velocity extremum vc with a = 0 (<= 3 phases: ramp, hold amax, ramp), a cruise at vc (only
+ * when |vc| = vmax), and a fastest stop from (vc, 0) to (0, 0) (<= 3 phases). The planner finds
+ * the vc whose displacement equals the distance (the displacement is monotone in vc; solved on
+ * [-vmax, vmax] by the Illinois method: regula falsi that keeps a bracket like bisection, at most
+ * QO_MOTION_BISECT_ITERS steps, typically 5-12), and cruises at +-vmax when
+ * even vc = +-vmax falls short. For TRAPEZOID this family provably contains the minimum-time
+ * solution (double integrator, state bound on v). For SCURVE it contains the minimum-time
+ * rest-to-rest solution (checked against the closed form in tests/test_motion.c) and, for moving
+ * starts, the profiles of Reflexxes Type IV for a target at rest; tests/test_motion.c also checks
+ * numerically that no profile of the family with a shorter duration reaches the target, and
+ * bench/bench_motion.c solves a linear program over ALL piecewise-constant jerk profiles (60
+ * steps) and finds none 1 % shorter. A general proof for moving SCURVE starts is NOT claimed
+ * (Ruckig lists further profile shapes for general target states).
+ *
+ * Synchronisation (settings.sync):
+ *   - QO_MOTION_SYNC_NONE: each joint takes its own minimum time.
+ *   - QO_MOTION_SYNC_TIME: every joint arrives at the slowest joint's minimum time T. A faster
+ *     joint gets a profile of exactly T by lowering its extremum velocity vc (bracketed root search
+ *     on vc in (0, vc*], at most QO_MOTION_BISECT_ITERS steps; any T above the joint's minimum is reachable
+ *     because the cruise may then be arbitrarily slow).
+ *   - QO_MOTION_SYNC_PHASE: straight line in joint space: p_i(t) = p0_i + d_i s(t), one scalar
+ *     profile s: 0 -> 1 with limits min_i(vmax_i/|d_i|) etc. Possible only when every joint's
+ *     (v0, a0) is proportional to its displacement d_i (all at rest is the usual case, within a
+ *     relative 1e-5 of the joint's vmax / amax); otherwise the plan falls back to TIME and
+ *     qo_motion_sync_used() says so. The straight line can take longer than TIME sync, because
+ *     the binding limit may come from different joints for v, a and j.
+ *
+ * Re-planning: qo_motion_set_target_f32(pl, t_now, ...) samples the current plan at t_now and
+ * plans from that state, so the motion stays continuous in position and velocity (TRAPEZOID) or
+ * position, velocity and acceleration (SCURVE). A stream of targets issued faster than the
+ * joints arrive never stops at each point.
+ *
+ * Continuous joints (wrap > 0): the target is taken modulo wrap and the joint moves the short
+ * way round (|move| <= wrap/2; exactly wrap/2 goes in the positive direction). Positions are NOT
+ * wrapped on output: they stay continuous (an unbounded angle), wrap them yourself if needed.
+ *
+ * Position range: a target outside [pmin, pmax] is clamped to it and reported in the clamped
+ * mask. The range limits the target only: a joint moving fast toward its range end may pass it
+ * while braking if its braking distance says so (nothing can prevent that within the limits).
+ *
+ * A joint already at rest on its target gets no phases (duration 0) and never moves; it does
+ * not take part in the synchronisation.
+ *
+ * Concurrency: re-planning and sampling the SAME planner must not overlap (a sample taken
+ * while a re-plan rewrites the phases mixes two plans). An interrupt that samples while the
+ * main loop re-plans should use two planners (or two exported Q16.16 tables) and swap a pointer.
+ *
+ * Safety: a non-finite target, or an attempt to set bad limits, returns a status and switches
+ * the planner to a braking profile from the current state at t_now (each joint stops as fast as
+ * its valid limits allow, no jump). Sampling after the end returns the final positions at rest.
+ *
+ * Numerics: float32, -ffp-contract=off. Each phase keeps its exact duration d and the next
+ * phase starts from the state integrated over d, so p, v (and a) are continuous at every
+ * boundary to a few float32 ulps of the values, and limits hold to float32 rounding (~1e-7
+ * relative). The phase start times are rounded float32 sums: a sample falling in the
+ * <= ulp(T)/2 gap or overlap between two phases sees the boundary state a fraction of an ulp
+ * early or late (T = duration; ulp(100 s) = 7.6e-6 s). The end snaps to the exact target at
+ * rest; the remaining step is the solver residual (~1e-7 relative in position, float32
+ * rounding in v and a).
+ * Absolute times are float32 too: keep the caller's time origin recent (ulp(1000 s) = 61 us).
+ * Resources (arm-none-eabi-gcc -O2, Cortex-M4F): ~6.4 KB code, worst stack of a re-plan ~1 KB
+ * (independent of N: per-joint scratch lives in the joint struct), 236 B per joint; no heap, no
+ * static mutable state: planners never interfere. A re-plan costs O(N) root searches.
+ */
+#ifndef QORIENT_MOTION_H
+#define QORIENT_MOTION_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "qorient/status.h"
+#include "qorient/motion_fx.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Largest number of joints one planner handles (the clamped mask is a uint32_t). */
+#define QO_MOTION_MAX_JOINTS 32
+/* Phases of one joint's plan: 3 (velocity change) + 1 (cruise) + 3 (stop). */
+#define QO_MOTION_MAX_PHASES 7
+/* Upper bound of root-search steps in one solve (typically 5-12 are used; bounded anyway). */
+#define QO_MOTION_BISECT_ITERS 48
+
+typedef enum qo_motion_profile {
+    QO_MOTION_TRAPEZOID = 0, /* acceleration-limited, velocity trapezoid */
+    QO_MOTION_SCURVE = 1     /* jerk-limited, seven phases */
+} qo_motion_profile;
+
+typedef enum qo_motion_sync {
+    QO_MOTION_SYNC_NONE = 0,  /* each joint at its own minimum time */
+    QO_MOTION_SYNC_TIME = 1,  /* all joints arrive together */
+    QO_MOTION_SYNC_PHASE = 2  /* straight line in joint space (falls back to TIME) */
+} qo_motion_sync;
+
+typedef struct qo_motion_settings_f32 {
+    qo_motion_profile profile;
+    qo_motion_sync sync;
+} qo_motion_settings_f32;
+
+/* SCURVE, SYNC_TIME. */
+extern const qo_motion_settings_f32 qo_motion_settings_default;
+
+/* Limits of one joint. vmax, amax, jmax: > 0 and finite (jmax also for TRAPEZOID, where it is
+ * unused). pmin <= pmax, each finite or -INFINITY / +INFINITY (= no range; the default).
+ * wrap: 0 = ordinary joint, > 0 finite = continuous joint with that period (2*pi rad, 360 deg). */
+typedef struct qo_motion_limits_f32 {
+    float vmax, amax, jmax;
+    float pmin, pmax;
+    float wrap;
+} qo_motion_limits_f32;
+
+/* vmax = amax = jmax = 1, pmin = -INFINITY, pmax = +INFINITY, wrap = 0. */
+extern const qo_motion_limits_f32 qo_motion_limits_default;
+
+/* One phase of a joint's plan: from time t (seconds after the plan start) the joint follows
+ * p + v*tau + a*tau^2/2 + j*tau^3/6, tau = min(time - t, d), until the next phase's t.
+ * d is the phase's exact duration; t is the rounded float32 sum of the earlier d. */
+typedef struct qo_motion_phase_f32 {
+    float t, d, p, v, a, j;
+} qo_motion_phase_f32;
+
+/* Per-joint storage, caller-allocated (an array of N), owned by the planner after init. */
+typedef struct qo_motion_joint_f32 {
+    qo_motion_limits_f32 lim;                      /* validated limits in force */
+    float goal;                                    /* last accepted target after clamping */
+    float final;                                   /* where the plan ends (unwrapped), at rest */
+    float duration;                                /* seconds after the plan start */
+    unsigned nph;                                  /* phases in use, 0 = at rest at `final` */
+    qo_motion_phase_f32 ph[QO_MOTION_MAX_PHASES];
+    /* Planner scratch (state at the re-plan time, displacement, solve results), kept here so
+     * a re-plan needs no stack proportional to N. Not meaningful to the caller. */
+    float w_p, w_v, w_a, w_d, w_vc, w_tc, w_t;
+} qo_motion_joint_f32;
+
+/* The planner. Fields are readable; change them only through the functions. */
+typedef struct qo_motion_planner_f32 {
+    qo_motion_joint_f32 *joints;   /* caller array of n */
+    size_t n;
+    qo_motion_settings_f32 settings;
+    float t0;                      /* absolute time of the last (re-)plan, seconds */
+    float duration;                /* max joint duration of the current plan */
+    qo_motion_sync sync_used;      /* what the current plan used */
+    int braking;                   /* 1 if the current plan is a safety stop */
+} qo_motion_planner_f32;
+
+/*
+ * Sets up `pl` over `joints` (n entries, 1..QO_MOTION_MAX_JOINTS) with per-joint `limits`
+ * (n entries) and `settings` (NULL = qo_motion_settings_default), at rest at `start` (n
+ * positions) from time `t0` (seconds, any finite origin the caller uses for later calls).
+ * Start positions are not clamped to the range (the first target will be).
+ * Returns QO_OK; QO_E_NULL (pl, joints, limits or start NULL); QO_E_TOO_FEW (n == 0);
+ * QO_E_CAPACITY (n > QO_MOTION_MAX_JOINTS); QO_E_ARG (unknown profile or sync);
+ * QO_E_LIMIT (a vmax/amax/jmax not > 0 and finite, pmin > pmax or NaN, wrap < 0 or not
+ * finite); QO_E_NONFINITE (a start position or t0 not finite).
+ * On any error (pl non-NULL) the planner is left with n = 0, so every later call returns
+ * QO_E_STATE: it never moves anything.
+ */
+qo_status qo_motion_init_f32(qo_motion_planner_f32 *pl, qo_motion_joint_f32 *joints, size_t n,
+                             const qo_motion_limits_f32 *limits, const float *start, float t0,
+                             const qo_motion_settings_f32 *settings);
+
+/*
+ * Re-plans every joint from its state sampled at `t_now` (seconds, >= the last plan's t0) to
+ * `targets` (n positions, user unit), using the planner's settings.
+ * Targets outside [pmin, pmax] are clamped; bit i of *clamped is set for joint i (clamped may be
+ * NULL). Continuous joints go the short way round.
+ * Returns QO_OK; QO_E_NULL (pl or targets NULL); QO_E_STATE (planner not initialised);
+ * QO_E_NONFINITE (t_now or a target NaN/Inf: the planner then brakes every joint to rest from
+ * its state at t_now, if t_now is finite, else the plan is unchanged); QO_E_ORDER (t_now
+ * earlier than the last plan's t0: plan unchanged). *clamped is 0 on every error.
+ */
+qo_status qo_motion_set_target_f32(qo_motion_planner_f32 *pl, float t_now, const float *targets,
+                                   uint32_t *clamped);
+
+/*
+ * Replaces joint `i`'s limits at `t_now` and re-plans all joints toward their goals from their
+ * state at t_now (so lowering vmax on the fly first brakes into the new limits).
+ * Returns QO_OK; QO_E_NULL; QO_E_STATE; QO_E_RANGE (i >= n); QO_E_NONFINITE (t_now);
+ * QO_E_ORDER (t_now < t0); QO_E_LIMIT (bad limits as in init: the old limits stay and every
+ * joint brakes to rest from t_now). A goal outside a new, narrower range is clamped again.
+ */
+qo_status qo_motion_set_limits_f32(qo_motion_planner_f32 *pl, float t_now, size_t i,
+                                   const qo_motion_limits_f32 *limits);
+
+/*
+ * Safety stop: every joint brakes from its state at t_now to rest as fast as its limits allow
+ * (no synchronisation). The rest positions become the new goals.
+ * Returns QO_OK; QO_E_NULL; QO_E_STATE; QO_E_NONFINITE (t_now); QO_E_ORDER (t_now < t0).
+ */
+qo_status qo_motion_brake_f32(qo_motion_planner_f32 *pl, float t_now);
+
+/*
+ * Samples every joint at absolute time t (seconds): positions, velocities [u/s] and
+ * accelerations [u/s^2] into n-element arrays; vel and acc may be NULL. Before the plan's t0
+ * the state at t0 is given (QO_E_RANGE); after the end the final positions at rest.
+ * Returns QO_OK; QO_E_NULL (pl or pos NULL); QO_E_STATE; QO_E_NONFINITE (t NaN/Inf: outputs are
+ * the state at t0); QO_E_RANGE (t < t0).
+ */
+qo_status qo_motion_sample_f32(const qo_motion_planner_f32 *pl, float t, float *pos, float *vel,
+                               float *acc);
+
+/* Seconds from the last (re-)plan's t0 until every joint is at rest; 0 for NULL or an
+ * uninitialised planner. */
+float qo_motion_duration_f32(const qo_motion_planner_f32 *pl);
+
+/* t0 + duration: absolute end time; 0 for NULL or an uninitialised planner. */
+float qo_motion_end_time_f32(const qo_motion_planner_f32 *pl);
+
+/* 1 if t >= the end time (every joint at rest at its final position), else 0; 1 for NULL or an
+ * uninitialised planner (nothing moves). NaN t gives 0. */
+int qo_motion_done_f32(const qo_motion_planner_f32 *pl, float t);
+
+/* The synchronisation the current plan really used (PHASE may have fallen back to TIME; a
+ * safety stop reports NONE). NONE for NULL. */
+qo_motion_sync qo_motion_sync_used(const qo_motion_planner_f32 *pl);
+
+/*
+ * Exports the current plan to a fixed-point table for qo_motion_sample_q16 (motion_fx.h):
+ * `segs` is caller storage of cap entries, needing n * QO_MOTION_Q16_SEGS. Each joint's phase
+ * boundaries are rounded to Q16.16 seconds after t0, and each phase's coefficients are taken
+ * from the float plan AT the rounded time, so the table follows the float plan exactly except
+ * for the coefficient rounding (2^-32) documented in motion_fx.h.
+ * Returns QO_OK; QO_E_NULL; QO_E_STATE; QO_E_CAPACITY (cap too small: table->n = 0);
+ * QO_E_OVERFLOW (a time beyond 32767 s, a position beyond +-32767 u or a coefficient beyond
+ * 2^31: saturated, the table is still filled). On NULL/STATE/CAPACITY the table has n = 0.
+ */
+qo_status qo_motion_export_q16(const qo_motion_planner_f32 *pl, qo_motion_table_q16 *table,
+                               qo_motion_seg_q16 *segs, size_t cap);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* QORIENT_MOTION_H */

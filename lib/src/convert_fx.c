@@ -1,0 +1,281 @@
+/* Rotation conversions in fixed point (Q1.30 / Q3.28). See qorient/convert_fx.h.
+ * Integer arithmetic only, on the primitives of qorient/fxmath.h. */
+#include "qorient/convert_fx.h"
+
+#include "qorient/fxmath.h"
+#include "qorient/quat_fx.h"
+
+#define P(a, b) ((int64_t)(a) * (b))
+
+static uint64_t mag(int64_t v) { return (uint64_t)(v < 0 ? -v : v); }
+
+/* round(num / den) to nearest, ties away from zero; den > 0, |num| < 2^63. */
+static int64_t div_round(int64_t num, uint64_t den)
+{
+    uint64_t q = (mag(num) + den / 2u) / den;
+    return num < 0 ? -(int64_t)q : (int64_t)q;
+}
+
+static qo_mat3_q30 mat3_identity(void)
+{
+    qo_mat3_q30 m = { { { QO_Q30_ONE, 0, 0 }, { 0, QO_Q30_ONE, 0 }, { 0, 0, QO_Q30_ONE } } };
+    return m;
+}
+
+/* The three components of a non-zero int32 vector scaled exactly (by a power of two) so the
+ * largest magnitude is in [2^30, 2^31], and its length in the same units (>= 2^30; the
+ * squares of three values <= 2^31 sum below 2^64). Returns 0 for the zero vector. */
+static uint64_t scale_vec3(int64_t c[3])
+{
+    uint64_t m = mag(c[0]);
+    int i;
+    if (mag(c[1]) > m) m = mag(c[1]);
+    if (mag(c[2]) > m) m = mag(c[2]);
+    if (m == 0) return 0;
+    while (m < ((uint64_t)1 << 30)) {
+        m <<= 1;
+        for (i = 0; i < 3; i++) c[i] *= 2;
+    }
+    return qo_fx_sqrt_u64(mag(c[0]) * mag(c[0]) + mag(c[1]) * mag(c[1]) + mag(c[2]) * mag(c[2]));
+}
+
+qo_status qo_quat_from_axis_angle_q30(qo_vec3_q30 axis, qo_q28 angle, qo_quat_q30 *out)
+{
+    int64_t c[3];
+    uint64_t n;
+    qo_q30 s, co;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_q30();
+    c[0] = axis.x; c[1] = axis.y; c[2] = axis.z;
+    n = scale_vec3(c);
+    if (n == 0) return QO_E_DEGENERATE;
+    (void)qo_fx_sincos_half_q28(angle, &s, &co);
+    /* sin(angle/2) * c_i / |c|, one rounding; |c_i * s| <= 2^61. */
+    out->w = co;
+    out->x = (qo_q30)div_round(c[0] * s, n);
+    out->y = (qo_q30)div_round(c[1] * s, n);
+    out->z = (qo_q30)div_round(c[2] * s, n);
+    return QO_OK;
+}
+
+qo_status qo_quat_to_axis_angle_q30(qo_quat_q30 q, qo_vec3_q30 *axis, qo_q28 *angle)
+{
+    qo_quat_q30 u;
+    int64_t c[3];
+    uint64_t n;
+    if (axis != NULL) { axis->x = QO_Q30_ONE; axis->y = 0; axis->z = 0; }
+    if (angle != NULL) *angle = 0;
+    if (axis == NULL || angle == NULL) return QO_E_NULL;
+    if (q.w == 0 && q.x == 0 && q.y == 0 && q.z == 0) return QO_E_DEGENERATE;
+    /* Work on q itself, not on a rounded unit copy: the axis of a small rotation comes from a
+     * short vector part, whose direction a Q1.30 normalisation would blur. */
+    u = qo_quat_canonical_q30(q);
+    c[0] = u.x; c[1] = u.y; c[2] = u.z;
+    n = scale_vec3(c);
+    if (n == 0) return QO_OK;   /* zero rotation: axis (1, 0, 0), angle 0 */
+    axis->x = (qo_q30)div_round(c[0] * QO_Q30_ONE, n);
+    axis->y = (qo_q30)div_round(c[1] * QO_Q30_ONE, n);
+    axis->z = (qo_q30)div_round(c[2] * QO_Q30_ONE, n);
+    /* 2 atan2(|v|, |w|), scale-free: the angle between the identity and q. */
+    *angle = qo_quat_angle_between_q30(qo_quat_identity_q30(), u);
+    return QO_OK;
+}
+
+qo_status qo_quat_from_rotvec_q30(qo_vec3_q28 rv, qo_quat_q30 *out)
+{
+    uint64_t n;
+    qo_q30 s, c;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_q30();
+    /* Three squares of at most 2^62 sum below 2^64; the norm is below 2^32 (|rv| < 16). */
+    n = qo_fx_sqrt_u64(mag(rv.x) * mag(rv.x) + mag(rv.y) * mag(rv.y) + mag(rv.z) * mag(rv.z));
+    if (n == 0) return QO_OK;
+    /* Half of |rv| in Q3.60 without rounding: n * 2^31 < 2^63. */
+    (void)qo_fx_sincos_q60((int64_t)n * ((int64_t)1 << 31), &s, &c);
+    out->w = c;
+    out->x = (qo_q30)div_round(P(rv.x, s), n);
+    out->y = (qo_q30)div_round(P(rv.y, s), n);
+    out->z = (qo_q30)div_round(P(rv.z, s), n);
+    return QO_OK;
+}
+
+qo_status qo_quat_to_rotvec_q30(qo_quat_q30 q, qo_vec3_q28 *out)
+{
+    qo_vec3_q28 h;
+    qo_status st;
+    if (out == NULL) return QO_E_NULL;
+    out->x = out->y = out->z = 0;
+    /* With w >= 0 the half-angle vector of the log is at most pi/2 long: doubling fits. */
+    st = qo_quat_log_q30(qo_quat_canonical_q30(q), &h);
+    if (st != QO_OK) return st;
+    out->x = 2 * h.x;
+    out->y = 2 * h.y;
+    out->z = 2 * h.z;
+    return QO_OK;
+}
+
+/* round(sum of n terms / 2^30), saturated: one matrix entry from Q2.60 products. */
+static qo_q30 entry(const int64_t *t, size_t n)
+{
+    return qo_fx_sat_i32(qo_fx_sum_round_i64(t, n, 30));
+}
+
+/* The same from Q2.62 products. */
+static qo_q30 entry32(const int64_t *t, size_t n)
+{
+    return qo_fx_sat_i32(qo_fx_sum_round_i64(t, n, 32));
+}
+
+/* q / |q| with components in Q1.31 held in int64 (one more bit than Q1.30, so the matrix
+ * entries built from products of them round to Q1.30 with less accumulated error).
+ * Returns 0 for q == 0. Same scaling scheme as qo_quat_normalize_q30. */
+static int unit_q31(qo_quat_q30 q, int64_t u[4])
+{
+    int64_t c[4];
+    uint64_t m = 0, n2 = 0, n;
+    int i, all = 1;
+    c[0] = q.w; c[1] = q.x; c[2] = q.y; c[3] = q.z;
+    for (i = 0; i < 4; i++) if (mag(c[i]) > m) m = mag(c[i]);
+    if (m == 0) return 0;
+    while (m < ((uint64_t)1 << 30)) {
+        m <<= 1;
+        for (i = 0; i < 4; i++) c[i] *= 2;
+    }
+    for (i = 0; i < 4; i++) if (mag(c[i]) != ((uint64_t)1 << 31)) all = 0;
+    if (all) for (i = 0; i < 4; i++) c[i] /= 2;   /* four of 2^31 would carry out of 64 bits */
+    for (i = 0; i < 4; i++) n2 += mag(c[i]) * mag(c[i]);
+    n = qo_fx_sqrt_u64(n2);
+    for (i = 0; i < 4; i++) u[i] = div_round(c[i] * ((int64_t)1 << 31), n);
+    return 1;
+}
+
+qo_status qo_quat_to_mat3_q30(qo_quat_q30 q, qo_mat3_q30 *out)
+{
+    int64_t u[4], t[5];
+    int64_t xx, yy, zz, xy, xz, yz, wx, wy, wz;
+    const int64_t one = (int64_t)1 << 62;
+    if (out == NULL) return QO_E_NULL;
+    *out = mat3_identity();
+    if (!unit_q31(q, u)) return QO_E_DEGENERATE;
+    /* Products of Q1.31 unit components are Q2.62 and at most 2^62; the factor 2 is written
+     * as two terms; each entry is the exact sum rounded once to Q1.30. */
+    xx = u[1] * u[1]; yy = u[2] * u[2]; zz = u[3] * u[3];
+    xy = u[1] * u[2]; xz = u[1] * u[3]; yz = u[2] * u[3];
+    wx = u[0] * u[1]; wy = u[0] * u[2]; wz = u[0] * u[3];
+    t[0] = one; t[1] = t[2] = -yy; t[3] = t[4] = -zz; out->m[0][0] = entry32(t, 5);
+    t[0] = one; t[1] = t[2] = -xx; t[3] = t[4] = -zz; out->m[1][1] = entry32(t, 5);
+    t[0] = one; t[1] = t[2] = -xx; t[3] = t[4] = -yy; out->m[2][2] = entry32(t, 5);
+    t[0] = t[1] = xy; t[2] = t[3] = -wz; out->m[0][1] = entry32(t, 4);
+    t[0] = t[1] = xy; t[2] = t[3] = wz;  out->m[1][0] = entry32(t, 4);
+    t[0] = t[1] = xz; t[2] = t[3] = wy;  out->m[0][2] = entry32(t, 4);
+    t[0] = t[1] = xz; t[2] = t[3] = -wy; out->m[2][0] = entry32(t, 4);
+    t[0] = t[1] = yz; t[2] = t[3] = -wx; out->m[1][2] = entry32(t, 4);
+    t[0] = t[1] = yz; t[2] = t[3] = wx;  out->m[2][1] = entry32(t, 4);
+    return QO_OK;
+}
+
+/* (M^T M)_ij = sum_k m_ki m_kj in Q1.30, rounded once, not saturated. */
+static int64_t gram(const qo_mat3_q30 *m, int i, int j)
+{
+    int64_t t[3];
+    t[0] = P(m->m[0][i], m->m[0][j]);
+    t[1] = P(m->m[1][i], m->m[1][j]);
+    t[2] = P(m->m[2][i], m->m[2][j]);
+    return qo_fx_sum_round_i64(t, 3, 30);
+}
+
+qo_status qo_quat_from_mat3_q30(const qo_mat3_q30 *m, qo_quat_q30 *out)
+{
+    int64_t q[4], t[3], c0, c1, c2, det, tr, best;
+    int64_t a00, a11, a22;
+    int i, j, pivot;
+    uint64_t mx;
+    qo_quat_q30 r;
+    qo_status st;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_q30();
+    if (m == NULL) return QO_E_NULL;
+    for (i = 0; i < 3; i++) {
+        for (j = i; j < 3; j++) {
+            int64_t d = gram(m, i, j) - (i == j ? QO_Q30_ONE : 0);
+            if (d > QO_MAT3_ROTATION_TOL_Q30 || d < -QO_MAT3_ROTATION_TOL_Q30) return QO_E_NOT_ROTATION;
+        }
+    }
+    /* Columns are unit within the tolerance, so every entry and cofactor is below ~1.0001:
+     * the determinant's products stay far inside int64. */
+    t[0] = P(m->m[1][1], m->m[2][2]); t[1] = -P(m->m[1][2], m->m[2][1]);
+    c0 = qo_fx_sum_round_i64(t, 2, 30);
+    t[0] = P(m->m[1][0], m->m[2][2]); t[1] = -P(m->m[1][2], m->m[2][0]);
+    c1 = qo_fx_sum_round_i64(t, 2, 30);
+    t[0] = P(m->m[1][0], m->m[2][1]); t[1] = -P(m->m[1][1], m->m[2][0]);
+    c2 = qo_fx_sum_round_i64(t, 2, 30);
+    t[0] = m->m[0][0] * c0; t[1] = -(m->m[0][1] * c1); t[2] = m->m[0][2] * c2;
+    det = qo_fx_sum_round_i64(t, 3, 30);
+    if (det < QO_Q30_ONE / 2) return QO_E_NOT_ROTATION;   /* det is ~ +-1 here */
+
+    /* Shepperd: pivot on the largest of trace, m00, m11, m22, and use the quaternion scaled
+     * by 4 * (pivot component), whose entries are plain sums of matrix entries (no square
+     * root, no division); normalising afterwards removes the scale. */
+    a00 = m->m[0][0]; a11 = m->m[1][1]; a22 = m->m[2][2];
+    tr = a00 + a11 + a22;
+    pivot = 0; best = tr;
+    if (a00 > best) { pivot = 1; best = a00; }
+    if (a11 > best) { pivot = 2; best = a11; }
+    if (a22 > best) { pivot = 3; best = a22; }
+    switch (pivot) {
+    case 0:
+        q[0] = QO_Q30_ONE + tr;
+        q[1] = (int64_t)m->m[2][1] - m->m[1][2];
+        q[2] = (int64_t)m->m[0][2] - m->m[2][0];
+        q[3] = (int64_t)m->m[1][0] - m->m[0][1];
+        break;
+    case 1:
+        q[0] = (int64_t)m->m[2][1] - m->m[1][2];
+        q[1] = QO_Q30_ONE + a00 - a11 - a22;
+        q[2] = (int64_t)m->m[0][1] + m->m[1][0];
+        q[3] = (int64_t)m->m[0][2] + m->m[2][0];
+        break;
+    case 2:
+        q[0] = (int64_t)m->m[0][2] - m->m[2][0];
+        q[1] = (int64_t)m->m[0][1] + m->m[1][0];
+        q[2] = QO_Q30_ONE - a00 + a11 - a22;
+        q[3] = (int64_t)m->m[1][2] + m->m[2][1];
+        break;
+    default:
+        q[0] = (int64_t)m->m[1][0] - m->m[0][1];
+        q[1] = (int64_t)m->m[0][2] + m->m[2][0];
+        q[2] = (int64_t)m->m[1][2] + m->m[2][1];
+        q[3] = QO_Q30_ONE - a00 - a11 + a22;
+        break;
+    }
+    /* The pivot entry is in [1, 4] (2^30..2^32): halve with rounding until all fit int32
+     * (costs at most 2 bits of 2^32, far below an LSB of the normalised result). */
+    for (;;) {
+        mx = 0;
+        for (i = 0; i < 4; i++) if (mag(q[i]) > mx) mx = mag(q[i]);
+        if (mx < ((uint64_t)1 << 31)) break;
+        for (i = 0; i < 4; i++) q[i] = (q[i] + 1) >> 1;
+    }
+    r.w = (qo_q30)q[0]; r.x = (qo_q30)q[1]; r.y = (qo_q30)q[2]; r.z = (qo_q30)q[3];
+    st = qo_quat_normalize_q30(r, out);
+    if (st != QO_OK) { *out = qo_quat_identity_q30(); return QO_E_NOT_ROTATION; }
+    *out = qo_quat_canonical_q30(*out);
+    return QO_OK;
+}
+
+qo_vec3_q30 qo_mat3_mul_vec3_q30(const qo_mat3_q30 *m, qo_vec3_q30 v)
+{
+    qo_vec3_q30 r = { 0, 0, 0 };
+    int64_t t[3];
+    qo_q30 *o[3];
+    int i;
+    if (m == NULL) return r;
+    o[0] = &r.x; o[1] = &r.y; o[2] = &r.z;
+    for (i = 0; i < 3; i++) {
+        t[0] = P(m->m[i][0], v.x);
+        t[1] = P(m->m[i][1], v.y);
+        t[2] = P(m->m[i][2], v.z);
+        *o[i] = entry(t, 3);
+    }
+    return r;
+}

@@ -1,0 +1,734 @@
+/* Online point-to-point motion, float32. See qorient/motion.h for the contract and the design. */
+#include "qorient/motion.h"
+
+#include <math.h>
+
+const qo_motion_settings_f32 qo_motion_settings_default = { QO_MOTION_SCURVE, QO_MOTION_SYNC_TIME };
+const qo_motion_limits_f32 qo_motion_limits_default = { 1.0f, 1.0f, 1.0f, -INFINITY, INFINITY, 0.0f };
+
+/* One piece of a profile under construction: duration d, jerk j; with seta the acceleration
+ * is set to a at its start (TRAPEZOID: acceleration jumps), else it carries on continuously. */
+typedef struct mseg {
+    float d, j, a, v;
+    int seta, setv;
+} mseg;
+
+typedef struct mstate {
+    float p, v, a;
+} mstate;
+
+/* Segments of one plan: velocity change (<= 3) + cruise (1) + stop (<= 3). */
+#define MSEGS 7
+
+static void integ(mstate *s, const mseg *g)
+{
+    float d = g->d;
+    if (g->seta) s->a = g->a;
+    if (g->setv) s->v = g->v;
+    s->p += d * (s->v + d * (0.5f * s->a + d * g->j * (1.0f / 6.0f)));
+    s->v += d * (s->a + 0.5f * d * g->j);
+    s->a += d * g->j;
+}
+
+/* Fastest change from (v0, a0) to (v1, 0) within |a| <= amax (after bringing an a0 beyond it
+ * back at jmax) and |j| <= jmax (SCURVE), or at +-amax (TRAPEZOID). Writes <= 3 segments. */
+static unsigned vchange(int scurve, float v0, float a0, float v1, float amax, float jmax, mseg *out)
+{
+    float vnat, s, a0s, dv, ap, t1, t2, t3, dv1, dv3;
+    int capped = 0;
+    if (!scurve) {
+        float d = v1 - v0;
+        out[0].d = fabsf(d) / amax;
+        out[0].j = 0.0f;
+        out[0].a = d >= 0.0f ? amax : -amax;
+        out[0].seta = 1;
+        out[0].setv = 0;
+        return 1;
+    }
+    /* Velocity reached by ramping a0 straight to zero: v1 above it needs a positive pulse. */
+    vnat = v0 + a0 * fabsf(a0) / (2.0f * jmax);
+    s = (v1 >= vnat) ? 1.0f : -1.0f;
+    a0s = s * a0;
+    dv = s * (v1 - v0);
+    if (a0s >= amax) {
+        ap = amax;
+        capped = 1;
+    } else {
+        /* Peak of a ramp-up / ramp-down pulse: dv = (2 ap^2 - a0s^2) / (2 jmax). */
+        float ap2 = jmax * dv + 0.5f * a0s * a0s;
+        ap = ap2 > 0.0f ? sqrtf(ap2) : 0.0f;
+        if (ap >= amax) {
+            ap = amax;
+            capped = 1;
+        }
+        if (ap < a0s) ap = a0s; /* rounding only: dv >= a0s^2/(2 jmax) when a0s > 0 */
+    }
+    t1 = fabsf(ap - a0s) / jmax;
+    dv1 = 0.5f * (a0s + ap) * t1;
+    t3 = ap / jmax;
+    dv3 = 0.5f * ap * t3;
+    t2 = (capped && ap > 0.0f) ? (dv - dv1 - dv3) / ap : 0.0f;
+    if (!(t2 > 0.0f)) t2 = 0.0f;
+    out[0].d = t1;
+    out[0].j = ap >= a0s ? s * jmax : -s * jmax;
+    out[0].seta = out[0].setv = 0;
+    out[1].d = t2;
+    out[1].j = 0.0f;
+    out[1].seta = out[1].setv = 0;
+    out[2].d = t3;
+    out[2].j = -s * jmax;
+    out[2].seta = out[2].setv = 0;
+    return 3;
+}
+
+/* Profile through extremum velocity vc with cruise tc, from (v0, a0). */
+static unsigned build(int scurve, float v0, float a0, float vc, float tc, const qo_motion_limits_f32 *l,
+                      mseg *out)
+{
+    unsigned n = vchange(scurve, v0, a0, vc, l->amax, l->jmax, out);
+    /* The cruise (and the stop after it) starts from exactly (vc, 0): rounding gathered
+     * while the velocity change passed through large values must not be carried over a long
+     * cruise into the end position. */
+    out[n].d = tc;
+    out[n].j = 0.0f;
+    out[n].a = 0.0f;
+    out[n].v = vc;
+    out[n].seta = out[n].setv = 1;
+    n++;
+    n += vchange(scurve, vc, 0.0f, 0.0f, l->amax, l->jmax, out + n);
+    return n;
+}
+
+/* Displacement and duration of the zero-cruise profile through vc. */
+static void eval_vc(int scurve, float v0, float a0, float vc, const qo_motion_limits_f32 *l, float *disp,
+                    float *dur)
+{
+    mseg g[MSEGS];
+    mstate s;
+    unsigned i, n = build(scurve, v0, a0, vc, 0.0f, l, g);
+    float t = 0.0f;
+    s.p = 0.0f;
+    s.v = v0;
+    s.a = a0;
+    for (i = 0; i < n; i++) {
+        integ(&s, &g[i]);
+        t += g[i].d;
+    }
+    *disp = s.p;
+    *dur = t;
+}
+
+/* What a root search evaluates at extremum velocity vc. mode 0 (minimum time): displacement of
+ * the zero-cruise profile minus dp, aux = its duration. mode 1 (time sync): position reached in
+ * exactly T with the cruise filling the rest, minus dp, aux = that cruise time. */
+typedef struct rctx {
+    int scurve, mode;
+    float v0, a0, dp, T;
+    const qo_motion_limits_f32 *l;
+} rctx;
+
+static float resid(const rctx *c, float vc, float *aux)
+{
+    float d, t;
+    eval_vc(c->scurve, c->v0, c->a0, vc, c->l, &d, &t);
+    if (c->mode == 0) {
+        *aux = t;
+        return d - c->dp;
+    }
+    *aux = c->T - t;
+    return d + vc * (c->T - t) - c->dp;
+}
+
+/* Root of resid between a and b, whose residuals fa, fb have opposite signs. Illinois method:
+ * regula falsi that halves the stale end's residual, so it keeps the bracket (like bisection,
+ * never diverges) but converges superlinearly; at most QO_MOTION_BISECT_ITERS steps, stops when
+ * the bracket is 2 float32 ulps wide. Returns the end with the smaller true |residual|. */
+static float root(const rctx *c, float a, float b, float fa, float fb, float xa, float xb, float *aux)
+{
+    float ga = fa, gb = fb; /* Illinois-weighted copies */
+    int side = 0;
+    unsigned it;
+    for (it = 0; it < QO_MOTION_BISECT_ITERS; it++) {
+        float m = a - ga * (b - a) / (gb - ga), fm, xm;
+        if (!(m > fminf(a, b) && m < fmaxf(a, b))) m = 0.5f * (a + b);
+        if (m == a || m == b) break;
+        fm = resid(c, m, &xm);
+        if (fm == 0.0f) {
+            *aux = xm;
+            return m;
+        }
+        if ((fm < 0.0f) == (fb < 0.0f)) {
+            b = m;
+            fb = gb = fm;
+            xb = xm;
+            if (side == -1) ga *= 0.5f;
+            side = -1;
+        } else {
+            a = m;
+            fa = ga = fm;
+            xa = xm;
+            if (side == 1) gb *= 0.5f;
+            side = 1;
+        }
+        /* 2 ulps of the larger end, and no finer than 2.4e-10 vmax near vc = 0 (the residual's
+         * slope there is bounded, so that is far below float32 resolution of the result) */
+        if (fabsf(b - a) <= 2.4e-7f * fmaxf(fmaxf(fabsf(a), fabsf(b)), 1e-3f * c->l->vmax)) break;
+    }
+    if (fabsf(fa) <= fabsf(fb)) {
+        *aux = xa;
+        return a;
+    }
+    *aux = xb;
+    return b;
+}
+
+/* Minimum-time extremum velocity vc and cruise tc for displacement dp (see motion.h). */
+static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_limits_f32 *l, float *vc,
+                      float *tc)
+{
+    rctx c;
+    float flo, fhi, xlo, xhi, x;
+    c.scurve = scurve;
+    c.mode = 0;
+    c.v0 = v0;
+    c.a0 = a0;
+    c.dp = dp;
+    c.T = 0.0f;
+    c.l = l;
+    fhi = resid(&c, l->vmax, &xhi);
+    if (fhi <= 0.0f) {
+        *vc = l->vmax;
+        *tc = -fhi / l->vmax;
+        return;
+    }
+    flo = resid(&c, -l->vmax, &xlo);
+    if (flo >= 0.0f) {
+        *vc = -l->vmax;
+        *tc = flo / l->vmax;
+        return;
+    }
+    /* The displacement grows monotonically with vc: one root in (-vmax, vmax). */
+    *vc = root(&c, -l->vmax, l->vmax, flo, fhi, xlo, xhi, &x);
+    *tc = 0.0f;
+    {
+        /* A root a float ulp away from the velocity the start state reaches anyway (vnat)
+         * would add a pulse of 2 sqrt(eps / jmax) seconds: take vnat itself when it is a root to
+         * float precision, and let a short cruise absorb the residual when its sign allows. */
+        float vn = scurve ? v0 + a0 * fabsf(a0) / (2.0f * l->jmax) : v0, fn, xn;
+        if (vn >= -l->vmax && vn <= l->vmax && vn != *vc) {
+            fn = resid(&c, vn, &xn);
+            if (fabsf(fn) <= 1e-6f * (fabsf(dp) + (fabsf(v0) + l->vmax) * xn)) {
+                *vc = vn;
+                if (vn != 0.0f && -fn / vn >= 0.0f) *tc = -fn / vn;
+            }
+        }
+    }
+}
+
+/* A profile of exactly duration T >= the minimum: lower |vc| from vc* toward 0 (the residual
+ * changes sign on [0, vc*]). Returns 0 if no such profile was found. */
+static int solve_time(int scurve, float v0, float a0, float dp, float vcs, float T, const qo_motion_limits_f32 *l,
+                      float *vc, float *tc)
+{
+    rctx c;
+    float fa, fb, tca, tcb;
+    c.scurve = scurve;
+    c.mode = 1;
+    c.v0 = v0;
+    c.a0 = a0;
+    c.dp = dp;
+    c.T = T;
+    c.l = l;
+    fa = resid(&c, 0.0f, &tca);
+    fb = resid(&c, vcs, &tcb);
+    if (fa == 0.0f || (fa < 0.0f) == (fb < 0.0f)) {
+        /* Stop, then wait at rest (the residual is the minimum solve's own, tiny). */
+        *vc = 0.0f;
+        *tc = tca;
+        return tca >= 0.0f && fabsf(fa) <= 1e-4f * (fabsf(dp) + l->vmax * T);
+    }
+    *vc = root(&c, 0.0f, vcs, fa, fb, tca, tcb, tc);
+    if (*tc < 0.0f) {
+        /* Rounding may leave -ulp; a real negative cruise means the bracket was wrong. */
+        if (*tc < -1e-5f * T) return 0;
+        *tc = 0.0f;
+    }
+    return 1;
+}
+
+/* Turns segments from state (p, v, a) into the joint's phases (zero-length ones dropped). */
+static void load(qo_motion_joint_f32 *jt, float p, float v, float a, const mseg *g, unsigned n, float final)
+{
+    mstate s;
+    unsigned i;
+    float t = 0.0f;
+    s.p = p;
+    s.v = v;
+    s.a = a;
+    jt->nph = 0;
+    for (i = 0; i < n; i++) {
+        if (g[i].seta) s.a = g[i].a;
+        if (g[i].setv) s.v = g[i].v;
+        if (!(g[i].d > 0.0f)) continue;
+        jt->ph[jt->nph].t = t;
+        jt->ph[jt->nph].p = s.p;
+        jt->ph[jt->nph].v = s.v;
+        jt->ph[jt->nph].a = s.a;
+        jt->ph[jt->nph].j = g[i].j;
+        jt->nph++;
+        jt->ph[jt->nph - 1].d = g[i].d;
+        integ(&s, &g[i]);
+        t += g[i].d;
+    }
+    jt->final = final;
+    jt->duration = t;
+}
+
+static mstate joint_state(const qo_motion_joint_f32 *jt, float tau)
+{
+    mstate s;
+    unsigned k;
+    const qo_motion_phase_f32 *ph;
+    if (jt->nph == 0 || tau >= jt->duration) {
+        s.p = jt->final;
+        s.v = 0.0f;
+        s.a = 0.0f;
+        return s;
+    }
+    if (tau < 0.0f) tau = 0.0f;
+    k = jt->nph - 1;
+    while (k > 0 && jt->ph[k].t > tau) k--;
+    ph = &jt->ph[k];
+    /* Local time within the phase's own (exact) duration: the float start times are rounded
+     * sums, the states at phase ends are not. */
+    tau -= ph->t;
+    if (tau > ph->d) tau = ph->d;
+    s.p = ph->p + tau * (ph->v + tau * (0.5f * ph->a + tau * ph->j * (1.0f / 6.0f)));
+    s.v = ph->v + tau * (ph->a + 0.5f * tau * ph->j);
+    s.a = ph->a + tau * ph->j;
+    return s;
+}
+
+static int limits_ok(const qo_motion_limits_f32 *l)
+{
+    if (!(isfinite(l->vmax) && l->vmax > 0.0f)) return 0;
+    if (!(isfinite(l->amax) && l->amax > 0.0f)) return 0;
+    if (!(isfinite(l->jmax) && l->jmax > 0.0f)) return 0;
+    if (isnan(l->pmin) || isnan(l->pmax) || l->pmin > l->pmax) return 0;
+    if (l->pmin == INFINITY || l->pmax == -INFINITY) return 0;
+    if (!(isfinite(l->wrap) && l->wrap >= 0.0f)) return 0;
+    return 1;
+}
+
+/* Short way round for a continuous joint: d in (-w/2, w/2]. */
+static float wrap_delta(float d, float w)
+{
+    float r = fmodf(d, w);
+    if (r > 0.5f * w) r -= w;
+    else if (r <= -0.5f * w) r += w;
+    return r;
+}
+
+/* Samples every joint at t_now into its scratch state and moves t0 there. */
+static void capture(qo_motion_planner_f32 *pl, float t_now)
+{
+    size_t i;
+    for (i = 0; i < pl->n; i++) {
+        qo_motion_joint_f32 *jt = &pl->joints[i];
+        mstate s = joint_state(jt, t_now - pl->t0);
+        jt->w_p = s.p;
+        jt->w_v = s.v;
+        jt->w_a = pl->settings.profile == QO_MOTION_SCURVE ? s.a : 0.0f;
+    }
+    pl->t0 = t_now;
+}
+
+static void plan_brake(qo_motion_planner_f32 *pl)
+{
+    size_t i;
+    int sc = pl->settings.profile == QO_MOTION_SCURVE;
+    float dur = 0.0f;
+    for (i = 0; i < pl->n; i++) {
+        qo_motion_joint_f32 *jt = &pl->joints[i];
+        mseg g[3];
+        mstate s;
+        unsigned k, n;
+        if (jt->w_v == 0.0f && jt->w_a == 0.0f) {
+            jt->nph = 0;
+            jt->final = jt->w_p;
+            jt->duration = 0.0f;
+            jt->goal = jt->w_p;
+            continue;
+        }
+        n = vchange(sc, jt->w_v, jt->w_a, 0.0f, jt->lim.amax, jt->lim.jmax, g);
+        s.p = jt->w_p;
+        s.v = jt->w_v;
+        s.a = jt->w_a;
+        for (k = 0; k < n; k++) integ(&s, &g[k]);
+        load(jt, jt->w_p, jt->w_v, jt->w_a, g, n, s.p);
+        jt->goal = s.p;
+        if (jt->duration > dur) dur = jt->duration;
+    }
+    pl->duration = dur;
+    pl->sync_used = QO_MOTION_SYNC_NONE;
+    pl->braking = 1;
+}
+
+/* Straight-line plan if every (v, a) is proportional to the displacement; 0 if not possible. */
+static int plan_phase(qo_motion_planner_f32 *pl)
+{
+    size_t i, r = 0;
+    int sc = pl->settings.profile == QO_MOTION_SCURVE;
+    float dr = 0.0f, kv, ka, vc, tc;
+    qo_motion_limits_f32 ls;
+    qo_motion_joint_f32 unit;
+    mseg g[MSEGS];
+    unsigned n;
+    for (i = 0; i < pl->n; i++) {
+        if (fabsf(pl->joints[i].w_d) > dr) {
+            dr = fabsf(pl->joints[i].w_d);
+            r = i;
+        }
+    }
+    if (dr == 0.0f) return 0;
+    kv = pl->joints[r].w_v / pl->joints[r].w_d;
+    ka = pl->joints[r].w_a / pl->joints[r].w_d;
+    ls = qo_motion_limits_default;
+    ls.vmax = ls.amax = ls.jmax = INFINITY;
+    for (i = 0; i < pl->n; i++) {
+        const qo_motion_joint_f32 *jt = &pl->joints[i];
+        float d = jt->w_d, ad = fabsf(d);
+        if (fabsf(jt->w_v - kv * d) > 1e-6f * fmaxf(jt->lim.vmax, fabsf(jt->w_v))) return 0;
+        if (fabsf(jt->w_a - ka * d) > 1e-6f * fmaxf(jt->lim.amax, fabsf(jt->w_a))) return 0;
+        if (ad == 0.0f) continue;
+        ls.vmax = fminf(ls.vmax, jt->lim.vmax / ad);
+        ls.amax = fminf(ls.amax, jt->lim.amax / ad);
+        ls.jmax = fminf(ls.jmax, jt->lim.jmax / ad);
+    }
+    if (!(isfinite(ls.vmax) && isfinite(ls.amax) && isfinite(ls.jmax))) return 0;
+    solve_min(sc, kv, ka, 1.0f, &ls, &vc, &tc);
+    n = build(sc, kv, ka, vc, tc, &ls, g);
+    load(&unit, 0.0f, kv, ka, g, n, 1.0f);
+    pl->duration = unit.duration;
+    for (i = 0; i < pl->n; i++) {
+        qo_motion_joint_f32 *jt = &pl->joints[i];
+        float d = jt->w_d;
+        unsigned k;
+        if (d == 0.0f) {
+            jt->nph = 0;
+            jt->final = jt->w_p;
+            jt->duration = 0.0f;
+            continue;
+        }
+        jt->nph = unit.nph;
+        for (k = 0; k < unit.nph; k++) {
+            jt->ph[k].t = unit.ph[k].t;
+            jt->ph[k].d = unit.ph[k].d;
+            jt->ph[k].p = jt->w_p + d * unit.ph[k].p;
+            jt->ph[k].v = d * unit.ph[k].v;
+            jt->ph[k].a = d * unit.ph[k].a;
+            jt->ph[k].j = d * unit.ph[k].j;
+        }
+        jt->final = jt->w_p + d;
+        jt->duration = unit.duration;
+    }
+    pl->sync_used = QO_MOTION_SYNC_PHASE;
+    return 1;
+}
+
+/* Plans every joint from its captured state toward its goal with the planner's settings. */
+static void plan_goals(qo_motion_planner_f32 *pl)
+{
+    size_t i;
+    int sc = pl->settings.profile == QO_MOTION_SCURVE;
+    float T = 0.0f;
+    pl->braking = 0;
+    for (i = 0; i < pl->n; i++) {
+        qo_motion_joint_f32 *jt = &pl->joints[i];
+        float d = jt->goal - jt->w_p;
+        if (jt->lim.wrap > 0.0f) d = wrap_delta(d, jt->lim.wrap);
+        jt->w_d = d;
+    }
+    if (pl->settings.sync == QO_MOTION_SYNC_PHASE && plan_phase(pl)) return;
+    for (i = 0; i < pl->n; i++) {
+        qo_motion_joint_f32 *jt = &pl->joints[i];
+        float dum;
+        if (jt->w_d == 0.0f && jt->w_v == 0.0f && jt->w_a == 0.0f) {
+            jt->w_vc = jt->w_tc = jt->w_t = 0.0f;
+            continue;
+        }
+        solve_min(sc, jt->w_v, jt->w_a, jt->w_d, &jt->lim, &jt->w_vc, &jt->w_tc);
+        eval_vc(sc, jt->w_v, jt->w_a, jt->w_vc, &jt->lim, &dum, &jt->w_t);
+        jt->w_t += jt->w_tc;
+        if (jt->w_t > T) T = jt->w_t;
+    }
+    for (i = 0; i < pl->n; i++) {
+        qo_motion_joint_f32 *jt = &pl->joints[i];
+        mseg g[MSEGS];
+        unsigned n;
+        float vc = jt->w_vc, tc = jt->w_tc;
+        if (jt->w_t == 0.0f && jt->w_d == 0.0f && jt->w_v == 0.0f && jt->w_a == 0.0f) {
+            jt->nph = 0;
+            jt->final = jt->w_p;
+            jt->duration = 0.0f;
+            continue;
+        }
+        if (pl->settings.sync != QO_MOTION_SYNC_NONE && jt->w_t < T) {
+            float v2, t2;
+            if (solve_time(sc, jt->w_v, jt->w_a, jt->w_d, vc, T, &jt->lim, &v2, &t2)) {
+                vc = v2;
+                tc = t2;
+            }
+        }
+        n = build(sc, jt->w_v, jt->w_a, vc, tc, &jt->lim, g);
+        load(jt, jt->w_p, jt->w_v, jt->w_a, g, n, jt->w_p + jt->w_d);
+    }
+    pl->duration = 0.0f;
+    for (i = 0; i < pl->n; i++)
+        if (pl->joints[i].duration > pl->duration) pl->duration = pl->joints[i].duration;
+    pl->sync_used = pl->settings.sync == QO_MOTION_SYNC_NONE ? QO_MOTION_SYNC_NONE : QO_MOTION_SYNC_TIME;
+}
+
+qo_status qo_motion_init_f32(qo_motion_planner_f32 *pl, qo_motion_joint_f32 *joints, size_t n,
+                             const qo_motion_limits_f32 *limits, const float *start, float t0,
+                             const qo_motion_settings_f32 *settings)
+{
+    size_t i;
+    qo_motion_settings_f32 st = settings ? *settings : qo_motion_settings_default;
+    if (pl == NULL) return QO_E_NULL;
+    pl->joints = joints;
+    pl->n = 0;
+    pl->settings = qo_motion_settings_default;
+    pl->t0 = 0.0f;
+    pl->duration = 0.0f;
+    pl->sync_used = QO_MOTION_SYNC_NONE;
+    pl->braking = 0;
+    if (joints == NULL || limits == NULL || start == NULL) return QO_E_NULL;
+    if (n == 0) return QO_E_TOO_FEW;
+    if (n > QO_MOTION_MAX_JOINTS) return QO_E_CAPACITY;
+    if ((st.profile != QO_MOTION_TRAPEZOID && st.profile != QO_MOTION_SCURVE) ||
+        (st.sync != QO_MOTION_SYNC_NONE && st.sync != QO_MOTION_SYNC_TIME && st.sync != QO_MOTION_SYNC_PHASE))
+        return QO_E_ARG;
+    for (i = 0; i < n; i++)
+        if (!limits_ok(&limits[i])) return QO_E_LIMIT;
+    if (!isfinite(t0)) return QO_E_NONFINITE;
+    for (i = 0; i < n; i++)
+        if (!isfinite(start[i])) return QO_E_NONFINITE;
+    for (i = 0; i < n; i++) {
+        qo_motion_joint_f32 *jt = &joints[i];
+        jt->lim = limits[i];
+        jt->goal = jt->final = start[i];
+        jt->duration = 0.0f;
+        jt->nph = 0;
+        jt->w_p = start[i];
+        jt->w_v = jt->w_a = jt->w_d = jt->w_vc = jt->w_tc = jt->w_t = 0.0f;
+    }
+    pl->settings = st;
+    pl->t0 = t0;
+    pl->n = n;
+    return QO_OK;
+}
+
+/* Common checks of the re-planning calls. */
+static qo_status check_time(const qo_motion_planner_f32 *pl, float t_now)
+{
+    if (pl->n == 0 || pl->joints == NULL) return QO_E_STATE;
+    if (!isfinite(t_now)) return QO_E_NONFINITE;
+    if (t_now < pl->t0) return QO_E_ORDER;
+    return QO_OK;
+}
+
+qo_status qo_motion_set_target_f32(qo_motion_planner_f32 *pl, float t_now, const float *targets,
+                                   uint32_t *clamped)
+{
+    size_t i;
+    uint32_t mask = 0;
+    qo_status st;
+    if (clamped) *clamped = 0;
+    if (pl == NULL || targets == NULL) return QO_E_NULL;
+    st = check_time(pl, t_now);
+    if (st != QO_OK) return st;
+    for (i = 0; i < pl->n; i++) {
+        if (!isfinite(targets[i])) {
+            capture(pl, t_now);
+            plan_brake(pl);
+            return QO_E_NONFINITE;
+        }
+    }
+    capture(pl, t_now);
+    for (i = 0; i < pl->n; i++) {
+        qo_motion_joint_f32 *jt = &pl->joints[i];
+        float g = targets[i];
+        if (g < jt->lim.pmin) {
+            g = jt->lim.pmin;
+            mask |= (uint32_t)1 << i;
+        } else if (g > jt->lim.pmax) {
+            g = jt->lim.pmax;
+            mask |= (uint32_t)1 << i;
+        }
+        jt->goal = g;
+    }
+    plan_goals(pl);
+    if (clamped) *clamped = mask;
+    return QO_OK;
+}
+
+qo_status qo_motion_set_limits_f32(qo_motion_planner_f32 *pl, float t_now, size_t i,
+                                   const qo_motion_limits_f32 *limits)
+{
+    size_t k;
+    qo_status st;
+    if (pl == NULL || limits == NULL) return QO_E_NULL;
+    st = check_time(pl, t_now);
+    if (st != QO_OK) return st;
+    if (i >= pl->n) return QO_E_RANGE;
+    capture(pl, t_now);
+    if (!limits_ok(limits)) {
+        plan_brake(pl);
+        return QO_E_LIMIT;
+    }
+    pl->joints[i].lim = *limits;
+    for (k = 0; k < pl->n; k++) {
+        qo_motion_joint_f32 *jt = &pl->joints[k];
+        if (jt->goal < jt->lim.pmin) jt->goal = jt->lim.pmin;
+        if (jt->goal > jt->lim.pmax) jt->goal = jt->lim.pmax;
+    }
+    plan_goals(pl);
+    return QO_OK;
+}
+
+qo_status qo_motion_brake_f32(qo_motion_planner_f32 *pl, float t_now)
+{
+    qo_status st;
+    if (pl == NULL) return QO_E_NULL;
+    st = check_time(pl, t_now);
+    if (st != QO_OK) return st;
+    capture(pl, t_now);
+    plan_brake(pl);
+    return QO_OK;
+}
+
+qo_status qo_motion_sample_f32(const qo_motion_planner_f32 *pl, float t, float *pos, float *vel, float *acc)
+{
+    size_t i;
+    qo_status st = QO_OK;
+    float tau;
+    if (pl == NULL || pos == NULL) return QO_E_NULL;
+    if (pl->n == 0 || pl->joints == NULL) return QO_E_STATE;
+    if (!isfinite(t)) {
+        st = QO_E_NONFINITE;
+        tau = 0.0f;
+    } else if (t < pl->t0) {
+        st = QO_E_RANGE;
+        tau = 0.0f;
+    } else {
+        tau = t - pl->t0;
+    }
+    for (i = 0; i < pl->n; i++) {
+        mstate s = joint_state(&pl->joints[i], tau);
+        pos[i] = s.p;
+        if (vel) vel[i] = s.v;
+        if (acc) acc[i] = s.a;
+    }
+    return st;
+}
+
+float qo_motion_duration_f32(const qo_motion_planner_f32 *pl)
+{
+    if (pl == NULL || pl->n == 0) return 0.0f;
+    return pl->duration;
+}
+
+float qo_motion_end_time_f32(const qo_motion_planner_f32 *pl)
+{
+    float e;
+    if (pl == NULL || pl->n == 0) return 0.0f;
+    /* Rounded up so that sampling at the returned time is at rest (t - t0 >= duration). */
+    e = pl->t0 + pl->duration;
+    if (e - pl->t0 < pl->duration) e = nextafterf(e, INFINITY);
+    return e;
+}
+
+int qo_motion_done_f32(const qo_motion_planner_f32 *pl, float t)
+{
+    if (pl == NULL || pl->n == 0) return 1;
+    if (isnan(t)) return 0;
+    return t - pl->t0 >= pl->duration;
+}
+
+qo_motion_sync qo_motion_sync_used(const qo_motion_planner_f32 *pl)
+{
+    return pl ? pl->sync_used : QO_MOTION_SYNC_NONE;
+}
+
+/* float -> Q31.32 with saturation at +-2^31. */
+static int64_t to_q32(float x, int *ovf)
+{
+    const float lim = 2147483648.0f;
+    if (!(x < lim)) {
+        *ovf = 1;
+        return INT64_MAX;
+    }
+    if (!(x > -lim)) {
+        *ovf = 1;
+        return -INT64_MAX;
+    }
+    return (int64_t)llrintf(x * 4294967296.0f);
+}
+
+/* float seconds -> Q16.16 with saturation. */
+static qo_q16 to_q16(float x, int *ovf)
+{
+    const float lim = 32767.0f;
+    if (!(x <= lim)) {
+        *ovf = 1;
+        return INT32_MAX;
+    }
+    if (!(x >= -lim)) {
+        *ovf = 1;
+        return -INT32_MAX;
+    }
+    return (qo_q16)lrintf(x * 65536.0f);
+}
+
+qo_status qo_motion_export_q16(const qo_motion_planner_f32 *pl, qo_motion_table_q16 *table,
+                               qo_motion_seg_q16 *segs, size_t cap)
+{
+    size_t i;
+    int ovf = 0;
+    if (table == NULL) return QO_E_NULL;
+    table->segs = segs;
+    table->n = 0;
+    if (pl == NULL || segs == NULL) return QO_E_NULL;
+    if (pl->n == 0 || pl->joints == NULL) return QO_E_STATE;
+    if (cap < pl->n * QO_MOTION_Q16_SEGS) return QO_E_CAPACITY;
+    for (i = 0; i < pl->n; i++) {
+        const qo_motion_joint_f32 *jt = &pl->joints[i];
+        qo_motion_seg_q16 *sg = &segs[i * QO_MOTION_Q16_SEGS];
+        unsigned k;
+        for (k = 0; k < jt->nph; k++) {
+            const qo_motion_phase_f32 *ph = &jt->ph[k];
+            qo_q16 tq = to_q16(ph->t, &ovf);
+            /* Coefficients at the rounded boundary: the same polynomial, re-centred. */
+            float tau = (float)tq * (1.0f / 65536.0f) - ph->t;
+            float p = ph->p + tau * (ph->v + tau * (0.5f * ph->a + tau * ph->j * (1.0f / 6.0f)));
+            float v = ph->v + tau * (ph->a + 0.5f * tau * ph->j);
+            float a = ph->a + tau * ph->j;
+            if (k == 0) tq = 0;
+            sg[k].t = tq;
+            sg[k].c0 = to_q32(p, &ovf);
+            sg[k].c1 = to_q32(v, &ovf);
+            sg[k].c2 = to_q32(0.5f * a, &ovf);
+            sg[k].c3 = to_q32(ph->j * (1.0f / 6.0f), &ovf);
+            if (fabsf(p) >= 32767.0f) ovf = 1;
+        }
+        for (; k < QO_MOTION_Q16_SEGS; k++) {
+            sg[k].t = jt->nph ? to_q16(jt->duration, &ovf) : 0;
+            sg[k].c0 = to_q32(jt->final, &ovf);
+            sg[k].c1 = sg[k].c2 = sg[k].c3 = 0;
+            if (fabsf(jt->final) >= 32767.0f) ovf = 1;
+        }
+    }
+    table->n = pl->n;
+    return ovf ? QO_E_OVERFLOW : QO_OK;
+}

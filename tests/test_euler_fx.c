@@ -1,0 +1,1033 @@
+/* Euler angles, fixed point (euler_fx.h), with the float32 core (euler.h) run through the SAME
+ * test bodies: each body takes a `core` adapter that holds the core's own representation of a
+ * double input (Q1.30 / float32 components, Q3.28 / float32 angles) and reports results in
+ * double. References are double-precision products of elementary rotations written here, of
+ * the exact value the core was given. All 24 conventions, fixed seeds (splitmix64).
+ * Float-only edges (NaN, Inf, subnormals) stay in test_euler.c; fixed-only edges (saturated
+ * INT32 components, the Q3.28 range end of the nearest variant) are at the end of this file. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+#include <math.h>
+#include <cmocka.h>
+
+#include "qorient/euler.h"
+#include "qorient/euler_fx.h"
+#include "qorient/fxmath.h"
+
+#define PI_D 3.14159265358979323846
+#define Q30 1073741824.0
+#define Q28 268435456.0
+
+/* The enum order is ABI: the test keeps its own names and derives the axes from the letters. */
+static const char *const k_names[24] = {
+    "xyz", "xzy", "yxz", "yzx", "zxy", "zyx", "xyx", "xzx", "yxy", "yzy", "zxz", "zyz",
+    "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX", "XYX", "XZX", "YXY", "YZY", "ZXZ", "ZYZ",
+};
+
+/* ---- fixed-seed PRNG (splitmix64) ---------------------------------------------------- */
+static uint64_t rng_state;
+static uint64_t rng_next(void)
+{
+    uint64_t z = (rng_state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+static double rng_uniform(double lo, double hi)
+{
+    return lo + (hi - lo) * ((double)(rng_next() >> 11) * (1.0 / 9007199254740992.0));
+}
+
+/* ---- double-precision reference -------------------------------------------------------- */
+typedef struct dq { double w, x, y, z; } dq;
+
+static dq dq_mul(dq a, dq b)
+{
+    dq r;
+    r.w = a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z;
+    r.x = a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y;
+    r.y = a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x;
+    r.z = a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w;
+    return r;
+}
+
+static dq dq_axis(char letter, double t)
+{
+    dq q = { cos(t / 2), 0, 0, 0 };
+    double s = sin(t / 2);
+    switch (letter) {
+    case 'x': case 'X': q.x = s; break;
+    case 'y': case 'Y': q.y = s; break;
+    default: q.z = s; break;
+    }
+    return q;
+}
+
+/* Extrinsic "abc": R = R_c(a3) R_b(a2) R_a(a1). Intrinsic "ABC": R = R_A(a1) R_B(a2) R_C(a3). */
+static dq ref_quat(int seq, double a1, double a2, double a3)
+{
+    const char *n = k_names[seq];
+    dq q1 = dq_axis(n[0], a1), q2 = dq_axis(n[1], a2), q3 = dq_axis(n[2], a3);
+    if (n[0] >= 'X' && n[0] <= 'Z') return dq_mul(dq_mul(q1, q2), q3);
+    return dq_mul(q3, dq_mul(q2, q1));
+}
+
+static dq dq_unit(dq r)
+{
+    double n = sqrt(r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z);
+    r.w /= n; r.x /= n; r.y /= n; r.z /= n;
+    return r;
+}
+
+static dq dq_neg(dq r) { r.w = -r.w; r.x = -r.x; r.y = -r.y; r.z = -r.z; return r; }
+
+/* Rotation angle (rad) between two quaternions (normalised here), the same for b and -b. */
+static double dq_angle(dq a, dq b)
+{
+    dq c, d;
+    a = dq_unit(a); b = dq_unit(b);
+    c.w = a.w; c.x = -a.x; c.y = -a.y; c.z = -a.z;
+    d = dq_mul(c, b);
+    return 2.0 * atan2(sqrt(d.x * d.x + d.y * d.y + d.z * d.z), fabs(d.w));
+}
+
+static int is_proper_name(int seq) { return k_names[seq][0] == k_names[seq][2]; }
+
+static double wrap_d(double a) { return a - 2 * PI_D * floor((a + PI_D) / (2 * PI_D)); }
+static double ang_diff(double a, double b) { return fabs(wrap_d(a - b)); }
+
+static double singular_value(int seq, int which)
+{
+    if (is_proper_name(seq)) return which ? PI_D : 0.0;
+    return which ? PI_D / 2 : -PI_D / 2;
+}
+
+/* ---- the two cores behind one interface ------------------------------------------------- */
+typedef struct einfo { int locked; double margin; } einfo;
+
+typedef struct core {
+    const char *name;
+    double band;        /* its default lock band, rad (as held by the core) */
+    double tol_from;    /* from_euler: largest component error */
+    double tol_fine;    /* recomposition bound off lock: the 1e-6 goal (float32), or what the
+                         * fixed method's error analysis gives: each angle within ~2 LSB of
+                         * Q3.28 (atan2 1 LSB + 30-bit argument reduction), so 3 angles plus
+                         * the input's rounding stay below 5e-8 */
+    double tol_lock;    /* the same at an exactly singular input: 1e-5 goal / 5e-8 fixed */
+    double (*rq)(double v);              /* the component value the core holds for v */
+    double (*ra)(double a);              /* the angle value the core holds for a */
+    double (*nudge)(double v, int units); /* v moved by `units` steps of its last place */
+    qo_status (*from_euler)(int seq, const double a[3], dq *out);
+    /* use_default: the default-band function (band ignored); info may be NULL */
+    qo_status (*to_euler)(dq q, int seq, int use_default, double band, double out[3], einfo *info);
+    qo_status (*near)(dq q, int seq, const double prev[3], double band, double out[3], einfo *info);
+} core;
+
+/* float32 */
+static double f_rq(double v) { return (double)(float)v; }
+static double f_nudge(double v, int u)
+{
+    float f = (float)v;
+    for (; u > 0; u--) f = nextafterf(f, INFINITY);
+    for (; u < 0; u++) f = nextafterf(f, -INFINITY);
+    return f;
+}
+static qo_quat_f32 f_quat(dq q)
+{
+    qo_quat_f32 r = { (float)q.w, (float)q.x, (float)q.y, (float)q.z };
+    return r;
+}
+static qo_status f_from(int seq, const double a[3], dq *out)
+{
+    qo_euler_f32 e = { (float)a[0], (float)a[1], (float)a[2] };
+    qo_quat_f32 q;
+    qo_status st = qo_quat_from_euler_f32((qo_euler_seq)seq, e, &q);
+    out->w = q.w; out->x = q.x; out->y = q.y; out->z = q.z;
+    return st;
+}
+static qo_status f_to(dq q, int seq, int use_default, double band, double out[3], einfo *info)
+{
+    qo_euler_f32 e = { 9.0f, 9.0f, 9.0f };
+    qo_euler_info_f32 fi = { 7, 9.0f };
+    qo_status st = use_default
+        ? qo_quat_to_euler_f32(f_quat(q), (qo_euler_seq)seq, &e, info ? &fi : NULL)
+        : qo_quat_to_euler_band_f32(f_quat(q), (qo_euler_seq)seq, (float)band, &e,
+                                    info ? &fi : NULL);
+    out[0] = e.a1; out[1] = e.a2; out[2] = e.a3;
+    if (info) { info->locked = fi.locked; info->margin = fi.margin; }
+    return st;
+}
+static qo_status f_near(dq q, int seq, const double prev[3], double band, double out[3], einfo *info)
+{
+    qo_euler_f32 p = { (float)prev[0], (float)prev[1], (float)prev[2] }, e = { 9.0f, 9.0f, 9.0f };
+    qo_euler_info_f32 fi = { 7, 9.0f };
+    qo_status st = qo_quat_to_euler_near_f32(f_quat(q), (qo_euler_seq)seq, p, (float)band, &e,
+                                             info ? &fi : NULL);
+    out[0] = e.a1; out[1] = e.a2; out[2] = e.a3;
+    if (info) { info->locked = fi.locked; info->margin = fi.margin; }
+    return st;
+}
+
+/* fixed point: conversions written here in double (round to nearest, saturate) */
+static int32_t to_raw(double v, double scale)
+{
+    double r = floor(v * scale + 0.5);
+    if (r > 2147483647.0) r = 2147483647.0;
+    if (r < -2147483648.0) r = -2147483648.0;
+    return (int32_t)r;
+}
+static double x_rq(double v) { return to_raw(v, Q30) / Q30; }
+static double x_ra(double a) { return to_raw(a, Q28) / Q28; }
+static double x_nudge(double v, int u)
+{
+    int64_t r = (int64_t)to_raw(v, Q30) + u;
+    if (r > INT32_MAX) r = INT32_MAX;
+    if (r < INT32_MIN) r = INT32_MIN;
+    return (double)r / Q30;
+}
+static qo_quat_q30 x_quat(dq q)
+{
+    qo_quat_q30 r;
+    r.w = to_raw(q.w, Q30); r.x = to_raw(q.x, Q30); r.y = to_raw(q.y, Q30); r.z = to_raw(q.z, Q30);
+    return r;
+}
+static qo_euler_q28 x_angles(const double a[3])
+{
+    qo_euler_q28 e;
+    e.a1 = to_raw(a[0], Q28); e.a2 = to_raw(a[1], Q28); e.a3 = to_raw(a[2], Q28);
+    return e;
+}
+static qo_status x_from(int seq, const double a[3], dq *out)
+{
+    qo_quat_q30 q = { 7, 7, 7, 7 };
+    qo_status st = qo_quat_from_euler_q30((qo_euler_seq)seq, x_angles(a), &q);
+    out->w = q.w / Q30; out->x = q.x / Q30; out->y = q.y / Q30; out->z = q.z / Q30;
+    return st;
+}
+static qo_status x_to(dq q, int seq, int use_default, double band, double out[3], einfo *info)
+{
+    qo_euler_q28 e = { 9, 9, 9 };
+    qo_euler_info_q28 xi = { 7, 9 };
+    qo_status st = use_default
+        ? qo_quat_to_euler_q30(x_quat(q), (qo_euler_seq)seq, &e, info ? &xi : NULL)
+        : qo_quat_to_euler_band_q30(x_quat(q), (qo_euler_seq)seq, to_raw(band, Q28), &e,
+                                    info ? &xi : NULL);
+    out[0] = e.a1 / Q28; out[1] = e.a2 / Q28; out[2] = e.a3 / Q28;
+    if (info) { info->locked = xi.locked; info->margin = xi.margin / Q28; }
+    return st;
+}
+static qo_status x_near(dq q, int seq, const double prev[3], double band, double out[3], einfo *info)
+{
+    qo_euler_q28 e = { 9, 9, 9 };
+    qo_euler_info_q28 xi = { 7, 9 };
+    qo_status st = qo_quat_to_euler_near_q30(x_quat(q), (qo_euler_seq)seq, x_angles(prev),
+                                             to_raw(band, Q28), &e, info ? &xi : NULL);
+    out[0] = e.a1 / Q28; out[1] = e.a2 / Q28; out[2] = e.a3 / Q28;
+    if (info) { info->locked = xi.locked; info->margin = xi.margin / Q28; }
+    return st;
+}
+
+static const core k_cores[2] = {
+    { "float32", 2e-6, 1e-6, 1e-6, 1e-5, f_rq, f_rq, f_nudge, f_from, f_to, f_near },
+    /* Q1.30 output: each component a few LSB (9.3e-10) from exact. */
+    { "fixed", 27.0 / Q28, 1e-8, 5e-8, 5e-8, x_rq, x_ra, x_nudge, x_from, x_to, x_near },
+};
+
+/* The quaternion the core holds for q, as exact doubles (not normalised). */
+static dq held(const core *c, dq q)
+{
+    dq r;
+    r.w = c->rq(q.w); r.x = c->rq(q.x); r.y = c->rq(q.y); r.z = c->rq(q.z);
+    return r;
+}
+
+static double recompose_err(int seq, const double e[3], dq q)
+{
+    return dq_angle(ref_quat(seq, e[0], e[1], e[2]), q);
+}
+
+static void check_ranges(const core *c, int seq, const double e[3], const char *what)
+{
+    double pi = c->ra(PI_D), hpi = c->ra(PI_D / 2);
+    int ok = e[0] >= -pi && e[0] <= pi && e[2] >= -pi && e[2] <= pi;
+    if (is_proper_name(seq)) ok = ok && e[1] >= 0.0 && e[1] <= pi;
+    else ok = ok && e[1] >= -hpi && e[1] <= hpi;
+    if (!ok) fail_msg("%s %s %s: angles (%.10g %.10g %.10g) outside scipy's ranges", c->name, what,
+                      k_names[seq], e[0], e[1], e[2]);
+}
+
+#define FOR_CORES(c) for (c = &k_cores[0]; c != &k_cores[2]; c++)
+
+/* ---- from_euler ------------------------------------------------------------------------ */
+static void test_from_euler_random_all24(void **state)
+{
+    const core *c;
+    int seq, n;
+    (void)state;
+    FOR_CORES(c) {
+        rng_state = 0x1234567ull;
+        for (seq = 0; seq < 24; seq++) {
+            for (n = 0; n < 300; n++) {
+                /* Most in one turn; some up to the end of Q3.28 ([-8, 8)): angles are periodic. */
+                double span = (n % 5 == 0) ? 7.99 : PI_D, a[3], err;
+                dq q, r;
+                a[0] = c->ra(rng_uniform(-span, span));
+                a[1] = c->ra(rng_uniform(-span, span));
+                a[2] = c->ra(rng_uniform(-span, span));
+                assert_int_equal(c->from_euler(seq, a, &q), QO_OK);
+                r = ref_quat(seq, a[0], a[1], a[2]);
+                /* Same sign as the product, not only the same rotation (scipy's as_quat). */
+                err = fmax(fmax(fabs(q.w - r.w), fabs(q.x - r.x)), fmax(fabs(q.y - r.y), fabs(q.z - r.z)));
+                if (err > c->tol_from)
+                    fail_msg("%s from_euler %s (%.10g %.10g %.10g): component error %.3g > %.3g",
+                             c->name, k_names[seq], a[0], a[1], a[2], err, c->tol_from);
+            }
+        }
+    }
+}
+
+/* scipy's documented examples and hand-derived values (exact answers, not code output). */
+static void test_from_euler_known_values(void **state)
+{
+    const core *c;
+    const double h = sqrt(0.5);
+    (void)state;
+    FOR_CORES(c) {
+        double a[3], b[3];
+        dq q, q2;
+        double tol = c->tol_from + 1e-9;
+        /* scipy: from_euler('YX', (-90, -90)) = 120 deg about -(1,1,1)/sqrt3 = (0.5, -0.5,
+         * -0.5, -0.5); 3-letter "YXZ" with a3 = 0 is the same. */
+        a[0] = c->ra(-PI_D / 2); a[1] = c->ra(-PI_D / 2); a[2] = 0.0;
+        assert_int_equal(c->from_euler(QO_EULER_YXZ, a, &q), QO_OK);
+        if (fabs(q.w - 0.5) > tol || fabs(q.x + 0.5) > tol || fabs(q.y + 0.5) > tol ||
+            fabs(q.z + 0.5) > tol)
+            fail_msg("%s YXZ(-90,-90,0) = (%.10g %.10g %.10g %.10g)", c->name, q.w, q.x, q.y, q.z);
+        /* scipy: from_euler('z', 90) = (w, z) = (0.7071, 0.7071): as the yaw of "ZYX". */
+        a[0] = c->ra(PI_D / 2); a[1] = 0.0; a[2] = 0.0;
+        assert_int_equal(c->from_euler(QO_EULER_ZYX, a, &q), QO_OK);
+        if (fabs(q.w - h) > tol || fabs(q.z - h) > tol || q.x != 0.0 || q.y != 0.0)
+            fail_msg("%s ZYX yaw 90 = (%.10g %.10g %.10g %.10g)", c->name, q.w, q.x, q.y, q.z);
+        /* Zero angles: the identity exactly, every convention. */
+        {
+            int seq;
+            a[0] = a[1] = a[2] = 0.0;
+            for (seq = 0; seq < 24; seq++) {
+                assert_int_equal(c->from_euler(seq, a, &q), QO_OK);
+                if (q.w != 1.0 || q.x != 0.0 || q.y != 0.0 || q.z != 0.0)
+                    fail_msg("%s %s zero angles: (%.10g %.10g %.10g %.10g)", c->name, k_names[seq],
+                             q.w, q.x, q.y, q.z);
+            }
+        }
+        /* Intrinsic XYZ (a, b, c) is extrinsic zyx (c, b, a): the same quaternion. */
+        a[0] = c->ra(0.3); a[1] = c->ra(-1.1); a[2] = c->ra(2.5);
+        b[0] = a[2]; b[1] = a[1]; b[2] = a[0];
+        assert_int_equal(c->from_euler(QO_EULER_XYZ, a, &q), QO_OK);
+        assert_int_equal(c->from_euler(QO_EULER_zyx, b, &q2), QO_OK);
+        if (fabs(q.w - q2.w) > tol || fabs(q.x - q2.x) > tol || fabs(q.y - q2.y) > tol ||
+            fabs(q.z - q2.z) > tol)
+            fail_msg("%s XYZ vs zyx differ", c->name);
+        /* 360 deg about one axis is -identity (the product's sign is kept). */
+        a[0] = c->ra(2 * PI_D); a[1] = 0.0; a[2] = 0.0;
+        assert_int_equal(c->from_euler(QO_EULER_XYZ, a, &q), QO_OK);
+        if (fabs(q.w + 1.0) > tol) fail_msg("%s 2pi about X: w = %.10g", c->name, q.w);
+    }
+}
+
+static void test_from_euler_bad_inputs(void **state)
+{
+    const core *c;
+    const double a[3] = { 0.1, 0.2, 0.3 };
+    (void)state;
+    FOR_CORES(c) {
+        dq q;
+        assert_int_equal(c->from_euler(QO_EULER_SEQ_COUNT_, a, &q), QO_E_ARG);
+        if (q.w != 1.0 || q.x != 0.0 || q.y != 0.0 || q.z != 0.0)
+            fail_msg("%s from_euler bad seq: out is not the identity", c->name);
+        assert_int_equal(c->from_euler(-3, a, &q), QO_E_ARG);
+        assert_true(q.w == 1.0 && q.x == 0.0);
+    }
+    {
+        qo_euler_q28 e = { 1, 2, 3 };
+        assert_int_equal(qo_quat_from_euler_q30(QO_EULER_xyz, e, NULL), QO_E_NULL);
+    }
+}
+
+/* ---- to_euler: generic ------------------------------------------------------------------ */
+static dq random_unit(void)
+{
+    dq r;
+    double nn;
+    do {
+        r.w = rng_uniform(-1, 1); r.x = rng_uniform(-1, 1);
+        r.y = rng_uniform(-1, 1); r.z = rng_uniform(-1, 1);
+        nn = r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z;
+    } while (nn > 1.0 || nn < 1e-3);
+    return dq_unit(r);
+}
+
+static void test_to_euler_random_rotations_all24(void **state)
+{
+    const core *c;
+    int seq, n;
+    (void)state;
+    FOR_CORES(c) {
+        rng_state = 42;
+        for (seq = 0; seq < 24; seq++) {
+            for (n = 0; n < 300; n++) {
+                dq q = held(c, random_unit()), qn = dq_neg(q);
+                double e[3], e2[3], err;
+                einfo info, info2;
+                assert_int_equal(c->to_euler(q, seq, 1, 0, e, &info), QO_OK);
+                check_ranges(c, seq, e, "random");
+                err = recompose_err(seq, e, q);
+                if (err > c->tol_fine)
+                    fail_msg("%s to_euler %s of q=(%.10g %.10g %.10g %.10g): (%.10g %.10g %.10g) "
+                             "recomposes %.3g rad off", c->name, k_names[seq], q.w, q.x, q.y, q.z,
+                             e[0], e[1], e[2], err);
+                if (info.locked != (info.margin <= c->band))
+                    fail_msg("%s %s: locked %d with margin %.3g", c->name, k_names[seq],
+                             info.locked, info.margin);
+                /* q and -q: the same angles (exactly: the method is even in q). */
+                assert_int_equal(c->to_euler(qn, seq, 1, 0, e2, &info2), QO_OK);
+                if (e2[0] != e[0] || e2[1] != e[1] || e2[2] != e[2] || info2.margin != info.margin)
+                    fail_msg("%s %s: -q gave (%.10g %.10g %.10g), q (%.10g %.10g %.10g)", c->name,
+                             k_names[seq], e2[0], e2[1], e2[2], e[0], e[1], e[2]);
+                /* info may be NULL: same angles. */
+                assert_int_equal(c->to_euler(q, seq, 1, 0, e2, NULL), QO_OK);
+                assert_true(e2[0] == e[0] && e2[1] == e[1] && e2[2] == e[2]);
+            }
+        }
+    }
+}
+
+/* Angles in scipy's ranges, away from lock, come back as given (mod 2pi near +-pi). */
+static void test_to_euler_recovers_angles_all24(void **state)
+{
+    const core *c;
+    int seq, n;
+    (void)state;
+    FOR_CORES(c) {
+        rng_state = 7;
+        for (seq = 0; seq < 24; seq++) {
+            for (n = 0; n < 200; n++) {
+                double a1 = rng_uniform(-PI_D, PI_D), a3 = rng_uniform(-PI_D, PI_D), a2, margin;
+                double e[3];
+                dq q;
+                einfo info;
+                if (is_proper_name(seq)) {
+                    a2 = rng_uniform(0.05, PI_D - 0.05);
+                    margin = fmin(a2, PI_D - a2);
+                } else {
+                    a2 = rng_uniform(-PI_D / 2 + 0.05, PI_D / 2 - 0.05);
+                    margin = PI_D / 2 - fabs(a2);
+                }
+                q = ref_quat(seq, a1, a2, a3);
+                if (n % 2) q = dq_neg(q);
+                q = held(c, q);
+                assert_int_equal(c->to_euler(q, seq, 1, 0, e, &info), QO_OK);
+                /* a1, a3 are conditioned like 1/margin near lock. */
+                if (ang_diff(e[0], a1) > 2e-5 || fabs(e[1] - a2) > 2e-6 || ang_diff(e[2], a3) > 2e-5 ||
+                    info.locked || fabs(info.margin - margin) > 2e-6)
+                    fail_msg("%s %s (%.10g %.10g %.10g) came back as (%.10g %.10g %.10g) locked %d "
+                             "margin %.10g", c->name, k_names[seq], a1, a2, a3, e[0], e[1], e[2],
+                             info.locked, info.margin);
+            }
+        }
+    }
+}
+
+/* scipy's as_euler docs: rotvec (0, 0, pi/2) is zxy (90, 0, 0); rotvec (0, -pi/3, 0) is
+ * zxy (0, 0, -60). Hand-derived: identity gives zeros; for proper sequences it is locked. */
+static void test_to_euler_known_values(void **state)
+{
+    const core *c;
+    (void)state;
+    FOR_CORES(c) {
+        dq q = { sqrt(0.5), 0, 0, sqrt(0.5) };
+        double e[3];
+        einfo info;
+        assert_int_equal(c->to_euler(held(c, q), QO_EULER_zxy, 1, 0, e, &info), QO_OK);
+        if (fabs(e[0] - PI_D / 2) > 1e-6 || fabs(e[1]) > 1e-6 || fabs(e[2]) > 1e-6 || info.locked ||
+            fabs(info.margin - PI_D / 2) > 1e-6)
+            fail_msg("%s zxy of 90 about z: (%.10g %.10g %.10g)", c->name, e[0], e[1], e[2]);
+        q.w = sqrt(0.75); q.x = 0.0; q.y = -0.5; q.z = 0.0;
+        assert_int_equal(c->to_euler(held(c, q), QO_EULER_zxy, 1, 0, e, &info), QO_OK);
+        if (fabs(e[0]) > 1e-6 || fabs(e[1]) > 1e-6 || fabs(e[2] + PI_D / 3) > 1e-6)
+            fail_msg("%s zxy of -60 about y: (%.10g %.10g %.10g)", c->name, e[0], e[1], e[2]);
+    }
+}
+
+/* ---- the shared edge table --------------------------------------------------------------
+ * Quaternions given in double (non-unit allowed); each core takes the value it can hold
+ * (2.0 saturates to INT32_MAX in Q1.30; 2^-30 is one LSB). Each entry is run for every
+ * convention: status, ranges, the lock flag against the margin, recomposition against the
+ * held input, plus the hand-derived angles where the entry states them. */
+typedef struct edge {
+    const char *what;
+    dq q;
+    qo_status want;
+    int seq;              /* -1: all 24; else only this one (for known angles) */
+    int want_locked;      /* -1: don't care */
+    double a1, a2, a3;    /* checked when seq >= 0 */
+} edge;
+
+#define H 0.70710678118654752
+#define LSB (1.0 / Q30)
+#define QMAX (2147483647.0 / Q30)   /* INT32_MAX as Q1.30: 1.999999999 */
+static const edge k_edges[] = {
+    { "identity", { 1, 0, 0, 0 }, QO_OK, -1, -1, 0, 0, 0 },
+    { "-identity", { -1, 0, 0, 0 }, QO_OK, -1, -1, 0, 0, 0 },
+    { "identity ZYX", { 1, 0, 0, 0 }, QO_OK, QO_EULER_ZYX, 0, 0, 0, 0 },
+    { "identity ZXZ (singular at 0)", { 1, 0, 0, 0 }, QO_OK, QO_EULER_ZXZ, 1, 0, 0, 0 },
+    { "identity xyx (singular at 0)", { 1, 0, 0, 0 }, QO_OK, QO_EULER_xyx, 1, 0, 0, 0 },
+    { "180 about x", { 0, 1, 0, 0 }, QO_OK, -1, -1, 0, 0, 0 },
+    { "180 about y", { 0, 0, 1, 0 }, QO_OK, -1, -1, 0, 0, 0 },
+    { "180 about z", { 0, 0, 0, -1 }, QO_OK, -1, -1, 0, 0, 0 },
+    { "180 about (1,1,0)", { 0, H, H, 0 }, QO_OK, -1, -1, 0, 0, 0 },
+    { "180 about (1,1,1)", { 0, 0.57735026918962576, 0.57735026918962576, 0.57735026918962576 },
+      QO_OK, -1, -1, 0, 0, 0 },
+    { "180 about x, ZXZ = (0, pi, 0) (singular at pi)", { 0, 1, 0, 0 }, QO_OK, QO_EULER_ZXZ, 1,
+      0, PI_D, 0 },
+    { "180 about z, XYZ = (0, 0, pi) (range end)", { 0, 0, 0, 1 }, QO_OK, QO_EULER_XYZ, 0,
+      0, 0, PI_D },
+    { "180 about x, XYZ = (pi, 0, 0) (range end)", { 0, 1, 0, 0 }, QO_OK, QO_EULER_XYZ, 0,
+      PI_D, 0, 0 },
+    { "ZYX pitch +90 (exactly singular)", { H, 0, H, 0 }, QO_OK, QO_EULER_ZYX, 1,
+      0, PI_D / 2, 0 },
+    { "ZYX pitch -90 (exactly singular)", { H, 0, -H, 0 }, QO_OK, QO_EULER_ZYX, 1,
+      0, -PI_D / 2, 0 },
+    { "zero", { 0, 0, 0, 0 }, QO_E_DEGENERATE, -1, -1, 0, 0, 0 },
+    { "-0 / zero again", { -0.0, 0, -0.0, 0 }, QO_E_DEGENERATE, -1, -1, 0, 0, 0 },
+    /* saturated components: INT32_MAX / INT32_MIN as Q1.30 (the float core holds 2.0) */
+    { "saturated (MAX, 0, 0, MAX) = 90 about z", { QMAX, 0, 0, QMAX }, QO_OK, QO_EULER_ZYX, 0,
+      PI_D / 2, 0, 0 },
+    { "saturated (MIN, 0, 0, MIN) = 90 about z", { -2.0, 0, 0, -2.0 }, QO_OK, QO_EULER_ZYX, 0,
+      PI_D / 2, 0, 0 },
+    { "saturated (MIN, MIN, MIN, MIN)", { -2.0, -2.0, -2.0, -2.0 }, QO_OK, -1, -1, 0, 0, 0 },
+    { "saturated (MAX, MIN, MAX, MIN)", { QMAX, -2.0, QMAX, -2.0 }, QO_OK, -1, -1, 0, 0, 0 },
+    { "saturated (MIN, 0, 0, 0) = identity", { -2.0, 0, 0, 0 }, QO_OK, QO_EULER_XYZ, 0, 0, 0, 0 },
+    { "saturated (MAX, 0, MAX, 0): XYZ pitch 90, singular", { QMAX, 0, QMAX, 0 }, QO_OK,
+      QO_EULER_XYZ, 1, 0, PI_D / 2, 0 },
+    { "one LSB (0, 0, 0, 1 LSB) = 180 about z", { 0, 0, 0, LSB }, QO_OK, QO_EULER_ZYX, 0,
+      PI_D, 0, 0 },
+    { "tiny (1 LSB, 0, 0, 1 LSB) = 90 about z", { LSB, 0, 0, LSB }, QO_OK, QO_EULER_ZYX, 0,
+      PI_D / 2, 0, 0 },
+    { "tiny random-ish (3, -1, 2, 5) LSB", { 3 * LSB, -LSB, 2 * LSB, 5 * LSB }, QO_OK, -1, -1,
+      0, 0, 0 },
+};
+
+static void run_edge(const core *c, const edge *t, int seq)
+{
+    dq q = held(c, t->q);
+    double e[3];
+    einfo info;
+    qo_status st = c->to_euler(q, seq, 1, 0, e, &info);
+    if (st != t->want)
+        fail_msg("%s edge '%s' %s: status %d, want %d", c->name, t->what, k_names[seq], (int)st,
+                 (int)t->want);
+    if (st != QO_OK) {
+        if (e[0] != 0.0 || e[1] != 0.0 || e[2] != 0.0 || info.locked != 0 || info.margin != 0.0)
+            fail_msg("%s edge '%s': error outputs not zero", c->name, t->what);
+        return;
+    }
+    check_ranges(c, seq, e, t->what);
+    if (info.locked != (info.margin <= c->band) || info.margin < 0.0 || info.margin > PI_D / 2 + 1e-6)
+        fail_msg("%s edge '%s' %s: locked %d margin %.3g", c->name, t->what, k_names[seq],
+                 info.locked, info.margin);
+    if (recompose_err(seq, e, q) > (info.locked ? 2.0 * info.margin + c->tol_lock : c->tol_fine))
+        fail_msg("%s edge '%s' %s: (%.10g %.10g %.10g) recomposes %.3g off", c->name, t->what,
+                 k_names[seq], e[0], e[1], e[2], recompose_err(seq, e, q));
+    if (t->seq >= 0) {
+        if ((t->want_locked >= 0 && info.locked != t->want_locked) ||
+            ang_diff(e[0], t->a1) > 1e-6 || fabs(e[1] - t->a2) > 1e-6 ||
+            ang_diff(e[2], t->a3) > 1e-6 || (info.locked && e[2] != 0.0))
+            fail_msg("%s edge '%s': (%.10g %.10g %.10g) locked %d, want (%.10g %.10g %.10g) "
+                     "locked %d", c->name, t->what, e[0], e[1], e[2], info.locked, t->a1, t->a2,
+                     t->a3, t->want_locked);
+    }
+}
+
+static void test_edge_table_both_cores(void **state)
+{
+    const core *c;
+    size_t i;
+    int seq;
+    (void)state;
+    FOR_CORES(c)
+        for (i = 0; i < sizeof k_edges / sizeof k_edges[0]; i++) {
+            if (k_edges[i].seq >= 0) run_edge(c, &k_edges[i], k_edges[i].seq);
+            else for (seq = 0; seq < 24; seq++) run_edge(c, &k_edges[i], seq);
+        }
+}
+
+/* ---- gimbal lock ------------------------------------------------------------------------ */
+static void test_exactly_singular_all24(void **state)
+{
+    const core *c;
+    int seq, which, n, k;
+    (void)state;
+    FOR_CORES(c) {
+        rng_state = 99;
+        for (seq = 0; seq < 24; seq++)
+            for (which = 0; which < 2; which++)
+                for (n = 0; n < 100; n++) {
+                    double a1 = rng_uniform(-PI_D, PI_D), a3 = rng_uniform(-PI_D, PI_D);
+                    double a2 = singular_value(seq, which), e[3], s[3], err;
+                    dq q = held(c, ref_quat(seq, a1, a2, a3)), qs;
+                    einfo info;
+                    /* 1. the exact rotation rounded to the core's components */
+                    assert_int_equal(c->to_euler(q, seq, 1, 0, e, &info), QO_OK);
+                    err = recompose_err(seq, e, q);
+                    if (!info.locked || e[2] != 0.0 || err > c->tol_lock || fabs(e[1] - a2) > 1e-5)
+                        fail_msg("%s singular %s (%.10g %.10g %.10g): locked %d margin %.3g -> "
+                                 "(%.10g %.10g %.10g) recomposes %.3g off", c->name, k_names[seq],
+                                 a1, a2, a3, info.locked, info.margin, e[0], e[1], e[2], err);
+                    check_ranges(c, seq, e, "singular");
+                    /* -q: bit-identical angles and margin, also on the fitted (locked) path */
+                    {
+                        double en[3];
+                        einfo infon;
+                        assert_int_equal(c->to_euler(dq_neg(q), seq, 1, 0, en, &infon), QO_OK);
+                        if (en[0] != e[0] || en[1] != e[1] || en[2] != e[2] ||
+                            infon.margin != info.margin || infon.locked != info.locked)
+                            fail_msg("%s singular %s: -q gave (%.10g %.10g %.10g), q (%.10g %.10g "
+                                     "%.10g)", c->name, k_names[seq], en[0], en[1], en[2], e[0],
+                                     e[1], e[2]);
+                    }
+                    /* 2. built as a user would: the core's own from_euler with the value
+                     * nearest the singular angle */
+                    s[0] = c->ra(a1); s[1] = c->ra(a2); s[2] = c->ra(a3);
+                    assert_int_equal(c->from_euler(seq, s, &qs), QO_OK);
+                    assert_int_equal(c->to_euler(qs, seq, 1, 0, e, &info), QO_OK);
+                    err = recompose_err(seq, e, ref_quat(seq, s[0], a2, s[2]));
+                    if (!info.locked || e[2] != 0.0 || err > c->tol_lock)
+                        fail_msg("%s singular via from_euler %s (%.10g %.10g %.10g): locked %d "
+                                 "margin %.3g err %.3g", c->name, k_names[seq], s[0], s[1], s[2],
+                                 info.locked, info.margin, err);
+                    /* 3. then every component moved by up to 2 steps (upstream noise) */
+                    qs.w = c->nudge(qs.w, (int)(rng_next() % 5) - 2);
+                    qs.x = c->nudge(qs.x, (int)(rng_next() % 5) - 2);
+                    qs.y = c->nudge(qs.y, (int)(rng_next() % 5) - 2);
+                    qs.z = c->nudge(qs.z, (int)(rng_next() % 5) - 2);
+                    assert_int_equal(c->to_euler(qs, seq, 1, 0, e, &info), QO_OK);
+                    err = recompose_err(seq, e, qs);
+                    if (!info.locked || err > 2.0 * info.margin + c->tol_lock)
+                        fail_msg("%s singular + 2 step noise %s q=(%.10g %.10g %.10g %.10g): "
+                                 "locked %d margin %.3g err %.3g", c->name, k_names[seq], qs.w,
+                                 qs.x, qs.y, qs.z, info.locked, info.margin, err);
+                    /* 4. the band form with band 0 still flags a margin of exactly 0 */
+                    for (k = 0; k < 1; k++) {
+                        assert_int_equal(c->to_euler(q, seq, 0, 0.0, e, &info), QO_OK);
+                        if (info.locked != (info.margin == 0.0))
+                            fail_msg("%s band 0 %s: locked %d margin %.3g", c->name, k_names[seq],
+                                     info.locked, info.margin);
+                    }
+                }
+    }
+}
+
+/* Hand-derived free-angle choice (a3 = 0, a1 takes the rest):
+ *   ZYX (y, +pi/2, r) = Rz(y - r) Ry(pi/2)  ->  (y - r, pi/2, 0)
+ *   ZYX (y, -pi/2, r) = Rz(y + r) Ry(-pi/2) ->  (y + r, -pi/2, 0)
+ *   ZXZ (a, 0, c) -> (a + c, 0, 0);  ZXZ (a, pi, c) -> (a - c, pi, 0);  zxz (a, pi, c) -> same */
+static void test_singular_free_angle_choice(void **state)
+{
+    static const struct { int seq; double a1, a2, a3, w1; } k[] = {
+        { QO_EULER_ZYX, 0.7, PI_D / 2, 0.2, 0.5 },
+        { QO_EULER_ZYX, 0.7, -PI_D / 2, 0.2, 0.9 },
+        { QO_EULER_ZXZ, 0.5, 0.0, 0.4, 0.9 },
+        { QO_EULER_ZXZ, 0.5, PI_D, 0.4, 0.1 },
+        { QO_EULER_zxz, 0.5, PI_D, 0.4, 0.1 },
+        { QO_EULER_XYX, -2.5, 0.0, -1.0, -3.5 + 2 * PI_D },
+    };
+    const core *c;
+    size_t i;
+    (void)state;
+    FOR_CORES(c)
+        for (i = 0; i < sizeof k / sizeof k[0]; i++) {
+            double e[3];
+            einfo info;
+            dq q = held(c, ref_quat(k[i].seq, k[i].a1, k[i].a2, k[i].a3));
+            assert_int_equal(c->to_euler(q, k[i].seq, 1, 0, e, &info), QO_OK);
+            if (!info.locked || ang_diff(e[0], k[i].w1) > 2e-6 || fabs(e[1] - k[i].a2) > 1e-6 ||
+                e[2] != 0.0)
+                fail_msg("%s free angle %s (%g %g %g): got (%.10g %.10g %.10g) locked %d, want a1 "
+                         "%.10g", c->name, k_names[k[i].seq], k[i].a1, k[i].a2, k[i].a3, e[0],
+                         e[1], e[2], info.locked, k[i].w1);
+        }
+}
+
+static void test_just_off_singular_all24(void **state)
+{
+    static const double offs[] = { 1e-5, 1e-4, 1e-3, 0.01, 0.035 };
+    const core *c;
+    int seq, which, k, n, side;
+    (void)state;
+    FOR_CORES(c) {
+        /* offsets relative to the core's own band: a third of it (flagged) and 3x (not) */
+        double rel[2];
+        rel[0] = c->band / 3.0; rel[1] = 3.0 * c->band;
+        rng_state = 2024;
+        for (seq = 0; seq < 24; seq++)
+            for (which = 0; which < 2; which++)
+                for (side = 0; side < 2; side++)
+                    for (n = 0; n < 8; n++) {
+                        double a1 = rng_uniform(-PI_D, PI_D), a3 = rng_uniform(-PI_D, PI_D);
+                        double s = singular_value(seq, which);
+                        /* toward the inside of the range; past the end (side 1) is the other
+                         * branch of a nearby rotation, equally valid input */
+                        double inward = (s > 0.0) ? -1.0 : 1.0, e[3], err;
+                        einfo info;
+                        for (k = 0; k < 7; k++) {
+                            double off = k < 5 ? offs[k] : rel[k - 5];
+                            double a2 = s + (side ? -inward : inward) * off;
+                            dq q = held(c, ref_quat(seq, a1, a2, a3));
+                            int want_locked = (k == 5);
+                            assert_int_equal(c->to_euler(q, seq, 1, 0, e, &info), QO_OK);
+                            err = recompose_err(seq, e, q);
+                            if (info.locked != want_locked ||
+                                err > (info.locked ? 2.0 * info.margin + c->tol_lock : c->tol_fine) ||
+                                fabs(info.margin - off) > 1e-6 + 1e-4 * off)
+                                fail_msg("%s %s (%.10g %.10g %.10g), %.3g off lock: locked %d margin "
+                                         "%.6g, recomposes %.3g off", c->name, k_names[seq], a1, a2,
+                                         a3, off, info.locked, info.margin, err);
+                            check_ranges(c, seq, e, "near-singular");
+                            /* A caller band of just under 2 deg: flagged iff margin <= band, the
+                             * forced a3 = 0 costs at most 2*margin, 0.035 rad never flagged. */
+                            assert_int_equal(c->to_euler(q, seq, 0, 0.0349, e, &info), QO_OK);
+                            err = recompose_err(seq, e, q);
+                            if (info.locked != (info.margin <= c->ra(0.0349)) ||
+                                (off > 0.0349 && info.locked) ||
+                                err > (info.locked ? 2.0 * info.margin + c->tol_lock : c->tol_fine) ||
+                                (info.locked && e[2] != 0.0))
+                                fail_msg("%s band 0.0349 %s (%.10g %.10g %.10g): locked %d margin "
+                                         "%.6g err %.3g", c->name, k_names[seq], a1, a2, a3,
+                                         info.locked, info.margin, err);
+                        }
+                    }
+    }
+}
+
+/* ---- bad inputs (the ones both cores share) -------------------------------------------- */
+static void expect_error(const core *c, dq q, int seq, double band, qo_status want, const char *what)
+{
+    double e[3], prev[3] = { 0.5, 0.25, -0.5 };
+    einfo info;
+    qo_status st = c->to_euler(q, seq, 0, band, e, &info);
+    if (st != want || e[0] != 0.0 || e[1] != 0.0 || e[2] != 0.0 || info.locked != 0 ||
+        info.margin != 0.0)
+        fail_msg("%s %s: band status %d (want %d), out (%g %g %g) info {%d %g}", c->name, what,
+                 (int)st, (int)want, e[0], e[1], e[2], info.locked, info.margin);
+    st = c->near(q, seq, prev, band, e, &info);
+    if (st != want || e[0] != c->ra(prev[0]) || e[1] != c->ra(prev[1]) ||
+        e[2] != c->ra(prev[2]) || info.locked != 0)
+        fail_msg("%s %s: near status %d (want %d), out (%g %g %g) is not prev", c->name, what,
+                 (int)st, (int)want, e[0], e[1], e[2]);
+    if (band == c->band) {
+        st = c->to_euler(q, seq, 1, 0, e, NULL);
+        if (st != want || e[0] != 0.0) fail_msg("%s %s: default status %d", c->name, what, (int)st);
+    }
+}
+
+static void test_to_euler_bad_inputs(void **state)
+{
+    const core *c;
+    const dq ok = { 0.9, 0.1, 0.2, 0.3 }, zero = { 0, 0, 0, 0 };
+    (void)state;
+    FOR_CORES(c) {
+        double e[3];
+        einfo info;
+        expect_error(c, zero, QO_EULER_xyx, c->band, QO_E_DEGENERATE, "zero q");
+        expect_error(c, ok, QO_EULER_SEQ_COUNT_, c->band, QO_E_ARG, "bad seq");
+        expect_error(c, ok, -1, c->band, QO_E_ARG, "negative seq");
+        expect_error(c, zero, 99, c->band, QO_E_ARG, "bad seq before zero q");
+        expect_error(c, ok, QO_EULER_XYZ, -1e-3, QO_E_RANGE, "negative band");
+        expect_error(c, ok, QO_EULER_XYZ, 1.6, QO_E_RANGE, "band > pi/2");
+        expect_error(c, zero, QO_EULER_XYZ, 1.6, QO_E_DEGENERATE, "zero q before band");
+        /* Band limits themselves are accepted; pi/2 flags everything. */
+        assert_int_equal(c->to_euler(held(c, ok), QO_EULER_XYZ, 0, 0.0, e, &info), QO_OK);
+        assert_int_equal(info.locked, 0);
+        assert_int_equal(c->to_euler(held(c, ok), QO_EULER_XYZ, 0, c->ra(PI_D / 2), e, &info), QO_OK);
+        assert_int_equal(info.locked, 1);
+        assert_true(recompose_err(QO_EULER_XYZ, e, held(c, ok)) <= 2.0 * info.margin + 1e-6);
+    }
+    {
+        qo_quat_q30 q = { QO_Q30_ONE, 0, 0, 0 };
+        qo_euler_q28 prev = { 0, 0, 0 };
+        qo_euler_info_q28 info;
+        assert_int_equal(qo_quat_to_euler_q30(q, QO_EULER_XYZ, NULL, &info), QO_E_NULL);
+        assert_int_equal(qo_quat_to_euler_band_q30(q, QO_EULER_XYZ, 5, NULL, &info), QO_E_NULL);
+        assert_int_equal(qo_quat_to_euler_near_q30(q, QO_EULER_XYZ, prev, 5, NULL, &info), QO_E_NULL);
+        /* band one LSB past pi/2, and INT32_MIN */
+        prev.a1 = 3;
+        {
+            qo_euler_q28 e = { 9, 9, 9 };
+            assert_int_equal(qo_quat_to_euler_band_q30(q, QO_EULER_XYZ, QO_Q28_HALF_PI + 1, &e,
+                                                       &info), QO_E_RANGE);
+            assert_true(e.a1 == 0 && e.a2 == 0 && e.a3 == 0 && info.locked == 0 && info.margin == 0);
+            assert_int_equal(qo_quat_to_euler_near_q30(q, QO_EULER_XYZ, prev, INT32_MIN, &e, &info),
+                             QO_E_RANGE);
+            assert_true(e.a1 == 3 && e.a2 == 0 && e.a3 == 0);
+        }
+    }
+}
+
+/* ---- nearest solution ------------------------------------------------------------------- */
+static double dmax(double a, double b) { return a > b ? a : b; }
+
+/* Follows a path of true joint angles through a singularity; the nearest decomposition must
+ * track it (including outside scipy's ranges) without jumps. */
+static void run_path(const core *c, int seq, double a1_0, double a1_1, double a2_0, double a2_1,
+                     double a3_0, double a3_1, int steps, double band, double track_tol,
+                     const char *what)
+{
+    double mid2 = 0.5 * (a2_0 + a2_1);
+    int singular_mid = fabs(mid2 - PI_D / 2) < 1e-12 || fabs(mid2 + PI_D / 2) < 1e-12 ||
+                       fabs(mid2) < 1e-12 || fabs(mid2 - PI_D) < 1e-12;
+    double prev[3], out[3];
+    einfo info;
+    int k;
+    prev[0] = c->ra(a1_0); prev[1] = c->ra(a2_0); prev[2] = c->ra(a3_0);
+    for (k = 0; k <= steps; k++) {
+        double t = (double)k / steps;
+        double a1 = a1_0 + (a1_1 - a1_0) * t, a2 = a2_0 + (a2_1 - a2_0) * t;
+        double a3 = a3_0 + (a3_1 - a3_0) * t, err, jump, dev;
+        dq q;
+        if (2 * k == steps) a2 = mid2; /* the midpoint exactly */
+        q = held(c, ref_quat(seq, a1, a2, a3));
+        assert_int_equal(c->near(q, seq, prev, band, out, &info), QO_OK);
+        err = recompose_err(seq, out, q);
+        jump = dmax(fabs(out[0] - prev[0]), dmax(fabs(out[1] - prev[1]), fabs(out[2] - prev[2])));
+        dev = dmax(fabs(out[0] - a1), dmax(fabs(out[1] - a2), fabs(out[2] - a3)));
+        /* off lock: 2x the generic bound (float32: its outputs leave [-pi, pi], coarser spacing) */
+        if (err > (info.locked ? 2.0 * info.margin + c->tol_lock : 2.0 * c->tol_fine) || jump > 0.06 ||
+            dev > (info.margin > 0.03 ? track_tol : 0.06) || (info.locked && out[2] != prev[2]) ||
+            (2 * k == steps && singular_mid && !info.locked))
+            fail_msg("%s %s %s step %d: true (%.6f %.6f %.6f) got (%.6f %.6f %.6f) prev "
+                     "(%.6f %.6f %.6f) locked %d margin %.3g err %.3g", c->name, what,
+                     k_names[seq], k, a1, a2, a3, out[0], out[1], out[2], prev[0], prev[1],
+                     prev[2], info.locked, info.margin, err);
+        prev[0] = out[0]; prev[1] = out[1]; prev[2] = out[2];
+    }
+}
+
+static void test_near_through_singularity_all24(void **state)
+{
+    const core *c;
+    int seq;
+    (void)state;
+    FOR_CORES(c)
+        for (seq = 0; seq < 24; seq++) {
+            double s = is_proper_name(seq) ? 0.0 : PI_D / 2;
+            run_path(c, seq, 0.3, 1.1, s - 0.2, s + 0.2, -0.5, 0.1, 100, c->band, 1e-4,
+                     "through lock (default band)");
+            run_path(c, seq, 0.3, 1.1, s + 0.2, s - 0.2, -0.5, 0.1, 100, 0.01, 1e-4,
+                     "through lock (0.01 band)");
+            if (is_proper_name(seq))
+                run_path(c, seq, -2.0, -1.0, PI_D - 0.2, PI_D + 0.2, 2.0, 2.5, 100, 0.01, 1e-4,
+                         "through pi");
+            else
+                run_path(c, seq, -2.0, -1.0, -s + 0.2, -s - 0.2, 2.0, 2.5, 100, 0.01, 1e-4,
+                         "through -pi/2");
+        }
+}
+
+static void test_near_across_wrap_and_turns(void **state)
+{
+    const core *c;
+    int seq;
+    (void)state;
+    FOR_CORES(c)
+        for (seq = 0; seq < 24; seq++) {
+            double mid = is_proper_name(seq) ? 1.0 : 0.3;
+            run_path(c, seq, 3.0, 3.4, mid, mid + 0.1, -3.0, -3.4, 40, c->band, 1e-4, "across wrap");
+            /* Counting past pi, up to 4.8 rad (Q3.28 holds 8 - pi of headroom for the fixed
+             * core; longer runs are the fixed-only overflow test). */
+            run_path(c, seq, -4.8, 4.8, mid, mid, 0.5, -0.5, 200, c->band, 1e-4, "turns");
+        }
+}
+
+static void test_near_picks_branch_and_locks(void **state)
+{
+    const core *c;
+    int seq;
+    (void)state;
+    FOR_CORES(c) {
+        rng_state = 555;
+        for (seq = 0; seq < 24; seq++) {
+            double a1 = rng_uniform(-2.5, 2.5), a3 = rng_uniform(-2.5, 2.5);
+            double a2 = is_proper_name(seq) ? 1.2 : 0.6;
+            double alt2 = is_proper_name(seq) ? -a2 : PI_D - a2;
+            dq q = held(c, ref_quat(seq, a1, a2, a3));
+            double prev[3], out[3];
+            einfo info;
+            /* prev near the alternative branch, one turn down on a1 (stays inside Q3.28) */
+            prev[0] = a1 + PI_D - 2 * PI_D + 0.05; prev[1] = alt2 - 0.05; prev[2] = a3 + PI_D - 0.05;
+            assert_int_equal(c->near(q, seq, prev, 0.0, out, &info), QO_OK);
+            if (fabs(out[0] - (a1 - PI_D)) > 1e-5 || fabs(out[1] - alt2) > 1e-5 ||
+                fabs(out[2] - (a3 + PI_D)) > 1e-5 || recompose_err(seq, out, q) > 1e-5)
+                fail_msg("%s near %s alt branch: got (%.7f %.7f %.7f) want (%.7f %.7f %.7f)",
+                         c->name, k_names[seq], out[0], out[1], out[2], a1 - PI_D, alt2, a3 + PI_D);
+            /* prev near the principal branch */
+            prev[0] = a1 - 0.1; prev[1] = a2 + 0.1; prev[2] = a3 + 0.1;
+            assert_int_equal(c->near(q, seq, prev, 0.0, out, &info), QO_OK);
+            if (fabs(out[0] - a1) > 1e-5 || fabs(out[1] - a2) > 1e-5 || fabs(out[2] - a3) > 1e-5)
+                fail_msg("%s near %s principal: got (%.7f %.7f %.7f)", c->name, k_names[seq],
+                         out[0], out[1], out[2]);
+            /* Exactly singular: a3 stays at prev.a3 exactly and the result composes to q. */
+            q = held(c, ref_quat(seq, a1, singular_value(seq, 1), a3));
+            prev[0] = 0.25; prev[1] = singular_value(seq, 1); prev[2] = 7.5;
+            assert_int_equal(c->near(q, seq, prev, c->band, out, &info), QO_OK);
+            if (!info.locked || out[2] != c->ra(7.5) || recompose_err(seq, out, q) > 1e-5 ||
+                fabs(out[0] - 0.25) > PI_D)
+                fail_msg("%s near %s at lock: locked %d got (%.7f %.7f %.7f) err %.3g", c->name,
+                         k_names[seq], info.locked, out[0], out[1], out[2],
+                         recompose_err(seq, out, q));
+        }
+    }
+}
+
+/* ---- fixed only ------------------------------------------------------------------------- */
+
+/* Q3.28 ends at +-8 rad: the nearest solution past it comes back one turn nearer zero with
+ * QO_E_OVERFLOW, still a valid decomposition. Inside the range: QO_OK even at 7.99 rad. */
+static void test_fx_near_range_end(void **state)
+{
+    int seq;
+    (void)state;
+    for (seq = 0; seq < 24; seq++) {
+        double mid = is_proper_name(seq) ? 1.0 : 0.3, prev[3], out[3];
+        einfo info;
+        /* true a1 = 8.2 rad (= 8.2 - 2pi = 1.917 in range), prev at 7.9 */
+        dq q = held(&k_cores[1], ref_quat(seq, 8.2, mid, -0.4));
+        qo_status st;
+        prev[0] = 7.9; prev[1] = mid; prev[2] = -0.4;
+        st = x_near(q, seq, prev, k_cores[1].band, out, &info);
+        if (st != QO_E_OVERFLOW || fabs(out[0] - (8.2 - 2 * PI_D)) > 1e-6 ||
+            fabs(out[1] - mid) > 1e-6 || fabs(out[2] + 0.4) > 1e-6 || info.locked ||
+            recompose_err(seq, out, q) > 1e-6)
+            fail_msg("fixed near %s past 8 rad: status %d out (%.9f %.9f %.9f)", k_names[seq],
+                     (int)st, out[0], out[1], out[2]);
+        /* true a3 = -7.95 rad: fits, QO_OK, counted turn kept */
+        q = held(&k_cores[1], ref_quat(seq, 0.2, mid, -7.95));
+        prev[0] = 0.2; prev[1] = mid; prev[2] = -7.9;
+        st = x_near(q, seq, prev, k_cores[1].band, out, &info);
+        if (st != QO_OK || fabs(out[2] + 7.95) > 1e-6 || recompose_err(seq, out, q) > 1e-6)
+            fail_msg("fixed near %s at -7.95 rad: status %d out (%.9f %.9f %.9f)", k_names[seq],
+                     (int)st, out[0], out[1], out[2]);
+    }
+}
+
+/* Every int32 angle is a valid from_euler input; INT32_MIN/MAX angles against double. */
+static void test_fx_from_euler_extreme_angles(void **state)
+{
+    static const int32_t v[] = { INT32_MIN, INT32_MIN + 1, -1, 0, 1, INT32_MAX - 1, INT32_MAX,
+                                 843314857 /* pi */, -843314857, 421657428 /* pi/2 */ };
+    size_t i, j;
+    int seq;
+    (void)state;
+    for (seq = 0; seq < 24; seq += 5)
+        for (i = 0; i < sizeof v / sizeof v[0]; i++)
+            for (j = 0; j < sizeof v / sizeof v[0]; j++) {
+                qo_euler_q28 e;
+                qo_quat_q30 q;
+                dq r;
+                double err;
+                e.a1 = v[i]; e.a2 = v[j]; e.a3 = v[(i + j) % (sizeof v / sizeof v[0])];
+                assert_int_equal(qo_quat_from_euler_q30((qo_euler_seq)seq, e, &q), QO_OK);
+                r = ref_quat(seq, e.a1 / Q28, e.a2 / Q28, e.a3 / Q28);
+                err = fmax(fmax(fabs(q.w / Q30 - r.w), fabs(q.x / Q30 - r.x)),
+                           fmax(fabs(q.y / Q30 - r.y), fabs(q.z / Q30 - r.z)));
+                if (err > 1e-8)
+                    fail_msg("fixed from_euler %s raw (%d %d %d): error %.3g", k_names[seq],
+                             (int)e.a1, (int)e.a2, (int)e.a3, err);
+            }
+}
+
+/* Raw int32 quaternions of every size (full range down to a few LSB, non-unit, saturated)
+ * and prev anywhere in Q3.28: no overflow (UBSan watches every int64 step), outputs in range,
+ * recomposition at the fixed core's precision, the near variant's status OK or OVERFLOW only
+ * when an output had to be taken one turn back (then it still composes to q). */
+static void test_fx_random_raw_inputs(void **state)
+{
+    int seq, n;
+    (void)state;
+    rng_state = 0xF1C5EDull;
+    for (seq = 0; seq < 24; seq++)
+        for (n = 0; n < 400; n++) {
+            qo_quat_q30 q;
+            qo_euler_q28 e, prev, o;
+            qo_euler_info_q28 info;
+            qo_status st;
+            unsigned sh = (unsigned)(rng_next() % 31);
+            double ee[3], oo[3], tol;
+            dq r;
+            q.w = (int32_t)(uint32_t)rng_next() >> sh; q.x = (int32_t)(uint32_t)rng_next() >> sh;
+            q.y = (int32_t)(uint32_t)rng_next() >> sh; q.z = (int32_t)(uint32_t)rng_next() >> sh;
+            if (n % 50 == 0) q.w = INT32_MIN;
+            if (n % 50 == 1) q.x = INT32_MAX;
+            if (q.w == 0 && q.x == 0 && q.y == 0 && q.z == 0) q.z = 1;
+            r.w = q.w; r.x = q.x; r.y = q.y; r.z = q.z;
+            st = qo_quat_to_euler_q30(q, (qo_euler_seq)seq, &e, &info);
+            ee[0] = e.a1 / Q28; ee[1] = e.a2 / Q28; ee[2] = e.a3 / Q28;
+            /* a few-LSB quaternion is still exact input; components >= 1.0 lose 1 bit */
+            tol = info.locked ? 2.0 * info.margin / Q28 + 5e-8 : 5e-8;
+            if (st != QO_OK || recompose_err(seq, ee, r) > tol)
+                fail_msg("fixed raw %s q=(%d %d %d %d): status %d (%.10g %.10g %.10g) err %.3g",
+                         k_names[seq], (int)q.w, (int)q.x, (int)q.y, (int)q.z, (int)st, ee[0],
+                         ee[1], ee[2], recompose_err(seq, ee, r));
+            check_ranges(&k_cores[1], seq, ee, "raw");
+            prev.a1 = (int32_t)(uint32_t)rng_next(); prev.a2 = (int32_t)(uint32_t)rng_next();
+            prev.a3 = (int32_t)(uint32_t)rng_next();
+            st = qo_quat_to_euler_near_q30(q, (qo_euler_seq)seq, prev,
+                                           (qo_q28)(rng_next() % 1000), &o, &info);
+            oo[0] = o.a1 / Q28; oo[1] = o.a2 / Q28; oo[2] = o.a3 / Q28;
+            tol = info.locked ? 2.0 * info.margin / Q28 + 5e-8 : 5e-8;
+            if ((st != QO_OK && st != QO_E_OVERFLOW) || recompose_err(seq, oo, r) > tol ||
+                (info.locked && o.a3 != prev.a3))
+                fail_msg("fixed raw near %s q=(%d %d %d %d) prev (%d %d %d): status %d "
+                         "(%.10g %.10g %.10g) err %.3g", k_names[seq], (int)q.w, (int)q.x,
+                         (int)q.y, (int)q.z, (int)prev.a1, (int)prev.a2, (int)prev.a3, (int)st,
+                         oo[0], oo[1], oo[2], recompose_err(seq, oo, r));
+            /* OVERFLOW only if some output is more than pi from its prev (taken back a turn) */
+            if (st == QO_E_OVERFLOW && fabs(oo[0] - prev.a1 / Q28) <= PI_D + 1e-6 &&
+                fabs(oo[1] - prev.a2 / Q28) <= PI_D + 1e-6 && fabs(oo[2] - prev.a3 / Q28) <= PI_D + 1e-6)
+                fail_msg("fixed raw near %s: OVERFLOW but every output is within pi of prev",
+                         k_names[seq]);
+            if (st == QO_OK && (fabs(oo[0] - prev.a1 / Q28) > PI_D + 1e-6 ||
+                                fabs(oo[2] - prev.a3 / Q28) > PI_D + 1e-6))
+                fail_msg("fixed raw near %s: OK but an output is more than pi from prev "
+                         "(%.10g %.10g %.10g) prev (%.10g %.10g %.10g)", k_names[seq], oo[0],
+                         oo[1], oo[2], prev.a1 / Q28, prev.a2 / Q28, prev.a3 / Q28);
+        }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_from_euler_random_all24),
+        cmocka_unit_test(test_from_euler_known_values),
+        cmocka_unit_test(test_from_euler_bad_inputs),
+        cmocka_unit_test(test_to_euler_random_rotations_all24),
+        cmocka_unit_test(test_to_euler_recovers_angles_all24),
+        cmocka_unit_test(test_to_euler_known_values),
+        cmocka_unit_test(test_edge_table_both_cores),
+        cmocka_unit_test(test_exactly_singular_all24),
+        cmocka_unit_test(test_singular_free_angle_choice),
+        cmocka_unit_test(test_just_off_singular_all24),
+        cmocka_unit_test(test_to_euler_bad_inputs),
+        cmocka_unit_test(test_near_through_singularity_all24),
+        cmocka_unit_test(test_near_across_wrap_and_turns),
+        cmocka_unit_test(test_near_picks_branch_and_locks),
+        cmocka_unit_test(test_fx_near_range_end),
+        cmocka_unit_test(test_fx_from_euler_extreme_angles),
+        cmocka_unit_test(test_fx_random_raw_inputs),
+    };
+    return cmocka_run_group_tests_name("euler_fx (fixed and float32 through one body)", tests,
+                                       NULL, NULL);
+}

@@ -1,0 +1,946 @@
+/*
+ * qo_motion_*: limit-respecting online motion. Fixed-seed random states, targets and limits;
+ * every plan is sampled densely and checked against bounds and double-precision references
+ * written here (closed-form minimum times, polynomial evaluation in double).
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+#include <math.h>
+#include <cmocka.h>
+
+#include "qorient/motion.h"
+#include "qorient/motion_fx.h"
+
+#define NJ 6
+
+/* ---- deterministic PRNG (splitmix64) ---- */
+static uint64_t rng_s;
+static void rng_seed(uint64_t s) { rng_s = s; }
+static uint64_t rng_next(void)
+{
+    uint64_t z = (rng_s += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+static double urand(double lo, double hi)
+{
+    return lo + (hi - lo) * ((double)(rng_next() >> 11) * (1.0 / 9007199254740992.0));
+}
+/* log-uniform in [lo, hi] */
+static double lrand(double lo, double hi) { return exp(urand(log(lo), log(hi))); }
+
+/* ---- double-precision references ---- */
+
+/* Minimum time rest-to-rest over distance D >= 0 (closed form). */
+static double ref_rest_time(int scurve, double D, double v, double a, double j)
+{
+    if (D <= 0.0) return 0.0;
+    if (!scurve) {
+        if (D >= v * v / a) return D / v + v / a;
+        return 2.0 * sqrt(D / a);
+    }
+    if (v * j >= a * a) {
+        double vp;
+        if (D >= v * (v / a + a / j)) return D / v + v / a + a / j;
+        vp = 0.5 * a * (-a / j + sqrt(a * a / (j * j) + 4.0 * D / a));
+        if (vp >= a * a / j) return 2.0 * (vp / a + a / j);
+        return 4.0 * cbrt(D / (2.0 * j));
+    }
+    if (D >= 2.0 * v * sqrt(v / j)) return D / v + 2.0 * sqrt(v / j);
+    return 4.0 * cbrt(D / (2.0 * j));
+}
+
+/* Minimum time for the double integrator from (v0) to rest at displacement D, |v| <= vmax
+ * (after braking from a start beyond it), |a| <= a: closed form by cases. */
+static double ref_trap_time(double D, double v0, double vmax, double a)
+{
+    double vp, t, dist;
+    if (D < v0 * fabs(v0) / (2.0 * a)) return ref_trap_time(-D, -v0, vmax, a);
+    vp = sqrt(a * D + 0.5 * v0 * v0);
+    if (vp <= vmax) return fabs(vp - v0) / a + vp / a;
+    /* cruise at vmax */
+    dist = (v0 <= vmax ? (vmax * vmax - v0 * v0) : (v0 * v0 - vmax * vmax)) / (2.0 * a) + vmax * vmax / (2.0 * a);
+    t = fabs(vmax - v0) / a + vmax / a + (D - dist) / vmax;
+    return t;
+}
+
+/* State of a phase polynomial in double. */
+static void ph_eval(const qo_motion_phase_f32 *ph, double tau, double *p, double *v, double *a)
+{
+    *p = ph->p + tau * (ph->v + tau * (0.5 * ph->a + tau * ph->j / 6.0));
+    *v = ph->v + tau * (ph->a + 0.5 * tau * ph->j);
+    *a = ph->a + tau * ph->j;
+}
+
+/* ---- the checker ---- */
+
+typedef struct chk {
+    double vover, aover, jover; /* worst relative overshoot */
+    double cont;                /* worst relative continuity error */
+} chk;
+
+static double scale_of(const qo_motion_joint_f32 *jt)
+{
+    return 1.0 + fabs(jt->final) + fabs(jt->ph[0].p) + jt->lim.vmax * jt->duration;
+}
+
+/* Phase-boundary continuity of one joint's plan, plus the end. Errors are divided by their
+ * tolerance (so > 1 fails): 2e-6 of the joint's scale at inner boundaries; at the end also the
+ * float32 time-axis rounding documented in motion.h (amax * ulp(T), jmax * ulp(T)). */
+static double joint_continuity(const qo_motion_joint_f32 *jt, int scurve, double *verr, double *aerr)
+{
+    unsigned k;
+    double worst = 0.0, p, v, a, sc = scale_of(jt), vs = jt->lim.vmax, as = jt->lim.amax;
+    /* float32 rounding is relative to the largest values the plan passes through */
+    for (k = 0; k < jt->nph; k++) {
+        vs = fmax(vs, fabs(jt->ph[k].v));
+        as = fmax(as, fabs(jt->ph[k].a));
+        sc = fmax(sc, fabs(jt->ph[k].p));
+    }
+    *verr = *aerr = 0.0;
+    for (k = 0; k < jt->nph; k++) {
+        int last = k + 1 == jt->nph;
+        double tend = jt->ph[k].t + (double)jt->ph[k].d;
+        double np = !last ? jt->ph[k + 1].p : jt->final;
+        double nv = !last ? jt->ph[k + 1].v : 0.0;
+        double na = !last ? jt->ph[k + 1].a : 0.0;
+        double tv = 2e-6 * vs;
+        double ta = 2e-6 * as;
+        ph_eval(&jt->ph[k], tend - jt->ph[k].t, &p, &v, &a);
+        if (fabs(p - np) / (2e-6 * sc) > worst) worst = fabs(p - np) / (2e-6 * sc);
+        if (fabs(v - nv) / tv > *verr) *verr = fabs(v - nv) / tv;
+        if (scurve && fabs(a - na) / ta > *aerr) *aerr = fabs(a - na) / ta;
+    }
+    return worst;
+}
+
+/* Samples the plan densely from its t0 to past the end; checks limits (bounds are the limit or,
+ * while an out-of-limit start is being brought back, the start value) and continuity.
+ * Fails naming `name` and `cs`. */
+static void check_plan(const qo_motion_planner_f32 *pl, const char *name, int cs, int nsamp)
+{
+    size_t i;
+    int k;
+    int sc = pl->settings.profile == QO_MOTION_SCURVE;
+    float pos[NJ], vel[NJ], acc[NJ], ppos[NJ], pacc[NJ];
+    double T = qo_motion_duration_f32(pl), dt = (T > 0 ? T : 1.0) * 1.05 / nsamp;
+    double vlim[NJ], alim[NJ];
+    assert_true(pl->n <= NJ);
+    for (i = 0; i < pl->n; i++) {
+        const qo_motion_joint_f32 *jt = &pl->joints[i];
+        double ce, ve, ae;
+        if (jt->nph == 0) continue;
+        vlim[i] = jt->lim.vmax;
+        alim[i] = jt->lim.amax;
+        /* An out-of-limit start may keep rising for a while (a0 pushes it): allow the
+         * natural continuation of the start state. */
+        if (fabs(jt->ph[0].v) + (sc ? jt->ph[0].a * jt->ph[0].a / (2.0 * jt->lim.jmax) : 0.0) > vlim[i])
+            vlim[i] = fabs(jt->ph[0].v) + (sc ? jt->ph[0].a * jt->ph[0].a / (2.0 * jt->lim.jmax) : 0.0);
+        if (fabs(jt->ph[0].a) > alim[i]) alim[i] = fabs(jt->ph[0].a);
+        for (k = 0; k < (int)jt->nph; k++) {
+            if (fabs(jt->ph[k].j) > jt->lim.jmax * (1.0 + 1e-6) && sc) {
+                print_error("%s case %d joint %zu: phase %d jerk %g > jmax %g\n", name, cs, i, k,
+                            (double)jt->ph[k].j, (double)jt->lim.jmax);
+                fail();
+            }
+        }
+        ce = joint_continuity(jt, sc, &ve, &ae);
+        if (ce > 1.0 || ve > 1.0 || ae > 1.0) {
+            print_error("%s case %d joint %zu: continuity p %g v %g a %g (x tolerance)\n", name, cs, i, ce, ve, ae);
+            for (k = 0; k < (int)jt->nph; k++)
+                print_error("  phase %d t %.9g d %.9g p %.9g v %.9g a %.9g j %.9g\n", k, (double)jt->ph[k].t, (double)jt->ph[k].d,
+                            (double)jt->ph[k].p, (double)jt->ph[k].v, (double)jt->ph[k].a, (double)jt->ph[k].j);
+            print_error("  duration %.9g final %.9g lim %g %g %g\n", (double)jt->duration, (double)jt->final,
+                        (double)jt->lim.vmax, (double)jt->lim.amax, (double)jt->lim.jmax);
+            fail();
+        }
+    }
+    for (k = 0; k <= nsamp; k++) {
+        float t = pl->t0 + (float)(k * dt);
+        assert_int_equal(qo_motion_sample_f32(pl, t, pos, vel, acc), QO_OK);
+        for (i = 0; i < pl->n; i++) {
+            const qo_motion_joint_f32 *jt = &pl->joints[i];
+            if (jt->nph == 0) continue;
+            if (fabs(vel[i]) > vlim[i] * (1.0 + 1e-6) || fabs(acc[i]) > alim[i] * (1.0 + 1e-6)) {
+                print_error("%s case %d joint %zu t %g: v %g (lim %g) a %g (lim %g)\n", name, cs, i, (double)t,
+                            (double)vel[i], vlim[i], (double)acc[i], alim[i]);
+                fail();
+            }
+            if (k > 0) {
+                double h = (double)t - (double)(pl->t0 + (float)((k - 1) * dt));
+                double dp = fabs((double)pos[i] - ppos[i]);
+                /* position moves at most |v|max h (+ float noise) */
+                if (dp > vlim[i] * h * (1.0 + 1e-3) + 1e-5 * scale_of(jt)) {
+                    print_error("%s case %d joint %zu t %g: position step %g > vmax*h %g\n", name, cs, i, (double)t,
+                                dp, vlim[i] * h);
+                    fail();
+                }
+                if (sc && fabs((double)acc[i] - pacc[i]) > jt->lim.jmax * h * (1.0 + 1e-3) + 1e-5 * alim[i]) {
+                    print_error("%s case %d joint %zu t %g: acceleration step %g > jmax*h %g\n", name, cs, i,
+                                (double)t, fabs((double)acc[i] - pacc[i]), jt->lim.jmax * h);
+                    fail();
+                }
+            }
+            ppos[i] = pos[i];
+            pacc[i] = acc[i];
+        }
+    }
+    /* Exactly at rest at the final position from the end on. */
+    assert_int_equal(qo_motion_sample_f32(pl, qo_motion_end_time_f32(pl), pos, vel, acc), QO_OK);
+    for (i = 0; i < pl->n; i++) {
+        if (pos[i] != pl->joints[i].final || vel[i] != 0.0f || acc[i] != 0.0f) {
+            print_error("%s case %d joint %zu: end state %g %g %g, final %g\n", name, cs, i, (double)pos[i],
+                        (double)vel[i], (double)acc[i], (double)pl->joints[i].final);
+            fail();
+        }
+    }
+}
+
+/* Random limits, mostly moderate, sometimes extreme ratios. */
+static qo_motion_limits_f32 rand_limits(void)
+{
+    qo_motion_limits_f32 l = qo_motion_limits_default;
+    l.vmax = (float)lrand(0.05, 20.0);
+    l.amax = (float)lrand(0.05, 50.0);
+    l.jmax = (float)lrand(0.1, 500.0);
+    return l;
+}
+
+/* A start state inside the limits whose natural continuation also stays inside. */
+static void rand_state_in(const qo_motion_limits_f32 *l, int scurve, float *v, float *a)
+{
+    for (;;) {
+        double vv = urand(-1, 1) * l->vmax, aa = scurve ? urand(-1, 1) * l->amax : 0.0;
+        if (fabs(vv + aa * fabs(aa) / (2.0 * l->jmax)) <= l->vmax) {
+            *v = (float)vv;
+            *a = (float)aa;
+            return;
+        }
+    }
+}
+
+/* Puts joint i of a planner into the moving state (p, v, a) by a synthetic one-phase plan. */
+static void force_state(qo_motion_planner_f32 *pl, size_t i, float p, float v, float a)
+{
+    qo_motion_joint_f32 *jt = &pl->joints[i];
+    jt->nph = 1;
+    jt->ph[0].t = 0.0f;
+    jt->ph[0].d = 1e6f;
+    jt->ph[0].p = p;
+    jt->ph[0].v = v;
+    jt->ph[0].a = a;
+    jt->ph[0].j = 0.0f;
+    jt->duration = 1e6f;
+    jt->final = p;
+}
+
+static void test_rest_to_rest_optimal(void **state)
+{
+    int cs, prof;
+    (void)state;
+    rng_seed(1);
+    for (prof = 0; prof < 2; prof++) {
+        for (cs = 0; cs < 300; cs++) {
+            qo_motion_planner_f32 pl;
+            qo_motion_joint_f32 jts[1];
+            qo_motion_settings_f32 st = { (qo_motion_profile)prof, QO_MOTION_SYNC_NONE };
+            qo_motion_limits_f32 l = rand_limits();
+            float p0 = (float)urand(-50, 50), tg = (float)(p0 + urand(-1, 1) * lrand(1e-3, 100));
+            double ref, T;
+            assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, &p0, 0.0f, &st), QO_OK);
+            assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, &tg, NULL), QO_OK);
+            T = qo_motion_duration_f32(&pl);
+            ref = ref_rest_time(prof, fabs((double)tg - p0), l.vmax, l.amax, l.jmax);
+            if (fabs(T - ref) > 1e-4 * ref + 1e-6) {
+                print_error("%s case %d: p0 %g target %g v %g a %g j %g: T %.9g ref %.9g\n", prof ? "scurve" : "trap",
+                            cs, (double)p0, (double)tg, (double)l.vmax, (double)l.amax, (double)l.jmax, T, ref);
+                fail();
+            }
+            check_plan(&pl, prof ? "rest scurve" : "rest trap", cs, 400);
+        }
+    }
+}
+
+static void test_trapezoid_moving_optimal(void **state)
+{
+    int cs;
+    (void)state;
+    rng_seed(2);
+    for (cs = 0; cs < 400; cs++) {
+        qo_motion_planner_f32 pl;
+        qo_motion_joint_f32 jts[1];
+        qo_motion_settings_f32 st = { QO_MOTION_TRAPEZOID, QO_MOTION_SYNC_NONE };
+        qo_motion_limits_f32 l = rand_limits();
+        float p0 = 0.0f, v0 = (float)(urand(-1.5, 1.5) * l.vmax), tg = (float)(urand(-1, 1) * lrand(1e-3, 50));
+        double ref, T;
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, &p0, 0.0f, &st), QO_OK);
+        force_state(&pl, 0, p0, v0, 0.0f);
+        assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, &tg, NULL), QO_OK);
+        T = qo_motion_duration_f32(&pl);
+        ref = ref_trap_time(tg, v0, l.vmax, l.amax);
+        if (fabs(T - ref) > 1e-4 * ref + 1e-5) {
+            print_error("trap moving case %d: v0 %g target %g v %g a %g: T %.9g ref %.9g\n", cs, (double)v0,
+                        (double)tg, (double)l.vmax, (double)l.amax, T, ref);
+            fail();
+        }
+        check_plan(&pl, "trap moving", cs, 400);
+    }
+}
+
+/* Family search in double: the shortest profile "velocity change to vc, cruise, stop" that ends
+ * at the target, over a dense grid of vc. An independent implementation of the profile pieces. */
+static void ref_vchange(double v0, double a0, double v1, double A, double J, double *dp, double *dt)
+{
+    double vn = v0 + a0 * fabs(a0) / (2 * J), s = v1 >= vn ? 1 : -1, as = s * a0, dv = s * (v1 - v0), ap;
+    double t1, t2, t3, p = 0, v = v0, a = a0, segs[3][2];
+    int k;
+    if (as >= A) ap = A;
+    else {
+        ap = sqrt(fmax(J * dv + 0.5 * as * as, 0));
+        if (ap > A) ap = A;
+        if (ap < as) ap = as;
+    }
+    t1 = fabs(ap - as) / J;
+    t3 = ap / J;
+    t2 = ap > 0 ? (dv - 0.5 * (as + ap) * t1 - 0.5 * ap * t3) / ap : 0;
+    if (t2 < 0) t2 = 0;
+    segs[0][0] = t1; segs[0][1] = (ap >= as ? 1 : -1) * s * J;
+    segs[1][0] = t2; segs[1][1] = 0;
+    segs[2][0] = t3; segs[2][1] = -s * J;
+    for (k = 0; k < 3; k++) {
+        double d = segs[k][0], j = segs[k][1];
+        p += v * d + a * d * d / 2 + j * d * d * d / 6;
+        v += a * d + j * d * d / 2;
+        a += j * d;
+    }
+    *dp = p;
+    *dt = t1 + t2 + t3;
+}
+
+static double ref_family_time(double D, double v0, double a0, double V, double A, double J)
+{
+    double best = INFINITY;
+    int g;
+    const int G = 20000;
+    for (g = -G; g <= G; g++) {
+        double vc = V * g / G, p1, t1, p2, t2, rem, tc;
+        ref_vchange(v0, a0, vc, A, J, &p1, &t1);
+        ref_vchange(vc, 0, 0, A, J, &p2, &t2);
+        rem = D - p1 - p2;
+        if (vc == 0) {
+            if (fabs(rem) > 1e-9 * (1 + fabs(D))) continue;
+            tc = 0;
+        } else {
+            tc = rem / vc;
+            if (tc < 0) continue;
+        }
+        if (t1 + t2 + tc < best) best = t1 + t2 + tc;
+    }
+    return best;
+}
+
+static void test_scurve_moving(void **state)
+{
+    int cs;
+    (void)state;
+    rng_seed(3);
+    for (cs = 0; cs < 150; cs++) {
+        qo_motion_planner_f32 pl;
+        qo_motion_joint_f32 jts[1];
+        qo_motion_settings_f32 st = { QO_MOTION_SCURVE, QO_MOTION_SYNC_NONE };
+        qo_motion_limits_f32 l = rand_limits();
+        float p0 = 0.0f, v0, a0, tg = (float)(urand(-1, 1) * lrand(1e-2, 50));
+        double ref, T;
+        if (cs % 3 == 0) {
+            /* out-of-limit start */
+            v0 = (float)(urand(-2, 2) * l.vmax);
+            a0 = (float)(urand(-2, 2) * l.amax);
+        } else {
+            rand_state_in(&l, 1, &v0, &a0);
+        }
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, &p0, 0.0f, &st), QO_OK);
+        force_state(&pl, 0, p0, v0, a0);
+        assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, &tg, NULL), QO_OK);
+        T = qo_motion_duration_f32(&pl);
+        ref = ref_family_time(tg, v0, a0, l.vmax, l.amax, l.jmax);
+        /* The grid search can only be as good as its grid: the planner must not be slower than
+         * it, and no family member on the grid may be shorter than the planner's duration. */
+        if (T > ref * (1.0 + 1e-4) + 1e-5) {
+            print_error("scurve moving case %d: v0 %g a0 %g target %g lim %g %g %g: T %.9g grid best %.9g\n", cs,
+                        (double)v0, (double)a0, (double)tg, (double)l.vmax, (double)l.amax, (double)l.jmax, T, ref);
+            fail();
+        }
+        if (T < ref * (1.0 - 1e-3) - 1e-5) {
+            print_error("scurve moving case %d: T %.9g below the family optimum %.9g\n", cs, T, ref);
+            fail();
+        }
+        check_plan(&pl, "scurve moving", cs, 400);
+    }
+}
+
+static void test_time_sync(void **state)
+{
+    int cs;
+    (void)state;
+    rng_seed(5);
+    for (cs = 0; cs < 200; cs++) {
+        qo_motion_planner_f32 pl;
+        qo_motion_joint_f32 jts[NJ];
+        qo_motion_limits_f32 l[NJ];
+        qo_motion_settings_f32 st = { cs & 1 ? QO_MOTION_SCURVE : QO_MOTION_TRAPEZOID, QO_MOTION_SYNC_TIME };
+        float p0[NJ], tg[NJ];
+        size_t i, n = 2 + (size_t)(rng_next() % (NJ - 1));
+        double T;
+        for (i = 0; i < n; i++) {
+            l[i] = rand_limits();
+            p0[i] = (float)urand(-10, 10);
+            tg[i] = (float)(p0[i] + urand(-20, 20));
+        }
+        assert_int_equal(qo_motion_init_f32(&pl, jts, n, l, p0, 1.0f, &st), QO_OK);
+        if (cs % 4 == 2) {
+            for (i = 0; i < n; i++) {
+                float v, a;
+                rand_state_in(&l[i], st.profile == QO_MOTION_SCURVE, &v, &a);
+                force_state(&pl, i, p0[i], v, a);
+            }
+        } else if (cs % 4 == 3) {
+            /* out-of-limit starts: braked back into the limits, still synchronised */
+            for (i = 0; i < n; i++)
+                force_state(&pl, i, p0[i], (float)(urand(-2, 2) * l[i].vmax),
+                            st.profile == QO_MOTION_SCURVE ? (float)(urand(-2, 2) * l[i].amax) : 0.0f);
+        }
+        assert_int_equal(qo_motion_set_target_f32(&pl, 1.0f, tg, NULL), QO_OK);
+        assert_int_equal(qo_motion_sync_used(&pl), QO_MOTION_SYNC_TIME);
+        T = qo_motion_duration_f32(&pl);
+        for (i = 0; i < n; i++) {
+            if (fabs(jts[i].duration - T) > 1e-5 * T + 1e-6) {
+                print_error("time sync case %d joint %zu: duration %g vs %g\n", cs, i, (double)jts[i].duration, T);
+                fail();
+            }
+        }
+        check_plan(&pl, "time sync", cs, 800);
+    }
+}
+
+static void test_phase_sync(void **state)
+{
+    int cs;
+    (void)state;
+    rng_seed(6);
+    for (cs = 0; cs < 150; cs++) {
+        qo_motion_planner_f32 pl;
+        qo_motion_joint_f32 jts[NJ];
+        qo_motion_limits_f32 l[NJ];
+        qo_motion_settings_f32 st = { cs & 1 ? QO_MOTION_SCURVE : QO_MOTION_TRAPEZOID, QO_MOTION_SYNC_PHASE };
+        float p0[NJ], tg[NJ], pos[NJ];
+        size_t i, n = 2 + (size_t)(rng_next() % (NJ - 1));
+        int k;
+        size_t iref = 0;
+        double d[NJ], dmax = 0;
+        for (i = 0; i < n; i++) {
+            l[i] = rand_limits();
+            p0[i] = (float)urand(-10, 10);
+            tg[i] = (float)(p0[i] + urand(-20, 20));
+            d[i] = (double)tg[i] - p0[i];
+            if (fabs(d[i]) > dmax) {
+                dmax = fabs(d[i]);
+                iref = i;
+            }
+        }
+        assert_int_equal(qo_motion_init_f32(&pl, jts, n, l, p0, 0.0f, &st), QO_OK);
+        assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, tg, NULL), QO_OK);
+        assert_int_equal(qo_motion_sync_used(&pl), QO_MOTION_SYNC_PHASE);
+        check_plan(&pl, "phase sync", cs, 400);
+        /* collinear: (p_i - p0_i) / d_i is the same s for every joint */
+        for (k = 0; k <= 200; k++) {
+            double s0;
+            qo_motion_sample_f32(&pl, qo_motion_duration_f32(&pl) * (float)k / 200.0f, pos, NULL, NULL);
+            /* s from the joint that moves most (best resolved), then every joint's deviation
+             * from the line in its own unit */
+            s0 = ((double)pos[iref] - p0[iref]) / d[iref];
+            for (i = 0; i < n; i++) {
+                double si = ((double)pos[i] - p0[i]) / d[i];
+                if (fabs(si - s0) * fabs(d[i]) > 1e-5 * (1.0 + dmax + fabs(p0[i]))) {
+                    print_error("phase sync case %d k %d joint %zu: s %g vs %g\n", cs, k, i, si, s0);
+                    fail();
+                }
+            }
+        }
+    }
+    /* Proportional moving start (v0, a0 along the displacement): still a straight line. */
+    for (cs = 0; cs < 40; cs++) {
+        qo_motion_planner_f32 pl;
+        qo_motion_joint_f32 jts[3];
+        qo_motion_limits_f32 l[3];
+        qo_motion_settings_f32 st = { cs & 1 ? QO_MOTION_SCURVE : QO_MOTION_TRAPEZOID, QO_MOTION_SYNC_PHASE };
+        float p0[3], tg[3], pos[3];
+        double d[3], kv = urand(-0.3, 0.3), ka = (cs & 1) ? urand(-0.3, 0.3) : 0.0, smax = INFINITY;
+        size_t i, iref = 0;
+        int k;
+        for (i = 0; i < 3; i++) {
+            l[i] = rand_limits();
+            p0[i] = (float)urand(-10, 10);
+            tg[i] = (float)(p0[i] + urand(-20, 20));
+            d[i] = (double)tg[i] - p0[i];
+            if (fabs(d[i]) > fabs(d[iref])) iref = i;
+            smax = fmin(smax, fmin(l[i].vmax / fabs(d[i]), l[i].amax / fabs(d[i])));
+        }
+        kv *= smax;
+        ka *= smax;
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 3, l, p0, 0.0f, &st), QO_OK);
+        for (i = 0; i < 3; i++) force_state(&pl, i, p0[i], (float)(kv * d[i]), (float)(ka * d[i]));
+        assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, tg, NULL), QO_OK);
+        if (qo_motion_sync_used(&pl) != QO_MOTION_SYNC_PHASE) {
+            print_error("phase moving case %d: fell back to %d\n", cs, (int)qo_motion_sync_used(&pl));
+            fail();
+        }
+        check_plan(&pl, "phase moving", cs, 400);
+        for (k = 0; k <= 200; k++) {
+            double s0;
+            qo_motion_sample_f32(&pl, qo_motion_duration_f32(&pl) * (float)k / 200.0f, pos, NULL, NULL);
+            s0 = ((double)pos[iref] - p0[iref]) / d[iref];
+            for (i = 0; i < 3; i++) {
+                double si = ((double)pos[i] - p0[i]) / d[i];
+                if (fabs(si - s0) * fabs(d[i]) > 1e-5 * (1.0 + 20.0 + fabs(p0[i]))) {
+                    print_error("phase moving case %d k %d joint %zu: s %g vs %g\n", cs, k, i, si, s0);
+                    fail();
+                }
+            }
+        }
+    }
+    /* Not proportional (one joint moving): falls back to TIME and says so. */
+    {
+        qo_motion_planner_f32 pl;
+        qo_motion_joint_f32 jts[2];
+        qo_motion_limits_f32 l[2] = { qo_motion_limits_default, qo_motion_limits_default };
+        qo_motion_settings_f32 st = { QO_MOTION_SCURVE, QO_MOTION_SYNC_PHASE };
+        float p0[2] = { 0, 0 }, tg[2] = { 1, 2 };
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 2, l, p0, 0.0f, &st), QO_OK);
+        force_state(&pl, 0, 0.0f, 0.5f, 0.0f);
+        assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, tg, NULL), QO_OK);
+        assert_int_equal(qo_motion_sync_used(&pl), QO_MOTION_SYNC_TIME);
+        check_plan(&pl, "phase fallback", 0, 400);
+    }
+}
+
+/* A stream of targets re-planned mid-motion: continuity across every re-plan, and a monotone
+ * stream of targets never stops in between. */
+static void test_replan_stream(void **state)
+{
+    int cs, prof;
+    (void)state;
+    rng_seed(7);
+    for (prof = 0; prof < 2; prof++) {
+        for (cs = 0; cs < 40; cs++) {
+            qo_motion_planner_f32 pl;
+            qo_motion_joint_f32 jts[3];
+            qo_motion_limits_f32 l[3];
+            qo_motion_settings_f32 st = { (qo_motion_profile)prof, (qo_motion_sync)(cs % 3) };
+            float p0[3] = { 0, 0, 0 }, tg[3], b[3][3], a[3][3];
+            float t = 0.0f, step = (float)urand(0.02, 0.3);
+            int r;
+            size_t i;
+            for (i = 0; i < 3; i++) l[i] = rand_limits();
+            assert_int_equal(qo_motion_init_f32(&pl, jts, 3, l, p0, 0.0f, &st), QO_OK);
+            for (r = 0; r < 30; r++) {
+                for (i = 0; i < 3; i++) tg[i] = (float)(urand(-1, 1) * 5.0 + (r % 7 == 6 ? 0 : urand(-2, 2)));
+                qo_motion_sample_f32(&pl, t, b[0], b[1], b[2]);
+                assert_int_equal(qo_motion_set_target_f32(&pl, t, tg, NULL), QO_OK);
+                qo_motion_sample_f32(&pl, t, a[0], a[1], a[2]);
+                for (i = 0; i < 3; i++) {
+                    double ep = fabs((double)a[0][i] - b[0][i]), ev = fabs((double)a[1][i] - b[1][i]);
+                    double ea = fabs((double)a[2][i] - b[2][i]);
+                    if (ep > 1e-6 * (1 + fabs(b[0][i])) || ev > 1e-6 * (l[i].vmax + fabs(b[1][i])) ||
+                        (prof == 1 && ea > 1e-6 * (l[i].amax + fabs(b[2][i])))) {
+                        print_error("replan %s case %d re-plan %d joint %zu: jump p %g v %g a %g\n",
+                                    prof ? "scurve" : "trap", cs, r, i, ep, ev, ea);
+                        fail();
+                    }
+                }
+                check_plan(&pl, "replan", cs * 100 + r, 100);
+                t += step;
+            }
+        }
+    }
+    /* Monotone targets streamed faster than arrival: velocity stays positive in between. */
+    for (prof = 0; prof < 2; prof++) {
+        qo_motion_planner_f32 pl;
+        qo_motion_joint_f32 jts[1];
+        qo_motion_limits_f32 l = qo_motion_limits_default;
+        qo_motion_settings_f32 st = { (qo_motion_profile)prof, QO_MOTION_SYNC_TIME };
+        float p0 = 0.0f, tg, pos, vel;
+        int k;
+        l.vmax = 1.0f; l.amax = 4.0f; l.jmax = 40.0f;
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, &p0, 0.0f, &st), QO_OK);
+        for (k = 1; k <= 50; k++) {
+            float t0 = 0.1f * (float)(k - 1), t;
+            tg = 0.1f * (float)k;     /* 1 u/s of targets: never reached before the next one */
+            assert_int_equal(qo_motion_set_target_f32(&pl, t0, &tg, NULL), QO_OK);
+            for (t = t0 + 0.01f; t < t0 + 0.1f; t += 0.01f) {
+                qo_motion_sample_f32(&pl, t, &pos, &vel, NULL);
+                if (t > 1.0f && vel < 0.5f) {
+                    print_error("stream %s: stops between points at t %g (v %g)\n", prof ? "scurve" : "trap",
+                                (double)t, (double)vel);
+                    fail();
+                }
+            }
+        }
+    }
+}
+
+static void test_wrap_short_way(void **state)
+{
+    qo_motion_planner_f32 pl;
+    qo_motion_joint_f32 jts[2];
+    qo_motion_limits_f32 l[2] = { qo_motion_limits_default, qo_motion_limits_default };
+    float p0[2] = { 170.0f, 3.0f }, tg[2] = { -170.0f, -3.0f + 4.0f * 6.28318530718f }, pos[2];
+    (void)state;
+    l[0].wrap = 360.0f;
+    l[0].vmax = 100.0f;
+    l[0].amax = 400.0f;
+    l[0].jmax = 4000.0f;
+    l[1].wrap = 6.28318530718f;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 2, l, p0, 0.0f, NULL), QO_OK);
+    assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, tg, NULL), QO_OK);
+    qo_motion_sample_f32(&pl, 100.0f, pos, NULL, NULL);
+    /* 170 -> -170 is +20 the short way, not -340 */
+    assert_float_equal(pos[0], 190.0f, 1e-3f);
+    /* 3 -> -3 (mod 2pi) is -6 + 2pi = +0.283 the short way */
+    assert_float_equal(pos[1], 3.0f + (6.28318530718f - 6.0f), 1e-4f);
+    check_plan(&pl, "wrap", 0, 400);
+    /* exactly half a period goes positive */
+    p0[0] = 0.0f;
+    tg[0] = 180.0f;
+    p0[1] = 0.0f;
+    tg[1] = -3.14159265f;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 2, l, p0, 0.0f, NULL), QO_OK);
+    assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, tg, NULL), QO_OK);
+    assert_float_equal(jts[0].final, 180.0f, 1e-4f);
+    assert_float_equal(jts[1].final, 3.14159265f, 1e-5f);
+}
+
+static void test_clamp_report(void **state)
+{
+    qo_motion_planner_f32 pl;
+    qo_motion_joint_f32 jts[3];
+    qo_motion_limits_f32 l[3] = { qo_motion_limits_default, qo_motion_limits_default, qo_motion_limits_default };
+    float p0[3] = { 0, 0, 0 }, tg[3] = { 5.0f, -5.0f, 0.5f };
+    uint32_t mask = 99;
+    (void)state;
+    l[0].pmin = -1.0f; l[0].pmax = 1.0f;
+    l[1].pmin = -2.0f; l[1].pmax = 2.0f;
+    l[2].pmin = -1.0f; l[2].pmax = 1.0f;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 3, l, p0, 0.0f, NULL), QO_OK);
+    assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, tg, &mask), QO_OK);
+    assert_int_equal(mask, 3u);
+    assert_true(jts[0].final == 1.0f && jts[1].final == -2.0f && jts[2].final == 0.5f);
+    check_plan(&pl, "clamp", 0, 400);
+    /* range ends exactly: not clamped */
+    tg[0] = 1.0f; tg[1] = -2.0f;
+    assert_int_equal(qo_motion_set_target_f32(&pl, 0.5f, tg, &mask), QO_OK);
+    assert_int_equal(mask, 0u);
+    /* a narrower range via set_limits re-clamps the goal */
+    l[0].pmax = 0.25f;
+    assert_int_equal(qo_motion_set_limits_f32(&pl, 0.6f, 0, &l[0]), QO_OK);
+    assert_true(jts[0].final == 0.25f);
+    check_plan(&pl, "clamp narrowed", 0, 400);
+}
+
+static void test_nonfinite_brakes(void **state)
+{
+    int cs, prof, bad;
+    const float bads[3] = { NAN, INFINITY, -INFINITY };
+    (void)state;
+    rng_seed(8);
+    for (prof = 0; prof < 2; prof++) {
+        for (cs = 0; cs < 30; cs++) {
+            for (bad = 0; bad < 3; bad++) {
+                qo_motion_planner_f32 pl;
+                qo_motion_joint_f32 jts[3];
+                qo_motion_limits_f32 l[3];
+                qo_motion_settings_f32 st = { (qo_motion_profile)prof, QO_MOTION_SYNC_TIME };
+                float p0[3] = { 0, 1, 2 }, tg[3], b[3][3], a[3][3], tn;
+                size_t i;
+                uint32_t mask = 7;
+                for (i = 0; i < 3; i++) {
+                    l[i] = rand_limits();
+                    tg[i] = (float)urand(-30, 30);
+                }
+                assert_int_equal(qo_motion_init_f32(&pl, jts, 3, l, p0, 0.0f, &st), QO_OK);
+                assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, tg, NULL), QO_OK);
+                tn = qo_motion_duration_f32(&pl) * (float)urand(0.1, 0.9);
+                qo_motion_sample_f32(&pl, tn, b[0], b[1], b[2]);
+                tg[cs % 3] = bads[bad];
+                assert_int_equal(qo_motion_set_target_f32(&pl, tn, tg, &mask), QO_E_NONFINITE);
+                assert_int_equal(mask, 0u);
+                assert_true(pl.braking);
+                qo_motion_sample_f32(&pl, tn, a[0], a[1], a[2]);
+                for (i = 0; i < 3; i++) {
+                    assert_true(a[0][i] == b[0][i] && a[1][i] == b[1][i]);
+                    if (prof == 1) assert_true(a[2][i] == b[2][i]);
+                }
+                check_plan(&pl, "nonfinite brake", cs, 400);
+                /* braking is the fastest stop: the stop time is |v|/amax (+ jerk ramps) at most */
+                for (i = 0; i < 3; i++) {
+                    double tmax = fabs(b[1][i]) / l[i].amax + 2.0 * l[i].amax / l[i].jmax +
+                                  fabs(b[2][i]) / l[i].jmax + 1e-6;
+                    if (jts[i].duration > tmax) {
+                        print_error("brake case %d joint %zu: takes %g > %g\n", cs, i, (double)jts[i].duration, tmax);
+                        fail();
+                    }
+                }
+            }
+        }
+    }
+}
+
+static void test_bad_args(void **state)
+{
+    qo_motion_planner_f32 pl;
+    qo_motion_joint_f32 jts[2];
+    qo_motion_limits_f32 l[2] = { qo_motion_limits_default, qo_motion_limits_default }, bad;
+    qo_motion_settings_f32 st = qo_motion_settings_default;
+    float p0[2] = { 0, 0 }, tg[2] = { 1, 1 }, pos[2] = { 9, 9 };
+    const float badv[6] = { 0.0f, -1.0f, NAN, INFINITY, -INFINITY, -0.0f };
+    int k, f;
+    (void)state;
+    assert_int_equal(qo_motion_init_f32(NULL, jts, 2, l, p0, 0.0f, NULL), QO_E_NULL);
+    assert_int_equal(qo_motion_init_f32(&pl, NULL, 2, l, p0, 0.0f, NULL), QO_E_NULL);
+    assert_int_equal(pl.n, 0u);
+    assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, tg, NULL), QO_E_STATE);
+    assert_int_equal(qo_motion_sample_f32(&pl, 0.0f, pos, NULL, NULL), QO_E_STATE);
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 0, l, p0, 0.0f, NULL), QO_E_TOO_FEW);
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 33, l, p0, 0.0f, NULL), QO_E_CAPACITY);
+    st.profile = (qo_motion_profile)7;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 2, l, p0, 0.0f, &st), QO_E_ARG);
+    st = qo_motion_settings_default;
+    st.sync = (qo_motion_sync)-1;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 2, l, p0, 0.0f, &st), QO_E_ARG);
+    for (f = 0; f < 3; f++) {
+        for (k = 0; k < 6; k++) {
+            l[1] = qo_motion_limits_default;
+            if (f == 0) l[1].vmax = badv[k];
+            if (f == 1) l[1].amax = badv[k];
+            if (f == 2) l[1].jmax = badv[k];
+            assert_int_equal(qo_motion_init_f32(&pl, jts, 2, l, p0, 0.0f, NULL), QO_E_LIMIT);
+        }
+    }
+    l[1] = qo_motion_limits_default;
+    l[1].pmin = 2.0f; l[1].pmax = 1.0f;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 2, l, p0, 0.0f, NULL), QO_E_LIMIT);
+    l[1] = qo_motion_limits_default;
+    l[1].wrap = -1.0f;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 2, l, p0, 0.0f, NULL), QO_E_LIMIT);
+    l[1] = qo_motion_limits_default;
+    p0[1] = NAN;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 2, l, p0, 0.0f, NULL), QO_E_NONFINITE);
+    p0[1] = 0.0f;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 2, l, p0, NAN, NULL), QO_E_NONFINITE);
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 2, l, p0, 1.0f, NULL), QO_OK);
+    /* time order, NaN times */
+    assert_int_equal(qo_motion_set_target_f32(&pl, 0.5f, tg, NULL), QO_E_ORDER);
+    assert_int_equal(qo_motion_set_target_f32(&pl, NAN, tg, NULL), QO_E_NONFINITE);
+    assert_int_equal(qo_motion_sample_f32(&pl, 0.5f, pos, NULL, NULL), QO_E_RANGE);
+    assert_true(pos[0] == 0.0f && pos[1] == 0.0f);
+    assert_int_equal(qo_motion_sample_f32(&pl, NAN, pos, NULL, NULL), QO_E_NONFINITE);
+    assert_int_equal(qo_motion_sample_f32(&pl, 1.0f, NULL, NULL, NULL), QO_E_NULL);
+    assert_int_equal(qo_motion_set_target_f32(&pl, 1.0f, NULL, NULL), QO_E_NULL);
+    assert_true(qo_motion_done_f32(&pl, 1.0f));
+    assert_true(qo_motion_done_f32(NULL, 1.0f));
+    assert_false(qo_motion_done_f32(&pl, NAN));
+    /* identical target: stays at rest, duration 0 */
+    tg[0] = tg[1] = 0.0f;
+    assert_int_equal(qo_motion_set_target_f32(&pl, 1.0f, tg, NULL), QO_OK);
+    assert_true(qo_motion_duration_f32(&pl) == 0.0f);
+    /* bad limits mid-motion: status, old limits kept, brake from the current state */
+    tg[0] = 10.0f; tg[1] = -10.0f;
+    assert_int_equal(qo_motion_set_target_f32(&pl, 1.0f, tg, NULL), QO_OK);
+    bad = qo_motion_limits_default;
+    bad.amax = NAN;
+    assert_int_equal(qo_motion_set_limits_f32(&pl, 3.0f, 0, &bad), QO_E_LIMIT);
+    assert_true(pl.braking);
+    assert_true(jts[0].lim.amax == 1.0f);
+    check_plan(&pl, "bad limits brake", 0, 400);
+    assert_int_equal(qo_motion_set_limits_f32(&pl, 3.0f, 2, &l[0]), QO_E_RANGE);
+    /* lowering vmax on the fly: brakes into the new limit, no jump */
+    assert_int_equal(qo_motion_set_target_f32(&pl, 4.0f, tg, NULL), QO_OK);
+    bad = qo_motion_limits_default;
+    bad.vmax = 0.25f;
+    assert_int_equal(qo_motion_set_limits_f32(&pl, 6.0f, 0, &bad), QO_OK);
+    check_plan(&pl, "lower vmax", 0, 400);
+}
+
+/* Fixed-point table against a double evaluation of the float plan's polynomials. */
+static void test_q16_sampler(void **state)
+{
+    int cs, k;
+    (void)state;
+    rng_seed(9);
+    for (cs = 0; cs < 60; cs++) {
+        qo_motion_planner_f32 pl;
+        qo_motion_joint_f32 jts[3];
+        qo_motion_limits_f32 l[3];
+        qo_motion_settings_f32 st = { cs & 1 ? QO_MOTION_SCURVE : QO_MOTION_TRAPEZOID,
+                                      (qo_motion_sync)(cs % 3) };
+        qo_motion_seg_q16 segs[3 * QO_MOTION_Q16_SEGS];
+        qo_motion_table_q16 tab;
+        float p0[3], tg[3];
+        qo_q16 qp[3], qv[3], qa[3];
+        size_t i;
+        double worst = 0;
+        for (i = 0; i < 3; i++) {
+            l[i] = rand_limits();
+            p0[i] = (float)urand(-100, 100);
+            tg[i] = (float)urand(-100, 100);
+        }
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 3, l, p0, 0.0f, &st), QO_OK);
+        assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, tg, NULL), QO_OK);
+        if (qo_motion_duration_f32(&pl) > 300.0f) continue;
+        assert_int_equal(qo_motion_export_q16(&pl, &tab, segs, 3 * QO_MOTION_Q16_SEGS), QO_OK);
+        for (k = 0; k <= 3000; k++) {
+            qo_q16 tq = (qo_q16)((double)qo_motion_duration_f32(&pl) * 1.02 * k / 3000.0 * 65536.0);
+            double t = tq / 65536.0;
+            assert_int_equal(qo_motion_sample_q16(&tab, tq, qp, qv, qa), QO_OK);
+            for (i = 0; i < 3; i++) {
+                const qo_motion_joint_f32 *jt = &jts[i];
+                double p, v, a, err;
+                if (jt->nph == 0 || t >= jt->duration) {
+                    p = jt->final; v = a = 0;
+                } else {
+                    unsigned m = jt->nph - 1;
+                    while (m > 0 && jt->ph[m].t > t) m--;
+                    ph_eval(&jt->ph[m], t - jt->ph[m].t, &p, &v, &a);
+                }
+                /* bound: 1 LSB output + float32 coefficient size effects near a boundary
+                 * (the switch time is rounded to 2^-16 s: |jump in j| dt^3/6, negligible),
+                 * 2 LSB + 1e-6 relative allowed */
+                err = fabs(qp[i] / 65536.0 - p);
+                if (err > 2.0 / 65536.0 + 2e-6 * fabs(p) || fabs(qv[i] / 65536.0 - v) > 3.0 / 65536.0 + 2e-6 * fabs(v) ||
+                    fabs(qa[i] / 65536.0 - a) > 3.0 / 65536.0 + 2e-6 * fabs(a)) {
+                    print_error("q16 case %d joint %zu t %.6f: p %.7f/%.7f v %.7f/%.7f a %.7f/%.7f\n", cs, i, t,
+                                qp[i] / 65536.0, p, qv[i] / 65536.0, v, qa[i] / 65536.0, a);
+                    fail();
+                }
+                if (err > worst) worst = err;
+            }
+        }
+    }
+    /* errors and edges */
+    {
+        qo_motion_table_q16 tab = { NULL, 0 };
+        qo_q16 p[1];
+        assert_int_equal(qo_motion_sample_q16(NULL, 0, p, NULL, NULL), QO_E_NULL);
+        assert_int_equal(qo_motion_sample_q16(&tab, 0, p, NULL, NULL), QO_E_STATE);
+        assert_int_equal(qo_motion_export_q16(NULL, &tab, NULL, 0), QO_E_NULL);
+    }
+    {
+        qo_motion_planner_f32 pl;
+        qo_motion_joint_f32 jts[1];
+        qo_motion_limits_f32 l = qo_motion_limits_default;
+        qo_motion_seg_q16 segs[QO_MOTION_Q16_SEGS];
+        qo_motion_table_q16 tab;
+        float p0 = 1.5f, tg = 40000.0f;
+        qo_q16 qp;
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, &p0, 0.0f, NULL), QO_OK);
+        assert_int_equal(qo_motion_export_q16(&pl, &tab, segs, QO_MOTION_Q16_SEGS - 1), QO_E_CAPACITY);
+        assert_int_equal(tab.n, 0u);
+        assert_int_equal(qo_motion_export_q16(&pl, &tab, segs, QO_MOTION_Q16_SEGS), QO_OK);
+        assert_int_equal(qo_motion_sample_q16(&tab, 12345, &qp, NULL, NULL), QO_OK);
+        assert_int_equal(qp, 3 * 32768);
+        assert_int_equal(qo_motion_sample_q16(&tab, -5, &qp, NULL, NULL), QO_E_RANGE);
+        assert_int_equal(qp, 3 * 32768);
+        /* beyond the Q16.16 range: reported */
+        l.vmax = 1000.0f;
+        l.amax = 1000.0f;
+        l.jmax = 1000.0f;
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, &p0, 0.0f, NULL), QO_OK);
+        assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, &tg, NULL), QO_OK);
+        assert_int_equal(qo_motion_export_q16(&pl, &tab, segs, QO_MOTION_Q16_SEGS), QO_E_OVERFLOW);
+        assert_int_equal(qo_motion_sample_q16(&tab, 200 << 16, &qp, NULL, NULL), QO_E_OVERFLOW);
+        assert_int_equal(qp, INT32_MAX);
+    }
+}
+
+/* Edge table: starts exactly on the limits, targets exactly at the braking point, identical
+ * positions while moving, tiny and huge moves. Every plan must stay within the limits, be
+ * continuous and end at rest on the target; durations are checked where a closed form exists. */
+static void test_edges(void **state)
+{
+    static const struct {
+        const char *name;
+        float v0, a0, dp; /* limits vmax = 2, amax = 4, jmax = 16 */
+        double tref;      /* expected SCURVE duration; -1 = no closed form, -2 = rest-to-rest
+                           * closed form (both profiles) */
+    } cases[] = {
+        { "rest, zero move", 0.0f, 0.0f, 0.0f, -2.0 },
+        /* stop from vmax: 2/4 + 4/16 = 0.75 s over 0.75 u; the rest cruises */
+        { "cruising at vmax, far", 2.0f, 0.0f, 100.0f, (100.0 - 0.75) / 2.0 + 0.75 },
+        { "at vmax, target at the braking point", 2.0f, 0.0f, 2.0f * (2.0f / 4.0f + 4.0f / 16.0f) / 2.0f, 2.0 / 4.0 + 4.0 / 16.0 },
+        { "at -vmax, identical position (must come back)", -2.0f, 0.0f, 0.0f, -1.0 },
+        { "at amax and vmax-ish", 1.5f, 4.0f, 10.0f, -1.0 },
+        { "at -amax moving forward", 1.0f, -4.0f, 3.0f, -1.0 },
+        { "tiny move", 0.0f, 0.0f, 1e-6f, -2.0 },
+        { "huge move", 0.0f, 0.0f, 1e4f, -2.0 },
+        { "beyond vmax and amax toward target", 5.0f, 9.0f, 50.0f, -1.0 },
+        { "beyond vmax away from target", -5.0f, -9.0f, 1.0f, -1.0 },
+    };
+    size_t c;
+    int prof;
+    (void)state;
+    for (prof = 0; prof < 2; prof++) {
+        for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+            qo_motion_planner_f32 pl;
+            qo_motion_joint_f32 jts[1];
+            qo_motion_limits_f32 l = qo_motion_limits_default;
+            qo_motion_settings_f32 st = { (qo_motion_profile)prof, QO_MOTION_SYNC_TIME };
+            float p0 = 3.0f, tg = 3.0f + cases[c].dp, pos, vel, acc;
+            l.vmax = 2.0f;
+            l.amax = 4.0f;
+            l.jmax = 16.0f;
+            assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, &p0, 0.0f, &st), QO_OK);
+            if (cases[c].v0 != 0.0f || cases[c].a0 != 0.0f)
+                force_state(&pl, 0, p0, cases[c].v0, prof ? cases[c].a0 : 0.0f);
+            assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, &tg, NULL), QO_OK);
+            check_plan(&pl, cases[c].name, prof, 2000);
+            assert_int_equal(qo_motion_sample_f32(&pl, qo_motion_end_time_f32(&pl), &pos, &vel, &acc), QO_OK);
+            if (pos != tg) {
+                print_error("%s (%s): ends at %.9g, target %.9g\n", cases[c].name, prof ? "scurve" : "trap",
+                            (double)pos, (double)tg);
+                fail();
+            }
+            {
+                double tref = cases[c].tref == -2.0 ? ref_rest_time(prof, fabs((double)tg - p0), 2.0, 4.0, 16.0)
+                                                    : (prof == 1 ? cases[c].tref : -1.0);
+                if (tref >= 0.0 && fabs(qo_motion_duration_f32(&pl) - tref) > 1e-5 * (1.0 + tref)) {
+                    print_error("%s (%s): duration %.9g, expected %.9g\n", cases[c].name, prof ? "scurve" : "trap",
+                                (double)qo_motion_duration_f32(&pl), tref);
+                    fail();
+                }
+            }
+        }
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_rest_to_rest_optimal),
+        cmocka_unit_test(test_trapezoid_moving_optimal),
+        cmocka_unit_test(test_scurve_moving),
+        cmocka_unit_test(test_time_sync),
+        cmocka_unit_test(test_phase_sync),
+        cmocka_unit_test(test_replan_stream),
+        cmocka_unit_test(test_wrap_short_way),
+        cmocka_unit_test(test_clamp_report),
+        cmocka_unit_test(test_nonfinite_brakes),
+        cmocka_unit_test(test_bad_args),
+        cmocka_unit_test(test_edges),
+        cmocka_unit_test(test_q16_sampler),
+    };
+    return cmocka_run_group_tests_name("motion", tests, NULL, NULL);
+}

@@ -1,0 +1,110 @@
+#!/bin/sh
+# `qorient plan-moves` (routed from `qorient plan --profile ...`): text contract, limits,
+# sync, clamp, wrap, fixed point, streaming and every input error. Prints "N passed, M failed".
+Q=${QORIENT:-build/qorient}
+pass=0; fail=0
+tmp=${TMPDIR:-/tmp}/qo-plan.$$
+trap 'rm -f "$tmp".*' EXIT INT TERM
+ok() { pass=$((pass + 1)); }
+ko() { fail=$((fail + 1)); echo "FAIL: $*"; }
+check() { # name, then a command that must succeed
+    name=$1; shift
+    if "$@"; then ok; else ko "$name"; fi
+}
+P() { "$Q" plan-moves "$@"; }
+
+# --help documents every option
+P --help >"$tmp.h" 2>&1; rc=$?
+check "help exit 0" [ $rc -eq 0 ]
+for o in --profile --vmax --amax --jmax --rate --sync --min --max --wrap --degrees --fixed --help; do
+    check "help mentions $o" grep -q -- "$o" "$tmp.h"
+done
+
+# 1 joint trapezoid: limits respected, ends at rest on target, fixed rate, last row at rest
+printf '0,0\n0,3\n' | P --profile trapezoid --vmax 1 --amax 2 --rate 50 >"$tmp.o" 2>"$tmp.e"; rc=$?
+check "trap exit 0" [ $rc -eq 0 ]
+check "trap 4 columns" awk -F, 'NF != 4 { exit 1 }' "$tmp.o"
+check "trap v,a within limits" awk -F, '{ if ($3 > 1.000001 || $3 < -1.000001 || $4 > 2.000002 || $4 < -2.000002) exit 1 }' "$tmp.o"
+check "trap ends at rest on target" awk -F, 'END { if ($2 != 3 || $3 != 0 || $4 != 0) exit 1 }' "$tmp.o"
+# optimal duration 3/1 + 1/2 = 3.5 s: the last row is the first at or after it
+check "trap duration 3.5 s" awk -F, 'END { if ($1 < 3.5 || $1 > 3.52) exit 1 }' "$tmp.o"
+check "trap rate 50 Hz" awk -F, 'NR > 1 { d = $1 - t; if (d < 0.0199999 || d > 0.0200001) exit 1 } { t = $1 }' "$tmp.o"
+
+# 2 joints S-curve, time sync: both arrive in the same row; jerk within limits (finite differences)
+printf '0,0,0\n0,1,-4\n' | P --profile scurve --vmax 2 --amax 4 --jmax 20 --rate 1000 >"$tmp.o" 2>"$tmp.e"
+check "scurve 7 columns" awk -F, 'NF != 7 { exit 1 }' "$tmp.o"
+check "scurve time sync" awk -F, '{ d1 = ($2 == 1 && $4 == 0); d2 = ($3 == -4 && $5 == 0); if (d1 != d2 && $1 > 0) exit 1 }' "$tmp.o"
+check "scurve jerk limited" awk -F, 'NR > 1 { j = ($6 - a) / ($1 - t); if (j > 20.01 || j < -20.01) exit 1 } { t = $1; a = $6 }' "$tmp.o"
+check "scurve limits" awk -F, '{ if ($4 > 2.000002 || $4 < -2.000002 || $5 > 2.000002 || $5 < -2.000002 || $6 > 4.000004 || $6 < -4.000004 || $7 > 4.000004 || $7 < -4.000004) exit 1 }' "$tmp.o"
+check "scurve ends at rest" awk -F, 'END { if ($2 != 1 || $3 != -4 || $4 != 0 || $5 != 0 || $6 != 0 || $7 != 0) exit 1 }' "$tmp.o"
+
+# phase sync: straight line in joint space (p2 = -2 p1 all along)
+printf '0,0,0\n0,1,-2\n' | P --profile scurve --vmax 1,3 --amax 4,1 --jmax 20 --sync phase >"$tmp.o"
+check "phase sync straight line" awk -F, '{ if ((2 * $2 + $3) > 1e-5 || (2 * $2 + $3) < -1e-5) exit 1 }' "$tmp.o"
+# phase requested from a state off the new line: falls back to time sync and says so
+printf '0,0,0\n0,1,-2\n0.3,-1,1\n' | P --profile scurve --vmax 1 --amax 4 --jmax 20 --sync phase >"$tmp.o" 2>"$tmp.e"; rc=$?
+check "phase fallback exit 0" [ $rc -eq 0 ]
+check "phase fallback reported on line 3" grep -q "line 3.*time sync" "$tmp.e"
+check "phase no fallback note on line 2" sh -c "! grep -q 'line 2' '$tmp.e'"
+# sync none: joint 1 arrives first
+printf '0,0,0\n0,1,-4\n' | P --profile trapezoid --vmax 1 --amax 1 --sync none --rate 100 >"$tmp.o"
+check "sync none: joint 1 early" awk -F, '$1 > 2.05 && $1 < 2.1 { if ($2 != 1 || $3 == -4) bad = 1; seen = 1 } END { exit !(seen && !bad) }' "$tmp.o"
+
+# streaming targets faster than arrival never stops in between
+awk 'BEGIN { print "0,0"; for (i = 1; i <= 30; i++) printf "%g,%g\n", i * 0.1, i * 0.1 }' |
+    P --profile scurve --vmax 2 --amax 8 --jmax 80 --rate 100 >"$tmp.o"
+check "stream does not stop" awk -F, '$1 > 0.5 && $1 < 3 { if ($3 < 0.5) exit 1 }' "$tmp.o"
+check "stream ends at last target" awk -F, 'END { if ($2 != 3 || $3 != 0) exit 1 }' "$tmp.o"
+check "stream velocity continuous" awk -F, 'NR > 1 { d = $3 - v; if (d > 0.1 || d < -0.1) exit 1 } { v = $3 }' "$tmp.o"
+
+# clamp: target beyond --max is clamped and reported
+printf '0,0\n0,5\n' | P --profile trapezoid --vmax 1 --amax 1 --min -1 --max 2 >"$tmp.o" 2>"$tmp.e"; rc=$?
+check "clamp exit 0" [ $rc -eq 0 ]
+check "clamp final at max" awk -F, 'END { if ($2 != 2) exit 1 }' "$tmp.o"
+check "clamp reported naming the line" grep -q "line 2.*clamped" "$tmp.e"
+
+# wrap: 170 deg -> -170 deg goes +20 (the short way), output unwrapped
+printf '0,170\n0,-170\n' | P --profile trapezoid --vmax 90 --amax 180 --wrap 1 --degrees >"$tmp.o"
+check "wrap short way" awk -F, '{ if ($2 < 169.999) exit 1 } END { if ($2 != 190) exit 1 }' "$tmp.o"
+
+# --fixed follows the float plan within a few Q16.16 LSB
+printf '0,0.5,-1\n0,2,1\n0.4,-1,3\n' | P --profile scurve --vmax 2 --amax 4 --jmax 30 >"$tmp.f"
+printf '0,0.5,-1\n0,2,1\n0.4,-1,3\n' | P --profile scurve --vmax 2 --amax 4 --jmax 30 --fixed >"$tmp.x"
+check "fixed same rows" [ "$(wc -l <"$tmp.f")" -eq "$(wc -l <"$tmp.x")" ]
+check "fixed close to float" sh -c "paste -d, '$tmp.f' '$tmp.x' | awk -F, '{ for (i = 2; i <= 3; i++) { d = \$i - \$(i + 7); if (d > 1e-4 || d < -1e-4) exit 1 } }'"
+
+# input errors: line named on stderr, exit 1, the rest still planned
+printf '0,0\n1,1\n0.5,2\n' | P --profile trapezoid --vmax 1 --amax 1 >"$tmp.o" 2>"$tmp.e"; rc=$?
+check "non-monotonic exit 1" [ $rc -eq 1 ]
+check "non-monotonic names line 3" grep -q "line 3" "$tmp.e"
+check "non-monotonic keeps earlier target" awk -F, 'END { if ($2 != 1) exit 1 }' "$tmp.o"
+printf '0,0,0\n1,1\n' | P --profile trapezoid --vmax 1 --amax 1 >"$tmp.o" 2>"$tmp.e"; rc=$?
+check "column count exit 1" [ $rc -eq 1 ]
+check "column count names line 2" grep -q "line 2" "$tmp.e"
+printf '0,0\n# comment\n\n1,abc\n' | P --profile trapezoid --vmax 1 --amax 1 >"$tmp.o" 2>"$tmp.e"; rc=$?
+check "non-number exit 1" [ $rc -eq 1 ]
+check "non-number names line 4" grep -q "line 4" "$tmp.e"
+printf '0,0\n1,nan\n' | P --profile trapezoid --vmax 1 --amax 1 >"$tmp.o" 2>"$tmp.e"; rc=$?
+check "nan target exit 1" [ $rc -eq 1 ]
+check "nan target names line 2" grep -q "line 2" "$tmp.e"
+: | P --profile trapezoid --vmax 1 --amax 1 >"$tmp.o" 2>"$tmp.e"; rc=$?
+check "empty input exit 1" [ $rc -eq 1 ]
+
+# usage errors: exit 2 with a message
+for args in "--vmax 1 --amax 1" "--profile trapezoid --amax 1" "--profile trapezoid --vmax 1" \
+    "--profile scurve --vmax 1 --amax 1" "--profile bogus --vmax 1 --amax 1" \
+    "--profile trapezoid --vmax 0 --amax 1" "--profile trapezoid --vmax 1 --amax -2" \
+    "--profile scurve --vmax 1 --amax 1 --jmax 0" "--profile trapezoid --vmax 1,2,3 --amax 1" \
+    "--profile trapezoid --vmax 1 --amax 1 --min 2 --max 1" "--profile trapezoid --vmax 1 --amax 1 --rate 0" \
+    "--profile trapezoid --vmax 1 --amax 1 --sync sideways" "--profile trapezoid --vmax 1 --amax 1 --wrap 3" \
+    "--profile trapezoid --vmax x --amax 1" "--profile trapezoid --vmax inf --amax 1"; do
+    # shellcheck disable=SC2086
+    printf '0,0,0\n0,1,1\n' | P $args >"$tmp.o" 2>"$tmp.e"; rc=$?
+    check "usage error exit 2: $args" [ $rc -eq 2 ]
+    check "usage error message: $args" [ -s "$tmp.e" ]
+done
+P --profile trapezoid --vmax 1 --amax 1 /nonexistent/file >"$tmp.o" 2>"$tmp.e"; rc=$?
+check "missing file exit 2" [ $rc -eq 2 ]
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]

@@ -1,0 +1,912 @@
+/* Keyframe splines, float32: keys interpolated exactly, continuity at every join measured on
+ * samples, C2 / Catmull-Rom / quintic / Hermite against double-precision references written
+ * here (dense Gaussian elimination, not the code's own formulas), limits, wrap, edges. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+#include <math.h>
+#include <float.h>
+#include <stdio.h>
+#include <cmocka.h>
+
+#include "qorient/spline.h"
+
+#define MAXK 16
+#define MAXN 6
+#define COEF_CAP 2048
+
+/* ---- deterministic PRNG ---- */
+static uint64_t rng_state;
+static uint64_t splitmix64(void)
+{
+    uint64_t z = (rng_state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+static double urand(double lo, double hi)
+{
+    return lo + (hi - lo) * (double)(splitmix64() >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/* ---- double references ---- */
+
+/* Solves A x = b (n <= 16) by Gaussian elimination with partial pivoting. */
+static void ref_solve(int n, double a[][MAXK], double *b, double *x)
+{
+    int i, j, k;
+    for (k = 0; k < n; k++) {
+        int piv = k;
+        for (i = k + 1; i < n; i++)
+            if (fabs(a[i][k]) > fabs(a[piv][k])) piv = i;
+        if (piv != k) {
+            double tmp;
+            for (j = 0; j < n; j++) { tmp = a[k][j]; a[k][j] = a[piv][j]; a[piv][j] = tmp; }
+            tmp = b[k]; b[k] = b[piv]; b[piv] = tmp;
+        }
+        for (i = k + 1; i < n; i++) {
+            double f = a[i][k] / a[k][k];
+            for (j = k; j < n; j++) a[i][j] -= f * a[k][j];
+            b[i] -= f * b[k];
+        }
+    }
+    for (i = n - 1; i >= 0; i--) {
+        double s = b[i];
+        for (j = i + 1; j < n; j++) s -= a[i][j] * x[j];
+        x[i] = s / a[i][i];
+    }
+}
+
+/* Power-basis coefficients c[0..5] in physical local time u of the polynomial of lowest
+ * degree (deg = 3: p, v at both ends; deg = 5: p, v, a) matching the end conditions. */
+static void ref_segment(int deg, double h, double p0, double v0, double a0, double p1, double v1,
+                        double a1, double *c)
+{
+    double a[MAXK][MAXK], b[MAXK], x[MAXK];
+    int n = deg + 1, i, row = 0;
+    memset(a, 0, sizeof a);
+    /* value, first and second derivative of u^i at u = 0 and u = h */
+    for (i = 0; i < n; i++) a[row][i] = (i == 0) ? 1.0 : 0.0;
+    b[row++] = p0;
+    for (i = 0; i < n; i++) a[row][i] = (i == 1) ? 1.0 : 0.0;
+    b[row++] = v0;
+    if (deg == 5) {
+        for (i = 0; i < n; i++) a[row][i] = (i == 2) ? 2.0 : 0.0;
+        b[row++] = a0;
+    }
+    for (i = 0; i < n; i++) a[row][i] = pow(h, i);
+    b[row++] = p1;
+    for (i = 0; i < n; i++) a[row][i] = i >= 1 ? i * pow(h, i - 1) : 0.0;
+    b[row++] = v1;
+    if (deg == 5) {
+        for (i = 0; i < n; i++) a[row][i] = i >= 2 ? i * (i - 1) * pow(h, i - 2) : 0.0;
+        b[row++] = a1;
+    }
+    ref_solve(n, a, b, x);
+    for (i = 0; i < 6; i++) c[i] = i < n ? x[i] : 0.0;
+}
+
+static void ref_eval(const double *c, double u, double *p, double *v, double *a)
+{
+    int i;
+    *p = *v = *a = 0.0;
+    for (i = 0; i < 6; i++) {
+        *p += c[i] * pow(u, i);
+        if (i >= 1) *v += i * c[i] * pow(u, i - 1);
+        if (i >= 2) *a += i * (i - 1) * c[i] * pow(u, i - 2);
+    }
+}
+
+/* Key accelerations of the interpolating C2 cubic spline: the dense K x K system in the
+ * second derivatives (natural: zero at the ends; clamped: given end velocities). */
+static void ref_c2_moments(int k, const double *t, const double *y, int natural, double v0,
+                           double v1, double *m)
+{
+    double a[MAXK][MAXK], b[MAXK];
+    int i;
+    memset(a, 0, sizeof a);
+    for (i = 1; i < k - 1; i++) {
+        double h0 = t[i] - t[i - 1], h1 = t[i + 1] - t[i];
+        a[i][i - 1] = h0 / 6.0;
+        a[i][i] = (h0 + h1) / 3.0;
+        a[i][i + 1] = h1 / 6.0;
+        b[i] = (y[i + 1] - y[i]) / h1 - (y[i] - y[i - 1]) / h0;
+    }
+    if (natural) {
+        a[0][0] = 1.0; b[0] = 0.0;
+        a[k - 1][k - 1] = 1.0; b[k - 1] = 0.0;
+    } else {
+        double h = t[1] - t[0], hl = t[k - 1] - t[k - 2];
+        a[0][0] = h / 3.0; a[0][1] = h / 6.0; b[0] = (y[1] - y[0]) / h - v0;
+        a[k - 1][k - 2] = hl / 6.0; a[k - 1][k - 1] = hl / 3.0;
+        b[k - 1] = v1 - (y[k - 1] - y[k - 2]) / hl;
+    }
+    ref_solve(k, a, b, m);
+}
+
+/* ---- helpers ---- */
+typedef struct keys {
+    int n, k;
+    float t[MAXK], p[MAXK * MAXN], v[MAXK * MAXN], a[MAXK * MAXN];
+} keys;
+
+static void random_keys(keys *ks, int n, int k, double hmin, double hmax, double amp)
+{
+    int i, j;
+    ks->n = n;
+    ks->k = k;
+    ks->t[0] = (float)urand(-1.0, 1.0);
+    for (i = 1; i < k; i++) ks->t[i] = ks->t[i - 1] + (float)urand(hmin, hmax);
+    for (i = 0; i < k; i++)
+        for (j = 0; j < n; j++) {
+            ks->p[i * n + j] = (float)urand(-amp, amp);
+            ks->v[i * n + j] = (float)urand(-amp, amp);
+            ks->a[i * n + j] = (float)urand(-amp, amp);
+        }
+}
+
+static double keys_scale(const keys *ks)
+{
+    double m = 1.0;
+    int i;
+    for (i = 0; i < ks->k * ks->n; i++) {
+        if (fabs(ks->p[i]) > m) m = fabs(ks->p[i]);
+        if (fabs(ks->v[i]) > m) m = fabs(ks->v[i]);
+        if (fabs(ks->a[i]) > m) m = fabs(ks->a[i]);
+    }
+    return m;
+}
+
+static double keys_hmin(const keys *ks)
+{
+    double h = 1e30;
+    int i;
+    for (i = 1; i < ks->k; i++)
+        if ((double)ks->t[i] - ks->t[i - 1] < h) h = (double)ks->t[i] - ks->t[i - 1];
+    return h;
+}
+
+static const char *prof_name(qo_spline_profile p)
+{
+    switch (p) {
+    case QO_SPLINE_LINEAR: return "linear";
+    case QO_SPLINE_CUBIC_HERMITE: return "hermite";
+    case QO_SPLINE_CATMULL_ROM: return "catmull";
+    case QO_SPLINE_CUBIC_C2: return "c2";
+    case QO_SPLINE_QUINTIC: return "quintic";
+    }
+    return "?";
+}
+
+static float coef[COEF_CAP];
+
+static qo_status plan(const keys *ks, qo_spline_settings_f32 *set, qo_spline_f32 *sp)
+{
+    if (set->profile == QO_SPLINE_CUBIC_HERMITE) set->key_vel = ks->v;
+    return qo_spline_init_f32((size_t)ks->n, (size_t)ks->k, ks->t, ks->p, set, coef, COEF_CAP, sp);
+}
+
+static void sample(const qo_spline_f32 *sp, float t, float *p, float *v, float *a)
+{
+    qo_status st = qo_spline_sample_f32(sp, t, p, v, a, NULL);
+    if (st != QO_OK) fail_msg("sample at t=%.9g: status %d", (double)t, (int)st);
+}
+
+/* sum |b_n| of segment k, joint j, read from the plan's documented storage layout (used
+ * only to size a rounding tolerance) */
+static double coef_sum(const qo_spline_f32 *sp, int k, int j)
+{
+    const float *b = sp->coef + sp->n_keys + 3 * sp->n_joints + 6 * ((size_t)k * sp->n_joints + j);
+    double s = 0.0;
+    int n;
+    for (n = 0; n < 6; n++) s += fabs(b[n]);
+    return s;
+}
+
+/* ---- tests ---- */
+
+static const qo_spline_profile all_profiles[] = {
+    QO_SPLINE_LINEAR, QO_SPLINE_CUBIC_HERMITE, QO_SPLINE_CATMULL_ROM, QO_SPLINE_CUBIC_C2,
+    QO_SPLINE_QUINTIC
+};
+#define NPROF (sizeof all_profiles / sizeof all_profiles[0])
+
+/* Every key is reproduced bit-exactly (t == t_k gives b0 == p_k), for every profile and
+ * both end conditions, including the last key. */
+static void test_keys_interpolated_exactly(void **state)
+{
+    size_t pi;
+    int trial, i, j, e;
+    (void)state;
+    rng_state = 101;
+    for (trial = 0; trial < 20; trial++) {
+        keys ks;
+        random_keys(&ks, 3, 2 + trial % 9, 0.05, 2.0, 50.0);
+        for (pi = 0; pi < NPROF; pi++)
+            for (e = 0; e < 2; e++) {
+                qo_spline_settings_f32 set = qo_spline_settings_default;
+                qo_spline_f32 sp;
+                qo_status st;
+                set.profile = all_profiles[pi];
+                set.end = e ? QO_SPLINE_END_NATURAL : QO_SPLINE_END_CLAMPED;
+                st = plan(&ks, &set, &sp);
+                if (st != QO_OK) fail_msg("%s trial %d: init status %d", prof_name(set.profile),
+                                          trial, (int)st);
+                for (i = 0; i < ks.k; i++) {
+                    float p[MAXN], v[MAXN], a[MAXN];
+                    sample(&sp, ks.t[i], p, v, a);
+                    for (j = 0; j < ks.n; j++)
+                        if (p[j] != ks.p[i * ks.n + j])
+                            fail_msg("%s end %d trial %d key %d joint %d: %.9g != key %.9g",
+                                     prof_name(set.profile), e, trial, i, j, (double)p[j],
+                                     (double)ks.p[i * ks.n + j]);
+                }
+            }
+    }
+}
+
+/* Continuity at every inner key: the sample just before t_k (the float below t_k) against
+ * the sample at t_k. Tolerance: a float32 rounding budget from eps and the key scale P,
+ * plus the Taylor term f' * dt measured from the samples themselves. Position for all
+ * profiles, velocity for C1 ones, acceleration for CUBIC_C2 and QUINTIC. The same
+ * measurement must SEE the acceleration jumps of Catmull-Rom and the velocity jumps of
+ * linear (so it is able to fail). */
+static void test_continuity_at_joins(void **state)
+{
+    size_t pi;
+    int trial, i, j;
+    int seen_acc_jump = 0, seen_vel_jump = 0;
+    (void)state;
+    rng_state = 202;
+    for (trial = 0; trial < 25; trial++) {
+        keys ks;
+        double hmin, eps = FLT_EPSILON;
+        random_keys(&ks, 4, 3 + trial % 8, 0.1, 1.5, 10.0);
+        hmin = keys_hmin(&ks);
+        for (pi = 0; pi < NPROF; pi++) {
+            qo_spline_settings_f32 set = qo_spline_settings_default;
+            qo_spline_f32 sp;
+            int order; /* continuity order expected */
+            set.profile = all_profiles[pi];
+            set.end = (trial & 1) ? QO_SPLINE_END_NATURAL : QO_SPLINE_END_CLAMPED;
+            assert_int_equal(plan(&ks, &set, &sp), QO_OK);
+            order = set.profile == QO_SPLINE_LINEAR ? 0
+                  : (set.profile == QO_SPLINE_CUBIC_C2 || set.profile == QO_SPLINE_QUINTIC) ? 2 : 1;
+            for (i = 1; i + 1 < ks.k; i++) {
+                float tr = ks.t[i], tl = nextafterf(tr, -INFINITY);
+                float tl2 = tr - (float)(0.01 * hmin);
+                float pl[MAXN], vl[MAXN], al[MAXN], pr[MAXN], vr[MAXN], ar[MAXN];
+                float p2[MAXN], v2[MAXN], a2[MAXN];
+                double dt = (double)tr - tl, d2 = (double)tl - tl2;
+                sample(&sp, tl, pl, vl, al);
+                sample(&sp, tr, pr, vr, ar);
+                sample(&sp, tl2, p2, v2, a2);
+                for (j = 0; j < ks.n; j++) {
+                    /* rounding budget: eps times the coefficient magnitude S of the two
+                     * segments meeting here (sum |b_n|; derivatives bring factors up to 5
+                     * and 20 and 1/h, 1/h^2 of the shorter segment) */
+                    double S = fmax(coef_sum(&sp, i - 1, j), coef_sum(&sp, i, j));
+                    double h = fmin((double)ks.t[i] - ks.t[i - 1], (double)ks.t[i + 1] - ks.t[i]);
+                    double jerk = fabs((double)al[j] - a2[j]) / d2;
+                    double tol_p = 8 * eps * S + 2 * fabs(vl[j]) * dt;
+                    double tol_v = 8 * eps * 5 * S / h + 2 * fabs(al[j]) * dt;
+                    double tol_a = 8 * eps * 20 * S / (h * h) + 4 * jerk * dt;
+                    double jp = fabs((double)pr[j] - pl[j]);
+                    double jv = fabs((double)vr[j] - vl[j]);
+                    double ja = fabs((double)ar[j] - al[j]);
+                    if (jp > tol_p)
+                        fail_msg("%s trial %d key %d joint %d: position jump %.3g > %.3g",
+                                 prof_name(set.profile), trial, i, j, jp, tol_p);
+                    if (order >= 1 && jv > tol_v)
+                        fail_msg("%s trial %d key %d joint %d: velocity jump %.3g > %.3g",
+                                 prof_name(set.profile), trial, i, j, jv, tol_v);
+                    if (order >= 2 && ja > tol_a)
+                        fail_msg("%s trial %d key %d joint %d: acceleration jump %.3g > %.3g",
+                                 prof_name(set.profile), trial, i, j, ja, tol_a);
+                    if (set.profile == QO_SPLINE_CATMULL_ROM && ja > 100 * tol_a) seen_acc_jump = 1;
+                    if (set.profile == QO_SPLINE_LINEAR && jv > 100 * tol_v) seen_vel_jump = 1;
+                }
+            }
+        }
+    }
+    assert_true(seen_acc_jump);
+    assert_true(seen_vel_jump);
+}
+
+/* Tolerances of float32 against the double references: rounding budget in units of eps
+ * relative to the key scale P and the shortest segment. */
+static void check_close(const char *what, int trial, int j, double t, double got, double want,
+                        double tol)
+{
+    if (!(fabs(got - want) <= tol))
+        fail_msg("%s trial %d joint %d t=%.9g: got %.9g want %.9g (|diff| %.3g > tol %.3g)", what,
+                 trial, j, t, got, want, fabs(got - want), tol);
+}
+
+static int seg_of(const keys *ks, double t)
+{
+    int i = 0;
+    while (i + 2 < ks->k && t >= ks->t[i + 1]) i++;
+    return i;
+}
+
+/* Interpolating C2 cubic (natural and clamped ends) against the dense double solve. */
+static void test_c2_against_double(void **state)
+{
+    int trial, j, nat, i;
+    (void)state;
+    rng_state = 303;
+    for (trial = 0; trial < 30; trial++) {
+        keys ks;
+        float ev[2 * MAXN];
+        double P, hmin, eps = FLT_EPSILON;
+        random_keys(&ks, 3, 2 + trial % 11, 0.1, 1.0, 10.0);
+        for (j = 0; j < 2 * ks.n; j++) ev[j] = (float)urand(-5.0, 5.0);
+        P = keys_scale(&ks) * 2.0;
+        hmin = keys_hmin(&ks);
+        for (nat = 0; nat < 2; nat++) {
+            qo_spline_settings_f32 set = qo_spline_settings_default;
+            qo_spline_f32 sp;
+            set.profile = QO_SPLINE_CUBIC_C2;
+            set.end = nat ? QO_SPLINE_END_NATURAL : QO_SPLINE_END_CLAMPED;
+            set.end_vel = ev;
+            assert_int_equal(plan(&ks, &set, &sp), QO_OK);
+            for (j = 0; j < ks.n; j++) {
+                double td[MAXK], yd[MAXK], m[MAXK];
+                for (i = 0; i < ks.k; i++) { td[i] = ks.t[i]; yd[i] = ks.p[i * ks.n + j]; }
+                ref_c2_moments(ks.k, td, yd, nat, ev[j], ev[ks.n + j], m);
+                for (i = 0; i < 40; i++) {
+                    float t = (float)urand(td[0], td[ks.k - 1]);
+                    float p[MAXN], v[MAXN], a[MAXN];
+                    int s = seg_of(&ks, t);
+                    double h = td[s + 1] - td[s], A = (td[s + 1] - t) / h, B = 1.0 - A;
+                    double rp = A * yd[s] + B * yd[s + 1] +
+                                ((A * A * A - A) * m[s] + (B * B * B - B) * m[s + 1]) * h * h / 6.0;
+                    double rv = (yd[s + 1] - yd[s]) / h - (3 * A * A - 1) / 6.0 * h * m[s] +
+                                (3 * B * B - 1) / 6.0 * h * m[s + 1];
+                    double ra = A * m[s] + B * m[s + 1];
+                    sample(&sp, t, p, v, a);
+                    check_close(nat ? "c2 natural pos" : "c2 clamped pos", trial, j, t, p[j], rp,
+                                64 * eps * P * ks.k);
+                    check_close(nat ? "c2 natural vel" : "c2 clamped vel", trial, j, t, v[j], rv,
+                                64 * eps * P * ks.k / hmin);
+                    check_close(nat ? "c2 natural acc" : "c2 clamped acc", trial, j, t, a[j], ra,
+                                256 * eps * P * ks.k / (hmin * hmin));
+                }
+                /* natural: zero acceleration at both ends; clamped: the given end velocities */
+                {
+                    float p[MAXN], v[MAXN], a[MAXN];
+                    sample(&sp, ks.t[0], p, v, a);
+                    if (nat) check_close("c2 natural start acc", trial, j, td[0], a[j], 0.0,
+                                         256 * eps * P * ks.k / (hmin * hmin));
+                    else check_close("c2 clamped start vel", trial, j, td[0], v[j], ev[j],
+                                     64 * eps * P * ks.k / hmin);
+                    sample(&sp, ks.t[ks.k - 1], p, v, a);
+                    if (nat) check_close("c2 natural end acc", trial, j, td[ks.k - 1], a[j], 0.0,
+                                         256 * eps * P * ks.k / (hmin * hmin));
+                    else check_close("c2 clamped end vel", trial, j, td[ks.k - 1], v[j],
+                                     ev[ks.n + j],
+                                     64 * eps * P * ks.k / hmin);
+                }
+            }
+        }
+    }
+}
+
+/* Double Catmull-Rom (time-weighted) tangents of key i of joint j; ends per condition. */
+static double ref_tangent(const keys *ks, int j, int i, int natural, const float *ev)
+{
+    int n = ks->n, k = ks->k;
+    double s0, s1, h0, h1;
+    if (i > 0 && i < k - 1) {
+        h0 = (double)ks->t[i] - ks->t[i - 1];
+        h1 = (double)ks->t[i + 1] - ks->t[i];
+        s0 = ((double)ks->p[i * n + j] - ks->p[(i - 1) * n + j]) / h0;
+        s1 = ((double)ks->p[(i + 1) * n + j] - ks->p[i * n + j]) / h1;
+        /* Barry-Goldman with uniform-in-time knots: s0 - (p_(i+1) - p_(i-1))/(h0+h1) + s1 */
+        return s0 - ((double)ks->p[(i + 1) * n + j] - ks->p[(i - 1) * n + j]) / (h0 + h1) + s1;
+    }
+    if (!natural) return i == 0 ? (ev ? ev[j] : 0.0) : (ev ? ev[n + j] : 0.0);
+    if (k == 2) return ((double)ks->p[n + j] - ks->p[j]) / ((double)ks->t[1] - ks->t[0]);
+    if (i == 0) {
+        s0 = ((double)ks->p[n + j] - ks->p[j]) / ((double)ks->t[1] - ks->t[0]);
+        return 1.5 * s0 - 0.5 * ref_tangent(ks, j, 1, natural, ev);
+    }
+    s1 = ((double)ks->p[(k - 1) * n + j] - ks->p[(k - 2) * n + j]) /
+         ((double)ks->t[k - 1] - ks->t[k - 2]);
+    return 1.5 * s1 - 0.5 * ref_tangent(ks, j, k - 2, natural, ev);
+}
+
+/* Catmull-Rom: velocities at the keys equal the double tangents, and samples between keys
+ * match the double cubic Hermite through them; natural ends have zero end acceleration. */
+static void test_catmull_rom_against_double(void **state)
+{
+    int trial, j, i, nat;
+    (void)state;
+    rng_state = 404;
+    for (trial = 0; trial < 30; trial++) {
+        keys ks;
+        double P, hmin, eps = FLT_EPSILON;
+        random_keys(&ks, 3, 2 + trial % 10, 0.05, 1.0, 10.0);
+        P = keys_scale(&ks) * 2;
+        hmin = keys_hmin(&ks);
+        for (nat = 0; nat < 2; nat++) {
+            qo_spline_settings_f32 set = qo_spline_settings_default;
+            qo_spline_f32 sp;
+            set.profile = QO_SPLINE_CATMULL_ROM;
+            set.end = nat ? QO_SPLINE_END_NATURAL : QO_SPLINE_END_CLAMPED;
+            assert_int_equal(plan(&ks, &set, &sp), QO_OK);
+            for (i = 0; i < ks.k; i++) {
+                float p[MAXN], v[MAXN], a[MAXN];
+                sample(&sp, ks.t[i], p, v, a);
+                for (j = 0; j < ks.n; j++)
+                    check_close("catmull tangent", trial, j, ks.t[i], v[j],
+                                ref_tangent(&ks, j, i, nat, NULL), 16 * eps * P / hmin);
+            }
+            for (i = 0; i < 60; i++) {
+                float t = (float)urand(ks.t[0], ks.t[ks.k - 1]);
+                float p[MAXN], v[MAXN], a[MAXN];
+                int s = seg_of(&ks, t);
+                sample(&sp, t, p, v, a);
+                for (j = 0; j < ks.n; j++) {
+                    double c[6], rp, rv, ra;
+                    ref_segment(3, (double)ks.t[s + 1] - ks.t[s], ks.p[s * ks.n + j],
+                                ref_tangent(&ks, j, s, nat, NULL), 0.0, ks.p[(s + 1) * ks.n + j],
+                                ref_tangent(&ks, j, s + 1, nat, NULL), 0.0, c);
+                    ref_eval(c, (double)t - ks.t[s], &rp, &rv, &ra);
+                    check_close("catmull pos", trial, j, t, p[j], rp, 32 * eps * P);
+                    check_close("catmull vel", trial, j, t, v[j], rv, 64 * eps * P / hmin);
+                    check_close("catmull acc", trial, j, t, a[j], ra,
+                                256 * eps * P / (hmin * hmin));
+                }
+            }
+            if (nat && ks.k > 2) {
+                float p[MAXN], v[MAXN], a[MAXN];
+                sample(&sp, ks.t[0], p, v, a);
+                for (j = 0; j < ks.n; j++)
+                    check_close("catmull natural start acc", trial, j, ks.t[0], a[j], 0.0,
+                                256 * eps * P / (hmin * hmin));
+            }
+        }
+    }
+}
+
+/* Hermite with given velocities and quintic with given / estimated / zero derivatives
+ * against the double solve of each segment's end conditions. */
+static void test_hermite_quintic_against_double(void **state)
+{
+    int trial, j, i, mode;
+    (void)state;
+    rng_state = 505;
+    for (trial = 0; trial < 24; trial++) {
+        keys ks;
+        double P, hmin, eps = FLT_EPSILON;
+        random_keys(&ks, 2, 2 + trial % 8, 0.1, 1.0, 5.0);
+        P = keys_scale(&ks) * 2;
+        hmin = keys_hmin(&ks);
+        for (mode = 0; mode < 5; mode++) {
+            /* 0 hermite, 1 quintic given v+a, 2 quintic estimated, 3 quintic zero,
+             * 4 quintic given v, estimated a */
+            qo_spline_settings_f32 set = qo_spline_settings_default;
+            qo_spline_f32 sp;
+            double kv[MAXK * MAXN], ka[MAXK * MAXN];
+            set.profile = mode == 0 ? QO_SPLINE_CUBIC_HERMITE : QO_SPLINE_QUINTIC;
+            if (mode == 1 || mode == 4) set.key_vel = ks.v;
+            if (mode == 1) set.key_acc = ks.a;
+            if (mode == 3) set.derivs = QO_SPLINE_DERIVS_ZERO;
+            assert_int_equal(plan(&ks, &set, &sp), QO_OK);
+            for (j = 0; j < ks.n; j++)
+                for (i = 0; i < ks.k; i++) {
+                    int x = i * ks.n + j;
+                    if (mode == 0 || mode == 1 || mode == 4) kv[x] = ks.v[x];
+                    else if (mode == 3 && i > 0 && i < ks.k - 1) kv[x] = 0.0;
+                    else kv[x] = ref_tangent(&ks, j, i, 0, NULL);
+                    ka[x] = mode == 1 ? ks.a[x] : 0.0;
+                }
+            if (mode == 2 || mode == 4)
+                for (j = 0; j < ks.n; j++)
+                    for (i = 1; i + 1 < ks.k; i++) {
+                        double h0 = (double)ks.t[i] - ks.t[i - 1];
+                        double h1 = (double)ks.t[i + 1] - ks.t[i];
+                        double g0 = (kv[i * ks.n + j] - kv[(i - 1) * ks.n + j]) / h0;
+                        double g1 = (kv[(i + 1) * ks.n + j] - kv[i * ks.n + j]) / h1;
+                        ka[i * ks.n + j] = (g0 * h1 + g1 * h0) / (h0 + h1);
+                    }
+            for (i = 0; i < 60; i++) {
+                float t = (float)urand(ks.t[0], ks.t[ks.k - 1]);
+                float p[MAXN], v[MAXN], a[MAXN];
+                int s = seg_of(&ks, t);
+                double h = (double)ks.t[s + 1] - ks.t[s];
+                sample(&sp, t, p, v, a);
+                for (j = 0; j < ks.n; j++) {
+                    double c[6], rp, rv, ra, Ps = P * (1 + h) * (1 + h); /* v h, a h^2 terms */
+                    int x0 = s * ks.n + j, x1 = (s + 1) * ks.n + j;
+                    ref_segment(mode == 0 ? 3 : 5, h, ks.p[x0], kv[x0], ka[x0], ks.p[x1], kv[x1],
+                                ka[x1], c);
+                    ref_eval(c, (double)t - ks.t[s], &rp, &rv, &ra);
+                    check_close(mode == 0 ? "hermite pos" : "quintic pos", trial * 10 + mode, j, t,
+                                p[j], rp, 64 * eps * Ps);
+                    check_close(mode == 0 ? "hermite vel" : "quintic vel", trial * 10 + mode, j, t,
+                                v[j], rv, 256 * eps * Ps / hmin);
+                    check_close(mode == 0 ? "hermite acc" : "quintic acc", trial * 10 + mode, j, t,
+                                a[j], ra, 1024 * eps * Ps / (hmin * hmin));
+                }
+            }
+        }
+    }
+}
+
+/* Linear: the straight line between keys, slope as velocity, zero acceleration. */
+static void test_linear_against_double(void **state)
+{
+    keys ks;
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    qo_spline_f32 sp;
+    int i, j;
+    (void)state;
+    rng_state = 606;
+    random_keys(&ks, 3, 6, 0.1, 1.0, 10.0);
+    set.profile = QO_SPLINE_LINEAR;
+    assert_int_equal(plan(&ks, &set, &sp), QO_OK);
+    for (i = 0; i < 100; i++) {
+        float t = (float)urand(ks.t[0], ks.t[ks.k - 1]);
+        float p[MAXN], v[MAXN], a[MAXN];
+        int s = seg_of(&ks, t);
+        double h = (double)ks.t[s + 1] - ks.t[s];
+        sample(&sp, t, p, v, a);
+        for (j = 0; j < ks.n; j++) {
+            double p0 = ks.p[s * ks.n + j], p1 = ks.p[(s + 1) * ks.n + j];
+            double w = ((double)t - ks.t[s]) / h;
+            check_close("linear pos", i, j, t, p[j], p0 + w * (p1 - p0), 32 * FLT_EPSILON * 20);
+            check_close("linear vel", i, j, t, v[j], (p1 - p0) / h, 32 * FLT_EPSILON * 20 / 0.1);
+            assert_true(a[j] == 0.0f);
+        }
+    }
+}
+
+/* Before the first key: first key at rest; after the last: last key at rest; at the last
+ * key: the end state of the last segment (e.g. a natural spline's non-zero end velocity). */
+static void test_outside_and_end(void **state)
+{
+    const float t[3] = { 1.0f, 2.0f, 4.0f };
+    const float p[6] = { 0.0f, 5.0f, 1.0f, -2.0f, 3.0f, 3.0f };
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    qo_spline_f32 sp;
+    float pos[2], vel[2], acc[2];
+    (void)state;
+    set.end = QO_SPLINE_END_NATURAL;
+    assert_int_equal(qo_spline_init_f32(2, 3, t, p, &set, coef, COEF_CAP, &sp), QO_OK);
+    assert_int_equal(qo_spline_sample_f32(&sp, 0.5f, pos, vel, acc, NULL), QO_OK);
+    assert_true(pos[0] == 0.0f && pos[1] == 5.0f && vel[0] == 0.0f && acc[1] == 0.0f);
+    assert_int_equal(qo_spline_sample_f32(&sp, 9.0f, pos, vel, acc, NULL), QO_OK);
+    assert_true(pos[0] == 3.0f && pos[1] == 3.0f && vel[0] == 0.0f && acc[0] == 0.0f);
+    assert_int_equal(qo_spline_sample_f32(&sp, 4.0f, pos, vel, acc, NULL), QO_OK);
+    assert_true(pos[0] == 3.0f && pos[1] == 3.0f);
+    assert_true(fabsf(vel[0]) > 0.1f); /* natural end: moving */
+    assert_true(fabsf(acc[0]) < 1e-5f);
+    /* optional outputs may be NULL */
+    assert_int_equal(qo_spline_sample_f32(&sp, 2.5f, pos, NULL, NULL, NULL), QO_OK);
+    /* NaN / Inf time: first key held, status says so */
+    vel[0] = 7.0f;
+    assert_int_equal(qo_spline_sample_f32(&sp, NAN, pos, vel, acc, NULL), QO_E_NONFINITE);
+    assert_true(pos[0] == 0.0f && pos[1] == 5.0f && vel[0] == 0.0f);
+    assert_int_equal(qo_spline_sample_f32(&sp, INFINITY, pos, vel, acc, NULL), QO_E_NONFINITE);
+}
+
+/* Limits: samples stay inside, clamped[] is -1/+1 exactly when the unlimited sample is
+ * outside, and a clamped joint reports zero velocity and acceleration. */
+static void test_limits_clamp_and_report(void **state)
+{
+    keys ks;
+    float lo[3] = { -4.0f, -INFINITY, -1.0f }, hi[3] = { 4.0f, 2.0f, INFINITY };
+    float coef2[COEF_CAP];
+    int i, j, seen_lo = 0, seen_hi = 0;
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    qo_spline_f32 lim, free_sp;
+    (void)state;
+    rng_state = 707;
+    random_keys(&ks, 3, 8, 0.1, 1.0, 10.0);
+    set.profile = QO_SPLINE_QUINTIC;
+    assert_int_equal(plan(&ks, &set, &free_sp), QO_OK);
+    set.pos_min = lo;
+    set.pos_max = hi;
+    assert_int_equal(qo_spline_init_f32(3, (size_t)ks.k, ks.t, ks.p, &set, coef2, COEF_CAP, &lim),
+                     QO_OK);
+    for (i = 0; i < 400; i++) {
+        float t = (float)urand(ks.t[0] - 0.5, ks.t[ks.k - 1] + 0.5);
+        float p[3], v[3], a[3], pf[3], vf[3], af[3];
+        int8_t c[3];
+        assert_int_equal(qo_spline_sample_f32(&lim, t, p, v, a, c), QO_OK);
+        sample(&free_sp, t, pf, vf, af);
+        for (j = 0; j < 3; j++) {
+            int8_t want = pf[j] < lo[j] ? -1 : pf[j] > hi[j] ? 1 : 0;
+            if (c[j] != want)
+                fail_msg("t=%.9g joint %d: clamped %d, want %d (free %.9g in [%g, %g])", (double)t,
+                         j, c[j], want, (double)pf[j], (double)lo[j], (double)hi[j]);
+            if (want) {
+                assert_true(p[j] == (want < 0 ? lo[j] : hi[j]));
+                assert_true(v[j] == 0.0f && a[j] == 0.0f);
+                if (want < 0) seen_lo = 1; else seen_hi = 1;
+            } else {
+                assert_true(p[j] == pf[j] && v[j] == vf[j] && a[j] == af[j]);
+            }
+        }
+    }
+    assert_true(seen_lo && seen_hi);
+}
+
+/* Continuous joints: 3.0 -> -3.0 rad goes through +pi (0.283 rad), not through 0 (6 rad);
+ * output wrapped into (-pi, pi] or unwrapped (monotonic from 3.0 to 2 pi - 3.0); degrees. */
+static void test_wrap_short_way(void **state)
+{
+    const float t[3] = { 0.0f, 1.0f, 2.0f };
+    const float p[6] = { 3.0f, 0.5f, -3.0f, 0.7f, -2.5f, 0.9f }; /* joint 0 wraps, joint 1 not */
+    const unsigned char wrap[2] = { 1, 0 };
+    const double twopi = 6.283185307179586;
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    qo_spline_f32 sp;
+    float prev = 3.0f;
+    int i, wrapped_out;
+    (void)state;
+    set.profile = QO_SPLINE_CUBIC_C2;
+    set.wrap = wrap;
+    for (wrapped_out = 0; wrapped_out < 2; wrapped_out++) {
+        set.wrap_output = wrapped_out;
+        assert_int_equal(qo_spline_init_f32(2, 3, t, p, &set, coef, COEF_CAP, &sp), QO_OK);
+        for (i = 0; i <= 200; i++) {
+            float tt = (float)i / 100.0f, pos[2], vel[2];
+            double ref_unwrapped;
+            assert_int_equal(qo_spline_sample_f32(&sp, tt, pos, vel, NULL, NULL), QO_OK);
+            if (wrapped_out) {
+                if (!(pos[0] > -3.14159275f && pos[0] <= 3.14159275f))
+                    fail_msg("t=%g: wrapped output %.9g outside (-pi, pi]", (double)tt,
+                             (double)pos[0]);
+                /* never through 0: keys are within 0.65 rad of +-pi */
+                if (fabs(fabs(pos[0]) - 3.14159265) > 0.7)
+                    fail_msg("t=%g: %.9g went the long way", (double)tt, (double)pos[0]);
+            } else {
+                if (i <= 100 && pos[0] < prev - 1e-6f)
+                    fail_msg("t=%g: unwrapped output %.9g decreases", (double)tt, (double)pos[0]);
+                prev = pos[0];
+            }
+            if (i == 100) {
+                ref_unwrapped = twopi - 3.0;
+                if (wrapped_out) check_close("wrap key1", 0, 0, tt, pos[0], -3.0, 4e-6);
+                else check_close("unwrap key1", 0, 0, tt, pos[0], ref_unwrapped, 4e-6);
+            }
+            if (i == 200) {
+                double want = twopi - 3.0 + (-2.5 - -3.0);
+                if (wrapped_out) check_close("wrap key2", 0, 0, tt, pos[0], -2.5, 4e-6);
+                else check_close("unwrap key2", 0, 0, tt, pos[0], want, 4e-6);
+            }
+        }
+    }
+    /* degrees: 170 -> -170 through 180; exactly half a turn goes + */
+    {
+        const float td[3] = { 0.0f, 1.0f, 2.0f };
+        const float pd[3] = { 170.0f, -170.0f, 10.0f };
+        float pos, vel;
+        set.wrap_period = 360.0f;
+        set.wrap_output = 0;
+        set.profile = QO_SPLINE_LINEAR;
+        assert_int_equal(qo_spline_init_f32(1, 3, td, pd, &set, coef, COEF_CAP, &sp), QO_OK);
+        assert_int_equal(qo_spline_sample_f32(&sp, 0.5f, &pos, &vel, NULL, NULL), QO_OK);
+        check_close("deg mid", 0, 0, 0.5, pos, 180.0, 1e-4);
+        check_close("deg vel", 0, 0, 0.5, vel, 20.0, 1e-4);
+        assert_int_equal(qo_spline_sample_f32(&sp, 1.5f, &pos, &vel, NULL, NULL), QO_OK);
+        check_close("deg half turn goes +", 0, 0, 1.5, vel, 180.0, 1e-3); /* 190 -> 370 */
+    }
+}
+
+/* Edges: K = 2 for every profile, too few keys, equal / decreasing times, NaN / Inf inputs,
+ * NULL pointers, storage one float short, bad enums, impossible limits, bad wrap period,
+ * coefficient overflow, sampling a failed plan. */
+static void test_edges(void **state)
+{
+    const float t2[2] = { 0.0f, 2.0f }, p2[2] = { 1.0f, 3.0f };
+    float tb[3] = { 0.0f, 1.0f, 1.0f }, pb[3] = { 0.0f, 1.0f, 2.0f };
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    qo_spline_f32 sp;
+    size_t pi;
+    float pos[2] = { 9, 9 }, vel[2] = { 9, 9 }, acc[2] = { 9, 9 };
+    int8_t cl[2] = { 5, 5 };
+    size_t need = qo_spline_coef_len(1, 3);
+    (void)state;
+    /* K = 2: every profile interpolates; natural C2 / Catmull-Rom is the straight line */
+    for (pi = 0; pi < NPROF; pi++) {
+        const float v2[2] = { 0.0f, 0.0f };
+        set = qo_spline_settings_default;
+        set.profile = all_profiles[pi];
+        set.key_vel = v2;
+        set.end = QO_SPLINE_END_NATURAL;
+        assert_int_equal(qo_spline_init_f32(1, 2, t2, p2, &set, coef, COEF_CAP, &sp), QO_OK);
+        assert_int_equal(qo_spline_sample_f32(&sp, 1.0f, pos, vel, acc, NULL), QO_OK);
+        if (set.profile != QO_SPLINE_CUBIC_HERMITE && set.profile != QO_SPLINE_QUINTIC) {
+            check_close(prof_name(set.profile), 2, 0, 1.0, pos[0], 2.0, 1e-6);
+            check_close(prof_name(set.profile), 2, 0, 1.0, vel[0], 1.0, 1e-6);
+        } else {
+            check_close(prof_name(set.profile), 2, 0, 1.0, pos[0], 2.0, 1e-6); /* symmetric */
+        }
+    }
+    set = qo_spline_settings_default;
+    assert_int_equal(qo_spline_init_f32(1, 1, t2, p2, &set, coef, COEF_CAP, &sp), QO_E_TOO_FEW);
+    assert_int_equal(sp.n_keys, 0);
+    assert_int_equal(qo_spline_init_f32(0, 2, t2, p2, &set, coef, COEF_CAP, &sp), QO_E_TOO_FEW);
+    assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, COEF_CAP, &sp), QO_E_ORDER);
+    tb[2] = 0.5f;
+    assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, COEF_CAP, &sp), QO_E_ORDER);
+    tb[2] = NAN;
+    assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, COEF_CAP, &sp), QO_E_NONFINITE);
+    tb[2] = 2.0f;
+    pb[1] = INFINITY;
+    assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, COEF_CAP, &sp), QO_E_NONFINITE);
+    pb[1] = NAN;
+    assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, COEF_CAP, &sp), QO_E_NONFINITE);
+    pb[1] = 1.0f;
+    assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, COEF_CAP, &sp), QO_OK);
+    /* NULLs */
+    assert_int_equal(qo_spline_init_f32(1, 3, NULL, pb, &set, coef, COEF_CAP, &sp), QO_E_NULL);
+    assert_int_equal(sp.n_keys, 0);
+    assert_int_equal(qo_spline_init_f32(1, 3, tb, NULL, &set, coef, COEF_CAP, &sp), QO_E_NULL);
+    assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, NULL, coef, COEF_CAP, &sp), QO_E_NULL);
+    assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, NULL, COEF_CAP, &sp), QO_E_NULL);
+    assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, COEF_CAP, NULL), QO_E_NULL);
+    set.profile = QO_SPLINE_CUBIC_HERMITE; /* needs key_vel */
+    assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, COEF_CAP, &sp), QO_E_NULL);
+    set = qo_spline_settings_default;
+    /* storage */
+    assert_int_equal(need, 3 + 3 + 18);
+    assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, need - 1, &sp), QO_E_CAPACITY);
+    assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, need, &sp), QO_OK);
+    assert_int_equal(qo_spline_coef_len(0, 3), 0);
+    assert_int_equal(qo_spline_coef_len(2, 1), 0);
+    assert_int_equal(qo_spline_coef_len(SIZE_MAX / 4, 4), 0);
+    assert_int_equal(qo_spline_coef_len(4, SIZE_MAX / 4), 0);
+    /* bad enums */
+    set.profile = (qo_spline_profile)99;
+    assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, COEF_CAP, &sp), QO_E_ARG);
+    set = qo_spline_settings_default;
+    set.end = (qo_spline_end)7;
+    assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, COEF_CAP, &sp), QO_E_ARG);
+    set = qo_spline_settings_default;
+    set.derivs = (qo_spline_derivs)-1;
+    assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, COEF_CAP, &sp), QO_E_ARG);
+    /* limits */
+    {
+        float lo = 2.0f, hi = 1.0f, nan = NAN;
+        set = qo_spline_settings_default;
+        set.pos_min = &lo;
+        set.pos_max = &hi;
+        assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, COEF_CAP, &sp), QO_E_LIMIT);
+        set.pos_max = &nan;
+        assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, COEF_CAP, &sp), QO_E_LIMIT);
+        hi = 2.0f; /* min == max is allowed: a held joint */
+        set.pos_max = &hi;
+        assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, COEF_CAP, &sp), QO_OK);
+    }
+    /* wrap period */
+    {
+        const unsigned char w = 1;
+        set = qo_spline_settings_default;
+        set.wrap = &w;
+        set.wrap_period = 0.0f;
+        assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, COEF_CAP, &sp), QO_E_RANGE);
+        set.wrap_period = NAN;
+        assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, COEF_CAP, &sp), QO_E_RANGE);
+    }
+    /* non-finite end velocity; coefficient overflow; huge time span */
+    {
+        float ev[2] = { 0.0f, INFINITY };
+        const float th[2] = { 0.0f, 1e-30f }, ph[2] = { -3e38f, 3e38f };
+        const float tw[2] = { -3e38f, 3e38f };
+        set = qo_spline_settings_default;
+        set.end_vel = ev;
+        assert_int_equal(qo_spline_init_f32(1, 3, tb, pb, &set, coef, COEF_CAP, &sp),
+                         QO_E_NONFINITE);
+        set.end_vel = NULL;
+        assert_int_equal(qo_spline_init_f32(1, 2, th, ph, &set, coef, COEF_CAP, &sp), QO_E_RANGE);
+        assert_int_equal(qo_spline_init_f32(1, 2, tw, p2, &set, coef, COEF_CAP, &sp), QO_E_RANGE);
+    }
+    /* sampling a failed plan writes zeros and says so; NULL output */
+    assert_int_equal(qo_spline_init_f32(2, 1, t2, p2, &set, coef, COEF_CAP, &sp), QO_E_TOO_FEW);
+    assert_int_equal(qo_spline_sample_f32(&sp, 1.0f, pos, vel, acc, cl), QO_E_STATE);
+    assert_true(pos[0] == 0.0f && pos[1] == 0.0f && vel[1] == 0.0f && acc[0] == 0.0f && cl[1] == 0);
+    assert_int_equal(qo_spline_sample_f32(NULL, 1.0f, pos, vel, acc, cl), QO_E_NULL);
+    set = qo_spline_settings_default;
+    assert_int_equal(qo_spline_init_f32(1, 2, t2, p2, &set, coef, COEF_CAP, &sp), QO_OK);
+    vel[0] = 9.0f;
+    assert_int_equal(qo_spline_sample_f32(&sp, 1.0f, NULL, vel, acc, cl), QO_E_NULL);
+    assert_true(vel[0] == 0.0f);
+}
+
+/* Many joints and keys, the ordinary size classes of a hexapod (18 joints): every key exact
+ * and samples finite, with a binary-searched segment at every t. */
+static void test_many_joints_keys(void **state)
+{
+    static float t[200], p[200 * 18], buf[200 + 3 * 18 + 6 * 200 * 18];
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    qo_spline_f32 sp;
+    int i, j;
+    (void)state;
+    rng_state = 808;
+    t[0] = 0.0f;
+    for (i = 1; i < 200; i++) t[i] = t[i - 1] + (float)urand(0.01, 0.1);
+    for (i = 0; i < 200 * 18; i++) p[i] = (float)urand(-3.0, 3.0);
+    set.profile = QO_SPLINE_QUINTIC;
+    assert_int_equal(qo_spline_coef_len(18, 200), sizeof buf / sizeof buf[0]);
+    assert_int_equal(qo_spline_init_f32(18, 200, t, p, &set, buf, sizeof buf / sizeof buf[0], &sp),
+                     QO_OK);
+    for (i = 0; i < 200; i++) {
+        float pos[18];
+        assert_int_equal(qo_spline_sample_f32(&sp, t[i], pos, NULL, NULL, NULL), QO_OK);
+        for (j = 0; j < 18; j++)
+            if (pos[j] != p[i * 18 + j]) fail_msg("key %d joint %d not exact", i, j);
+    }
+}
+
+/* The documented re-planning recipe: sample plan A at the switch time, plan B from that
+ * sample (first key = position, CLAMPED start velocity = velocity): at the switch B gives the
+ * same position bit for bit and the same velocity up to rounding; B then reaches its keys. */
+static void test_replan_continues(void **state)
+{
+    keys ks;
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    qo_spline_f32 a, b;
+    static float coef_b[COEF_CAP];
+    int trial, j;
+    (void)state;
+    rng_state = 909;
+    for (trial = 0; trial < 20; trial++) {
+        float ts, pa[MAXN], va[MAXN], pb[MAXN], vb[MAXN], ev[2 * MAXN];
+        float tb[3], keyb[3 * MAXN];
+        random_keys(&ks, 3, 5, 0.2, 1.0, 5.0);
+        set.profile = (trial & 1) ? QO_SPLINE_CATMULL_ROM : QO_SPLINE_CUBIC_C2;
+        assert_int_equal(plan(&ks, &set, &a), QO_OK);
+        ts = (float)urand(ks.t[1], ks.t[3]);
+        sample(&a, ts, pa, va, NULL);
+        tb[0] = ts;
+        tb[1] = ts + 0.5f;
+        tb[2] = ts + 1.5f;
+        for (j = 0; j < 3; j++) {
+            keyb[j] = pa[j];
+            keyb[3 + j] = (float)urand(-5.0, 5.0);
+            keyb[6 + j] = (float)urand(-5.0, 5.0);
+            ev[j] = va[j];
+            ev[3 + j] = 0.0f;
+        }
+        set.end = QO_SPLINE_END_CLAMPED;
+        set.end_vel = ev;
+        assert_int_equal(qo_spline_init_f32(3, 3, tb, keyb, &set, coef_b, COEF_CAP, &b), QO_OK);
+        set.end_vel = NULL;
+        sample(&b, ts, pb, vb, NULL);
+        for (j = 0; j < 3; j++) {
+            if (pb[j] != pa[j]) fail_msg("trial %d joint %d: position %.9g != %.9g at the switch",
+                                         trial, j, (double)pb[j], (double)pa[j]);
+            check_close("replan velocity", trial, j, ts, vb[j], va[j],
+                        8 * FLT_EPSILON * (1 + fabs(va[j])));
+        }
+        sample(&b, tb[2], pb, vb, NULL);
+        for (j = 0; j < 3; j++) assert_true(pb[j] == keyb[6 + j] && vb[j] == 0.0f);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_keys_interpolated_exactly),
+        cmocka_unit_test(test_continuity_at_joins),
+        cmocka_unit_test(test_c2_against_double),
+        cmocka_unit_test(test_catmull_rom_against_double),
+        cmocka_unit_test(test_hermite_quintic_against_double),
+        cmocka_unit_test(test_linear_against_double),
+        cmocka_unit_test(test_outside_and_end),
+        cmocka_unit_test(test_limits_clamp_and_report),
+        cmocka_unit_test(test_wrap_short_way),
+        cmocka_unit_test(test_edges),
+        cmocka_unit_test(test_many_joints_keys),
+        cmocka_unit_test(test_replan_continues),
+    };
+    return cmocka_run_group_tests_name("spline", tests, NULL, NULL);
+}
