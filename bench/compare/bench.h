@@ -45,6 +45,10 @@ typedef struct bk_output {
     qo_mat3_f32 m[BK_N];
     double e[BK_N][3];                /* Euler angles a1, a2, a3 (rad) */
     double s[BK_N];                   /* scalar result of a fixed primitive, real value */
+    double qd[BK_N][4], vd[BK_N][3];   /* fixed-point quaternion / vector results (w,x,y,z /
+                                          x,y,z) in double: float32 would hide Q1.30's bits */
+    double qin[3][BK_N][4];           /* the fixed kernels' quantised inputs a, b, n (w,x,y,z) */
+    double vin[BK_N][3];              /* and v: the references of fx_* use these */
     double s_in[BK_N][2];             /* its inputs as the library quantised them: x (, y) */
     int fx_set;                       /* which fixed input set the scalar results belong to */
 } bk_output;

@@ -105,7 +105,7 @@ static ref_quat ref_from_euler_intrinsic(const char *seq, const double e[3])
     return ref_quat_mul(q, ref_axis_quat(seq[2] - 'X', e[2]));
 }
 
-static double quat_err(qo_quat_f32 got, ref_quat want)
+static double quat_err(ref_quat got, ref_quat want)
 {
     double p = 0, n = 0, d;
     d = fabs(got.w - want.w); if (d > p) p = d;
@@ -120,7 +120,7 @@ static double quat_err(qo_quat_f32 got, ref_quat want)
     return p < n ? p : n;
 }
 
-static double vec_err(qo_vec3_f32 got, ref_vec3 want)
+static double vec_err(ref_vec3 got, ref_vec3 want)
 {
     double e = fabs(got.x - want.x);
     if (fabs(got.y - want.y) > e) e = fabs(got.y - want.y);
@@ -151,34 +151,53 @@ static double fx_ref(const char *op, double x, double y)
     return atan2(y, x);
 }
 
-/* Error of output i of kernel op; sets *unit. */
+static ref_quat ref_q(const double d[4])
+{
+    ref_quat q;
+    q.w = d[0]; q.x = d[1]; q.y = d[2]; q.z = d[3];
+    return q;
+}
+
+static ref_vec3 ref_v(const double d[3])
+{
+    ref_vec3 v;
+    v.x = d[0]; v.y = d[1]; v.z = d[2];
+    return v;
+}
+
+/* Error of output i of kernel op; sets *unit. Float kernels are checked against their float
+ * inputs, fixed-point kernels against their own quantised inputs (o->qin, o->vin). */
 static double op_error(const char *op, const bk_output *o, int i, const char **unit)
 {
     const bk_input *in = &g_in;
-    ref_quat a = ref_quat_from_f32(in->qa[i]), b = ref_quat_from_f32(in->qb[i]);
+    int fx = !strncmp(op, "fx_", 3);
+    ref_quat a = fx ? ref_q(o->qin[0][i]) : ref_quat_from_f32(in->qa[i]);
+    ref_quat b = fx ? ref_q(o->qin[1][i]) : ref_quat_from_f32(in->qb[i]);
+    ref_quat n = fx ? ref_q(o->qin[2][i]) : ref_quat_from_f32(in->qn[i]);
+    ref_vec3 v = fx ? ref_v(o->vin[i]) : ref_vec3_from_f32(in->v[i]);
+    ref_quat gq = fx ? ref_q(o->qd[i]) : ref_quat_from_f32(o->q[i]);
+    ref_vec3 gv = fx ? ref_v(o->vd[i]) : ref_vec3_from_f32(o->v[i]);
     *unit = "abs";
-    if (!strcmp(op, "mul") || !strcmp(op, "fx_quat_mul"))
-        return quat_err(o->q[i], ref_quat_mul(a, b));
-    if (!strcmp(op, "rotate") || !strcmp(op, "fx_quat_rotate"))
-        return vec_err(o->v[i], ref_quat_rotate(a, ref_vec3_from_f32(in->v[i])));
+    if (!strcmp(op, "mul") || !strcmp(op, "fx_quat_mul")) return quat_err(gq, ref_quat_mul(a, b));
+    if (!strcmp(op, "rotate") || !strcmp(op, "fx_quat_rotate")) return vec_err(gv, ref_quat_rotate(a, v));
     if (!strcmp(op, "normalize") || !strcmp(op, "fx_quat_normalize"))
-        return quat_err(o->q[i], ref_quat_normalize(ref_quat_from_f32(in->qn[i])));
+        return quat_err(gq, ref_quat_normalize(n));
     if (!strcmp(op, "to_mat3")) {
         ref_mat3 m = ref_quat_to_mat3(a);
         return mat_err(&o->m[i], &m);
     }
     if (!strcmp(op, "from_mat3")) {
         ref_mat3 m = ref_mat3_from_f32(&in->m[i]);
-        return quat_err(o->q[i], ref_mat3_to_quat(&m));
+        return quat_err(gq, ref_mat3_to_quat(&m));
     }
     if (!strcmp(op, "slerp") || !strcmp(op, "fx_slerp"))
-        return quat_err(o->q[i], ref_slerp(ref_quat_normalize(a), ref_quat_normalize(b), in->t[i]));
+        return quat_err(gq, ref_slerp(ref_quat_normalize(a), ref_quat_normalize(b), in->t[i]));
     if (!strncmp(op, "to_euler_", 9) || !strncmp(op, "fx_to_euler_", 12)) {
         const char *seq = strrchr(op, '_') + 1;
         *unit = "rad";
         return ref_quat_angle_between(a, ref_from_euler_intrinsic(seq, o->e[i]));
     }
-    if (!strncmp(op, "fx_", 3)) {
+    if (fx) {
         double e = fabs(o->s[i] - fx_ref(op, o->s_in[i][0], o->s_in[i][1]));
         *unit = strcmp(op, "fx_atan2") ? "abs" : "rad";
         return e == e ? e : INFINITY;

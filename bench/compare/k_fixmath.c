@@ -8,6 +8,8 @@
  * textbook way from its primitives, as a user of libfixmath would: fix16_mul for every
  * product, plain integer adds, fix16_sqrt + fix16_div to normalise, fix16_atan2/fix16_asin
  * for Euler angles, fix16_acos/fix16_sin/fix16_div for slerp. */
+#include <math.h>
+
 #include <libfixmath/fix16.h>
 
 #include "bench.h"
@@ -28,11 +30,13 @@ static int g_kind; /* 0 sqrt, 1 sin/cos (angle input), 2 atan2 (inputs y, x) */
 static fix16_t q16(double v) { return fix16_from_dbl(v); }
 static double dbl(fix16_t v) { return fix16_to_dbl(v); }
 
-static fq to_fq(qo_quat_f32 q, int s)
+static fq to_fq(qo_quat_f32 q, double k, int s)
 {
     fq r;
+    /* normalised in double first, as qorient's Q1.30 inputs (k_qofx.c) */
+    k /= sqrt((double)q.w * q.w + (double)q.x * q.x + (double)q.y * q.y + (double)q.z * q.z);
     /* set s > 0 moves w by s LSB: distinct inputs for the caches, used for timing only */
-    r.w = q16(q.w) + s; r.x = q16(q.x); r.y = q16(q.y); r.z = q16(q.z);
+    r.w = q16(q.w * k) + s; r.x = q16(q.x * k); r.y = q16(q.y * k); r.z = q16(q.z * k);
     return r;
 }
 
@@ -45,9 +49,11 @@ void bk_fixmath_load(const bk_input *in)
             g_ang[s][i] = q16(in->fx_ang[s][i]);
             g_ay[s][i] = q16(in->fx_y[s][i]);
             g_ax[s][i] = q16(in->fx_x[s][i]);
-            g_qa[s][i] = to_fq(in->qa[i], s);
-            g_qb[s][i] = to_fq(in->qb[i], s);
-            g_qn[s][i] = to_fq(in->qn[i], s);
+            g_qa[s][i] = to_fq(in->qa[i], 1.0, s);
+            g_qb[s][i] = to_fq(in->qb[i], 1.0, s);
+            /* halved so that qorient's Q1.30 (range [-2, 2)) holds it too; normalising is
+             * scale-invariant, the reference is the same */
+            g_qn[s][i] = to_fq(in->qn[i], 0.5, s);
         }
     }
     for (i = 0; i < BK_N; i++) {
@@ -58,6 +64,11 @@ void bk_fixmath_load(const bk_input *in)
 
 void bk_fixmath_set(int set) { g_set = set; }
 
+static void put_q(double d[4], fq q)
+{
+    d[0] = dbl(q.w); d[1] = dbl(q.x); d[2] = dbl(q.y); d[3] = dbl(q.z);
+}
+
 static void fetch(bk_output *o)
 {
     int i;
@@ -67,10 +78,13 @@ static void fetch(bk_output *o)
         if (g_kind == 0) { o->s_in[i][0] = dbl(g_x[g_set][i]); o->s_in[i][1] = 0; }
         else if (g_kind == 1) { o->s_in[i][0] = dbl(g_ang[g_set][i]); o->s_in[i][1] = 0; }
         else { o->s_in[i][0] = dbl(g_ax[g_set][i]); o->s_in[i][1] = dbl(g_ay[g_set][i]); }
-        o->q[i].w = (float)dbl(g_q[i].w); o->q[i].x = (float)dbl(g_q[i].x);
-        o->q[i].y = (float)dbl(g_q[i].y); o->q[i].z = (float)dbl(g_q[i].z);
-        o->v[i].x = (float)dbl(g_vo[i][0]); o->v[i].y = (float)dbl(g_vo[i][1]);
-        o->v[i].z = (float)dbl(g_vo[i][2]);
+        o->qd[i][0] = dbl(g_q[i].w); o->qd[i][1] = dbl(g_q[i].x);
+        o->qd[i][2] = dbl(g_q[i].y); o->qd[i][3] = dbl(g_q[i].z);
+        put_q(o->qin[0][i], g_qa[g_set][i]);
+        put_q(o->qin[1][i], g_qb[g_set][i]);
+        put_q(o->qin[2][i], g_qn[g_set][i]);
+        o->vin[i][0] = dbl(g_v[i][0]); o->vin[i][1] = dbl(g_v[i][1]); o->vin[i][2] = dbl(g_v[i][2]);
+        o->vd[i][0] = dbl(g_vo[i][0]); o->vd[i][1] = dbl(g_vo[i][1]); o->vd[i][2] = dbl(g_vo[i][2]);
         o->e[i][0] = dbl(g_e[i][0]); o->e[i][1] = dbl(g_e[i][1]); o->e[i][2] = dbl(g_e[i][2]);
     }
 }

@@ -11,11 +11,13 @@
 #include <string.h>
 
 #include "qorient/convert.h"
+#include "qorient/convert_fx.h"
 #include "qorient/euler.h"
 #include "qorient/fxconv.h"
 #include "qorient/fxmath.h"
 #include "qorient/interp.h"
 #include "qorient/quat.h"
+#include "qorient/quat_fx.h"
 
 #define NIN 8
 static const qo_quat_f32 k_qa[NIN] = {
@@ -40,6 +42,9 @@ static qo_quat_f32 g_qn[NIN];
 static qo_mat3_f32 g_m[NIN];
 static qo_q30 g_s30[NIN], g_y30[NIN], g_x30[NIN];
 static qo_q28 g_a28[NIN];
+static qo_quat_q30 g_xa[NIN], g_xb[NIN], g_xn[NIN];
+static qo_vec3_q30 g_xv[NIN];
+static qo_mat3_q30 g_xm[NIN];
 
 /* Results go to volatile sinks so nothing is optimised away. */
 static volatile float g_sink_f;
@@ -76,6 +81,22 @@ static void op_x_sqrt(int i) { qo_q30 r; (void)qo_fx_sqrt_q30(g_s30[i], &r); g_s
 static void op_x_sin(int i) { g_sink_i = qo_fx_sin_q28(g_a28[i]); }
 static void op_x_atan2(int i) { g_sink_i = qo_fx_atan2_q28(g_y30[i], g_x30[i]); }
 
+static void sink_x(qo_quat_q30 q) { g_sink_i = q.w; g_sink_i = q.x; g_sink_i = q.y; g_sink_i = q.z; }
+static void op_x_mul(int i) { sink_x(qo_quat_mul_q30(g_xa[i], g_xb[i])); }
+static void op_x_rotate(int i)
+{
+    qo_vec3_q30 r = qo_quat_rotate_q30(g_xa[i], g_xv[i]);
+    g_sink_i = r.x; g_sink_i = r.y; g_sink_i = r.z;
+}
+static void op_x_normalize(int i) { qo_quat_q30 q; (void)qo_quat_normalize_q30(g_xn[i], &q); sink_x(q); }
+static void op_x_to_mat3(int i)
+{
+    qo_mat3_q30 m;
+    (void)qo_quat_to_mat3_q30(g_xa[i], &m);
+    g_sink_i = m.m[0][0]; g_sink_i = m.m[1][1]; g_sink_i = m.m[2][2];
+}
+static void op_x_from_mat3(int i) { qo_quat_q30 q; (void)qo_quat_from_mat3_q30(&g_xm[i], &q); sink_x(q); }
+
 typedef struct op { const char *name; void (*fn)(int); } op;
 static const op k_ops[] = {
     { "nop", op_nop },
@@ -83,6 +104,8 @@ static const op k_ops[] = {
     { "f_to_mat3", op_f_to_mat3 }, { "f_from_mat3", op_f_from_mat3 },
     { "f_to_euler_ZYX", op_f_to_euler_ZYX }, { "f_slerp", op_f_slerp },
     { "f_sqrt", op_f_sqrt }, { "f_sin", op_f_sin }, { "f_atan2", op_f_atan2 },
+    { "x_mul", op_x_mul }, { "x_rotate", op_x_rotate }, { "x_normalize", op_x_normalize },
+    { "x_to_mat3", op_x_to_mat3 }, { "x_from_mat3", op_x_from_mat3 },
     { "x_sqrt", op_x_sqrt }, { "x_sin", op_x_sin }, { "x_atan2", op_x_atan2 },
     { 0, 0 } };
 
@@ -101,6 +124,14 @@ int main(int argc, char **argv)
         g_y30[i] = qo_q30_from_f32(k_v[i].y);
         g_x30[i] = qo_q30_from_f32(k_v[i].x);
         g_a28[i] = qo_q28_from_f32(k_ang[i]);
+        g_xa[i] = qo_quat_q30_from_f32(k_qa[i]);
+        (void)qo_quat_normalize_q30(g_xa[i], &g_xa[i]);
+        g_xb[i] = qo_quat_q30_from_f32(k_qb[i]);
+        (void)qo_quat_normalize_q30(g_xb[i], &g_xb[i]);
+        g_xn[i] = qo_quat_q30_from_f32(k_qa[i]);
+        g_xn[i].w /= 2; g_xn[i].x /= 2; g_xn[i].y /= 2; g_xn[i].z /= 2;   /* non-unit */
+        g_xv[i] = qo_vec3_q30_from_f32(k_v[i]);
+        g_xm[i] = qo_mat3_q30_from_f32(&g_m[i]);
     }
     for (o = k_ops; o->name != NULL; o++)
         if (!strcmp(o->name, argv[1])) break;
