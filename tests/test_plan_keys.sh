@@ -158,7 +158,7 @@ expect_err "bad limit" 2 "0 0\n1 1\n" "--min.*not a list" --min x
 expect_err "wrap index" 2 "0 0\n1 1\n" "joint 2 is not in 1..1" --wrap 2
 expect_err "vmax with keyframes" 2 "0 0\n1 1\n" "--vmax applies to --profile trapezoid[|]scurve only" --vmax 1
 expect_err "sync with keyframes" 2 "0 0\n1 1\n" "--sync applies to --profile trapezoid" --profile quintic --sync time
-expect_err "trapezoid not here" 2 "0 0\n1 1\n" "motion planner" --profile trapezoid
+# --profile trapezoid|scurve are routed to the motion planner by plan.c (tests/test_plan_moves.sh)
 expect_err "unknown profile" 2 "0 0\n1 1\n" "unknown profile 'bogus'" --profile bogus
 expect_err "bad rate" 2 "0 0\n1 1\n" "--rate: '0' is not a positive" --rate 0
 expect_err "cubic needs pv" 2 "0 0\n1 1\n" "cubic needs key velocities" --profile cubic --columns p

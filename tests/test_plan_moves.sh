@@ -1,5 +1,5 @@
 #!/bin/sh
-# `qorient plan-moves` (routed from `qorient plan --profile ...`): text contract, limits,
+# `qorient plan --profile trapezoid|scurve`: text contract, limits,
 # sync, clamp, wrap, fixed point, streaming and every input error. Prints "N passed, M failed".
 Q=${QORIENT:-build/qorient}
 pass=0; fail=0
@@ -11,10 +11,10 @@ check() { # name, then a command that must succeed
     name=$1; shift
     if "$@"; then ok; else ko "$name"; fi
 }
-P() { "$Q" plan-moves "$@"; }
+P() { "$Q" plan "$@"; }
 
 # --help documents every option
-P --help >"$tmp.h" 2>&1; rc=$?
+P --profile scurve --help >"$tmp.h" 2>&1; rc=$?
 check "help exit 0" [ $rc -eq 0 ]
 for o in --profile --vmax --amax --jmax --rate --sync --min --max --wrap --degrees --fixed --help; do
     check "help mentions $o" grep -q -- "$o" "$tmp.h"

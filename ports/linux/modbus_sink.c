@@ -16,7 +16,8 @@ const qo_modbus_sink_settings qo_modbus_sink_settings_default = {
     50000u,                 /* reconnect_min_us */
     2000000u,               /* reconnect_max_us */
     0,                      /* rs485 */
-    1                       /* seed_from_feedback */
+    1,                      /* seed_from_feedback */
+    0u                      /* open_timeout_us: the response timeout */
 };
 
 /* ---- spec ------------------------------------------------------------------------------ */
@@ -404,6 +405,7 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
         settings->fail_threshold == 0)
         return QO_E_LIMIT;
     if (settings->response_timeout_us > 10000000u || settings->byte_timeout_us > 10000000u ||
+        settings->open_timeout_us > 10000000u ||
         settings->reconnect_max_us < settings->reconnect_min_us ||
         (settings->on_fail != QO_MODBUS_ON_FAIL_HOLD && settings->on_fail != QO_MODBUS_ON_FAIL_DISABLE))
         return QO_E_CONFIG;
@@ -446,9 +448,13 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
     if (st == QO_OK) {
         uint32_t r = settings->response_timeout_us, b = settings->byte_timeout_us;
         modbus_set_error_recovery(s->ctx, MODBUS_ERROR_RECOVERY_NONE);
-        modbus_set_response_timeout(s->ctx, r / 1000000u, r % 1000000u);
+        uint32_t o = settings->open_timeout_us ? settings->open_timeout_us : r;
         modbus_set_byte_timeout(s->ctx, b / 1000000u, b % 1000000u);
+        /* The first connection may take its time (it is outside the control loop); every
+         * later request, reconnections included, gets the response timeout. */
+        modbus_set_response_timeout(s->ctx, o / 1000000u, o % 1000000u);
         st = do_connect(s);
+        modbus_set_response_timeout(s->ctx, r / 1000000u, r % 1000000u);
     }
     if (st != QO_OK) {
         qo_modbus_sink_free(s);

@@ -109,10 +109,14 @@ typedef struct qo_modbus_sink_settings {
                                      ptys and many USB adapters refuse it) */
     int seed_from_feedback;       /* read feedback registers at (re)connect to seed the rate
                                      limit of joints never written */
+    uint32_t open_timeout_us;     /* response timeout for the first connection, its init writes
+                                     and feedback reads in qo_modbus_sink_open only (outside any
+                                     control loop, so it can be generous); 0 = the response
+                                     timeout; at most 10000000 */
 } qo_modbus_sink_settings;
 
 /* 20 ms response, 5 ms byte timeout, threshold 5, HOLD, backoff 50 ms .. 2 s, no RS485 ioctl,
- * seed from feedback. */
+ * seed from feedback, open timeout 0 (= the response timeout). */
 extern const qo_modbus_sink_settings qo_modbus_sink_settings_default;
 
 typedef struct qo_modbus_sink_stats {

@@ -10,6 +10,7 @@
  *   euler.h     Euler angles, 12 sequences x intrinsic/extrinsic, gimbal-lock report, float32
  *   interp.h    lerp, nlerp, slerp, Bezier, Shoemake spline, squad, float32
  *   fxmath.h    fixed-point primitives (mul, div, sqrt, sincos, atan2, asin, acos)
+ *   interp_fx.h lerp, nlerp, slerp, Bezier, Shoemake spline, squad segment, fixed point Q1.30
  *   fxconv.h    float <-> fixed boundary conversions (static inline; FPU-less code need not use)
  */
 #ifndef QORIENT_QORIENT_H
@@ -23,6 +24,7 @@
 #include "qorient/euler.h"
 #include "qorient/interp.h"
 #include "qorient/fxmath.h"
+#include "qorient/interp_fx.h"
 #include "qorient/fxconv.h"
 
 #endif /* QORIENT_QORIENT_H */

@@ -14,8 +14,9 @@ struct qo_cli_cmd {
 static const struct qo_cli_cmd cmds[] = {
     { "convert", qo_cli_convert, "convert rotations: quat, matrix, rotvec, axisangle, euler:SEQ" },
     { "slerp", qo_cli_slerp, "spherical linear interpolation of quaternion pairs" },
-    { "plan", qo_cli_plan_keys, "sample a multi-joint trajectory through keyframes" },
+    { "plan", qo_cli_plan, "plan and sample multi-joint trajectories (keyframes or limited moves)" },
     { "gimbal", qo_cli_gimbal, "joint angles of a 2/3-axis gimbal along a quaternion keyframe path" },
+    { "stream", qo_cli_stream, "plan and stream joint targets to drives over Modbus RTU/TCP or GPIO" },
     { "sim", qo_cli_sim, "simulated Modbus servo drive bank (register map, lag, faults)" },
     { "version", qo_cli_version, "print the version" },
 };

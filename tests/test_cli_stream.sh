@@ -1,0 +1,66 @@
+#!/bin/sh
+# Shell tests of `qorient stream` against the simulated drive bank (`qorient sim`) on loopback
+# TCP: the targets arrive, no step above the map's max_step, the final targets are reached,
+# the RTU wire budget of --dry-run, and clear errors for a bad map, an unreachable drive and
+# a rate the serial line cannot carry.
+Q=${QORIENT:-build/qorient}
+MAP=examples/maps/six_int32.ini
+pass=0; fail=0
+T=${TMPDIR:-/tmp}/qo-cli-stream.$$
+mkdir -p "$T"
+SIMPID=""
+cleanup() { [ -n "$SIMPID" ] && kill "$SIMPID" 2>/dev/null; wait 2>/dev/null; rm -rf "$T"; }
+trap cleanup EXIT INT TERM
+ok()  { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+
+# Simulator on an ephemeral port; wait (bounded) for its 'listening' line.
+$Q sim --map $MAP --listen tcp://127.0.0.1:0 --lag 0 --log "$T/log.csv" --duration 60 > "$T/sim.out" 2>&1 &
+SIMPID=$!
+i=0
+while ! grep -q '^listening' "$T/sim.out" 2>/dev/null && [ $i -lt 100 ]; do sleep 0.05; i=$((i + 1)); done
+PORT=$(sed -n 's/^listening tcp:\/\/127.0.0.1:\([0-9]*\)$/\1/p' "$T/sim.out")
+[ -n "$PORT" ] && ok || bad "simulator did not start: $(cat "$T/sim.out")"
+
+# 1. A jerk-limited move of six joints, re-planned mid-motion, streamed at 100 Hz.
+printf '0,0,0,0,0,0,0\n0,1,-1,0.5,0.2,0,0.3\n0.6,0.4,0.2,-0.3,0,0.1,-0.2\n' > "$T/targets"
+$Q stream --map $MAP --modbus "tcp://127.0.0.1:$PORT" --rate 100 --timeout-ms 50 --no-rt --quiet \
+    --profile scurve --vmax 2 --amax 4 --jmax 20 --sync time "$T/targets" > "$T/out" 2> "$T/err"; rc=$?
+[ "$rc" = 0 ] && ok || bad "stream exit status $rc: $(cat "$T/err")"
+grep -q '^summary: ticks [1-9]' "$T/out" && grep -q 'final ok$' "$T/out" && ok || bad "summary: $(cat "$T/out")"
+# the simulator's log: value per joint, in joint units; steps and final values checked by awk
+r=$(awk -F, 'NR > 1 && $5 ~ /^j/ { j = $5; if (j in last) { d = $6 - last[j]; if (d < 0) d = -d; if (d > m) m = d } last[j] = $6; n++ }
+            END { printf "%d %.6f %s %s %s %s %s %s", n, m, last["j1"], last["j2"], last["j3"], last["j4"], last["j5"], last["j6"] }' "$T/log.csv")
+set -- $r
+[ "$1" -gt 600 ] && ok || bad "only $1 target writes logged"
+awk -v m="$2" 'BEGIN { exit !(m <= 0.05 + 1e-9) }' && ok || bad "a step of $2 above max_step 0.05 reached a drive"
+shift 2
+[ "$*" = "0.4 0.2 -0.3 0 0.1 -0.2" ] && ok || bad "final targets '$*' != '0.4 0.2 -0.3 0 0.1 -0.2'"
+
+printf '0,0,0,0,0,0,0\n1,0.5,-0.5,1,0.2,0,0.3\n2,0,0,0,0,0,0\n' > "$T/keys"
+
+# 2. --dry-run: the RTU wire budget for 6 int32 joints at 115200 8N1 (one FC16 of 12
+#    registers: 33 + 8 bytes at 86.8 us per char, plus 2 x 1.75 ms of t3.5 = 7059 us)
+$Q stream --map $MAP --modbus rtu:/dev/null,115200,8N1 --rate 100 --dry-run "$T/keys" > "$T/out" 2>&1; rc=$?
+[ "$rc" = 0 ] && ok || bad "dry-run exit $rc: $(cat "$T/out")"
+want=$(awk 'BEGIN { c = 10 * 1e6 / 115200; printf "%.0f", (33 + 8) * c + 2 * 1750 }')
+grep -q "wire budget per tick: $want us; highest rate: 141.7 Hz" "$T/out" && ok || bad "dry-run budget (want $want us): $(cat "$T/out")"
+# ... and a rate above it is refused before anything is opened
+$Q stream --map $MAP --modbus rtu:/dev/null,115200,8N1 --rate 500 "$T/keys" > /dev/null 2> "$T/err"; rc=$?
+[ "$rc" = 1 ] && grep -q "at most 141.7 Hz" "$T/err" && ok || bad "rate over the wire budget: rc=$rc $(cat "$T/err")"
+
+# 3. Errors name what is wrong
+printf '[joint.a]\nslave = 1\naddress = 0\ntype = int33\n' > "$T/bad.ini"
+$Q stream --map "$T/bad.ini" --modbus "tcp://127.0.0.1:$PORT" "$T/keys" > /dev/null 2> "$T/err"; rc=$?
+[ "$rc" = 1 ] && grep -q "bad.ini:4:" "$T/err" && ok || bad "bad map: rc=$rc $(cat "$T/err")"
+$Q stream --map $MAP --modbus tcp://127.0.0.1:1 --timeout-ms 50 "$T/keys" > /dev/null 2> "$T/err"; rc=$?
+[ "$rc" = 1 ] && grep -q "tcp://127.0.0.1:1" "$T/err" && ok || bad "unreachable drive: rc=$rc $(cat "$T/err")"
+$Q stream --map $MAP --modbus rtu:/dev/qorient-no-such-tty,115200,8N1 "$T/keys" > /dev/null 2> "$T/err"; rc=$?
+[ "$rc" = 1 ] && grep -q "serial device /dev/qorient-no-such-tty: No such file" "$T/err" && ok || bad "unknown device: rc=$rc $(cat "$T/err")"
+printf '0,0,0\n' | $Q stream --map $MAP --modbus "tcp://127.0.0.1:$PORT" --profile spline - > /dev/null 2> "$T/err"; rc=$?
+[ "$rc" = 1 ] && ok || bad "plan with the wrong joint count accepted: rc=$rc"
+$Q stream --map $MAP "$T/keys" > /dev/null 2>&1; [ $? = 2 ] && ok || bad "no --modbus/--gpio accepted"
+$Q stream --help | grep -q -- "--dry-run" && ok || bad "--help does not document --dry-run"
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
