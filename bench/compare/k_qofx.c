@@ -5,7 +5,9 @@
 #include <math.h>
 
 #include "bench.h"
+#include "qorient/euler_fx.h"
 #include "qorient/fxmath.h"
+#include "qorient/interp_fx.h"
 #include "qorient/quat_fx.h"
 
 static qo_q30 g_x[BK_FX_SETS][BK_N], g_ay[BK_FX_SETS][BK_N], g_ax[BK_FX_SETS][BK_N];
@@ -16,6 +18,8 @@ static qo_quat_q30 g_qa[BK_FX_SETS][BK_N], g_qb[BK_FX_SETS][BK_N], g_qn[BK_FX_SE
 static qo_vec3_q30 g_v[BK_N];
 static qo_quat_q30 g_q[BK_N];
 static qo_vec3_q30 g_vo[BK_N];
+static qo_euler_q28 g_e[BK_N];
+static qo_q30 g_t[BK_N];
 
 static int32_t fx(double v, double one)
 {
@@ -59,6 +63,7 @@ void bk_qofx_load(const bk_input *in)
     }
     for (i = 0; i < BK_N; i++) {
         g_v[i].x = fx(in->v[i].x, Q30); g_v[i].y = fx(in->v[i].y, Q30); g_v[i].z = fx(in->v[i].z, Q30);
+        g_t[i] = fx(in->t[i], Q30);
     }
 }
 
@@ -83,6 +88,7 @@ static void fetch(bk_output *o)
         put_q(o->qin[1][i], g_qb[g_set][i]);
         put_q(o->qin[2][i], g_qn[g_set][i]);
         o->vin[i][0] = g_v[i].x / Q30; o->vin[i][1] = g_v[i].y / Q30; o->vin[i][2] = g_v[i].z / Q30;
+        o->e[i][0] = g_e[i].a1 / Q28; o->e[i][1] = g_e[i].a2 / Q28; o->e[i][2] = g_e[i].a3 / Q28;
         o->vd[i][0] = g_vo[i].x / Q30; o->vd[i][1] = g_vo[i].y / Q30; o->vd[i][2] = g_vo[i].z / Q30;
     }
 }
@@ -147,6 +153,22 @@ void bk_qofx_fx_quat_rotate(void)
     for (i = 0; i < BK_N; i++) g_vo[i] = qo_quat_rotate_q30(a[i], g_v[i]);
 }
 
+void bk_qofx_fx_to_euler_ZYX(void);
+void bk_qofx_fx_to_euler_ZYX(void)
+{
+    int i;
+    const qo_quat_q30 *a = g_qa[g_set];
+    for (i = 0; i < BK_N; i++) (void)qo_quat_to_euler_q30(a[i], QO_EULER_ZYX, &g_e[i], NULL);
+}
+
+void bk_qofx_fx_slerp(void);
+void bk_qofx_fx_slerp(void)
+{
+    int i;
+    const qo_quat_q30 *a = g_qa[g_set], *b = g_qb[g_set];
+    for (i = 0; i < BK_N; i++) (void)qo_quat_slerp_q30(a[i], b[i], g_t[i], &g_q[i]);
+}
+
 const bk_kernel bk_qofx_kernels[] = {
     { "qorient", "fx_sqrt", bk_qofx_fx_sqrt, fetch },
     { "qorient", "fx_sin", bk_qofx_fx_sin, fetch },
@@ -155,5 +177,7 @@ const bk_kernel bk_qofx_kernels[] = {
     { "qorient", "fx_quat_mul", bk_qofx_fx_quat_mul, fetch },
     { "qorient", "fx_quat_normalize", bk_qofx_fx_quat_normalize, fetch },
     { "qorient", "fx_quat_rotate", bk_qofx_fx_quat_rotate, fetch },
+    { "qorient", "fx_to_euler_ZYX", bk_qofx_fx_to_euler_ZYX, fetch },
+    { "qorient", "fx_slerp", bk_qofx_fx_slerp, fetch },
     { 0, 0, 0, 0 }
 };

@@ -68,6 +68,7 @@ G="set terminal pngcairo size 900,480 font 'sans,10'"
 gnuplot -e "set terminal pngcairo" >/dev/null 2>&1 || G="set terminal png size 900,480"
 gnuplot <<EOG
 $G
+set termoption noenhanced
 set output '$IMG/bench-float-ratio.png'
 set title 'qorient float32 / fastest of cglm and Eigen (same inputs, x86-64, -O2); goal <= 1'
 set style data histograms
@@ -85,7 +86,9 @@ plot '$R/float.dat' using 2:xtic(1) title 'time, library call', '' using 3 title
 EOG
 gnuplot <<EOG
 $G
+set termoption noenhanced
 set output '$IMG/bench-fixed.png'
+set key below
 set multiplot layout 1,2 title 'qorient fixed point (Q1.30) against libfixmath (Q16.16), x86-64 callgrind'
 set style data histograms
 set style histogram clustered gap 1
@@ -101,6 +104,7 @@ unset multiplot
 EOG
 gnuplot <<EOG
 $G
+set termoption noenhanced
 set output '$IMG/bench-qemu.png'
 set title 'qorient instructions per call on Cortex-M (QEMU, exact counts); 0 = not measured'
 set style data histograms

@@ -13,9 +13,11 @@
 #include "qorient/convert.h"
 #include "qorient/convert_fx.h"
 #include "qorient/euler.h"
+#include "qorient/euler_fx.h"
 #include "qorient/fxconv.h"
 #include "qorient/fxmath.h"
 #include "qorient/interp.h"
+#include "qorient/interp_fx.h"
 #include "qorient/quat.h"
 #include "qorient/quat_fx.h"
 
@@ -45,6 +47,7 @@ static qo_q28 g_a28[NIN];
 static qo_quat_q30 g_xa[NIN], g_xb[NIN], g_xn[NIN];
 static qo_vec3_q30 g_xv[NIN];
 static qo_mat3_q30 g_xm[NIN];
+static qo_q30 g_xt[NIN];
 
 /* Results go to volatile sinks so nothing is optimised away. */
 static volatile float g_sink_f;
@@ -95,6 +98,13 @@ static void op_x_to_mat3(int i)
     (void)qo_quat_to_mat3_q30(g_xa[i], &m);
     g_sink_i = m.m[0][0]; g_sink_i = m.m[1][1]; g_sink_i = m.m[2][2];
 }
+static void op_x_to_euler_ZYX(int i)
+{
+    qo_euler_q28 e;
+    (void)qo_quat_to_euler_q30(g_xa[i], QO_EULER_ZYX, &e, NULL);
+    g_sink_i = e.a1; g_sink_i = e.a2; g_sink_i = e.a3;
+}
+static void op_x_slerp(int i) { qo_quat_q30 q; (void)qo_quat_slerp_q30(g_xa[i], g_xb[i], g_xt[i], &q); sink_x(q); }
 static void op_x_from_mat3(int i) { qo_quat_q30 q; (void)qo_quat_from_mat3_q30(&g_xm[i], &q); sink_x(q); }
 
 typedef struct op { const char *name; void (*fn)(int); } op;
@@ -106,6 +116,7 @@ static const op k_ops[] = {
     { "f_sqrt", op_f_sqrt }, { "f_sin", op_f_sin }, { "f_atan2", op_f_atan2 },
     { "x_mul", op_x_mul }, { "x_rotate", op_x_rotate }, { "x_normalize", op_x_normalize },
     { "x_to_mat3", op_x_to_mat3 }, { "x_from_mat3", op_x_from_mat3 },
+    { "x_to_euler_ZYX", op_x_to_euler_ZYX }, { "x_slerp", op_x_slerp },
     { "x_sqrt", op_x_sqrt }, { "x_sin", op_x_sin }, { "x_atan2", op_x_atan2 },
     { 0, 0 } };
 
@@ -132,6 +143,7 @@ int main(int argc, char **argv)
         g_xn[i].w /= 2; g_xn[i].x /= 2; g_xn[i].y /= 2; g_xn[i].z /= 2;   /* non-unit */
         g_xv[i] = qo_vec3_q30_from_f32(k_v[i]);
         g_xm[i] = qo_mat3_q30_from_f32(&g_m[i]);
+        g_xt[i] = qo_q30_from_f32(k_t[i]);
     }
     for (o = k_ops; o->name != NULL; o++)
         if (!strcmp(o->name, argv[1])) break;

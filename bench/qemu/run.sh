@@ -10,10 +10,6 @@ B=${BUILD:-build}/bench-qemu
 mkdir -p "$OUT" "$B"
 FLAGS="-std=c99 -O2 -ffp-contract=off -ffunction-sections -fdata-sections"
 SRC="bench/qemu/ops.c bench/qemu/startup.c $(ls lib/src/*.c)"
-EXTRA=""
-[ -f lib/include/qorient/quat_fx.h ] && EXTRA="$EXTRA -DQO_BENCH_QUAT_FX"
-[ -f lib/include/qorient/euler_fx.h ] && EXTRA="$EXTRA -DQO_BENCH_EULER_FX"
-[ -f lib/include/qorient/interp_fx.h ] && EXTRA="$EXTRA -DQO_BENCH_INTERP_FX"
 OPS=$(grep -o '{ "[a-zA-Z0-9_]*", op_' bench/qemu/ops.c | sed 's/{ "\(.*\)", op_/\1/' | tr '\n' ' ')
 : > "$OUT/qemu.tsv"
 
@@ -28,7 +24,7 @@ for cpu in m0 m4f; do
     if [ $cpu = m0 ]; then F="-mcpu=cortex-m0 -mthumb -mfloat-abi=soft"; board=microbit
     else F="-mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16"; board=mps2-an386; fi
     elf=$B/ops-$cpu.elf
-    arm-none-eabi-gcc $F $FLAGS $EXTRA -Ilib/include --specs=nano.specs --specs=rdimon.specs \
+    arm-none-eabi-gcc $F $FLAGS -Ilib/include --specs=nano.specs --specs=rdimon.specs \
         -T bench/qemu/cm.ld -Wl,--gc-sections $SRC -lm -o "$elf"
     base=""
     for op in $OPS; do
