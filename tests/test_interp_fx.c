@@ -24,6 +24,7 @@
 #include "qorient/interp.h"
 #include "qorient/interp_fx.h"
 #include "qorient/quat.h"
+#include "qorient/quat_fx.h"
 
 #define PI 3.14159265358979323846
 #define Q30 1073741824.0
@@ -164,6 +165,8 @@ typedef struct core {
     qo_status (*spline_controls)(const dq *k, size_t n, dq *a, dq *b);
     qo_status (*spline_eval)(const dq *k, const dq *a, const dq *b, size_t n, double s,
                              dq *out);
+    qo_status (*squad_controls)(const dq *k, size_t n, dq *s);
+    qo_status (*squad)(dq q0, dq s0, dq s1, dq q1, double t, dq *out);
 } core;
 
 /* float32 adapters */
@@ -219,6 +222,26 @@ static qo_status f_spline_eval(const dq *k, const dq *a, const dq *b, size_t n, 
     qo_status st;
     for (i = 0; i < n; i++) { fk[i] = f_from(k[i]); fa[i] = f_from(a[i]); fb[i] = f_from(b[i]); }
     st = qo_quat_spline_eval_f32(fk, fa, fb, n, (float)s, &o);
+    *out = dq_from_f(o);
+    return st;
+}
+
+static qo_status f_squad_controls(const dq *k, size_t n, dq *s)
+{
+    qo_quat_f32 fk[MAXK], fs[MAXK];
+    size_t i;
+    qo_status st;
+    memset(fk, 0, sizeof fk);
+    for (i = 0; i < n; i++) fk[i] = f_from(k[i]);
+    st = qo_quat_squad_controls_f32(fk, n, fs);
+    for (i = 0; i < n; i++) s[i] = dq_from_f(fs[i]);
+    return st;
+}
+static qo_status f_squad(dq q0, dq s0, dq s1, dq q1, double t, dq *out)
+{
+    qo_quat_f32 o;
+    qo_status st = qo_quat_squad_f32(f_from(q0), f_from(s0), f_from(s1), f_from(q1), (float)t,
+                                     &o);
     *out = dq_from_f(o);
     return st;
 }
@@ -281,15 +304,35 @@ static qo_status x_spline_eval(const dq *k, const dq *a, const dq *b, size_t n, 
     return st;
 }
 
+static qo_status x_squad_controls(const dq *k, size_t n, dq *s)
+{
+    qo_quat_q30 xk[MAXK], xs[MAXK];
+    size_t i;
+    qo_status st;
+    memset(xk, 0, sizeof xk);
+    for (i = 0; i < n; i++) xk[i] = x_from(k[i]);
+    st = qo_quat_squad_controls_q30(xk, n, xs);
+    for (i = 0; i < n; i++) s[i] = dq_from_x(xs[i]);
+    return st;
+}
+static qo_status x_squad(dq q0, dq s0, dq s1, dq q1, double t, dq *out)
+{
+    qo_quat_q30 o;
+    qo_status st = qo_quat_squad_q30(x_from(q0), x_from(s0), x_from(s1), x_from(q1),
+                                     fx_from_d(t, Q30), &o);
+    *out = dq_from_x(o);
+    return st;
+}
+
 /* Tolerances: float32 as test_interp.c; fixed point measured by bench/accuracy_interp_fx.c at
  * 5e-9 rad (slerp) and 1e-9 (norm), checked here with a margin. */
 static const core CORE_F32 = {
     "float32", 1e-6, 1e-6, 1e3, f_q_in, f_t_in, f_t_in, f_unit, f_slerp, f_nlerp, f_bezier,
-    f_spline_controls, f_spline_eval
+    f_spline_controls, f_spline_eval, f_squad_controls, f_squad
 };
 static const core CORE_Q30 = {
     "q30", 3e-8, 3e-9, 1.99, x_q_in, x_t_in, x_s_in, x_unit, x_slerp, x_nlerp, x_bezier,
-    x_spline_controls, x_spline_eval
+    x_spline_controls, x_spline_eval, x_squad_controls, x_squad
 };
 
 /* ---- check helper ----------------------------------------------------------------------- */
@@ -838,6 +881,97 @@ static void test_spline_end_rule_and_swing_back(void **state)
     }
 }
 
+/* ---- Squad, both cores ------------------------------------------------------------------ */
+
+static dq dq_log(dq q) /* unit q: (0, angle/2 * axis) */
+{
+    double vn = sqrt(q.x * q.x + q.y * q.y + q.z * q.z);
+    dq r = { 0, 0, 0, 0 };
+    if (vn > 0) {
+        double k = atan2(vn, q.w) / vn;
+        r.x = q.x * k; r.y = q.y * k; r.z = q.z * k;
+    }
+    return r;
+}
+static dq dq_exp(dq p) /* p pure */
+{
+    double vn = sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
+    double k = (vn > 0) ? sin(vn) / vn : 1.0;
+    dq r = { cos(vn), p.x * k, p.y * k, p.z * k };
+    return r;
+}
+static void d_squad_controls(const dq *q, size_t n, dq *s)
+{
+    size_t i;
+    s[0] = q[0];
+    s[n - 1] = q[n - 1];
+    for (i = 1; i + 1 < n; i++) {
+        dq qi = dq_conj(q[i]);
+        dq l1 = dq_log(dq_mul(qi, q[i + 1])), l2 = dq_log(dq_mul(qi, q[i - 1]));
+        s[i] = dq_mul(q[i], dq_exp(dq_scale(dq_add(l1, l2), -0.25)));
+    }
+}
+static dq d_squad(dq q0, dq s0, dq s1, dq q1, double t)
+{
+    dq x = dq_unit(d_slerp_raw(q0, q1, t)), y = dq_unit(d_slerp_raw(s0, s1, t));
+    return dq_unit(d_slerp_raw(x, y, 2 * t * (1 - t)));
+}
+
+/* Inner points vs the classic formula in double, segments vs double (on the core's own inner
+ * points, sign-aligned as documented), exact ends, sign independence, statuses. */
+static void test_squad(void **state)
+{
+    const core *c = CORE(state);
+    const dq id = { 1, 0, 0, 0 }, zero = { 0, 0, 0, 0 };
+    dq k[MAXK], s[MAXK], q[MAXK], ds[MAXK], out, o2, u;
+    /* inner points: float32 2e-6 as test_interp.c; fixed 10x its slerp tolerance */
+    double tol_ctrl = (c == &CORE_F32) ? 2e-6 : 10 * c->tol_rot;
+    int it, j;
+    size_t n, i;
+    rng_seed(0x50AAull);
+    for (it = 0; it < 100; it++) {
+        n = 2 + (size_t)(it % (MAXK - 1));
+        rand_keys(c, k, n, 1.5);
+        d_align(k, n, q);
+        d_squad_controls(q, n, ds);
+        assert_int_equal(c->squad_controls(k, n, s), QO_OK);
+        for (i = 0; i < n; i++)
+            CHECK(dist4(ds[i], s[i]) <= tol_ctrl, "%s squad s[%u] of %u: %.3g", c->name,
+                  (unsigned)i, (unsigned)n, dist4(ds[i], s[i]));
+        for (i = 0; i + 1 < n; i++) {
+            dq s0 = dq_unit(s[i]), s1 = dq_unit(s[i + 1]);
+            if (dq_dot_exact(s0, q[i]) < 0) s0 = dq_neg(s0);
+            if (dq_dot_exact(s1, q[i + 1]) < 0) s1 = dq_neg(s1);
+            assert_int_equal(c->unit(k[i], &u), QO_OK);
+            assert_int_equal(c->squad(k[i], s[i], s[i + 1], k[i + 1], 0.0, &out), QO_OK);
+            CHECK(dq_equal(out, u), "%s squad t=0 segment %u", c->name, (unsigned)i);
+            assert_int_equal(c->squad(k[i], s[i], s[i + 1], k[i + 1], 1.0, &out), QO_OK);
+            CHECK(rot_err(out, k[i + 1]) <= c->tol_rot, "%s squad t=1 segment %u", c->name,
+                  (unsigned)i);
+            for (j = 1; j < 10; j++) {
+                double t = (double)j / 10.0;
+                dq ref = d_squad(q[i], s0, s1, q[i + 1], c->t_in(t));
+                assert_int_equal(c->squad(k[i], s[i], s[i + 1], k[i + 1], t, &out), QO_OK);
+                CHECK(rot_err(ref, out) <= 3 * c->tol_rot && norm_dev(out) <= c->tol_norm,
+                      "%s squad segment %u t=%g: %.3g", c->name, (unsigned)i, t,
+                      rot_err(ref, out));
+                assert_int_equal(c->squad(dq_neg(k[i]), s[i], dq_neg(s[i + 1]), k[i + 1], t,
+                                          &o2), QO_OK);
+                CHECK(rot_err(o2, out) <= c->tol_rot, "%s squad signs t=%g", c->name, t);
+            }
+        }
+    }
+    assert_int_equal(c->unit(k[0], &u), QO_OK);
+    assert_int_equal(c->squad(k[0], s[0], s[1], k[1], 1.5, &out), QO_E_RANGE);
+    CHECK(dq_equal(out, u), "%s squad t out of range: unit q0", c->name);
+    assert_int_equal(c->squad(k[0], zero, s[1], k[1], 0.5, &out), QO_E_DEGENERATE);
+    CHECK(dq_equal(out, id), "%s squad zero point: identity", c->name);
+    assert_int_equal(c->squad_controls(k, 1, s), QO_E_TOO_FEW);
+    k[1] = zero;
+    assert_int_equal(c->squad_controls(k, 3, s), QO_E_DEGENERATE);
+    for (i = 0; i < 3; i++) CHECK(dq_equal(s[i], id), "%s squad controls error fill", c->name);
+}
+
 /* ---- fixed point only ------------------------------------------------------------------- */
 
 static const qo_quat_q30 ID_X = { QO_Q30_ONE, 0, 0, 0 };
@@ -868,7 +1002,8 @@ static void test_fx_normalisation(void **state)
 {
     static const qo_quat_q30 edge[] = {
         { 1, 0, 0, 0 }, { 0, 0, 0, -1 }, { 1, 1, 0, 0 }, { 1, -1, 1, -1 },
-        { INT32_MIN, INT32_MIN, INT32_MIN, INT32_MIN }, { INT32_MAX, INT32_MAX, INT32_MAX, INT32_MAX },
+        { INT32_MIN, INT32_MIN, INT32_MIN, INT32_MIN },
+        { INT32_MAX, INT32_MAX, INT32_MAX, INT32_MAX },
         { INT32_MIN, 0, 0, 1 }, { INT32_MAX, INT32_MIN, 3, -7 }, { 3, 0, 0, 4 },
         { QO_Q30_ONE / 2, QO_Q30_ONE / 2, QO_Q30_ONE / 2, QO_Q30_ONE / 2 },
     };
@@ -891,6 +1026,11 @@ static void test_fx_normalisation(void **state)
             if (q.w == 0 && q.x == 0 && q.y == 0 && q.z == 0) continue;
         }
         u = xu(q);
+        {
+            qo_quat_q30 u2;
+            assert_int_equal(qo_quat_normalize_q30(q, &u2), QO_OK);
+            CHECK(x_equal(u, u2), "unit a is qo_quat_normalize_q30(a): " XFMT, XF(q));
+        }
         ref = dq_unit(dq_from_x(q));
         e = fabs(u.w / Q30 - ref.w);
         for (k = 0; k < 3; k++) {
@@ -1226,6 +1366,7 @@ int main(void)
         BOTH(test_spline_c1),
         BOTH(test_spline_sign_invariance),
         BOTH(test_spline_end_rule_and_swing_back),
+        BOTH(test_squad),
         cmocka_unit_test(test_fx_normalisation),
         cmocka_unit_test(test_fx_slerp_extremes),
         cmocka_unit_test(test_fx_exact_endpoints),

@@ -4,6 +4,7 @@
 #include "qorient/interp_fx.h"
 
 #include "qorient/fxmath.h"
+#include "qorient/quat_fx.h"
 
 /* The rounding shifts below rely on >> of a negative value being an arithmetic shift
  * (implementation-defined in C99, arithmetic on gcc and clang for every target). */
@@ -102,12 +103,11 @@ static int unit_from_i64(const int64_t v[4], qo_quat_q30 *out)
     return 1;
 }
 
-/* Checks and normalises one orientation input: QO_E_DEGENERATE (and identity) for zero. */
+/* Checks and normalises one orientation input: QO_E_DEGENERATE (and identity) for zero.
+ * qo_quat_normalize_q30 itself, so "unit a" in the header is exactly its result. */
 static qo_status unit_in(qo_quat_q30 q, qo_quat_q30 *u)
 {
-    int64_t v[4];
-    v[0] = q.w; v[1] = q.x; v[2] = q.y; v[3] = q.z;
-    return unit_from_i64(v, u) ? QO_OK : QO_E_DEGENERATE;
+    return qo_quat_normalize_q30(q, u);
 }
 
 /* Checks two orientation inputs; the first failure wins (both are written). */
@@ -520,5 +520,52 @@ qo_status qo_quat_squad_q30(qo_quat_q30 q0, qo_quat_q30 s0, qo_quat_q30 s1, qo_q
     /* 2 t (1 - t) in Q1.30, exact product rounded once; in [0, 1/2]. */
     h = rshift_round(2 * (int64_t)t * (ONE64 - t), 30);
     (void)slerp_raw(x, y, h, out);
+    return QO_OK;
+}
+
+/* log of a unit relative rotation as its Q3.28 vector part (theta/2 * axis). */
+static qo_vec3_q28 log_unit(qo_quat_q30 q)
+{
+    qo_vec3_q28 l;
+    (void)qo_quat_log_q30(q, &l);
+    return l;
+}
+
+/* -(l1 + l2)/4, each component rounded once (|l| <= pi/2 + rounding: no overflow). */
+static qo_q28 quarter_neg_sum(qo_q28 a, qo_q28 b)
+{
+    return (qo_q28)rshift_round(-((int64_t)a + b), 2);
+}
+
+qo_status qo_quat_squad_controls_q30(const qo_quat_q30 *keys, size_t n, qo_quat_q30 *s)
+{
+    qo_quat_q30 qm, qc, qn, qci, e;
+    qo_vec3_q28 l1, l2, arg;
+    qo_status st;
+    size_t i;
+    fill_identity(s, n);
+    if (keys == NULL || s == NULL) return QO_E_NULL;
+    if (n < 2) return QO_E_TOO_FEW;
+    st = check_keys(keys, n);
+    if (st != QO_OK) return st;
+    (void)unit_in(keys[0], &qc);
+    s[0] = qc;
+    qn = next_key(keys[1], qc);
+    for (i = 1; i + 1 < n; i++) {
+        qm = qc;
+        qc = qn;
+        qn = next_key(keys[i + 1], qc);
+        qci = qo_quat_conj_q30(qc);
+        /* Aligned keys: both relative rotations have w >= 0 (up to the product's rounding),
+         * so the logs are the short ones, |l| <= pi/2. */
+        l1 = log_unit(qo_quat_mul_q30(qci, qn));
+        l2 = log_unit(qo_quat_mul_q30(qci, qm));
+        arg.x = quarter_neg_sum(l1.x, l2.x);
+        arg.y = quarter_neg_sum(l1.y, l2.y);
+        arg.z = quarter_neg_sum(l1.z, l2.z);
+        (void)qo_quat_exp_q30(arg, &e);
+        (void)unit_in(qo_quat_mul_q30(qc, e), &s[i]);
+    }
+    s[n - 1] = qn;
     return QO_OK;
 }

@@ -20,6 +20,7 @@
  *   qo_quat_spline_controls_q30 Shoemake C1 spline through N keys: inner control points a, b
  *   qo_quat_spline_eval_q30     evaluate that spline at s in [0, N-1] (Q16.16)
  *   qo_quat_squad_q30           Squad segment between two keys with their inner quadrangle points
+ *   qo_quat_squad_controls_q30  Squad inner points s_i for N keys (exp/log of qorient/quat_fx.h)
  *
  * Formats: quaternions Q1.30 (qo_quat_q30, components in [-2, 2)); the interpolation
  * parameter t is Q1.30 with the valid range [0, QO_Q30_ONE] (raw 0 .. 2^30), so t == 1 is
@@ -30,13 +31,11 @@
  *   - Quaternion inputs that describe orientations (everything except qo_quat_lerp_q30) are
  *     normalised first, any non-zero length accepted (from 1 LSB up to a norm of 4, every
  *     component INT32_MIN); a zero input gives QO_E_DEGENERATE with *out = identity.
- *   - Normalisation divides the exact input (no pre-rounding) by its norm known to 2^-32
- *     relative and rounds each component to nearest: within 0.75 LSB (7e-10) per component of
- *     the exact unit quaternion (tests check 1 LSB), but a Q1.30 input that is already unit
- *     within rounding may come back with its last bit changed; exactly representable unit
- *     quaternions (identity, (1/2, 1/2, 1/2, 1/2), ...) come back unchanged. "unit a" below
- *     means exactly this module's normalisation of a (the bits qo_quat_align_keys_q30 returns
- *     for the one-key sequence {a}).
+ *   - Inputs are normalised by qo_quat_normalize_q30 (qorient/quat_fx.h: within 1 LSB per
+ *     component, the sign kept; a Q1.30 input that is already unit within rounding may come
+ *     back with its last bit changed, exactly representable unit quaternions such as the
+ *     identity or (1/2, 1/2, 1/2, 1/2) come back unchanged). "unit a" below means exactly
+ *     qo_quat_normalize_q30(a). Internal 64-bit sums are normalised by the same method.
  *   - Interpolation parameters outside their range are an error (QO_E_RANGE), never clamped
  *     or extrapolated; the output is then the documented end value (usually unit a).
  *   - The output is always written when its pointer is not NULL, also on error.
@@ -45,14 +44,15 @@
  *   - Accuracy (bench/accuracy_interp_fx.c, vs double on the same Q1.30 inputs, 38k slerp
  *     cases incl. the edge table): slerp worst 4.2e-9 rad of rotation (the float32 core:
  *     3.2e-7 on the same cases), results unit length within 1.1e-9, spline keys 1.7e-9 rad,
- *     spline between keys 1.1e-8 rad. The 4-D angle comes from qo_fx_atan2_q28 (1 LSB =
- *     3.7e-9 rad); the weights sin(u th)/th come from a degree-20 sinc series in Q1.31 with
- *     64-bit products, accurate in RELATIVE terms however small th is.
+ *     spline between keys 1.1e-8 rad, Squad inner points 1.0e-8 rad. The 4-D angle comes
+ *     from qo_fx_atan2_q28 (1 LSB = 3.7e-9 rad); the weights sin(u th)/th come from a
+ *     degree-20 sinc series in Q1.31 with 64-bit products, accurate in RELATIVE terms however
+ *     small th is.
  *   - No heap, no static state; all storage is the caller's or a bounded stack array.
- *   - Cost on Cortex-M0+ (arm-none-eabi-gcc -O2, tools/core-check.sh -fstack-usage): 8.1 kB of
- *     code for the module (plus fxmath), deepest stack path about 0.9 kB (qo_quat_bezier_q30 ->
- *     de Casteljau -> slerp -> normalise). No division by a run-time value other than 64-bit
- *     integer divisions (__aeabi_uldivmod on Cortex-M0+).
+ *   - Cost on Cortex-M0+ (arm-none-eabi-gcc -O2, tools/core-check.sh -fstack-usage): 8.3 kB of
+ *     code for the module (plus fxmath, quat_fx), deepest stack path about 0.9 kB
+ *     (qo_quat_bezier_q30 -> de Casteljau -> slerp -> normalise). The only divisions are
+ *     64-bit integer ones (__aeabi_uldivmod on Cortex-M0+).
  */
 #ifndef QORIENT_INTERP_FX_H
 #define QORIENT_INTERP_FX_H
@@ -186,8 +186,7 @@ qo_status qo_quat_spline_eval_q30(const qo_quat_q30 *keys, const qo_quat_q30 *a,
                                   const qo_quat_q30 *b, size_t n, qo_q16 s, qo_quat_q30 *out);
 
 /* Squad segment (Shoemake 1987) from key q0 to key q1 with inner quadrangle points s0, s1
- * (e.g. from qo_quat_squad_controls_f32 converted with fxconv.h; the fixed-point control
- * points need a quaternion exp/log, not in this module):
+ * (from qo_quat_squad_controls_q30):
  *   out = Slerp(Slerp(q0, q1, t), Slerp(s0, s1, t), 2t(1-t)),
  * as qo_quat_squad_f32: all four normalised; q1 aligned to q0, s0 to q0 and s1 to q1, the
  * inner slerps without further flips, so the result does not depend on the caller's signs.
@@ -197,6 +196,19 @@ qo_status qo_quat_spline_eval_q30(const qo_quat_q30 *keys, const qo_quat_q30 *a,
  * *out = identity); QO_E_RANGE (t outside [0, QO_Q30_ONE], *out = unit q0). */
 qo_status qo_quat_squad_q30(qo_quat_q30 q0, qo_quat_q30 s0, qo_quat_q30 s1, qo_quat_q30 q1,
                             qo_q30 t, qo_quat_q30 *out);
+
+/* Squad inner points for n keys, as qo_quat_squad_controls_f32: with q_i the aligned keys
+ * (qo_quat_align_keys_q30),
+ *   s_i = q_i * exp(-(log(q_i^-1 q_{i+1}) + log(q_i^-1 q_{i-1})) / 4),  0 < i < n-1,
+ *   s_0 = q_0, s_{n-1} = q_{n-1}   (zero end tangents),
+ * with qo_quat_log_q30 / qo_quat_exp_q30 (vector parts in Q3.28 radians; the quarter sum is
+ * rounded once per component) and the product normalised. Segment i is then
+ * qo_quat_squad_q30(q_i, s_i, s_{i+1}, q_{i+1}, t). These tangents assume evenly spaced keys
+ * (the classic formula); Squad is C1 only for them.
+ * s is a caller array of n entries, not overlapping keys.
+ * Returns QO_OK; QO_E_NULL (keys or s NULL; s, when not NULL, filled with n identities);
+ * QO_E_TOO_FEW (n < 2), QO_E_DEGENERATE (a key is zero): s filled with identities. */
+qo_status qo_quat_squad_controls_q30(const qo_quat_q30 *keys, size_t n, qo_quat_q30 *s);
 
 #ifdef __cplusplus
 }
