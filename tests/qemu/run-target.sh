@@ -37,13 +37,23 @@ cpu_of() { tail -1 "$1" | awk '{ n = 0; for (i = 1; i <= NF; i++) { split($i, a,
 secs() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.1f", b - a }'; }
 
 # A core test includes only C99 headers, <cmocka.h>, "qorient/..." and "common/..." (the core and
-# tests/common): anything else (ports/, POSIX, libmodbus, libgpiod) keeps it on Linux.
+# tests/common), or a source file beside it (say "../examples/mcu/x.c") that itself follows this
+# rule: anything else (ports/, POSIX, libmodbus, libgpiod) keeps it on Linux.
 is_core() {
-    bad=$(grep -E '^[[:space:]]*#[[:space:]]*include' "$1" | grep -Ev \
+    d=$(dirname "$1")
+    for inc in $(grep -E '^[[:space:]]*#[[:space:]]*include' "$1" | grep -Ev \
         -e '<(assert|ctype|errno|float|inttypes|iso646|limits|locale|math|setjmp|signal|stdarg|stdbool|stddef|stdint|stdio|stdlib|string|wchar|wctype|cmocka)\.h>' \
-        -e '"(qorient|common)/[A-Za-z0-9_]+\.h"')
-    [ -z "$bad" ]
+        -e '"(qorient|common)/[A-Za-z0-9_]+\.h"' | sed 's/[^"<]*[<"]\([^">]*\)[">].*/\1/'); do
+        case $inc in
+        ../examples/*.[ch]) [ -f "$d/$inc" ] && is_core "$d/$inc" || return 1;;
+        *) return 1;;
+        esac
+    done
+    return 0
 }
+
+# A shell test that compiles a program with the host's cc cannot run against a cross build.
+host_cc_test() { grep -Eq '(^|[;&|(]|[[:space:]]|if )cc[[:space:]]' "$1"; }
 
 # count LOG KIND -> "P F" from a cmocka (bin) or shell-test (sh) report
 count() {
@@ -191,6 +201,7 @@ aarch64|armhf)
     for sh in tests/test_*.sh; do
         n=$(basename "$sh" .sh)
         if ! wanted "$n"; then skip_it "$n" "QEMU_SKIP"; continue; fi
+        if host_cc_test "$sh"; then skip_it "$n" "builds and runs a program with the host's cc"; continue; fi
         if [ ! -f "$OUT/qorient" ]; then build_failed "$n" "$LOGS/build.log"; continue; fi
         QORIENT=$QW; export QORIENT
         run "$n" sh sh "$sh"
