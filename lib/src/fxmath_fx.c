@@ -82,23 +82,59 @@ qo_status qo_fx_div_q30(int32_t num, int32_t den, qo_q30 *out) { return div_shif
 qo_status qo_fx_div_q28(int32_t num, int32_t den, qo_q28 *out) { return div_shift(num, den, 28, out); }
 qo_status qo_fx_div_q16(int32_t num, int32_t den, qo_q16 *out) { return div_shift(num, den, 16, out); }
 
+/* 2^15 / sqrt(h) at the midpoint of each of 96 intervals of h in [1/4, 1) of width 2^-7
+ * (index h 2^7, i.e. the top 7 bits of a 32-bit fraction), rounded: relative error
+ * <= 2^-7.8. The seed of the Newton square root below (192 bytes of flash). */
+static const uint16_t rsqrt_seed[96] = {
+    65030, 64052, 63117, 62222, 61363, 60540, 59748, 58987, 58254, 57548, 56867, 56210,
+    55574, 54960, 54366, 53791, 53233, 52693, 52169, 51660, 51165, 50685, 50218, 49763,
+    49321, 48890, 48470, 48061, 47663, 47273, 46894, 46523, 46161, 45807, 45462, 45124,
+    44793, 44470, 44153, 43843, 43540, 43243, 42951, 42666, 42386, 42112, 41843, 41579,
+    41320, 41065, 40816, 40571, 40330, 40093, 39861, 39632, 39408, 39187, 38970, 38756,
+    38546, 38340, 38136, 37936, 37739, 37545, 37354, 37166, 36980, 36798, 36618, 36441,
+    36266, 36093, 35924, 35756, 35591, 35428, 35267, 35109, 34953, 34798, 34646, 34496,
+    34347, 34201, 34056, 33913, 33772, 33633, 33496, 33360, 33225, 33093, 32962, 32832,
+};
+
 uint64_t qo_fx_sqrt_u64(uint64_t v)
 {
-    /* Digit-by-digit square root: res ends as floor(sqrt(v)), rem = v - res^2. */
-    uint64_t rem = v, res = 0, bit = (uint64_t)1 << 62;
-    while (bit > rem) bit >>= 2;
-    while (bit != 0) {
-        if (rem >= res + bit) {
-            rem -= res + bit;
-            res = (res >> 1) + bit;
-        } else {
-            res >>= 1;
-        }
-        bit >>= 2;
-    }
-    /* v >= (res + 1/2)^2 = res^2 + res + 1/4  <=>  rem > res (integers). */
-    if (rem > res) res++;
-    return res;
+    /* Newton iterations with multiplications only (Cortex-M0 has no divider and no 64-bit
+     * multiply): x = v 4^k in [2^62, 2^64); y ~ 1/sqrt(x) from a table and one 16-bit Newton
+     * step; s ~ sqrt(x) refined once by s += (x - s^2) y / 2; then s is made exactly
+     * floor(sqrt(x)) against the exact remainder x - s^2, so the result does not depend on
+     * the estimates' error (they only bound the number of final +-1 steps, 0 to 2). */
+    uint64_t x = v, sq, rem;
+    uint32_t hi, y, t, e, s;
+    int64_t r, sl;
+    unsigned k = 0;
+    if (v == 0) return 0;
+    if ((x >> 32) == 0) { x <<= 32; k = 16; }
+    if ((x >> 48) == 0) { x <<= 16; k += 8; }
+    if ((x >> 56) == 0) { x <<= 8; k += 4; }
+    if ((x >> 60) == 0) { x <<= 4; k += 2; }
+    if ((x >> 62) == 0) { x <<= 2; k += 1; }
+    hi = (uint32_t)(x >> 32);                       /* h = hi / 2^32 in [1/4, 1) */
+    y = rsqrt_seed[(hi >> 25) - 32u];               /* 1/sqrt(h), Q1.15 */
+    t = y * y;                                      /* y^2, Q2.30 (< 2^32) */
+    e = 3u * ((uint32_t)1 << 30) - (hi >> 16) * (t >> 16);   /* 3 - h y^2, Q2.30 */
+    y = y * (e >> 16);                              /* y (3 - h y^2) / 2, Q2.30, ~2^-14 */
+    /* sqrt(x) = 2^32 sqrt(h) ~ hi * y / 2^30 (error ~2^18). */
+    sq = qo_fx_umul32_u64(hi, y) >> 30;
+    s = sq > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)sq;
+    /* One Newton step on the root: s += (x - s^2) / (2 s), 1/(2 s) ~ y / 2^63 (error ~2^4). */
+    r = (int64_t)(x - qo_fx_umul32_u64(s, s));      /* |r| < 2^52: exact as int64 */
+    sl = (int64_t)s + (qo_fx_mul32_i64((int32_t)(r >> 32), (int32_t)(y >> 1)) >> 30);
+    s = sl > 0xFFFFFFFF ? 0xFFFFFFFFu : sl < 0 ? 0u : (uint32_t)sl;
+    /* Exact: floor(sqrt(x)) is the s with s^2 <= x < (s + 1)^2 (< 2^32, so no wrap). */
+    sq = qo_fx_umul32_u64(s, s);
+    while (sq > x) { sq -= 2u * (uint64_t)s - 1u; s--; }
+    rem = x - sq;
+    while (rem > 2u * (uint64_t)s) { rem -= 2u * (uint64_t)s + 1u; s++; }
+    /* Round to nearest. k = 0: v >= (s + 1/2)^2 = s^2 + s + 1/4 <=> rem > s. k >= 1:
+     * floor(sqrt(v) + 1/2) = floor((sqrt(x) + 2^(k-1)) / 2^k), and the integer 2^(k-1) lets
+     * floor(sqrt(x)) stand for sqrt(x). Never a tie. */
+    if (k == 0) return (uint64_t)s + (rem > s);
+    return ((uint64_t)s + ((uint64_t)1 << (k - 1u))) >> k;
 }
 
 qo_status qo_fx_sqrt_q30(qo_q30 x, qo_q30 *out)

@@ -8,6 +8,8 @@
  * Index:
  *   QO_Q28_PI, QO_Q28_HALF_PI, QO_Q28_TWO_PI   pi, pi/2, 2pi in Q3.28 (each rounded to nearest)
  *   qo_fx_sat_i32          saturate an int64 to int32
+ *   qo_fx_mul32_i64        exact signed 32x32 -> 64 product (static inline, 4 16x16 products)
+ *   qo_fx_umul32_u64       exact unsigned 32x32 -> 64 product (static inline, 4 16x16 products)
  *   qo_fx_add_q30          saturating a + b (any one format)
  *   qo_fx_sub_q30          saturating a - b (any one format)
  *   qo_fx_neg_q30          saturating -a (any one format)
@@ -91,6 +93,35 @@ extern "C" {
 
 /* v clamped to [INT32_MIN, INT32_MAX]. */
 int32_t qo_fx_sat_i32(int64_t v);
+
+/*
+ * Exact products (int64_t)a * b and (uint64_t)a * b, for every int32 / uint32 input.
+ * Why they exist: ARMv6-M (Cortex-M0/M0+) has only a 32x32 -> 32 MULS, so a C 64-bit product
+ * becomes a call to libgcc's general 64x64 __aeabi_lmul (~40 instructions plus the call).
+ * Written as four 16x16 partial products, the same product is 4 MULS and a few adds inline.
+ * On targets with a widening multiply the compiler does as well either way.
+ * The signed product is the unsigned one of the two's-complement bit patterns with the
+ * high word corrected (the int64 conversion of a value below 2^63 in magnitude is exact).
+ */
+static inline uint64_t qo_fx_umul32_u64(uint32_t a, uint32_t b)
+{
+    uint32_t ah = a >> 16, bh = b >> 16, al = a & 0xFFFFu, bl = b & 0xFFFFu;
+    uint32_t ll = al * bl, mid = al * bh, hi = ah * bh, lo;
+    uint32_t hl = ah * bl;
+    mid += hl;                                   /* may carry: worth 2^48 */
+    hi += (mid >> 16) + ((uint32_t)(mid < hl) << 16);
+    lo = ll + (mid << 16);
+    hi += (uint32_t)(lo < ll);
+    return ((uint64_t)hi << 32) | lo;
+}
+
+/* Two's complement: a * b = ua * ub - 2^32 (b [a < 0] + a [b < 0]) mod 2^64. */
+static inline int64_t qo_fx_mul32_i64(int32_t a, int32_t b)
+{
+    uint64_t u = qo_fx_umul32_u64((uint32_t)a, (uint32_t)b);
+    uint32_t corr = ((uint32_t)b & (uint32_t)(a >> 31)) + ((uint32_t)a & (uint32_t)(b >> 31));
+    return (int64_t)(u - ((uint64_t)corr << 32));
+}
 
 /* a + b, a - b and -a, saturated. Formats must match; the result is in that format. Used for
  * every format (Q1.30, Q3.28, Q16.16): the _q30 suffix names the family, not a restriction.
