@@ -285,36 +285,86 @@ qo_q30 qo_fx_cos_q28(qo_q28 angle_rad)
     return c;
 }
 
+/* round(a * b / 2^31) for |a|, |b| < 2^31 through the 32x32 product (no libgcc call). */
+static int64_t mul31s(int64_t a, int64_t b)
+{
+    return (qo_fx_mul32_i64((int32_t)a, (int32_t)b) + ((int64_t)1 << 30)) >> 31;
+}
+
+/* 2^62 / d at the midpoint of each of 64 intervals of d in [2^31, 2^32) (index d >> 25),
+ * rounded: relative error <= 2^-8, the seed of recip62 (256 bytes of flash). */
+static const uint32_t recip_seed[64] = {
+    2130836488u, 2098304633u, 2066751180u, 2036132644u, 2006408080u, 1977538899u, 1949488702u, 1922223125u,
+    1895709703u, 1869917734u, 1844818167u, 1820383490u, 1796587627u, 1773405851u, 1750814694u, 1728791868u,
+    1707316192u, 1686367527u, 1665926709u, 1645975491u, 1626496491u, 1607473140u, 1588889636u, 1570730897u,
+    1552982525u, 1535630765u, 1518662469u, 1502065065u, 1485826524u, 1469935331u, 1454380460u, 1439151345u,
+    1424237860u, 1409630292u, 1395319325u, 1381296015u, 1367551776u, 1354078359u, 1340867839u, 1327912594u,
+    1315205296u, 1302738895u, 1290506605u, 1278501893u, 1266718465u, 1255150260u, 1243791434u, 1232636354u,
+    1221679586u, 1210915890u, 1200340205u, 1189947649u, 1179733506u, 1169693221u, 1159822392u, 1150116765u,
+    1140572228u, 1131184802u, 1121950641u, 1112866020u, 1103927337u, 1095131103u, 1086473940u, 1077952576u,
+};
+
+/* About 2^62 / d for d in [2^31, 2^32): two Newton steps r += r (2^62 - d r) / 2^62 from the
+ * seed (2^-8 -> 2^-16 -> below 2^-30 with the truncations), multiplications only. */
+static uint32_t recip62(uint32_t d)
+{
+    uint32_t r = recip_seed[(d >> 25) - 64u];
+    int i;
+    for (i = 0; i < 2; i++) {
+        int64_t e = ((int64_t)1 << 62) - (int64_t)qo_fx_umul32_u64(d, r);   /* |e| <= 2^55 */
+        r = (uint32_t)((int64_t)r + (qo_fx_mul32_i64((int32_t)(r >> 1), (int32_t)(e >> 31)) >> 30));
+    }
+    return r;
+}
+
 qo_q28 qo_fx_atan2_q28(int32_t y, int32_t x)
 {
-    uint64_t ax = x < 0 ? (uint64_t)(-(int64_t)x) : (uint64_t)x;
-    uint64_t ay = y < 0 ? (uint64_t)(-(int64_t)y) : (uint64_t)y;
-    uint64_t mx, mn, q;
-    int64_t bx, by, t, u, p, a;
+    uint32_t ax = x < 0 ? 0u - (uint32_t)x : (uint32_t)x;
+    uint32_t ay = y < 0 ? 0u - (uint32_t)y : (uint32_t)y;
+    uint32_t mx, mn, d, r;
+    uint64_t bx;
+    int32_t by;
+    int64_t t, u, p, a;
     int swap;
-    unsigned k;
+    unsigned k, f;
     if (ax == 0 && ay == 0) return 0;
     swap = ay > ax;
     mx = swap ? ay : ax;
     mn = swap ? ax : ay;
     /* Scale so mx is in [2^30, 2^31]: the rotation below then cannot overflow, and no input
      * bit is lost (|int32| <= 2^31). */
-    while (mx < ((uint64_t)1 << 30)) { mx <<= 1; mn <<= 1; }
-    /* k = round(8 * mn / mx) in 0..8, t = mn/mx in [0, 1]. */
-    k = (unsigned)((16u * mn + mx) / (2u * mx));
+    while (mx < ((uint32_t)1 << 30)) { mx <<= 1; mn <<= 1; }
+    /* k ~ round(8 mn / mx) in 0..8 by comparisons on mn, mx / 16 (no division): a neighbour
+     * of the exact rounding only at a boundary, where |t'| below is still <= 1/16 + 2^-25. */
+    {
+        uint32_t n16 = (mn >> 4) * 16u, m1 = mx >> 4;   /* < 2^31 each */
+        k = 0;
+        if (n16 >= 7u * m1) k = 4;                    /* 16 mn >= (2k - 1) mx  <=> k up */
+        if (n16 >= (2u * k + 3u) * m1) k += 2;
+        if (n16 >= (2u * k + 1u) * m1) k += 1;
+        if (n16 >= (2u * k + 1u) * m1) k += 1;
+    }
     /* Rotate (mx, mn) by -atan(k/8), scaled by 8: the angle left is atan(by / bx) with
-     * |by / bx| <= 1/16. Exact integer arithmetic: bx <= 2^35, |by| <= 2^31. */
-    bx = (int64_t)(8u * mx + k * mn);
-    by = (int64_t)(8u * mn) - (int64_t)(k * mx);
-    q = (((uint64_t)(by < 0 ? -by : by) << 31) + (uint64_t)bx / 2u) / (uint64_t)bx;
-    t = by < 0 ? -(int64_t)q : (int64_t)q;
+     * |by / bx| <= 1/16 (+ tiny). Exact integer arithmetic: bx <= 2^35, |by| <= 2^31 + ... */
+    bx = 8u * (uint64_t)mx + (((uint64_t)(k * (mn >> 16)) << 16) + k * (mn & 0xFFFFu));
+    /* |8 mn - k mx| <= mx / 2 + tiny fits an int32: the wrapped uint32 difference is it. */
+    by = (int32_t)(8u * mn - k * mx);
+    /* t = by / bx in Q1.31 through a reciprocal of bx's top 32 bits (bx in [2^33, 2^36):
+     * d = bx / 2^f in [2^31, 2^32), truncation <= 2^-31 relative). |t| <= 1/16, so the
+     * relative errors of d and of the reciprocal (< 2^-30) cost < 2^-34 absolute, and the
+     * final rounding 2^-32: about 0.3 LSB of Q1.31 in all (0.04 LSB of the Q3.28 result). */
+    f = (bx >> 35) ? 4u : (bx >> 34) ? 3u : 2u;
+    d = (uint32_t)(bx >> f);
+    r = recip62(d);                                   /* ~2^62 / d */
+    t = (qo_fx_mul32_i64(by, (int32_t)(r >> 1)) + ((int64_t)1 << (29u + f))) >> (30u + f);
     /* atan(t) = t (1 - t^2/3 + t^4/5 - t^6/7); the next term is < 2e-12. */
-    u = mul31(t, t);
+    u = mul31s(t, t);
     p = -306783378;
-    p = 429496730 + mul31(u, p);
-    p = -715827883 + mul31(u, p);
-    p = ONE_Q31 + mul31(u, p);
-    a = atan_k8_q31[k] + mul31(t, p);
+    p = 429496730 + mul31s(u, p);
+    p = -715827883 + mul31s(u, p);
+    p = ONE_Q31 + mul31s(u, p);                       /* <= 2^31 */
+    /* t p with p = 2^31 possible (t = 0): as t (p - 1) + t, every factor an int32. */
+    a = atan_k8_q31[k] + ((qo_fx_mul32_i64((int32_t)t, (int32_t)(p - 1)) + t + ((int64_t)1 << 30)) >> 31);
     if (swap) a = HALF_PI_Q31 - a;
     if (x < 0) a = PI_Q31 - a;
     if (a < 0) a = 0;
