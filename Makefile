@@ -54,7 +54,7 @@ SPORT_OBJ := $(PORT_SRC:%.c=$(BUILD)/san/%.o)
 SCOMMON_OBJ := $(TEST_COMMON:%.c=$(BUILD)/san/%.o)
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all lib test test-run test-vm core-check clean tests-build figures
+.PHONY: all lib demo test test-run test-vm core-check clean tests-build figures
 # Keep the sanitizer objects between runs (they are intermediates of the test pattern rule).
 .SECONDARY:
 all: $(BUILD)/libqorient.a $(BUILD)/libqorient_ports.a $(BUILD)/qorient
@@ -126,6 +126,13 @@ test-run: tests-build
 # Debian's kernel packages once into build/vm).
 test-vm:
 	sh tests/vm/run-gpiosim.sh
+
+# The main job with no hardware: simulated drives, a planned arm move and a gimbal path
+# streamed over loopback Modbus, and a picture of what the drives received.
+demo:
+	@sh tools/deps.sh demo
+	@$(MAKE) --no-print-directory all
+	@sh tools/demo.sh
 
 # ---- core portability and hygiene (also run by .ci/run) ----
 core-check:

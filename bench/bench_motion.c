@@ -5,6 +5,8 @@
  *
  * Cases (fixed seed): 7 joints with random limits, moving from a random state (p, v, a) that a
  * first plan reached mid-motion, re-planned (SCURVE, SYNC_TIME) to random targets.
+ * The build machine is shared: re-plans are timed on the wall clock, best of 5 per case;
+ * sampling loops in thread CPU time, best of 25 runs.
  * Prints: re-plan time (median, worst), per-joint per-tick sampling cost (float32 and
  * Q16.16), duration / time-optimal duration (worst; the reference is the slowest joint's
  * minimum time from an independent double-precision grid search over the profile family with
@@ -37,10 +39,20 @@ static double urand(double lo, double hi)
 }
 static double lrand(double lo, double hi) { return exp(urand(log(lo), log(hi))); }
 
+/* Wall clock (vDSO, cheap to read) for single re-plans, best of 5 per case. */
 static double now_ns(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e9 + (double)ts.tv_nsec;
+}
+
+/* Thread CPU time for the long sampling loops: the machine is shared, and time spent
+ * descheduled says nothing about the code (cache effects of other load still show). */
+static double cpu_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
     return (double)ts.tv_sec * 1e9 + (double)ts.tv_nsec;
 }
 
@@ -116,51 +128,81 @@ static double ref_min_time(double D, double v0, double a0, double V, double A, d
 
 
 /* ---- independent global check: linear program over piecewise-constant jerk ----
- * K equal steps over duration Tp, jerk u_k in [-J, J], |a| <= A and |v| <= V at every step
- * end, final (p, v, a) = (D, 0, 0). Feasible means a profile of duration Tp exists (v is only
- * checked at step ends: it may exceed V between them by at most A h / 8). Dense phase-1
- * simplex (Bland's rule: no cycling). Returns 1 feasible, 0 infeasible, -1 gave up. */
-#define LPK 60
-#define LPM (5 * LPK + 3)
-#define LPN (LPK + 5 * LPK + 3 + LPM)
+ * K equal steps over duration Tp, jerk u_k in [-J, J], |a| <= A at every step end (exact: a is
+ * piecewise linear), |v| <= V at every step end and mid-step, final (p, v, a) = (D, 0, 0).
+ * Dense phase-1 simplex (Dantzig's rule, Bland's rule after a stall: no cycling).
+ * Returns 1: feasible, and the LP's profile passes a dense continuous check (a genuine profile
+ * of duration Tp); 2: the LP is feasible only because v is checked at discrete points (the
+ * profile exceeds V between them); 0: infeasible; -1: iteration cap; -2: numerical trouble. */
+#define LPK 40
+#define LPM (7 * LPK + 3)
+#define LPN (LPK + LPM + LPM)
 static double lp_tab[LPM + 1][LPN + 1];
+static double lp_coef[LPM][LPK];
 static int lp_basis[LPM];
+static char lp_isbasic[LPN];
+
+/* Dense continuous check of a jerk sequence: limits within 1e-6, end state within 1e-6. */
+static int lp_verify(const double *u, double D, double v0, double a0, double V, double A, double J, double h)
+{
+    double p = 0, v = v0, a = a0;
+    int k, q;
+    for (k = 0; k < LPK; k++) {
+        for (q = 1; q <= 64; q++) {
+            double t = h * q / 64.0;
+            double vv = v + a * t + u[k] * t * t / 2, aa = a + u[k] * t;
+            if (fabs(vv) > V * (1 + 1e-6) || fabs(aa) > A * (1 + 1e-6) || fabs(u[k]) > J * (1 + 1e-6)) return 0;
+        }
+        p += v * h + a * h * h / 2 + u[k] * h * h * h / 6;
+        v += a * h + u[k] * h * h / 2;
+        a += u[k] * h;
+    }
+    return fabs(p - D) <= 1e-6 * (1 + fabs(D)) && fabs(v) <= 1e-6 * V && fabs(a) <= 1e-6 * A;
+}
 
 static int lp_feasible(double D, double v0, double a0, double V, double A, double J, double Tp)
 {
-    double h = Tp / LPK, coef[LPM][LPK], rhs[LPM];
+    double h = Tp / LPK, rhs[LPM], u[LPK];
     int type[LPM]; /* 0: <=, 1: >=, 2: = */
-    int m = 0, i, k, r, c, ncol, nart = 0, it;
+    int m = 0, i, k, r, c, ncol, nart = 0, it, stall = 0, bland = 0;
+    double lastobj = INFINITY;
     for (k = 1; k <= LPK; k++) {
-        for (i = 0; i < LPK; i++) coef[m][i] = i < k ? h : 0;
+        double tm = (k - 0.5) * h;
+        for (i = 0; i < LPK; i++) lp_coef[m][i] = i < k ? h : 0;
         rhs[m] = A - a0; type[m++] = 0;
-        for (i = 0; i < LPK; i++) coef[m][i] = i < k ? h : 0;
+        for (i = 0; i < LPK; i++) lp_coef[m][i] = i < k ? h : 0;
         rhs[m] = -A - a0; type[m++] = 1;
-        for (i = 0; i < LPK; i++) coef[m][i] = i < k ? h * h * (2.0 * (k - i) - 1) / 2 : 0;
+        for (i = 0; i < LPK; i++) lp_coef[m][i] = i < k ? h * h * (2.0 * (k - i) - 1) / 2 : 0;
         rhs[m] = V - v0 - k * h * a0; type[m++] = 0;
-        for (i = 0; i < LPK; i++) coef[m][i] = i < k ? h * h * (2.0 * (k - i) - 1) / 2 : 0;
+        for (i = 0; i < LPK; i++) lp_coef[m][i] = i < k ? h * h * (2.0 * (k - i) - 1) / 2 : 0;
         rhs[m] = -V - v0 - k * h * a0; type[m++] = 1;
-        for (i = 0; i < LPK; i++) coef[m][i] = i == k - 1 ? 1 : 0;
-        rhs[m] = J; type[m++] = 0; /* u <= J */
+        /* mid-step velocity: steps before contribute u h (t - ih - h/2), the current u (h/2)^2/2 */
+        for (i = 0; i < LPK; i++) lp_coef[m][i] = i < k - 1 ? h * h * (k - 1 - i) : (i == k - 1 ? h * h / 8 : 0);
+        rhs[m] = V - v0 - tm * a0; type[m++] = 0;
+        for (i = 0; i < LPK; i++) lp_coef[m][i] = i < k - 1 ? h * h * (k - 1 - i) : (i == k - 1 ? h * h / 8 : 0);
+        rhs[m] = -V - v0 - tm * a0; type[m++] = 1;
+        for (i = 0; i < LPK; i++) lp_coef[m][i] = i == k - 1 ? 1 : 0;
+        rhs[m] = J; type[m++] = 0; /* u <= J (u >= -J is w >= 0) */
     }
-    for (i = 0; i < LPK; i++) coef[m][i] = h;
+    for (i = 0; i < LPK; i++) lp_coef[m][i] = h;
     rhs[m] = -a0; type[m++] = 2;
-    for (i = 0; i < LPK; i++) coef[m][i] = h * h * (2.0 * (LPK - i) - 1) / 2;
+    for (i = 0; i < LPK; i++) lp_coef[m][i] = h * h * (2.0 * (LPK - i) - 1) / 2;
     rhs[m] = -v0 - LPK * h * a0; type[m++] = 2;
     for (i = 0; i < LPK; i++) {
         double x = LPK - i, y = LPK - i - 1;
-        coef[m][i] = h * h * h * (x * x * x - y * y * y) / 6;
+        lp_coef[m][i] = h * h * h * (x * x * x - y * y * y) / 6;
     }
     rhs[m] = D - LPK * h * v0 - 0.5 * (LPK * h) * (LPK * h) * a0; type[m++] = 2;
-    /* u = w - J with w >= 0; scale each row to unit max coefficient */
+    /* u = w - J with w >= 0; each row scaled to unit max coefficient */
     memset(lp_tab, 0, sizeof lp_tab);
+    memset(lp_isbasic, 0, sizeof lp_isbasic);
     ncol = LPK + m; /* w, then one slack/surplus per row (unused for '=') */
     for (r = 0; r < m; r++) {
         double mx = 0, sum = 0, b;
-        for (i = 0; i < LPK; i++) { mx = fmax(mx, fabs(coef[r][i])); sum += coef[r][i]; }
+        for (i = 0; i < LPK; i++) { mx = fmax(mx, fabs(lp_coef[r][i])); sum += lp_coef[r][i]; }
         b = rhs[r] + J * sum;
         if (mx == 0) mx = 1;
-        for (i = 0; i < LPK; i++) lp_tab[r][i] = coef[r][i] / mx;
+        for (i = 0; i < LPK; i++) lp_tab[r][i] = lp_coef[r][i] / mx;
         b /= mx;
         if (type[r] != 2) lp_tab[r][LPK + r] = type[r] == 0 ? 1 : -1;
         if (b < 0) {
@@ -178,45 +220,61 @@ static int lp_feasible(double D, double v0, double a0, double V, double A, doubl
             lp_basis[r] = ncol + nart;
             nart++;
         }
+        lp_isbasic[lp_basis[r]] = 1;
     }
     ncol += nart;
-    /* phase-1 objective: minimise the sum of artificials = -(sum of their rows) in reduced form */
-    for (c = 0; c <= LPN; c++) lp_tab[m][c] = 0;
+    /* phase-1 objective: minimise the sum of artificials, in reduced form */
     for (r = 0; r < m; r++) {
         if (lp_basis[r] < LPK + m) continue;
         for (c = 0; c < ncol; c++)
             if (c != lp_basis[r]) lp_tab[m][c] -= lp_tab[r][c];
         lp_tab[m][LPN] -= lp_tab[r][LPN];
     }
-    for (it = 0; it < 20000; it++) {
+    for (it = 0; it < 50000; it++) {
         int e = -1, l = -1;
-        double best = 0;
+        double best = 0, most = -1e-10;
         for (c = 0; c < ncol; c++) {
-            int basic = 0;
-            for (r = 0; r < m && !basic; r++) basic = lp_basis[r] == c;
-            if (!basic && lp_tab[m][c] < -1e-11) { e = c; break; } /* Bland: first improving */
+            if (lp_isbasic[c] || lp_tab[m][c] >= -1e-10) continue;
+            if (bland) { e = c; break; }
+            if (lp_tab[m][c] < most) { most = lp_tab[m][c]; e = c; }
         }
         if (e < 0) break;
         for (r = 0; r < m; r++) {
-            if (lp_tab[r][e] > 1e-11) {
+            if (lp_tab[r][e] > 1e-10) {
                 double q = lp_tab[r][LPN] / lp_tab[r][e];
-                if (l < 0 || q < best - 1e-15 || (q <= best + 1e-15 && lp_basis[r] < lp_basis[l])) { best = q; l = r; }
+                if (l < 0 || q < best - 1e-13 || (q <= best + 1e-13 && lp_basis[r] < lp_basis[l])) { best = q; l = r; }
             }
         }
-        if (l < 0) return -1;
+        if (l < 0) return -2;
         {
             double pv = lp_tab[l][e];
-            for (c = 0; c <= LPN; c++) lp_tab[l][c] /= pv;
+            for (c = 0; c < ncol; c++) lp_tab[l][c] /= pv;
+            lp_tab[l][LPN] /= pv;
             for (r = 0; r <= m; r++) {
                 double f = lp_tab[r][e];
                 if (r == l || f == 0) continue;
-                for (c = 0; c <= LPN; c++) lp_tab[r][c] -= f * lp_tab[l][c];
+                for (c = 0; c < ncol; c++) lp_tab[r][c] -= f * lp_tab[l][c];
+                lp_tab[r][LPN] -= f * lp_tab[l][LPN];
+                if (r < m && lp_tab[r][LPN] < 0 && lp_tab[r][LPN] > -1e-12) lp_tab[r][LPN] = 0;
             }
+            lp_isbasic[lp_basis[l]] = 0;
             lp_basis[l] = e;
+            lp_isbasic[e] = 1;
+        }
+        /* no progress for a while: switch to Bland's rule, which cannot cycle */
+        if (-lp_tab[m][LPN] < lastobj - 1e-12) {
+            lastobj = -lp_tab[m][LPN];
+            stall = 0;
+        } else if (++stall > 200) {
+            bland = 1;
         }
     }
-    if (it >= 20000) return -1;
-    return -lp_tab[m][LPN] < 1e-8;
+    if (it >= 50000) return -1;
+    if (-lp_tab[m][LPN] > 1e-9) return 0;
+    for (i = 0; i < LPK; i++) u[i] = -J;
+    for (r = 0; r < m; r++)
+        if (lp_basis[r] < LPK) u[lp_basis[r]] = lp_tab[r][LPN] - J;
+    return lp_verify(u, D, v0, a0, V, A, J, h) ? 1 : 2;
 }
 
 int main(int argc, char **argv)
@@ -225,7 +283,7 @@ int main(int argc, char **argv)
     double *tplan = malloc(sizeof(double) * (size_t)(ncase > 0 ? ncase : 1));
     double best_ratio = INFINITY, worst_ratio = 0, worst_vo = 0, worst_ao = 0, worst_jo = 0, worst_cont_replan = 0, worst_cont_phase = 0;
     double sample_f = 0, sample_q = 0, sum_ratio = 0;
-    long n_phase_fallback = 0, n_sync_miss = 0, lp_cases = 0, lp_shorter = 0, lp_longer_fail = 0, lp_gaveup = 0;
+    long n_phase_fallback = 0, n_sync_miss = 0, lp_cases = 0, lp_shorter = 0, lp_longer_fail = 0, lp_gaveup = 0, lp_relaxed = 0;
     volatile float sink = 0;
     volatile int32_t sinkq = 0;
     if (tplan == NULL || ncase <= 0) return 1;
@@ -299,8 +357,8 @@ int main(int argc, char **argv)
                 if (fabs(aa[i]) / l[i].amax - 1 > worst_ao) worst_ao = fabs(aa[i]) / l[i].amax - 1;
             }
         }
-        /* optimality against the reference, on every 10th case (the grid search is slow) */
-        if (c % 10 == 0) {
+        /* optimality against the reference, on every 5th case (the grid search is slow) */
+        if (c % 5 == 0) {
             double r;
             for (i = 0; i < NJ; i++) {
                 double d = (double)tg[i] - b[0][i];
@@ -322,9 +380,9 @@ int main(int argc, char **argv)
             }
         }
         /* global check on some single joints: the LP over all piecewise-constant jerk profiles
-         * must find nothing 1 % shorter than the planner's own minimum time, and must find
-         * something 3 % longer (else the check would be vacuous) */
-        if (c % 100 == 50) {
+         * must find no genuine profile 1 % shorter than the planner's own minimum time, and
+         * should find one 10 % longer (else the check would be vacuous) */
+        if (c % 50 == 25) {
             qo_motion_planner_f32 p1;
             qo_motion_joint_f32 j1[1];
             qo_motion_settings_f32 s1 = { QO_MOTION_SCURVE, QO_MOTION_SYNC_NONE };
@@ -341,11 +399,16 @@ int main(int argc, char **argv)
             if (Tj > 1e-3) {
                 double D = (double)tg[q] - b[0][q];
                 fs = lp_feasible(D, b[1][q], b[2][q], l[q].vmax, l[q].amax, l[q].jmax, 0.99 * Tj);
-                fl = lp_feasible(D, b[1][q], b[2][q], l[q].vmax, l[q].amax, l[q].jmax, 1.03 * Tj);
+                fl = lp_feasible(D, b[1][q], b[2][q], l[q].vmax, l[q].amax, l[q].jmax, 1.10 * Tj);
                 lp_cases++;
                 if (fs == 1) lp_shorter++;
-                if (fl != 1) lp_longer_fail++;
+                if (fs == 2) lp_relaxed++;
+                if (fl != 1 && fl != 2) lp_longer_fail++;
                 if (fs < 0 || fl < 0) lp_gaveup++;
+                if (fs != 0 || (fl != 1 && fl != 2))
+                    fprintf(stderr, "  LP case %ld: D %.9g v0 %.9g a0 %.9g V %.9g A %.9g J %.9g T %.9g: 0.99T %d 1.10T %d\n", c,
+                            D, (double)b[1][q], (double)b[2][q], (double)l[q].vmax, (double)l[q].amax,
+                            (double)l[q].jmax, Tj, fs, fl);
             }
         }
     }
@@ -378,19 +441,19 @@ int main(int argc, char **argv)
         sample_f = sample_q = INFINITY;
         for (rep = 0; rep < 25; rep++) { /* best of 25 runs: the machine is shared */
             double e;
-            t0 = now_ns();
+            t0 = cpu_ns();
             for (k = 0; k < TICKS; k++) {
                 qo_motion_sample_f32(&pl, T * (float)k / (float)TICKS, pp, vv, aa);
                 sink += pp[k % NJ];
             }
-            e = (now_ns() - t0) / (double)TICKS / NJ;
+            e = (cpu_ns() - t0) / (double)TICKS / NJ;
             if (e < sample_f) sample_f = e;
-            t0 = now_ns();
+            t0 = cpu_ns();
             for (k = 0; k < TICKS; k++) {
                 qo_motion_sample_q16(&tab, (qo_q16)((double)T * 65536.0 * (double)k / (double)TICKS), qp, qv, qa);
                 sinkq += qp[k % NJ];
             }
-            e = (now_ns() - t0) / (double)TICKS / NJ;
+            e = (cpu_ns() - t0) / (double)TICKS / NJ;
             if (e < sample_q) sample_q = e;
         }
     }
@@ -407,9 +470,10 @@ int main(int argc, char **argv)
            worst_cont_replan, worst_cont_phase);
     printf("  plans not TIME-synchronised:  %ld reported, %ld with a joint arriving early\n", n_phase_fallback,
            n_sync_miss);
-    printf("  global LP check (%ld single joints, %d jerk steps): feasible at 0.99 T: %ld (want 0), "
-           "infeasible at 1.03 T: %ld (want 0), solver gave up: %ld\n",
-           lp_cases, LPK, lp_shorter, lp_longer_fail, lp_gaveup);
+    printf("  global LP check (%ld single joints, %d jerk steps): a verified profile at 0.99 T: %ld (want 0); "
+           "LP-feasible at 0.99 T only between its check points: %ld; nothing found at 1.10 T: %ld; "
+           "solver gave up: %ld\n",
+           lp_cases, LPK, lp_shorter, lp_relaxed, lp_longer_fail, lp_gaveup);
     (void)sink;
     (void)sinkq;
     free(tplan);

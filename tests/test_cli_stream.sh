@@ -28,8 +28,11 @@ $Q stream --map $MAP --modbus "tcp://127.0.0.1:$PORT" --rate 100 --timeout-ms 50
     --profile scurve --vmax 2 --amax 4 --jmax 20 --sync time "$T/targets" > "$T/out" 2> "$T/err"; rc=$?
 [ "$rc" = 0 ] && ok || bad "stream exit status $rc: $(cat "$T/err")"
 grep -q '^summary: ticks [1-9]' "$T/out" && grep -q 'final ok$' "$T/out" && ok || bad "summary: $(cat "$T/out")"
+# Stop the simulator (SIGTERM: it finishes its log) before reading the log: a log read while
+# it is being written can end in half a line.
+kill "$SIMPID" 2>/dev/null; wait "$SIMPID" 2>/dev/null; SIMPID=""
 # the simulator's log: value per joint, in joint units; steps and final values checked by awk
-r=$(awk -F, 'NR > 1 && $5 ~ /^j/ { j = $5; if (j in last) { d = $6 - last[j]; if (d < 0) d = -d; if (d > m) m = d } last[j] = $6; n++ }
+r=$(awk -F, 'NR > 1 && NF == 6 && $5 ~ /^j/ { j = $5; if (j in last) { d = $6 - last[j]; if (d < 0) d = -d; if (d > m) m = d } last[j] = $6; n++ }
             END { printf "%d %.6f %s %s %s %s %s %s", n, m, last["j1"], last["j2"], last["j3"], last["j4"], last["j5"], last["j6"] }' "$T/log.csv")
 set -- $r
 [ "$1" -gt 600 ] && ok || bad "only $1 target writes logged"

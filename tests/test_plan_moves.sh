@@ -57,6 +57,15 @@ check "stream does not stop" awk -F, '$1 > 0.5 && $1 < 3 { if ($3 < 0.5) exit 1 
 check "stream ends at last target" awk -F, 'END { if ($2 != 3 || $3 != 0) exit 1 }' "$tmp.o"
 check "stream velocity continuous" awk -F, 'NR > 1 { d = $3 - v; if (d > 0.1 || d < -0.1) exit 1 } { v = $3 }' "$tmp.o"
 
+# a stream issued 2000 s after the start moves exactly like one issued at once (the core's
+# float32 time is re-based at each re-plan; ulp(2000 s) would otherwise be 0.12 ms)
+awk 'BEGIN { print "0,0"; for (i = 1; i <= 30; i++) printf "%.1f,%g\n", i * 0.1, i * 0.1 }' |
+    P --profile scurve --vmax 2 --amax 8 --jmax 80 --rate 10 | cut -d, -f2- >"$tmp.a"
+awk 'BEGIN { print "0,0"; for (i = 1; i <= 30; i++) printf "%.1f,%g\n", 2000 + i * 0.1, i * 0.1 }' |
+    P --profile scurve --vmax 2 --amax 8 --jmax 80 --rate 10 | awk -F, '$1 >= 1999.99' | cut -d, -f2- >"$tmp.b"
+check "late stream same rows" [ "$(wc -l <"$tmp.a")" -eq "$(wc -l <"$tmp.b")" ]
+check "late stream same motion" sh -c "paste -d, '$tmp.a' '$tmp.b' | awk -F, '{ for (i = 1; i <= 3; i++) { d = \$i - \$(i + 3); if (d > 1e-5 || d < -1e-5) exit 1 } }'"
+
 # clamp: target beyond --max is clamped and reported
 printf '0,0\n0,5\n' | P --profile trapezoid --vmax 1 --amax 1 --min -1 --max 2 >"$tmp.o" 2>"$tmp.e"; rc=$?
 check "clamp exit 0" [ $rc -eq 0 ]

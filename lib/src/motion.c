@@ -143,7 +143,8 @@ static float resid(const rctx *c, float vc, float *aux)
  * regula falsi that halves the stale end's residual, so it keeps the bracket (like bisection,
  * never diverges) but converges superlinearly; at most QO_MOTION_BISECT_ITERS steps, stops when
  * the bracket is 2 float32 ulps wide. Returns the end with the smaller true |residual|. */
-static float root(const rctx *c, float a, float b, float fa, float fb, float xa, float xb, float *aux)
+static float root(const rctx *c, float a, float b, float fa, float fb, float xa, float xb, float *aux,
+                  float *fres)
 {
     float ga = fa, gb = fb; /* Illinois-weighted copies */
     int side = 0;
@@ -155,6 +156,7 @@ static float root(const rctx *c, float a, float b, float fa, float fb, float xa,
         fm = resid(c, m, &xm);
         if (fm == 0.0f) {
             *aux = xm;
+            *fres = 0.0f;
             return m;
         }
         if ((fm < 0.0f) == (fb < 0.0f)) {
@@ -174,20 +176,53 @@ static float root(const rctx *c, float a, float b, float fa, float fb, float xa,
          * slope there is bounded, so that is far below float32 resolution of the result) */
         if (fabsf(b - a) <= 2.4e-7f * fmaxf(fmaxf(fabsf(a), fabsf(b)), 1e-3f * c->l->vmax)) break;
     }
+    /* Mode 0: prefer the end a short cruise can correct (residual opposite in sign to the
+     * velocity: the profile falls short); near vn the displacement has a square-root kink, so
+     * 2 ulps of vc can still miss the target by more than float resolution of p. */
+    if (c->mode == 0 && fabsf(a) > 1e-3f * c->l->vmax && fabsf(b) > 1e-3f * c->l->vmax) {
+        if (fa * a <= 0.0f) {
+            *aux = xa;
+            *fres = fa;
+            return a;
+        }
+        if (fb * b <= 0.0f) {
+            *aux = xb;
+            *fres = fb;
+            return b;
+        }
+    }
     if (fabsf(fa) <= fabsf(fb)) {
         *aux = xa;
+        *fres = fa;
         return a;
     }
     *aux = xb;
+    *fres = fb;
     return b;
 }
 
-/* Minimum-time extremum velocity vc and cruise tc for displacement dp (see motion.h). */
+/* Keeps the candidate profile of smallest duration. */
+static void consider(float vc, float tc, float dur, float *bv, float *bt, float *bd)
+{
+    if (dur < *bd) {
+        *bv = vc;
+        *bt = tc;
+        *bd = dur;
+    }
+}
+
+/* Minimum-time extremum velocity vc and cruise tc for displacement dp (see motion.h).
+ * The displacement D(vc) of the zero-cruise profile is monotone on [-vmax, min(0, vn)] and on
+ * [max(0, vn), vmax], vn being the velocity the start reaches by ramping a0 to zero; between
+ * 0 and vn the profile stops in two stages (velocity change to vc, then stop) and D has one
+ * interior extremum (located by golden section). Every monotone piece whose ends bracket dp
+ * gives a root; the root (or the cruise at +-vmax) of smallest duration wins. */
 static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_limits_f32 *l, float *vc,
                       float *tc)
 {
     rctx c;
-    float flo, fhi, xlo, xhi, x;
+    float pt[5], fp[5], xp[5], vn, bv = 0.0f, bt = 0.0f, bd = INFINITY, x;
+    unsigned np = 0, i;
     c.scurve = scurve;
     c.mode = 0;
     c.v0 = v0;
@@ -195,43 +230,116 @@ static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_
     c.dp = dp;
     c.T = 0.0f;
     c.l = l;
-    fhi = resid(&c, l->vmax, &xhi);
-    if (fhi <= 0.0f) {
-        *vc = l->vmax;
-        *tc = -fhi / l->vmax;
-        return;
+    vn = scurve ? v0 + a0 * fabsf(a0) / (2.0f * l->jmax) : v0;
+    vn = fminf(fmaxf(vn, -l->vmax), l->vmax);
+    pt[np++] = -l->vmax;
+    if (fminf(0.0f, vn) > pt[np - 1]) pt[np++] = fminf(0.0f, vn);
+    if (fmaxf(0.0f, vn) > pt[np - 1]) pt[np++] = fmaxf(0.0f, vn);
+    if (l->vmax > pt[np - 1]) pt[np++] = l->vmax;
+    for (i = 0; i < np; i++) fp[i] = resid(&c, pt[i], &xp[i]);
+    /* Cruising at +-vmax when even the fastest peak falls short. */
+    if (fp[np - 1] <= 0.0f) consider(l->vmax, -fp[np - 1] / l->vmax, xp[np - 1] - fp[np - 1] / l->vmax, &bv, &bt, &bd);
+    if (fp[0] >= 0.0f) consider(-l->vmax, fp[0] / l->vmax, xp[0] + fp[0] / l->vmax, &bv, &bt, &bd);
+    /* Outer pieces first: a single velocity extremum beyond vn (or a reversal) reaches dp
+     * faster than stopping in two stages, so the middle piece is searched only when neither
+     * outer piece brackets dp (e.g. a0 already braking, dp between the two stops' reach). */
+    for (i = 0; i + 1 < np; i++) {
+        int outer = pt[i + 1] <= fminf(0.0f, vn) || pt[i] >= fmaxf(0.0f, vn);
+        if (!outer) continue;
+        if (fp[i] == 0.0f) consider(pt[i], 0.0f, xp[i], &bv, &bt, &bd);
+        if (fp[i + 1] == 0.0f) consider(pt[i + 1], 0.0f, xp[i + 1], &bv, &bt, &bd);
+        if (fp[i] != 0.0f && fp[i + 1] != 0.0f && (fp[i] < 0.0f) != (fp[i + 1] < 0.0f)) {
+            float fr, r = root(&c, pt[i], pt[i + 1], fp[i], fp[i + 1], xp[i], xp[i + 1], &x, &fr);
+            float tcr = (r != 0.0f && fr * r < 0.0f) ? -fr / r : 0.0f;
+            consider(r, tcr, x + tcr, &bv, &bt, &bd);
+        }
     }
-    flo = resid(&c, -l->vmax, &xlo);
-    if (flo >= 0.0f) {
-        *vc = -l->vmax;
-        *tc = flo / l->vmax;
-        return;
+    /* The two-stage middle piece: split it at its extremum when it has one. */
+    if (!(bd < INFINITY) && vn != 0.0f && fabsf(vn) > 1e-6f * l->vmax) {
+        unsigned k = 1; /* pt[k-1], pt[k] = the middle piece [min(0, vn), max(0, vn)] */
+        float lo, hi, fm, xm;
+        while (k + 1 < np && pt[k] != fmaxf(0.0f, vn)) k++;
+        lo = pt[k - 1];
+        hi = pt[k];
+        float dlo = fp[k - 1], dhi = fp[k];
+        fm = resid(&c, 0.5f * (lo + hi), &xm);
+        if (fm > fmaxf(dlo, dhi) || fm < fminf(dlo, dhi)) {
+            const float g = 0.381966f;
+            float sgn = fm > fmaxf(dlo, dhi) ? 1.0f : -1.0f, a = lo, b = hi;
+            float x1 = a + g * (b - a), x2 = b - g * (b - a), f1, f2, dum;
+            unsigned it;
+            f1 = sgn * resid(&c, x1, &dum);
+            f2 = sgn * resid(&c, x2, &dum);
+            for (it = 0; it < 24; it++) {
+                if (f1 > f2) {
+                    b = x2;
+                    x2 = x1;
+                    f2 = f1;
+                    x1 = a + g * (b - a);
+                    f1 = sgn * resid(&c, x1, &dum);
+                } else {
+                    a = x1;
+                    x1 = x2;
+                    f1 = f2;
+                    x2 = b - g * (b - a);
+                    f2 = sgn * resid(&c, x2, &dum);
+                }
+            }
+            for (i = np; i > k; i--) {
+                pt[i] = pt[i - 1];
+                fp[i] = fp[i - 1];
+                xp[i] = xp[i - 1];
+            }
+            pt[k] = f1 > f2 ? x1 : x2;
+            fp[k] = resid(&c, pt[k], &xp[k]);
+            np++;
+        }
     }
-    /* The displacement grows monotonically with vc: one root in (-vmax, vmax). */
-    *vc = root(&c, -l->vmax, l->vmax, flo, fhi, xlo, xhi, &x);
-    *tc = 0.0f;
-    {
-        /* A root a float ulp away from the velocity the start state reaches anyway (vnat)
-         * would add a pulse of 2 sqrt(eps / jmax) seconds: take vnat itself when it is a root to
-         * float precision, and let a short cruise absorb the residual when its sign allows. */
-        float vn = scurve ? v0 + a0 * fabsf(a0) / (2.0f * l->jmax) : v0, fn, xn;
-        if (vn >= -l->vmax && vn <= l->vmax && vn != *vc) {
-            fn = resid(&c, vn, &xn);
-            if (fabsf(fn) <= 1e-6f * (fabsf(dp) + (fabsf(v0) + l->vmax) * xn)) {
-                *vc = vn;
-                if (vn != 0.0f && -fn / vn >= 0.0f) *tc = -fn / vn;
+    if (!(bd < INFINITY)) {
+        for (i = 0; i < np; i++) {
+            if (fp[i] == 0.0f) consider(pt[i], 0.0f, xp[i], &bv, &bt, &bd);
+            if (i + 1 < np && fp[i] != 0.0f && fp[i + 1] != 0.0f && (fp[i] < 0.0f) != (fp[i + 1] < 0.0f)) {
+                float fr, r = root(&c, pt[i], pt[i + 1], fp[i], fp[i + 1], xp[i], xp[i + 1], &x, &fr);
+                float tcr = (r != 0.0f && fr * r < 0.0f) ? -fr / r : 0.0f;
+                consider(r, tcr, x + tcr, &bv, &bt, &bd);
             }
         }
     }
+    {
+        /* A root a float ulp away from the velocity the start state reaches anyway (vn)
+         * would add a pulse of 2 sqrt(eps / jmax) seconds: take vn itself when it is a root to
+         * float precision, and let a short cruise absorb the residual when its sign allows. */
+        float fn, xn, tn = 0.0f;
+        fn = resid(&c, vn, &xn);
+        if (fabsf(fn) <= 2e-7f * (fabsf(dp) + (fabsf(v0) + l->vmax) * xn)) {
+            if (vn != 0.0f && -fn / vn >= 0.0f) tn = -fn / vn;
+            consider(vn, tn, xn + tn - 1e-6f * xn, &bv, &bt, &bd);
+        }
+    }
+    if (!(bd < INFINITY)) {
+        /* Not reachable for finite inputs (the pieces cover [-vmax, vmax] and the cruises
+         * the rest); stop as a defined answer. */
+        bv = 0.0f;
+        bt = 0.0f;
+    }
+    *vc = bv;
+    *tc = bt;
 }
 
-/* A profile of exactly duration T >= the minimum: lower |vc| from vc* toward 0 (the residual
- * changes sign on [0, vc*]). Returns 0 if no such profile was found. */
+/* A profile of exactly duration T >= the minimum. First bracket: lower |vc| from vc* toward 0
+ * (the residual changes sign on [0, vc*] when the displacement is monotone there). When it
+ * does not (the two-stage piece between 0 and vn is not monotone), scan [-vmax, vmax] at
+ * QO_MOTION_SYNC_SCAN points plus 0, vn and vc* and take the sign change, with a non-negative
+ * cruise, nearest vc*. Returns 0 if no such profile was found. */
+#define QO_MOTION_SYNC_SCAN 9
 static int solve_time(int scurve, float v0, float a0, float dp, float vcs, float T, const qo_motion_limits_f32 *l,
                       float *vc, float *tc)
 {
     rctx c;
-    float fa, fb, tca, tcb;
+    float fa, fb, tca, tcb, fr;
+    float xs[QO_MOTION_SYNC_SCAN + 3], gs[QO_MOTION_SYNC_SCAN + 3], ts[QO_MOTION_SYNC_SCAN + 3];
+    float bestd = INFINITY;
+    unsigned n = 0, i, k;
     c.scurve = scurve;
     c.mode = 1;
     c.v0 = v0;
@@ -241,19 +349,56 @@ static int solve_time(int scurve, float v0, float a0, float dp, float vcs, float
     c.l = l;
     fa = resid(&c, 0.0f, &tca);
     fb = resid(&c, vcs, &tcb);
-    if (fa == 0.0f || (fa < 0.0f) == (fb < 0.0f)) {
-        /* Stop, then wait at rest (the residual is the minimum solve's own, tiny). */
-        *vc = 0.0f;
-        *tc = tca;
-        return tca >= 0.0f && fabsf(fa) <= 1e-4f * (fabsf(dp) + l->vmax * T);
+    if (fa != 0.0f && (fa < 0.0f) != (fb < 0.0f)) {
+        *vc = root(&c, 0.0f, vcs, fa, fb, tca, tcb, tc, &fr);
+        if (*tc >= -1e-5f * T) {
+            if (*tc < 0.0f) *tc = 0.0f; /* rounding */
+            return 1;
+        }
     }
-    *vc = root(&c, 0.0f, vcs, fa, fb, tca, tcb, tc);
-    if (*tc < 0.0f) {
-        /* Rounding may leave -ulp; a real negative cruise means the bracket was wrong. */
-        if (*tc < -1e-5f * T) return 0;
-        *tc = 0.0f;
+    /* Scan: sorted points, the sign changes whose root has a non-negative cruise. */
+    {
+        float vn = scurve ? v0 + a0 * fabsf(a0) / (2.0f * l->jmax) : v0;
+        xs[n++] = 0.0f;
+        xs[n++] = vcs;
+        xs[n++] = fminf(fmaxf(vn, -l->vmax), l->vmax);
+        for (k = 0; k < QO_MOTION_SYNC_SCAN; k++)
+            xs[n++] = -l->vmax + 2.0f * l->vmax * (float)k / (float)(QO_MOTION_SYNC_SCAN - 1);
+        for (i = 1; i < n; i++) {
+            float x = xs[i];
+            k = i;
+            while (k > 0 && xs[k - 1] > x) {
+                xs[k] = xs[k - 1];
+                k--;
+            }
+            xs[k] = x;
+        }
+        for (i = 0; i < n; i++) gs[i] = resid(&c, xs[i], &ts[i]);
+        for (i = 0; i + 1 < n; i++) {
+            float r, tr;
+            if (xs[i] == xs[i + 1]) continue;
+            if (gs[i] == 0.0f && ts[i] >= 0.0f) {
+                r = xs[i];
+                tr = ts[i];
+            } else if (gs[i] != 0.0f && gs[i + 1] != 0.0f && (gs[i] < 0.0f) != (gs[i + 1] < 0.0f)) {
+                r = root(&c, xs[i], xs[i + 1], gs[i], gs[i + 1], ts[i], ts[i + 1], &tr, &fr);
+                if (tr < -1e-5f * T) continue;
+                if (tr < 0.0f) tr = 0.0f;
+            } else {
+                continue;
+            }
+            if (fabsf(r - vcs) < bestd) {
+                bestd = fabsf(r - vcs);
+                *vc = r;
+                *tc = tr;
+            }
+        }
     }
-    return 1;
+    if (bestd < INFINITY) return 1;
+    /* Stop, then wait at rest, if the minimum solve itself was a stop (vc* ~ 0). */
+    *vc = 0.0f;
+    *tc = tca;
+    return tca >= 0.0f && fabsf(fa) <= 1e-4f * (fabsf(dp) + l->vmax * T);
 }
 
 /* Turns segments from state (p, v, a) into the joint's phases (zero-length ones dropped). */
@@ -371,6 +516,7 @@ static void plan_brake(qo_motion_planner_f32 *pl)
     }
     pl->duration = dur;
     pl->sync_used = QO_MOTION_SYNC_NONE;
+    pl->unsynced = 0;
     pl->braking = 1;
 }
 
@@ -443,6 +589,7 @@ static void plan_goals(qo_motion_planner_f32 *pl)
     int sc = pl->settings.profile == QO_MOTION_SCURVE;
     float T = 0.0f;
     pl->braking = 0;
+    pl->unsynced = 0;
     for (i = 0; i < pl->n; i++) {
         qo_motion_joint_f32 *jt = &pl->joints[i];
         float d = jt->goal - jt->w_p;
@@ -478,6 +625,8 @@ static void plan_goals(qo_motion_planner_f32 *pl)
             if (solve_time(sc, jt->w_v, jt->w_a, jt->w_d, vc, T, &jt->lim, &v2, &t2)) {
                 vc = v2;
                 tc = t2;
+            } else {
+                pl->unsynced |= (uint32_t)1 << i;
             }
         }
         n = build(sc, jt->w_v, jt->w_a, vc, tc, &jt->lim, g);
@@ -502,6 +651,7 @@ qo_status qo_motion_init_f32(qo_motion_planner_f32 *pl, qo_motion_joint_f32 *joi
     pl->t0 = 0.0f;
     pl->duration = 0.0f;
     pl->sync_used = QO_MOTION_SYNC_NONE;
+    pl->unsynced = 0;
     pl->braking = 0;
     if (joints == NULL || limits == NULL || start == NULL) return QO_E_NULL;
     if (n == 0) return QO_E_TOO_FEW;
@@ -654,6 +804,15 @@ int qo_motion_done_f32(const qo_motion_planner_f32 *pl, float t)
     if (pl == NULL || pl->n == 0) return 1;
     if (isnan(t)) return 0;
     return t - pl->t0 >= pl->duration;
+}
+
+qo_status qo_motion_shift_time_f32(qo_motion_planner_f32 *pl, float dt)
+{
+    if (pl == NULL) return QO_E_NULL;
+    if (pl->n == 0 || pl->joints == NULL) return QO_E_STATE;
+    if (!isfinite(dt)) return QO_E_NONFINITE;
+    pl->t0 -= dt;
+    return QO_OK;
 }
 
 qo_motion_sync qo_motion_sync_used(const qo_motion_planner_f32 *pl)

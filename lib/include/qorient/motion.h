@@ -13,6 +13,7 @@
  *   qo_motion_end_time_f32          absolute time at which every joint is at rest
  *   qo_motion_done_f32              1 once t has reached the end time
  *   qo_motion_sync_used             which synchronisation the last plan really used
+ *   qo_motion_shift_time_f32        move the time origin (keep float32 times small in long runs)
  *   qo_motion_export_q16            the current plan as a fixed-point table (see motion_fx.h)
  *
  * What it does. Each joint is a scalar in the user's unit (rad, deg, counts: "u") with limits
@@ -32,28 +33,41 @@
  * With the target at rest, every such profile is: a fastest velocity change from (v0, a0) to a
  * velocity extremum vc with a = 0 (<= 3 phases: ramp, hold amax, ramp), a cruise at vc (only
  * when |vc| = vmax), and a fastest stop from (vc, 0) to (0, 0) (<= 3 phases). The planner finds
- * the vc whose displacement equals the distance (the displacement is monotone in vc; solved on
- * [-vmax, vmax] by the Illinois method: regula falsi that keeps a bracket like bisection, at most
- * QO_MOTION_BISECT_ITERS steps, typically 5-12), and cruises at +-vmax when
- * even vc = +-vmax falls short. For TRAPEZOID this family provably contains the minimum-time
- * solution (double integrator, state bound on v). For SCURVE it contains the minimum-time
- * rest-to-rest solution (checked against the closed form in tests/test_motion.c) and, for moving
- * starts, the profiles of Reflexxes Type IV for a target at rest; tests/test_motion.c also checks
- * numerically that no profile of the family with a shorter duration reaches the target, and
- * bench/bench_motion.c solves a linear program over ALL piecewise-constant jerk profiles (60
- * steps) and finds none 1 % shorter. A general proof for moving SCURVE starts is NOT claimed
- * (Ruckig lists further profile shapes for general target states).
+ * the vc whose displacement D(vc) equals the distance. D is monotone on [-vmax, min(0, vn)] and
+ * on [max(0, vn), vmax], vn being the velocity reached by ramping a0 straight to zero; between
+ * 0 and vn the joint stops in two stages and D has one interior extremum. The outer pieces are
+ * solved first (a single extremum beyond vn, or a reversal, is the faster way when it exists);
+ * the middle piece is split at its extremum (golden section) and solved only when they give no
+ * root. Each root is found by the Illinois method (regula falsi that keeps a bracket like
+ * bisection), at most QO_MOTION_BISECT_ITERS steps, typically 5-12; the shortest candidate wins,
+ * and a cruise at +-vmax is used when even vc = +-vmax falls short. For TRAPEZOID this family
+ * provably contains the minimum-time solution (double integrator, state bound on v). For SCURVE
+ * it contains the minimum-time rest-to-rest solution (checked against the closed form in
+ * tests/test_motion.c) and, for moving starts, the profiles of Reflexxes Type IV for a target at
+ * rest. Evidence for moving SCURVE starts: tests/test_motion.c checks that no member of the
+ * family (dense double-precision search over vc, cruise at any vc, refined near vn) is shorter;
+ * bench/bench_motion.c solves a linear program over ALL piecewise-constant jerk profiles (40
+ * steps, limits checked at step ends and mid-steps, any solution verified densely) and finds
+ * none 1 % shorter (that check caught, and now guards, a case where the two-stage stop had been
+ * chosen over a faster pulse). A general proof for moving SCURVE starts is NOT claimed (Ruckig
+ * lists further profile shapes for general target states).
  *
  * Synchronisation (settings.sync):
  *   - QO_MOTION_SYNC_NONE: each joint takes its own minimum time.
  *   - QO_MOTION_SYNC_TIME: every joint arrives at the slowest joint's minimum time T. A faster
  *     joint gets a profile of exactly T by lowering its extremum velocity vc (bracketed root search
  *     on vc in (0, vc*], at most QO_MOTION_BISECT_ITERS steps; any T above the joint's minimum is reachable
- *     because the cruise may then be arbitrarily slow).
+ *     because the cruise may then be arbitrarily slow). Known limitation: from a start far
+ *     from rest relative to the jerk limit (velocity changes taking seconds), no profile of
+ *     the family may have exactly T (the achievable durations have a gap); that joint then
+ *     keeps its own minimum-time profile, arrives early and waits at rest, and its bit is set
+ *     in planner.unsynced (seen once in 40,000 random 4-joint cases with limits spread over
+ *     1e-3..1e3; never in bench/bench_motion.c's cases).
  *   - QO_MOTION_SYNC_PHASE: straight line in joint space: p_i(t) = p0_i + d_i s(t), one scalar
  *     profile s: 0 -> 1 with limits min_i(vmax_i/|d_i|) etc. Possible only when every joint's
- *     (v0, a0) is proportional to its displacement d_i (all at rest is the usual case, within a
- *     relative 1e-5 of the joint's vmax / amax); otherwise the plan falls back to TIME and
+ *     (v0, a0) is proportional to its displacement d_i (all at rest is the usual case), within
+ *     1e-6 of max(vmax, |v0|) and max(amax, |a0|), which bounds the velocity / acceleration
+ *     step the straight line may introduce; otherwise the plan falls back to TIME and
  *     qo_motion_sync_used() says so. The straight line can take longer than TIME sync, because
  *     the binding limit may come from different joints for v, a and j.
  *
@@ -90,7 +104,7 @@
  * rest; the remaining step is the solver residual (~1e-7 relative in position, float32
  * rounding in v and a).
  * Absolute times are float32 too: keep the caller's time origin recent (ulp(1000 s) = 61 us).
- * Resources (arm-none-eabi-gcc -O2, Cortex-M4F): ~6.4 KB code, worst stack of a re-plan ~1 KB
+ * Resources (arm-none-eabi-gcc -O2, Cortex-M4F): ~8.9 KB code, worst stack of a re-plan ~1.3 KB
  * (independent of N: per-joint scratch lives in the joint struct), 236 B per joint; no heap, no
  * static mutable state: planners never interfere. A re-plan costs O(N) root searches.
  */
@@ -173,6 +187,8 @@ typedef struct qo_motion_planner_f32 {
     float t0;                      /* absolute time of the last (re-)plan, seconds */
     float duration;                /* max joint duration of the current plan */
     qo_motion_sync sync_used;      /* what the current plan used */
+    uint32_t unsynced;             /* bit i: joint i could not be given the common duration
+                                    * (it arrives earlier, at its own minimum time; see above) */
     int braking;                   /* 1 if the current plan is a safety stop */
 } qo_motion_planner_f32;
 
@@ -246,6 +262,16 @@ int qo_motion_done_f32(const qo_motion_planner_f32 *pl, float t);
 /* The synchronisation the current plan really used (PHASE may have fallen back to TIME; a
  * safety stop reports NONE). NONE for NULL. */
 qo_motion_sync qo_motion_sync_used(const qo_motion_planner_f32 *pl);
+
+/*
+ * Moves the planner's time origin by dt seconds: afterwards the instant that was time t is
+ * time t - dt (only the stored plan start moves; the motion is unchanged). Long-running callers
+ * use it to keep their float32 times small (ulp(1000 s) = 61 us), e.g. shifting by the current
+ * time at each re-plan and then re-planning at time 0.
+ * Returns QO_OK; QO_E_NULL; QO_E_STATE (not initialised); QO_E_NONFINITE (dt NaN/Inf, nothing
+ * changed).
+ */
+qo_status qo_motion_shift_time_f32(qo_motion_planner_f32 *pl, float dt);
 
 /*
  * Exports the current plan to a fixed-point table for qo_motion_sample_q16 (motion_fx.h):

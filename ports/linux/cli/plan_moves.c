@@ -79,12 +79,13 @@ static int parse_list(const char *arg, const char *opt, double *out, size_t *n)
     return 0;
 }
 
-/* Spreads a 1- or N-element list to N joints. */
-static int spread(const char *opt, const double *in, size_t nin, size_t n, double *out)
+/* Spreads a 1- or N-element list to N joints (N comes from the first line, `ln`). */
+static int spread(const char *opt, const double *in, size_t nin, size_t n, double *out, long ln)
 {
     size_t i;
     if (nin != 1 && nin != n) {
-        fprintf(stderr, "qorient plan: %s has %zu values for %zu joints (give 1 or %zu)\n", opt, nin, n, n);
+        fprintf(stderr, "qorient plan: line %ld has %zu joints but %s has %zu values (give 1 or %zu)\n", ln, n, opt,
+                nin, n);
         return -1;
     }
     for (i = 0; i < n; i++) out[i] = in[nin == 1 ? 0 : i];
@@ -93,7 +94,8 @@ static int spread(const char *opt, const double *in, size_t nin, size_t n, doubl
 
 struct pm_out {
     qo_motion_planner_f32 *pl;
-    double t_origin;           /* input time of the first line: the core's time 0 */
+    double t_first;            /* input time of the first line: the output grid's anchor */
+    double t_origin;           /* input time that is the core's time 0 (the last re-plan) */
     double t_next;             /* next output time */
     double period;
     long k;                    /* samples written */
@@ -137,7 +139,7 @@ static void emit_until(struct pm_out *o, double until)
     while (o->t_next < until) {
         emit_row(o, o->t_next);
         o->k++;
-        o->t_next = o->t_origin + (double)o->k * o->period;
+        o->t_next = o->t_first + (double)o->k * o->period;
     }
 }
 
@@ -227,6 +229,22 @@ int qo_cli_plan_moves(int argc, char **argv)
         fputs(plan_usage, stderr);
         return 2;
     }
+    {
+        /* Limits must be > 0 (finite was checked while parsing): say so before reading input. */
+        const struct { const char *name; const double *v; size_t n; } lists[3] = {
+            { "--vmax", vl, nv }, { "--amax", al, na }, { "--jmax", jl, nj }
+        };
+        size_t li, i;
+        for (li = 0; li < 3; li++) {
+            for (i = 0; i < lists[li].n; i++) {
+                if (!(lists[li].v[i] > 0.0)) {
+                    fprintf(stderr, "qorient plan: %s value %zu is %g: limits must be > 0\n", lists[li].name, i + 1,
+                            lists[li].v[i]);
+                    return 2;
+                }
+            }
+        }
+    }
     if (optind + 1 < argc) {
         fprintf(stderr, "qorient plan: one input file at most\n");
         return 2;
@@ -277,9 +295,9 @@ int qo_cli_plan_moves(int argc, char **argv)
             double v[PM_MAX], a[PM_MAX], j[PM_MAX], lo[PM_MAX], hi[PM_MAX];
             float start[PM_MAX];
             qo_status st;
-            if (spread("--vmax", vl, nv, nn, v) || spread("--amax", al, na, nn, a) ||
-                (nj && spread("--jmax", jl, nj, nn, j)) || (nmn && spread("--min", mn, nmn, nn, lo)) ||
-                (nmx && spread("--max", mx, nmx, nn, hi))) {
+            if (spread("--vmax", vl, nv, nn, v, ln) || spread("--amax", al, na, nn, a, ln) ||
+                (nj && spread("--jmax", jl, nj, nn, j, ln)) || (nmn && spread("--min", mn, nmn, nn, lo, ln)) ||
+                (nmx && spread("--max", mx, nmx, nn, hi, ln))) {
                 status = 2;
                 break;
             }
@@ -296,8 +314,8 @@ int qo_cli_plan_moves(int argc, char **argv)
                     status = 2;
                 }
                 if (lim[i].pmin > lim[i].pmax) {
-                    fprintf(stderr, "qorient plan: joint %zu: --min %g > --max %g\n", i + 1, (double)lim[i].pmin,
-                            (double)lim[i].pmax);
+                    fprintf(stderr, "qorient plan: line %ld: joint %zu: --min %g > --max %g\n", ln, i + 1,
+                            (double)lim[i].pmin, (double)lim[i].pmax);
                     status = 2;
                 }
                 start[i] = (float)num[i + 1];
@@ -321,6 +339,7 @@ int qo_cli_plan_moves(int argc, char **argv)
             started = 1;
             t_prev = num[0];
             o->t_origin = num[0];
+            o->t_first = num[0];
             o->t_next = num[0];
             o->k = 0;
             after_plan(o);
@@ -337,7 +356,10 @@ int qo_cli_plan_moves(int argc, char **argv)
             uint32_t mask = 0;
             qo_status st;
             for (i = 0; i < pl.n; i++) tg[i] = (float)num[i + 1];
-            st = qo_motion_set_target_f32(&pl, (float)(num[0] - o->t_origin), tg, &mask);
+            /* Keep the core's float32 times small in long runs: time 0 = this re-plan. */
+            qo_motion_shift_time_f32(&pl, (float)(num[0] - o->t_origin));
+            o->t_origin = num[0];
+            st = qo_motion_set_target_f32(&pl, 0.0f, tg, &mask);
             if (st != QO_OK) {
                 fprintf(stderr, "qorient plan: line %ld: %s\n", ln, qo_status_str(st));
                 status = 1;
@@ -345,6 +367,10 @@ int qo_cli_plan_moves(int argc, char **argv)
             if (st == QO_OK && set.sync == QO_MOTION_SYNC_PHASE && qo_motion_sync_used(&pl) != QO_MOTION_SYNC_PHASE)
                 fprintf(stderr, "qorient plan: line %ld: no straight line from the current state, time sync used\n",
                         ln);
+            for (i = 0; i < pl.n; i++)
+                if (pl.unsynced & ((uint32_t)1 << i))
+                    fprintf(stderr, "qorient plan: line %ld: joint %zu cannot take the common duration from its "
+                            "state; it arrives early\n", ln, i + 1);
             for (i = 0; i < pl.n; i++)
                 if (mask & ((uint32_t)1 << i))
                     fprintf(stderr, "qorient plan: line %ld: joint %zu target %g clamped to %g\n", ln, i + 1,
@@ -360,7 +386,7 @@ int qo_cli_plan_moves(int argc, char **argv)
         while (!qo_motion_done_f32(&pl, (float)(o->t_next - o->t_origin))) {
             emit_row(o, o->t_next);
             o->k++;
-            o->t_next = o->t_origin + (double)o->k * o->period;
+            o->t_next = o->t_first + (double)o->k * o->period;
         }
         emit_row(o, o->t_next);
     } else if (!started && status == 0) {
