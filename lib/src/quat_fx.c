@@ -227,51 +227,65 @@ static uint32_t div30(uint32_t a, uint32_t n, uint32_t r, unsigned sh)
     return q;
 }
 
+/* x^2 exactly for x <= 2^31: three 16x16 products (the cross term once, doubled). */
+static uint64_t usq(uint32_t x)
+{
+    uint32_t h = x >> 16, l = x & 0xFFFFu, c = h * l;   /* c < 2^31 for x <= 2^31 */
+    return ((uint64_t)(h * h) << 32) + ((uint64_t)c << 17) + l * l;
+}
+
 qo_status qo_quat_normalize_q30(qo_quat_q30 q, qo_quat_q30 *out)
 {
-    int64_t c[4];
-    uint64_t m = 0, n2, n;
-    int i;
+    int32_t c[4];
+    uint32_t a[4], m = 0, nn, r;
+    uint64_t n2, n;
+    unsigned sh;
+    int i, all;
     if (out == NULL) return QO_E_NULL;
     *out = qo_quat_identity_q30();
     c[0] = q.w; c[1] = q.x; c[2] = q.y; c[3] = q.z;
-    for (i = 0; i < 4; i++) if (mag(c[i]) > m) m = mag(c[i]);
+    for (i = 0; i < 4; i++) {
+        a[i] = c[i] < 0 ? 0u - (uint32_t)c[i] : (uint32_t)c[i];   /* <= 2^31 */
+        if (a[i] > m) m = a[i];
+    }
     if (m == 0) return QO_E_DEGENERATE;
-    /* Scale (exactly) so the largest component is in [2^30, 2^31]: short quaternions keep
+    /* Scale (exactly) so the largest magnitude is in [2^30, 2^31]: short quaternions keep
      * their direction to full precision and |c|^2 uses the whole 64 bits. */
-    while (m < ((uint64_t)1 << 30)) {
-        m <<= 1;
-        for (i = 0; i < 4; i++) c[i] *= 2;
-    }
-    /* Four components below 2^31 sum to below 2^64; only four of exactly 2^31 (all INT32_MIN)
-     * would carry, and halving those is exact. */
-    if (m == ((uint64_t)1 << 31)) {
-        int all = 1;
-        for (i = 0; i < 4; i++) if (mag(c[i]) != m) all = 0;
-        if (all) for (i = 0; i < 4; i++) c[i] /= 2;
-    }
-    /* Every |c_i| <= 2^31 now: the squares are exact unsigned 32x32 products. */
-    n2 = 0;
-    for (i = 0; i < 4; i++) n2 += qo_fx_umul32_u64((uint32_t)mag(c[i]), (uint32_t)mag(c[i]));
+    sh = 0;
+    while (m < ((uint32_t)1 << 30)) { m <<= 1; sh++; }
+    for (i = 0; i < 4; i++) a[i] <<= sh;
+    /* Four magnitudes below 2^31 sum to below 2^64 when squared; only four of exactly 2^31
+     * (all INT32_MIN) would carry, and halving those is exact. */
+    all = 1;
+    for (i = 0; i < 4; i++) if (a[i] != ((uint32_t)1 << 31)) all = 0;
+    if (all) for (i = 0; i < 4; i++) a[i] >>= 1;
+    n2 = usq(a[0]) + usq(a[1]) + usq(a[2]) + usq(a[3]);
     n = qo_fx_sqrt_u64(n2);   /* |c| in units where 2^30 is 1, in [2^30, 2^32] */
-    if (n < ((uint64_t)1 << 32)) {
-        /* The quotients c_i 2^30 / n through one reciprocal instead of four 64-bit divisions
-         * (each a long libgcc routine on a core without a divider); same results. */
-        uint32_t nn = (uint32_t)n;
-        unsigned sh = nn < ((uint32_t)1 << 31) ? 1u : 0u;
-        uint32_t r = recip62(nn << sh);
+    if (n >= ((uint64_t)1 << 32)) {
+        /* Only for n2 >= (2^32 - 1/2)^2 (three components at -2^31): n = 2^32 exactly and
+         * c_i 2^30 / n is a plain rounded shift, the same as the division. */
         int32_t o[4];
         for (i = 0; i < 4; i++) {
-            uint32_t qi = div30((uint32_t)mag(c[i]), nn, r, sh);   /* <= 2^30 + 1 */
+            uint32_t qi = (uint32_t)((((uint64_t)a[i] << 30) + ((uint64_t)1 << 31)) >> 32);
             o[i] = c[i] < 0 ? -(int32_t)qi : (int32_t)qi;
         }
         out->w = o[0]; out->x = o[1]; out->y = o[2]; out->z = o[3];
         return QO_OK;
     }
-    out->w = qo_fx_sat_i32(div_round(c[0] * QO_Q30_ONE, n));
-    out->x = qo_fx_sat_i32(div_round(c[1] * QO_Q30_ONE, n));
-    out->y = qo_fx_sat_i32(div_round(c[2] * QO_Q30_ONE, n));
-    out->z = qo_fx_sat_i32(div_round(c[3] * QO_Q30_ONE, n));
+    /* The quotients round(a_i 2^30 / n) (ties away from zero) through one reciprocal instead
+     * of four 64-bit divisions (each a long libgcc routine on a core without a divider),
+     * each made exact against its remainder. */
+    nn = (uint32_t)n;
+    sh = nn < ((uint32_t)1 << 31) ? 1u : 0u;
+    r = recip62(nn << sh);
+    {
+        int32_t o[4];
+        for (i = 0; i < 4; i++) {
+            uint32_t qi = div30(a[i], nn, r, sh);   /* <= 2^30 */
+            o[i] = c[i] < 0 ? -(int32_t)qi : (int32_t)qi;
+        }
+        out->w = o[0]; out->x = o[1]; out->y = o[2]; out->z = o[3];
+    }
     return QO_OK;
 }
 
