@@ -1,5 +1,10 @@
 /* Quaternion algebra in fixed point (Q1.30). See qorient/quat_fx.h for the contracts.
- * Integer arithmetic only: products in int64, sums rounded once with qo_fx_sum_round_i64. */
+ * Integer arithmetic only: products in int64, sums rounded once with qo_fx_sum_round_i64.
+ * mul, rotate and normalize have a fast path for components within +-1.25 (every normalised
+ * quaternion) written for Cortex-M0 (no 64-bit multiply, no divider): 16-bit column sums and
+ * one Newton reciprocal instead of libgcc's 64-bit multiply and division. It gives the
+ * identical result (same exact sum, same single rounding); other inputs take the general
+ * path. */
 #include "qorient/quat_fx.h"
 
 #include "qorient/convert_fx.h"
