@@ -357,12 +357,17 @@ qo_q28 qo_fx_atan2_q28(int32_t y, int32_t x)
     d = (uint32_t)(bx >> f);
     r = recip62(d);                                   /* ~2^62 / d */
     t = (qo_fx_mul32_i64(by, (int32_t)(r >> 1)) + ((int64_t)1 << (29u + f))) >> (30u + f);
-    /* atan(t) = t (1 - t^2/3 + t^4/5 - t^6/7); the next term is < 2e-12. */
-    u = mul31s(t, t);
-    p = -306783378;
-    p = 429496730 + mul31s(u, p);
-    p = -715827883 + mul31s(u, p);
-    p = ONE_Q31 + mul31s(u, p);                       /* <= 2^31 */
+    /* atan(t) = t (1 - t^2/3 + t^4/5 - t^6/7); the next term is < 2e-12. u = t^2 <= 2^-8:
+     * the two inner Horner steps only feed terms below u^2/5 < 2^-18, so 16x16 products
+     * (u in Q1.23, coefficients to 15 bits, truncation < 2^-22 each, < 2^-34 in the result
+     * after the two factors u and t) do; only u and the last step are full products. */
+    u = mul31s(t, t);                                 /* Q1.31, <= 2^23 */
+    {
+        int32_t u16 = (int32_t)(u >> 8);              /* Q1.23, <= 2^15 */
+        int32_t v = 429496730 + (u16 * (-306783378 >> 16)) / 128;
+        int32_t w = -715827883 + (u16 * (v >> 16)) / 128;
+        p = ONE_Q31 + mul31s(u, w);                   /* <= 2^31 */
+    }
     /* t p with p = 2^31 possible (t = 0): as t (p - 1) + t, every factor an int32. */
     a = atan_k8_q31[k] + ((qo_fx_mul32_i64((int32_t)t, (int32_t)(p - 1)) + t + ((int64_t)1 << 30)) >> 31);
     if (swap) a = HALF_PI_Q31 - a;
