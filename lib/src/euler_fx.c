@@ -62,6 +62,25 @@ static int64_t rshift_round(int64_t a, unsigned s)
 /* atan2(y, x) for int64 arguments of one scale, |y|, |x| < 2^63: both are reduced by the
  * same power of two to below 2^30 (30 significant bits of the larger: 1e-9 rad at worst),
  * rounded on the magnitude so the result stays odd in y, then qo_fx_atan2_q28. */
+/* round(v / 2^s) (ties up) for s <= 34 and a result below 2^31, on 32-bit words: a variable
+ * 64-bit shift is a libgcc call or a long sequence on Cortex-M0. */
+static uint32_t shr_round(uint64_t v, unsigned s)
+{
+    uint32_t hi = (uint32_t)(v >> 32), lo = (uint32_t)v, r, half;
+    if (s == 0) return lo;
+    if (s < 32) {
+        r = (hi << (32u - s)) | (lo >> s);
+        half = (lo >> (s - 1u)) & 1u;
+    } else if (s == 32) {
+        r = hi;
+        half = lo >> 31;
+    } else {
+        r = hi >> (s - 32u);
+        half = (hi >> (s - 33u)) & 1u;
+    }
+    return r + half;
+}
+
 static qo_q28 atan2_i64(int64_t y, int64_t x)
 {
     uint64_t ay = abs_u64(y), ax = abs_u64(x), m = ay > ax ? ay : ax;
@@ -74,12 +93,10 @@ static qo_q28 atan2_i64(int64_t y, int64_t x)
     else t = (uint32_t)m >> 30;
     while (t >= 256u) { t >>= 8; s += 8; }
     while (t != 0) { t >>= 1; s++; }
-    if (s > 0) {
-        ay = (ay + ((uint64_t)1 << (s - 1))) >> s;
-        ax = (ax + ((uint64_t)1 << (s - 1))) >> s;
-    }
-    yy = y < 0 ? -(int32_t)ay : (int32_t)ay;
-    xx = x < 0 ? -(int32_t)ax : (int32_t)ax;
+    yy = (int32_t)shr_round(ay, s);
+    xx = (int32_t)shr_round(ax, s);
+    if (y < 0) yy = -yy;
+    if (x < 0) xx = -xx;
     return qo_fx_atan2_q28(yy, xx);
 }
 
