@@ -305,15 +305,17 @@ static const uint32_t recip_seed[64] = {
 };
 
 /* About 2^62 / d for d in [2^31, 2^32): two Newton steps r += r (2^62 - d r) / 2^62 from the
- * seed (2^-8 -> 2^-16 -> below 2^-30 with the truncations), multiplications only. */
+ * seed, multiplications only. The first in 16x16 products (d r / 2^32 from the high halves,
+ * relative truncation < 2^-14: 2^-8 -> ~2^-14), the second in full 64-bit products
+ * (-> ~2^-28, the truncations included). */
 static uint32_t recip62(uint32_t d)
 {
     uint32_t r = recip_seed[(d >> 25) - 64u];
-    int i;
-    for (i = 0; i < 2; i++) {
-        int64_t e = ((int64_t)1 << 62) - (int64_t)qo_fx_umul32_u64(d, r);   /* |e| <= 2^55 */
-        r = (uint32_t)((int64_t)r + (qo_fx_mul32_i64((int32_t)(r >> 1), (int32_t)(e >> 31)) >> 30));
-    }
+    int32_t e32 = (int32_t)((uint32_t)1 << 30) - (int32_t)((d >> 16) * (r >> 16));   /* |.| < 2^23 */
+    int64_t e;
+    r = (uint32_t)((int64_t)r + ((int32_t)(r >> 16) * (e32 / 128)) / 128);   /* may reach 2^31 */
+    e = ((int64_t)1 << 62) - (int64_t)qo_fx_umul32_u64(d, r);   /* |e| <= 2^49 */
+    r = (uint32_t)((int64_t)r + (qo_fx_mul32_i64((int32_t)(r >> 1), (int32_t)(e >> 31)) >> 30));
     return r;
 }
 

@@ -69,10 +69,10 @@
  *                      taken and (x, y) rotated by -atan(k/8) EXACTLY in integers
  *                      (8x + ky, 8y - kx), so |t'| <= 1/16; k by three comparisons and
  *                      t' = by/bx through a Newton reciprocal of bx's top 32 bits (64-entry
- *                      seed table, 256 bytes, two steps: < 2^-30 relative, i.e. < 2^-34
+ *                      seed table, 256 bytes, a 16-bit and a 64-bit step: ~2^-28, < 2^-32
  *                      absolute on t'), no division; then atan(t') = t'(1 - t'^2/3 + t'^4/5
  *                      - t'^6/7) in Q1.31 plus the 9-entry atan(k/8) const table (72 bytes).
- *                      worst 0.68 LSB of Q3.28 (2.5e-9 rad; libfixmath's fix16_atan2 is off
+ *                      worst 0.70 LSB of Q3.28 (2.6e-9 rad; libfixmath's fix16_atan2 is off
  *                      by up to 1e-2 rad). 1380 bytes.
  *   asin/acos_q28      atan2 of (x, sqrt(1 - x^2)) with 1 - x^2 exact in Q2.60, so +-1 and
  *                      their neighbourhood keep full accuracy. worst 0.77 LSB. 220/250 bytes.
