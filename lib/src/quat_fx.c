@@ -207,14 +207,18 @@ static const uint32_t recip_seed[32] = {
 };
 
 /* About 2^62 / d for d in [2^31, 2^32): three Newton steps r += r (2^62 - d r) / 2^62 from
- * the seed (2^-6 -> 2^-12 -> 2^-24 -> ~2^-31 relative with the truncations; with two, div30's
- * correction loop ran ~12 times per component). Only an estimate: div30 makes it exact. */
+ * the seed (2^-6 -> ~2^-12 -> 2^-24 -> ~2^-31 relative with the truncations; with two,
+ * div30's correction loop ran ~12 times per component). Only an estimate: div30 makes it
+ * exact. */
 static uint32_t recip62(uint32_t d)
 {
     uint32_t r = recip_seed[(d >> 26) - 32u];
+    /* First step in 16x16 products (d r / 2^32 from the high halves, truncation < 2^-14). */
+    int32_t e32 = (int32_t)((uint32_t)1 << 30) - (int32_t)((d >> 16) * (r >> 16));   /* < 2^25 */
     int i;
-    for (i = 0; i < 3; i++) {
-        int64_t e = ((int64_t)1 << 62) - (int64_t)qo_fx_umul32_u64(d, r);   /* |e| <= 2^56 */
+    r = (uint32_t)((int64_t)r + ((int32_t)(r >> 16) * (e32 / 512)) / 32);   /* may reach 2^31 */
+    for (i = 0; i < 2; i++) {
+        int64_t e = ((int64_t)1 << 62) - (int64_t)qo_fx_umul32_u64(d, r);   /* |e| <= 2^50 */
         r = (uint32_t)((int64_t)r + (qo_fx_mul32_i64((int32_t)(r >> 1), (int32_t)(e >> 31)) >> 30));
     }
     return r;
