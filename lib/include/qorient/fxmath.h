@@ -8,8 +8,9 @@
  * Index:
  *   QO_Q28_PI, QO_Q28_HALF_PI, QO_Q28_TWO_PI   pi, pi/2, 2pi in Q3.28 (each rounded to nearest)
  *   qo_fx_sat_i32          saturate an int64 to int32
- *   qo_fx_mul32_i64        exact signed 32x32 -> 64 product (static inline, 4 16x16 products)
- *   qo_fx_umul32_u64       exact unsigned 32x32 -> 64 product (static inline, 4 16x16 products)
+ *   qo_fx_mul32_i64        exact signed 32x32 -> 64 product (static inline; 4 16x16 products on ARMv6-M)
+ *   qo_fx_umul32_u64       exact unsigned 32x32 -> 64 product (static inline; likewise)
+ *   qo_fx_mul32_i64_parts, qo_fx_umul32_u64_parts   the 16x16 partial-product forms themselves
  *   qo_fx_add_q30          saturating a + b (any one format)
  *   qo_fx_sub_q30          saturating a - b (any one format)
  *   qo_fx_neg_q30          saturating -a (any one format)
@@ -113,7 +114,7 @@ int32_t qo_fx_sat_i32(int64_t v);
  * The signed product is the unsigned one of the two's-complement bit patterns with the
  * high word corrected (the int64 conversion of a value below 2^63 in magnitude is exact).
  */
-static inline uint64_t qo_fx_umul32_u64(uint32_t a, uint32_t b)
+static inline uint64_t qo_fx_umul32_u64_parts(uint32_t a, uint32_t b)
 {
     uint32_t ah = a >> 16, bh = b >> 16, al = a & 0xFFFFu, bl = b & 0xFFFFu;
     uint32_t ll = al * bl, mid = al * bh, hi = ah * bh, lo;
@@ -125,12 +126,34 @@ static inline uint64_t qo_fx_umul32_u64(uint32_t a, uint32_t b)
     return ((uint64_t)hi << 32) | lo;
 }
 
-/* Two's complement: a * b = ua * ub - 2^32 (b [a < 0] + a [b < 0]) mod 2^64. */
-static inline int64_t qo_fx_mul32_i64(int32_t a, int32_t b)
+/* The partial products pay only where there is no widening multiply (ARMv6-M); everywhere
+ * else (x86-64, ARMv7-M UMULL/SMULL, RV32M mulhu) the plain C product is one or two
+ * instructions. Both are exact, so results are bit-identical on every target; define
+ * QO_FX_MUL_PARTS to force the partial products (tests compare the two). */
+static inline uint64_t qo_fx_umul32_u64(uint32_t a, uint32_t b)
 {
-    uint64_t u = qo_fx_umul32_u64((uint32_t)a, (uint32_t)b);
+#if defined(__ARM_ARCH_6M__) || defined(QO_FX_MUL_PARTS)
+    return qo_fx_umul32_u64_parts(a, b);
+#else
+    return (uint64_t)a * b;
+#endif
+}
+
+/* Two's complement: a * b = ua * ub - 2^32 (b [a < 0] + a [b < 0]) mod 2^64. */
+static inline int64_t qo_fx_mul32_i64_parts(int32_t a, int32_t b)
+{
+    uint64_t u = qo_fx_umul32_u64_parts((uint32_t)a, (uint32_t)b);
     uint32_t corr = ((uint32_t)b & (uint32_t)(a >> 31)) + ((uint32_t)a & (uint32_t)(b >> 31));
     return (int64_t)(u - ((uint64_t)corr << 32));
+}
+
+static inline int64_t qo_fx_mul32_i64(int32_t a, int32_t b)
+{
+#if defined(__ARM_ARCH_6M__) || defined(QO_FX_MUL_PARTS)
+    return qo_fx_mul32_i64_parts(a, b);
+#else
+    return (int64_t)a * b;
+#endif
 }
 
 /* a + b, a - b and -a, saturated. Formats must match; the result is in that format. Used for
