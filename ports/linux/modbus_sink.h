@@ -132,6 +132,14 @@ typedef struct qo_modbus_sink_stats {
     uint64_t clamped;            /* joint values changed by min/max */
     uint64_t saturated;          /* joint values changed by the register type's range */
     uint64_t actions;            /* failure actions taken */
+    uint64_t readbacks;          /* FC03 read-backs of target registers (after an unknown
+                                    outcome or a (re)connection; never in a fault-free tick) */
+    uint64_t readback_fallbacks; /* read-backs answered by an exception: feedback used, or
+                                    the old range kept */
+    uint64_t blocked;            /* joint values not sent: no value within max_step of every
+                                    value the drive may hold (the slave held that tick) */
+    uint64_t drains;             /* RTU: line drains before a read-back */
+    uint64_t drained_bytes;      /* RTU: bytes dropped by the drains (late replies, noise) */
     unsigned groups;             /* FC16 requests per tick */
     int disabled;                /* 1 while in the disabled state */
     qo_status last_error;        /* last failure, QO_OK if none yet */

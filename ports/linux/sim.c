@@ -8,6 +8,7 @@
 #include <string.h>
 #include <sys/socket.h>
 #include <netinet/in.h>
+#include <netinet/tcp.h>
 #include <arpa/inet.h>
 #include <time.h>
 #include <unistd.h>
@@ -264,6 +265,10 @@ static void tcp_loop(qo_sim *s)
         if (pf[0].revents & POLLIN) {
             int fd = accept(s->listen_fd, NULL, NULL);
             if (fd >= 0) {
+                int one = 1;
+                /* Replies go out at once, as a drive's: with Nagle a late reply could hold
+                 * back the next one and leave the link one reply behind. */
+                (void)setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
                 /* One master at a time, as most drives: a reconnecting master replaces the
                  * old connection, which it may have abandoned without closing. */
                 if (s->client_fd >= 0) close(s->client_fd);
