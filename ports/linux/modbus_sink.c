@@ -563,7 +563,7 @@ static void drain_line(qo_modbus_sink *s)
 {
     struct timespec t0, now;
     int fd = modbus_get_socket(s->ctx);
-    uint64_t total = s->set.response_timeout_us, el;
+    int64_t total = (int64_t)s->set.response_timeout_us, el;
     if (s->drained) return;
     s->drained = 1;
     s->st.drains++;
@@ -574,13 +574,12 @@ static void drain_line(qo_modbus_sink *s)
         ssize_t n;
         int rc;
         now_ts(&now);
-        el = (uint64_t)(now.tv_sec - t0.tv_sec) * 1000000u +
-             (uint64_t)((now.tv_nsec - t0.tv_nsec) / 1000L);
+        el = (int64_t)(now.tv_sec - t0.tv_sec) * 1000000 + (int64_t)(now.tv_nsec - t0.tv_nsec) / 1000;
         if (fd < 0 || el >= total) break;
         pf.fd = fd;
         pf.events = POLLIN;
         pf.revents = 0;
-        rc = poll(&pf, 1, (int)((total - el + 999u) / 1000u));
+        rc = poll(&pf, 1, (int)((total - el + 999) / 1000));
         if (rc < 0 && errno == EINTR) continue;
         if (rc <= 0) break;
         n = read(fd, junk, sizeof junk);
