@@ -1,0 +1,43 @@
+#!/bin/sh
+# The manual page ports/linux/cli/qorient.1 against the command: its version, every subcommand
+# has its section, every option any --help text shows is documented in the page, and the page
+# formats without a warning (groff -ww, when groff is installed; mandoc -T lint when mandoc is).
+Q=${QORIENT:-build/qorient}
+MAN=ports/linux/cli/qorient.1
+pass=0; fail=0
+ok()  { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+T=${TMPDIR:-/tmp}/qo-manpage.$$
+mkdir -p "$T"
+trap 'rm -rf "$T"' EXIT INT TERM
+
+# The page's text with roff's escaped hyphens made plain, so '\-\-rate' reads '--rate'.
+sed 's/\\-/-/g' "$MAN" > "$T/man.txt"
+
+cmds=$($Q --help | awk '/^commands:/ { on = 1; next } on && /^  [a-z]/ { print $1 } on && /^$/ { on = 0 }')
+[ -n "$cmds" ] && ok || bad "no command list in '$Q --help'"
+for c in $cmds; do
+    grep -q "^\.SS \"qorient $c" "$T/man.txt" && ok || bad "no section '.SS \"qorient $c ...' for the command $c"
+    [ "$c" = version ] && continue
+    $Q "$c" --help > "$T/help" 2>&1 || { bad "$Q $c --help exits non-zero"; continue; }
+    [ "$c" = plan ] && $Q plan --profile scurve --help >> "$T/help" 2>&1
+    for o in $(grep -oE -- '--[a-z][a-z0-9-]*' "$T/help" | sort -u); do
+        grep -q -- "$o\b" "$T/man.txt" && ok || bad "qorient $c: option $o of --help is not in $MAN"
+    done
+done
+
+# the page's title line names the command's version
+v=$($Q version | sed -n 's/^qorient //p')
+grep -q "^\.TH QORIENT 1 .* \"qorient $v\"" "$MAN" && ok || bad "the .TH line does not say \"qorient $v\""
+
+if command -v groff >/dev/null 2>&1; then
+    w=$(groff -man -Tutf8 -ww -z "$MAN" 2>&1)
+    [ -z "$w" ] && ok || bad "groff -man -ww: $w"
+fi
+if command -v mandoc >/dev/null 2>&1; then
+    w=$(mandoc -T lint -W warning "$MAN" 2>&1)
+    [ -z "$w" ] && ok || bad "mandoc -T lint: $w"
+fi
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
