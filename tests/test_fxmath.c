@@ -86,6 +86,36 @@ static void test_mul_edges_and_sweep(void **state)
     for (k = 0; k < 200000; k++) check_mul(rnd_i32_mag(), rnd_i32_mag());
 }
 
+/* The 16x16 partial-product forms used on ARMv6-M against the native 64-bit product: edge
+ * table (0, +-1, INT32_MIN/MAX, 0xFFFF carries) and 2M random pairs. */
+static void test_mul32_parts(void **state)
+{
+    static const uint32_t edge[] = { 0u, 1u, 2u, 0xFFFFu, 0x10000u, 0x1FFFFu, 0x7FFFFFFFu, 0x80000000u,
+                                     0x80000001u, 0xFFFF0000u, 0xFFFF8000u, 0xFFFFFFFFu, 0x40000000u,
+                                     0xC0000000u, 0x0000FFFFu, 0x12345678u, 0xDEADBEEFu };
+    size_t i, j;
+    long k;
+    (void)state;
+    for (i = 0; i < sizeof edge / sizeof edge[0]; i++) {
+        for (j = 0; j < sizeof edge / sizeof edge[0]; j++) {
+            uint32_t a = edge[i], b = edge[j];
+            if (qo_fx_umul32_u64_parts(a, b) != (uint64_t)a * b) fail_msg("umul parts %08x * %08x", a, b);
+            if (qo_fx_mul32_i64_parts((int32_t)a, (int32_t)b) != (int64_t)(int32_t)a * (int32_t)b)
+                fail_msg("mul parts %d * %d", (int32_t)a, (int32_t)b);
+        }
+    }
+    rng_state = 77;
+    for (k = 0; k < 2000000; k++) {
+        uint64_t r = rnd();
+        uint32_t a = (uint32_t)r, b = (uint32_t)(r >> 32);
+        if (qo_fx_umul32_u64_parts(a, b) != (uint64_t)a * b) fail_msg("umul parts %08x * %08x", a, b);
+        if (qo_fx_mul32_i64_parts((int32_t)a, (int32_t)b) != (int64_t)(int32_t)a * (int32_t)b)
+            fail_msg("mul parts %d * %d", (int32_t)a, (int32_t)b);
+        if (qo_fx_mul32_i64((int32_t)a, (int32_t)b) != (int64_t)(int32_t)a * (int32_t)b)
+            fail_msg("mul %d * %d", (int32_t)a, (int32_t)b);
+    }
+}
+
 static void test_add_sub_neg_saturate(void **state)
 {
     (void)state;
@@ -470,6 +500,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mul_edges_and_sweep),
+        cmocka_unit_test(test_mul32_parts),
         cmocka_unit_test(test_add_sub_neg_saturate),
         cmocka_unit_test(test_sum_round),
         cmocka_unit_test(test_div),
