@@ -144,3 +144,4 @@ clean:
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
 -include mk/install.mk
 -include mk/bench.mk
+-include mk/qemu.mk
