@@ -142,3 +142,6 @@ clean:
 	rm -rf $(BUILD)
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
+-include mk/install.mk
+-include mk/bench.mk
+-include mk/qemu.mk

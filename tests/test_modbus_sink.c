@@ -769,6 +769,253 @@ static void test_rtu_pty_with_garbage(void **state)
     fclose(log);
 }
 
+/* ---- read-back after an unknown outcome, a late RTU reply, a restarted drive ------------ */
+
+/* The failure pattern of a run of ticks. */
+struct tick_log {
+    unsigned failed, first_fail, second_fail, last_fail;
+    qo_status first_status, second_status;
+};
+
+static void note_tick(struct tick_log *tl, unsigned k, qo_status st)
+{
+    if (st == QO_OK) return;
+    if (tl->failed == 0) {
+        tl->first_fail = k;
+        tl->first_status = st;
+    } else if (tl->failed == 1) {
+        tl->second_fail = k;
+        tl->second_status = st;
+    }
+    tl->failed++;
+    tl->last_fail = k;
+}
+
+static void test_two_timeouts_then_recovery(void **state)
+{
+    FILE *log = tmpfile();
+    qo_sim *sim;
+    qo_modbus_sink *s = NULL;
+    qo_modbus_sink_settings set = test_settings();
+    qo_modbus_sink_stats st;
+    /* request 21 = the FC16 of tick 20: applied, no reply (timeout); request 22 = the
+     * read-back that tick 21 sends first: no reply either (a second timeout in a row) */
+    qo_sim_fault drop2 = { QO_SIM_FAULT_DROP, 0, 0.0, 20, 2 };
+    struct tick_log tl;
+    double last[NJ], worst;
+    unsigned lines, k;
+    char spec[64];
+    (void)state;
+    memset(&tl, 0, sizeof tl);
+    load_six();
+    assert_non_null(log);
+    set.response_timeout_us = 30000;
+    set.fail_threshold = 10; /* no failure action: the sink recovers on its own */
+    sim = start_tcp_sim(log, NULL, 0.0, spec, sizeof spec);
+    assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+    assert_int_equal(qo_sim_set_fault(sim, &drop2), QO_OK);
+    for (k = 0; k < NTICKS; k++) {
+        float t[NJ];
+        targets_at(k, t);
+        note_tick(&tl, k, qo_modbus_sink_write(s, t, NJ, k));
+        (void)qo_modbus_sink_service(s);
+    }
+    assert_int_equal(qo_modbus_sink_get_stats(s, &st), QO_OK);
+    if (tl.failed != 2 || tl.first_fail != 20 || tl.second_fail != 21 ||
+        tl.first_status != QO_E_TIMEOUT || tl.second_status != QO_E_TIMEOUT ||
+        st.timeouts != 2 || st.readbacks != 2 || st.common.reconnects != 0)
+        fail_msg("two timeouts: failed %u at %u (%s) and %u (%s), timeouts %llu, read-backs "
+                 "%llu, reconnects %llu; want 2 at 20 and 21, both TIMEOUT, 2, 2, 0",
+                 tl.failed, tl.first_fail, qo_status_str(tl.first_status), tl.second_fail,
+                 qo_status_str(tl.second_status), (unsigned long long)st.timeouts,
+                 (unsigned long long)st.readbacks, (unsigned long long)st.common.reconnects);
+    /* one FC16 per tick but tick 21 (held: its read-back failed), two read-backs, six
+     * feedback reads at open: nothing more (no read-back once the range is known again) */
+    assert_int_equal(st.requests, (NTICKS - 1) + 2 + NJ);
+    check_final(sim, "two timeouts");
+    qo_modbus_sink_free(s);
+    qo_sim_stop(sim);
+    worst = check_log(log, &map, last, &lines); /* fails on any step above max_step */
+    assert_int_equal(lines, (NTICKS - 1) * NJ);
+    assert_true(worst > 0.99);
+    fclose(log);
+}
+
+static void test_rtu_late_reply(void **state)
+{
+    struct relay r;
+    FILE *log = tmpfile();
+    qo_sim *sim = NULL;
+    qo_modbus_sink *s = NULL;
+    qo_modbus_sink_settings set = test_settings();
+    qo_sim_settings ss = qo_sim_settings_default;
+    /* the FC16 of tick 20 is applied at once and answered 80 ms later, after the sink's
+     * 30 ms timeout: an RTU reply carries no transaction id, and an FC16 echo is the same
+     * every tick, so only the FC03 read-back (another function code) can tell it apart */
+    qo_sim_fault late = { QO_SIM_FAULT_DELAY, 80, 0.0, 20, 1 };
+    qo_modbus_sink_stats st;
+    struct tick_log tl;
+    double last[NJ], worst;
+    unsigned lines, k;
+    char spec[128];
+    (void)state;
+    memset(&tl, 0, sizeof tl);
+    load_six();
+    assert_non_null(log);
+    relay_open(&r);
+    ss.log = log;
+    ss.lag_s = 0.0;
+    snprintf(spec, sizeof spec, "rtu:%s,115200,8N1", r.path_a);
+    assert_int_equal(qo_sim_start(spec, &map, &ss, &sim), QO_OK);
+    snprintf(spec, sizeof spec, "rtu:%s,115200,8N1", r.path_b);
+    set.response_timeout_us = 30000;
+    set.byte_timeout_us = 10000;
+    set.fail_threshold = 10;
+    assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+    assert_int_equal(qo_sim_set_fault(sim, &late), QO_OK);
+    for (k = 0; k < 120; k++) {
+        float t[NJ];
+        targets_at(k < 40 ? k : NTICKS - 1, t); /* short (RTU ticks are slow): final at 40 */
+        note_tick(&tl, k, qo_modbus_sink_write(s, t, NJ, k));
+        (void)qo_modbus_sink_service(s);
+    }
+    assert_int_equal(qo_modbus_sink_get_stats(s, &st), QO_OK);
+    check_final(sim, "rtu late reply");
+    qo_modbus_sink_free(s);
+    qo_sim_stop(sim);
+    relay_close(&r);
+    worst = check_log(log, &map, last, &lines); /* fails on any step above max_step */
+    assert_true(worst > 0.99);
+    /* the late echo was dropped by the drain or rejected by the read-back, never taken as
+     * the confirmation of a later FC16 */
+    if (tl.failed == 0 || tl.first_fail != 20 || tl.first_status != QO_E_TIMEOUT ||
+        tl.last_fail > 60 || st.readbacks == 0 || st.drains == 0 ||
+        st.drained_bytes + st.protocol_errors == 0)
+        fail_msg("late RTU reply: failed %u (first at %u, %s, last at %u), read-backs %llu, "
+                 "drains %llu, drained bytes %llu, protocol errors %llu", tl.failed,
+                 tl.first_fail, qo_status_str(tl.first_status), tl.last_fail,
+                 (unsigned long long)st.readbacks, (unsigned long long)st.drains,
+                 (unsigned long long)st.drained_bytes, (unsigned long long)st.protocol_errors);
+    fclose(log);
+}
+
+static void test_drive_restart_target_zero(void **state)
+{
+    FILE *log1 = tmpfile(), *log2 = tmpfile();
+    qo_sim *sim;
+    qo_modbus_sink *s = NULL;
+    qo_modbus_sink_settings set = test_settings();
+    qo_sim_settings ss = qo_sim_settings_default;
+    qo_modbus_sink_stats st;
+    double last[NJ], worst;
+    float t[NJ];
+    unsigned lines, k, ok_after = 0;
+    char spec[64];
+    size_t i;
+    (void)state;
+    load_six();
+    assert_non_null(log1);
+    assert_non_null(log2);
+    for (i = 0; i < NJ; i++) t[i] = 2.0f;
+    set.response_timeout_us = 30000; /* the old link may time out before it is found down */
+    sim = start_tcp_sim(log1, NULL, 0.0, spec, sizeof spec);
+    assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+    for (k = 0; k < 60; k++) assert_int_equal(qo_modbus_sink_write(s, t, NJ, k), QO_OK);
+    /* the drive restarts: same address, every register 0 (its target too) */
+    qo_sim_stop(sim);
+    (void)check_log(log1, &map, last, &lines); /* read once its writer has stopped */
+    for (i = 0; i < NJ; i++)
+        if (fabs(last[i] - 2.0) > 0.5e-3)
+            fail_msg("before restart: joint %u at %g, want 2", (unsigned)i, last[i]);
+    ss.log = log2;
+    ss.lag_s = 0.0;
+    assert_int_equal(qo_sim_start(spec, &map, &ss, &sim), QO_OK);
+    for (k = 60; k < 60 + 400 && ok_after < 60; k++) {
+        if (qo_modbus_sink_write(s, t, NJ, k) == QO_OK) ok_after++;
+        if (qo_modbus_sink_service(s) == QO_E_DISCONNECTED) {
+            struct timespec d = { 0, 2000000L };
+            nanosleep(&d, NULL); /* backoff */
+        }
+    }
+    assert_int_equal(qo_modbus_sink_get_stats(s, &st), QO_OK);
+    qo_modbus_sink_free(s);
+    qo_sim_stop(sim);
+    /* the restarted drive (target 0) was walked at max_step: 2.0 / 0.05 = 40 ticks */
+    worst = check_log(log2, &map, last, &lines);
+    assert_true(worst > 0.99);
+    assert_true(lines >= 40 * NJ);
+    if (ok_after < 60 || st.common.reconnects == 0 || st.readbacks == 0)
+        fail_msg("restart: %u good ticks after, reconnects %llu, read-backs %llu", ok_after,
+                 (unsigned long long)st.common.reconnects, (unsigned long long)st.readbacks);
+    for (i = 0; i < NJ; i++) {
+        double tg;
+        tg = last[i];
+        if (fabs(tg - 2.0) > 0.5e-3) fail_msg("restart: joint %u holds %g, want 2", (unsigned)i, tg);
+    }
+    fclose(log1);
+    fclose(log2);
+}
+
+static const char *unreadable_map =
+    "[slave.1]\n"
+    "[joint.a]\nslave = 1\naddress = 0\ntype = int32\nscale = 1000\nmax_step = 0.05\n"
+    "min = -3\nmax = 3\nfeedback = 100\n"
+    "[joint.b]\nslave = 1\naddress = 2\ntype = int32\nscale = 1000\nmax_step = 0.05\n"
+    "min = -3\nmax = 3\n";
+
+static void test_readback_exception_fallback(void **state)
+{
+    FILE *log = tmpfile();
+    char err[256], spec[64];
+    qo_sim *sim = NULL;
+    qo_modbus_sink *s = NULL;
+    qo_modbus_sink_settings set = test_settings();
+    qo_sim_settings ss = qo_sim_settings_default;
+    qo_sim_fault drop1 = { QO_SIM_FAULT_DROP, 0, 0.0, 20, 1 };
+    qo_modbus_sink_stats st;
+    struct tick_log tl;
+    double last[2];
+    const float zero[2] = { 0.0f, 0.0f };
+    unsigned lines, k;
+    (void)state;
+    memset(&tl, 0, sizeof tl);
+    assert_non_null(log);
+    assert_int_equal(qo_regmap_parse(unreadable_map, "unreadable.ini", &map, err, sizeof err), QO_OK);
+    ss.log = log;
+    ss.lag_s = 0.0; /* feedback = target: the fallback is then exact */
+    ss.targets_unreadable = 1;
+    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, &ss, &sim), QO_OK);
+    snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+    set.response_timeout_us = 30000;
+    set.fail_threshold = 10;
+    assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+    assert_int_equal(qo_modbus_sink_seed(s, zero, 2), QO_OK); /* b has no feedback */
+    assert_int_equal(qo_sim_set_fault(sim, &drop1), QO_OK);
+    for (k = 0; k < NTICKS; k++) {
+        float t[2];
+        t[0] = (float)(2.5 * sin(0.1 * k));
+        t[1] = (float)(2.5 * sin(0.1 * k + 1.0));
+        note_tick(&tl, k, qo_modbus_sink_write(s, t, 2, k));
+        (void)qo_modbus_sink_service(s);
+    }
+    assert_int_equal(qo_modbus_sink_get_stats(s, &st), QO_OK);
+    /* tick 20 times out; tick 21 reads back, gets 0x02, takes a's feedback, keeps b's range
+     * (old and new value) and writes; no read-back after that */
+    if (tl.failed != 1 || tl.first_fail != 20 || st.readbacks != 1 ||
+        st.readback_fallbacks != 1 || st.exceptions != 1)
+        fail_msg("fallback: failed %u (first at %u), read-backs %llu, fallbacks %llu, "
+                 "exceptions %llu; want 1 at 20, 1, 1, 1", tl.failed, tl.first_fail,
+                 (unsigned long long)st.readbacks, (unsigned long long)st.readback_fallbacks,
+                 (unsigned long long)st.exceptions);
+    /* FC16 per tick, a's feedback at open, the read-back and a's feedback after it */
+    assert_int_equal(st.requests, NTICKS + 3);
+    qo_modbus_sink_free(s);
+    qo_sim_stop(sim);
+    (void)check_log(log, &map, last, &lines); /* fails on any step above max_step */
+    assert_int_equal(lines, NTICKS * 2);
+    fclose(log);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -780,6 +1027,10 @@ int main(void)
         cmocka_unit_test(test_sim_first_order_lag),
         cmocka_unit_test(test_leadshine_example_map),
         cmocka_unit_test(test_rtu_pty_with_garbage),
+        cmocka_unit_test(test_two_timeouts_then_recovery),
+        cmocka_unit_test(test_rtu_late_reply),
+        cmocka_unit_test(test_drive_restart_target_zero),
+        cmocka_unit_test(test_readback_exception_fallback),
     };
     return cmocka_run_group_tests_name("modbus_sink", tests, NULL, NULL);
 }

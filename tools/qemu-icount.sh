@@ -5,6 +5,7 @@
 #
 #   sh tools/qemu-icount.sh            # all operations, K = 16 calls each (~3-5 min)
 #   K=64 sh tools/qemu-icount.sh       # more calls (longer)
+#   OPS="9 10 11 12" sh tools/qemu-icount.sh   # only the listed operation numbers (see below)
 #
 # Method (see /work/shared/research/feasibility-cross.md section 4): each operation gets a tiny
 # semihosting program, built twice: with its loop calling the operation 0 and K times. QEMU runs
@@ -68,9 +69,15 @@ cat > "$OUT/ops.c" <<'EOF'
 #include <math.h>
 #include <stdint.h>
 #include "qorient/convert_fx.h"
+#include "qorient/euler.h"
+#include "qorient/euler_fx.h"
 #include "qorient/fxmath.h"
+#include "qorient/interp.h"
 #include "qorient/quat.h"
 #include "qorient/quat_fx.h"
+#if HAVE_INTERP_FX
+#include "qorient/interp_fx.h"
+#endif
 volatile int32_t sink_i;
 volatile float sink_f;
 static const float af[8] = { 0.1f, -0.7f, 1.3f, 2.9f, -2.2f, 0.001f, 3.1f, -1.57f };
@@ -80,6 +87,10 @@ static const qo_quat_f32 qf[8] = {
     { 0.5f, 0.5f, 0.5f, 0.5f }, { 0.9f, 0.1f, -0.3f, 0.3f }, { -0.2f, 0.7f, 0.1f, 0.68f },
     { 0.0f, 0.0f, 1.0f, 0.0f }, { 0.99f, 0.01f, 0.1f, 0.0f }, { 0.3f, -0.3f, 0.3f, -0.85f },
     { 0.6f, 0.6f, -0.4f, 0.35f }, { -0.7f, 0.1f, 0.7f, 0.1f } };
+/* Euler sequences cycled with the inputs: Tait-Bryan and proper, extrinsic and intrinsic. */
+static const qo_euler_seq seqs[8] = { QO_EULER_ZYX, QO_EULER_xyz, QO_EULER_ZXZ, QO_EULER_yzy,
+    QO_EULER_XYZ, QO_EULER_zyx, QO_EULER_YXY, QO_EULER_xzx };
+static const float tf[8] = { 0.5f, 0.1f, 0.9f, 0.33f, 0.75f, 0.01f, 0.6f, 0.25f };
 static const qo_vec3_f32 vf[8] = {
     { 1, 0, 0 }, { 0.3f, 0.4f, 0.5f }, { -0.5f, 0.5f, 0.7f }, { 0, 0, 1 }, { 0.1f, -0.9f, 0.2f },
     { 0.6f, 0.6f, 0.5f }, { -0.2f, 0.1f, -0.9f }, { 0.7f, 0.0f, -0.7f } };
@@ -87,6 +98,7 @@ static const qo_vec3_f32 vf[8] = {
 #define Q30(v) ((int32_t)((v) * 1073741824.0))
 #define Q28(v) ((int32_t)((v) * 268435456.0))
 #define QQ(w, x, y, z) { Q30(w), Q30(x), Q30(y), Q30(z) }
+static const int32_t ti[8] = { Q30(0.5), Q30(0.1), Q30(0.9), Q30(0.33), Q30(0.75), Q30(0.01), Q30(0.6), Q30(0.25) };
 static const int32_t ai[8] = { Q28(0.1), Q28(-0.7), Q28(1.3), Q28(2.9), Q28(-2.2), Q28(0.001), Q28(3.1), Q28(-1.57) };
 static const int32_t ui[8] = { Q30(0.1), Q30(-0.7), Q30(0.3), Q30(0.99), Q30(-0.2), Q30(0.001), Q30(0.5), Q30(-0.95) };
 static const int32_t pi30[8] = { Q30(0.1), Q30(0.7), Q30(1.3), Q30(1.9), Q30(0.2), Q30(0.001), Q30(1.1), Q30(1.57) };
@@ -143,18 +155,30 @@ int main(void)
 #elif OP == 17
         qo_quat_q30 r; qo_mat3_q30 m; (void)qo_quat_to_mat3_q30(qi[j], &m);
         (void)qo_quat_from_mat3_q30(&m, &r); sink_i = r.w;
+#elif OP == 18
+        qo_euler_q28 e; (void)qo_quat_to_euler_q30(qi[j], seqs[j], &e, NULL); sink_i = e.a1 + e.a2 + e.a3;
+#elif OP == 19
+        qo_euler_f32 e; (void)qo_quat_to_euler_f32(qf[j], seqs[j], &e, NULL); sink_f = e.a1 + e.a2 + e.a3;
+#elif OP == 20 && HAVE_INTERP_FX
+        qo_quat_q30 r; (void)qo_quat_slerp_q30(qi[j], qi[(j + 1) & 7], ti[j], &r); sink_i = r.w + r.x + r.y + r.z;
+#elif OP == 21
+        qo_quat_f32 r; (void)qo_quat_slerp_f32(qf[j], qf[(j + 1) & 7], tf[j], &r); sink_f = r.w + r.x + r.y + r.z;
 #endif
     }
     return 0;
 }
 EOF
 
-FX_SRC="lib/src/fxmath_fx.c lib/src/quat_fx.c lib/src/convert_fx.c"
+FX_SRC="lib/src/fxmath_fx.c lib/src/quat_fx.c lib/src/convert_fx.c lib/src/euler_fx.c"
+F32_SRC="lib/src/quat.c lib/src/euler.c lib/src/interp.c lib/src/status.c"
+HAVE_INTERP_FX=0
+if [ -f lib/src/interp_fx.c ]; then FX_SRC="$FX_SRC lib/src/interp_fx.c"; HAVE_INTERP_FX=1; fi
 run_count() { # op k -> executed instruction count
     elf="$OUT/op$1_k$2.elf"
     $CC $CPU -std=c99 -O2 -ffunction-sections -fdata-sections -Ilib/include -DOP=$1 -DK=$2 \
+        -DHAVE_INTERP_FX=$HAVE_INTERP_FX \
         --specs=rdimon.specs -T "$OUT/cm.ld" -Wl,--gc-sections \
-        "$OUT/ops.c" "$OUT/startup.c" $FX_SRC lib/src/quat.c lib/src/status.c -lm -o "$elf"
+        "$OUT/ops.c" "$OUT/startup.c" $FX_SRC $F32_SRC -lm -o "$elf"
     log="$OUT/op$1_k$2.log"
     rm -f "$log"
     timeout 120 qemu-system-arm -M microbit -nographic -monitor none -serial none \
@@ -174,8 +198,14 @@ for spec in "0:loop body alone" \
             "11:qo_quat_normalize_q30" "12:qo_quat_normalize_f32 (soft)" \
             "13:qo_quat_rotate_q30" "14:qo_quat_rotate_f32 (soft)" \
             "15:qo_quat_from_rotvec_q30" "16:qo_quat_to_mat3_q30" \
-            "17:to_mat3 + from_mat3 _q30"; do
+            "17:to_mat3 + from_mat3 _q30" \
+            "18:qo_quat_to_euler_q30" "19:qo_quat_to_euler_f32 (soft)" \
+            "20:qo_quat_slerp_q30" "21:qo_quat_slerp_f32 (soft)"; do
     op=${spec%%:*}; name=${spec#*:}
+    case " ${OPS:-$op} " in *" $op "*) ;; *) continue ;; esac
+    if [ "$op" = 20 ] && [ "$HAVE_INTERP_FX" = 0 ]; then
+        printf '%-30s %s\n' "$name" "n/a (lib/src/interp_fx.c not on this branch)"; continue
+    fi
     n0=$(run_count "$op" 0)
     nk=$(run_count "$op" "$K")
     printf '%-30s %d\n' "$name" $(( (nk - n0) / K ))

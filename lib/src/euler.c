@@ -163,7 +163,9 @@ static qo_quat_f32 scale_pow2(qo_quat_f32 q)
     return q;
 }
 
-static decomp decompose(qo_quat_f32 q, qo_euler_seq seq)
+/* skip_band >= 0: the caller only needs to know whether margin <= skip_band, so the margin's
+ * atan2 is skipped when it is certainly larger (margin is then reported as pi/2). */
+static decomp decompose(qo_quat_f32 q, qo_euler_seq seq, float skip_band)
 {
     const unsigned char *ax = seq_axes[(int)seq % 12];
     int intrinsic = (int)seq >= 12;
@@ -210,7 +212,14 @@ static decomp decompose(qo_quat_f32 q, qo_euler_seq seq)
      * from pi, so it keeps its accuracy down to 0). */
     lo = n1 < n2 ? n1 : n2;
     hi = n1 < n2 ? n2 : n1;
-    r.margin = 2.0f * atan2f(lo, hi);
+    /* margin = 2 atan(lo/hi) >= (pi/2) lo/hi on [0, 1] (atan is concave there): when that
+     * bound clears the band by 1 % (far more than atan2f's rounding) and lo/hi is far from
+     * underflow, the margin exceeds the band and its atan2 (a quarter of the cost of the
+     * whole decomposition) is not needed. */
+    if (skip_band >= 0.0f && lo > 1e-30f * hi && 1.5707963f * lo > 1.01f * skip_band * hi)
+        r.margin = HALF_PI_F;
+    else
+        r.margin = 2.0f * atan2f(lo, hi);
     r.e.a2 = t2;
     r.e.a1 = intrinsic ? t1 : t3;
     r.e.a3 = intrinsic ? t3 : t1;
@@ -260,7 +269,7 @@ qo_status qo_quat_to_euler_band_f32(qo_quat_f32 q, qo_euler_seq seq, float band_
     set_error_outputs(out, info);
     st = check_args(q, seq, band_rad, &qn);
     if (st != QO_OK) return st;
-    r = decompose(qn, seq);
+    r = decompose(qn, seq, info == NULL ? band_rad : -1.0f);
     if (r.margin <= band_rad) {
         /* scipy's choice: a3 = 0, a1 takes the determined sum/difference. */
         r.e.a3 = 0.0f;
@@ -296,7 +305,7 @@ qo_status qo_quat_to_euler_near_f32(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f3
         *out = prev; /* hold the joint */
         return st;
     }
-    r = decompose(qn, seq);
+    r = decompose(qn, seq, -1.0f);
     /* The second solution: (a1 + pi, pi - a2, a3 + pi) Tait-Bryan, (a1 + pi, -a2, a3 + pi)
      * proper (a rotation by pi about the first axis conjugates the middle one into its
      * negative, and the two pi's combine into the identity). */

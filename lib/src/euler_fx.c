@@ -45,6 +45,14 @@ static uint64_t abs_u64(int64_t a)
     return a < 0 ? (uint64_t)0 - (uint64_t)a : (uint64_t)a;
 }
 
+/* a * b exactly, for |a|, |b| < 2^32 (every product in this file): the magnitudes through
+ * the 32x32 product of fxmath.h, not libgcc's 64x64 multiply (slow on Cortex-M0). */
+static int64_t smul(int64_t a, int64_t b)
+{
+    uint64_t p = qo_fx_umul32_u64((uint32_t)abs_u64(a), (uint32_t)abs_u64(b));
+    return (a < 0) != (b < 0) ? -(int64_t)p : (int64_t)p;
+}
+
 /* round(a / 2^s) for s >= 1 (ties toward +inf). */
 static int64_t rshift_round(int64_t a, unsigned s)
 {
@@ -54,18 +62,41 @@ static int64_t rshift_round(int64_t a, unsigned s)
 /* atan2(y, x) for int64 arguments of one scale, |y|, |x| < 2^63: both are reduced by the
  * same power of two to below 2^30 (30 significant bits of the larger: 1e-9 rad at worst),
  * rounded on the magnitude so the result stays odd in y, then qo_fx_atan2_q28. */
+/* round(v / 2^s) (ties up) for s <= 34 and a result below 2^31, on 32-bit words: a variable
+ * 64-bit shift is a libgcc call or a long sequence on Cortex-M0. */
+static uint32_t shr_round(uint64_t v, unsigned s)
+{
+    uint32_t hi = (uint32_t)(v >> 32), lo = (uint32_t)v, r, half;
+    if (s == 0) return lo;
+    if (s < 32) {
+        r = (hi << (32u - s)) | (lo >> s);
+        half = (lo >> (s - 1u)) & 1u;
+    } else if (s == 32) {
+        r = hi;
+        half = lo >> 31;
+    } else {
+        r = hi >> (s - 32u);
+        half = (hi >> (s - 33u)) & 1u;
+    }
+    return r + half;
+}
+
 static qo_q28 atan2_i64(int64_t y, int64_t x)
 {
     uint64_t ay = abs_u64(y), ax = abs_u64(x), m = ay > ax ? ay : ax;
     unsigned s = 0;
     int32_t yy, xx;
-    while ((m >> s) >= ((uint64_t)1 << 30)) s++;
-    if (s > 0) {
-        ay = (ay + ((uint64_t)1 << (s - 1))) >> s;
-        ax = (ax + ((uint64_t)1 << (s - 1))) >> s;
-    }
-    yy = y < 0 ? -(int32_t)ay : (int32_t)ay;
-    xx = x < 0 ? -(int32_t)ax : (int32_t)ax;
+    uint32_t t;
+    /* s = the bit length of m above 30, found on 32-bit words (a 64-bit shift per step is
+     * slow on Cortex-M0). */
+    if ((m >> 32) != 0) { s = 2; t = (uint32_t)(m >> 32); }
+    else t = (uint32_t)m >> 30;
+    while (t >= 256u) { t >>= 8; s += 8; }
+    while (t != 0) { t >>= 1; s++; }
+    yy = (int32_t)shr_round(ay, s);
+    xx = (int32_t)shr_round(ax, s);
+    if (y < 0) yy = -yy;
+    if (x < 0) xx = -xx;
     return qo_fx_atan2_q28(yy, xx);
 }
 
@@ -84,10 +115,10 @@ static q64 qmul(q64 a, q64 b, unsigned shift)
 {
     const int64_t *p = a.v, *q = b.v;
     q64 r;
-    r.v[0] = rshift_round_odd(p[0] * q[0] - p[1] * q[1] - p[2] * q[2] - p[3] * q[3], shift);
-    r.v[1] = rshift_round_odd(p[0] * q[1] + p[1] * q[0] + p[2] * q[3] - p[3] * q[2], shift);
-    r.v[2] = rshift_round_odd(p[0] * q[2] - p[1] * q[3] + p[2] * q[0] + p[3] * q[1], shift);
-    r.v[3] = rshift_round_odd(p[0] * q[3] + p[1] * q[2] - p[2] * q[1] + p[3] * q[0], shift);
+    r.v[0] = rshift_round_odd(smul(p[0], q[0]) - smul(p[1], q[1]) - smul(p[2], q[2]) - smul(p[3], q[3]), shift);
+    r.v[1] = rshift_round_odd(smul(p[0], q[1]) + smul(p[1], q[0]) + smul(p[2], q[3]) - smul(p[3], q[2]), shift);
+    r.v[2] = rshift_round_odd(smul(p[0], q[2]) - smul(p[1], q[3]) + smul(p[2], q[0]) + smul(p[3], q[1]), shift);
+    r.v[3] = rshift_round_odd(smul(p[0], q[3]) + smul(p[1], q[2]) - smul(p[2], q[1]) + smul(p[3], q[0]), shift);
     return r;
 }
 
@@ -190,34 +221,35 @@ static decomp decompose(q64 q, qo_euler_seq seq)
          * q_j = s cos D, eps q_l = s sin D with c, s = cos, sin(t2/2). |a..d| <= 2^30, so
          * every product below is <= 2^60 and every sum <= 2^62. */
         int l = 3 - i - j;
-        a = q.v[0]; b = q.v[1 + i]; c = q.v[1 + j]; d = eps * q.v[1 + l];
-        s1 = (uint64_t)(a * a) + (uint64_t)(b * b);   /* n1^2 = |(w, q_i)|^2 */
-        s2 = (uint64_t)(c * c) + (uint64_t)(d * d);   /* n2^2 = |(q_j, q_l)|^2 */
+        a = q.v[0]; b = q.v[1 + i]; c = q.v[1 + j]; d = eps < 0 ? -q.v[1 + l] : q.v[1 + l];
+        s1 = (uint64_t)smul(a, a) + (uint64_t)smul(b, b);   /* n1^2 = |(w, q_i)|^2 */
+        s2 = (uint64_t)smul(c, c) + (uint64_t)smul(d, d);   /* n2^2 = |(q_j, q_l)|^2 */
         n1 = qo_fx_sqrt_u64(s1);
         n2 = qo_fx_sqrt_u64(s2);
-        p = (int64_t)(n1 * n2);                       /* <= (s1 + s2)/2 = |q|^2 <= 2^62 */
+        /* n1 n2 <= (s1 + s2)/2 = |q|^2 <= 2^62 (n1, n2 < 2^32) */
+        p = (int64_t)qo_fx_umul32_u64((uint32_t)n1, (uint32_t)n2);
         h = half_diff(s1, s2);
         /* t2 = 2 atan2(n2, n1) = atan2(2 n1 n2, n1^2 - n2^2), in [0, pi], one atan2. */
         t2y = p; t2x = h;
-        t1 = atan2_i64(b * c + a * d, a * c - b * d);
-        t3 = atan2_i64(b * c - a * d, a * c + b * d);
+        t1 = atan2_i64(smul(b, c) + smul(a, d), smul(a, c) - smul(b, d));
+        t3 = atan2_i64(smul(b, c) - smul(a, d), smul(a, c) + smul(b, d));
     } else {
         /* Tait-Bryan (derivation in euler.c): with (x, y, z) = (q_i, q_j, eps q_k),
          * a = w - y, b = x + z, c = w + y, d = z - x, |a..d| <= 2^31: each product <= 2^62,
          * and the two atan2 pairs are the parts of (c + ib)(a -+ id), whose modulus is
          * n1 n2 <= (n1^2 + n2^2)/2 = |q|^2 <= 2^62, so no sum overflows. */
-        int64_t x = q.v[1 + i], y = q.v[1 + j], z = eps * q.v[1 + k];
+        int64_t x = q.v[1 + i], y = q.v[1 + j], z = eps < 0 ? -q.v[1 + k] : q.v[1 + k];
         a = q.v[0] - y; b = x + z; c = q.v[0] + y; d = z - x;
-        s1 = (uint64_t)(a * a) + (uint64_t)(d * d);   /* <= 2^63: fits unsigned */
-        s2 = (uint64_t)(b * b) + (uint64_t)(c * c);
+        s1 = (uint64_t)smul(a, a) + (uint64_t)smul(d, d);   /* <= 2^63: fits unsigned */
+        s2 = (uint64_t)smul(b, b) + (uint64_t)smul(c, c);
         n1 = qo_fx_sqrt_u64(s1);
         n2 = qo_fx_sqrt_u64(s2);
-        p = (int64_t)(n1 * n2);
+        p = (int64_t)qo_fx_umul32_u64((uint32_t)n1, (uint32_t)n2);
         h = half_diff(s2, s1);
         /* t2 = atan2(n2^2 - n1^2, 2 n1 n2) in [-pi/2, pi/2] (no pi/2 constant). */
         t2y = h; t2x = p;
-        t1 = atan2_i64(b * a - c * d, c * a + b * d);
-        t3 = atan2_i64(b * a + c * d, c * a - b * d);
+        t1 = atan2_i64(smul(b, a) - smul(c, d), smul(c, a) + smul(b, d));
+        t3 = atan2_i64(smul(b, a) + smul(c, d), smul(c, a) - smul(b, d));
         if (eps < 0) t3 = -t3;                        /* |t3| <= pi: no overflow */
     }
     t2 = atan2_i64(t2y, t2x);
@@ -247,7 +279,7 @@ static qo_q28 fit_a1(q64 q, qo_euler_seq seq, qo_q28 a2, qo_q28 a3)
     else p = qmul(c2, qmul(c3, q, 30), 30);                  /* q = q3 q2 q1 */
     u = p.v[0];
     v = p.v[1 + ax[0]];
-    return atan2_i64(2 * (u * v), (u - v) * (u + v));
+    return atan2_i64(2 * smul(u, v), smul(u - v, u + v));
 }
 
 static void set_error_outputs(qo_euler_q28 *out, qo_euler_info_q28 *info)

@@ -82,23 +82,59 @@ qo_status qo_fx_div_q30(int32_t num, int32_t den, qo_q30 *out) { return div_shif
 qo_status qo_fx_div_q28(int32_t num, int32_t den, qo_q28 *out) { return div_shift(num, den, 28, out); }
 qo_status qo_fx_div_q16(int32_t num, int32_t den, qo_q16 *out) { return div_shift(num, den, 16, out); }
 
+/* 2^15 / sqrt(h) at the midpoint of each of 96 intervals of h in [1/4, 1) of width 2^-7
+ * (index h 2^7, i.e. the top 7 bits of a 32-bit fraction), rounded: relative error
+ * <= 2^-7.8. The seed of the Newton square root below (192 bytes of flash). */
+static const uint16_t rsqrt_seed[96] = {
+    65030, 64052, 63117, 62222, 61363, 60540, 59748, 58987, 58254, 57548, 56867, 56210,
+    55574, 54960, 54366, 53791, 53233, 52693, 52169, 51660, 51165, 50685, 50218, 49763,
+    49321, 48890, 48470, 48061, 47663, 47273, 46894, 46523, 46161, 45807, 45462, 45124,
+    44793, 44470, 44153, 43843, 43540, 43243, 42951, 42666, 42386, 42112, 41843, 41579,
+    41320, 41065, 40816, 40571, 40330, 40093, 39861, 39632, 39408, 39187, 38970, 38756,
+    38546, 38340, 38136, 37936, 37739, 37545, 37354, 37166, 36980, 36798, 36618, 36441,
+    36266, 36093, 35924, 35756, 35591, 35428, 35267, 35109, 34953, 34798, 34646, 34496,
+    34347, 34201, 34056, 33913, 33772, 33633, 33496, 33360, 33225, 33093, 32962, 32832,
+};
+
 uint64_t qo_fx_sqrt_u64(uint64_t v)
 {
-    /* Digit-by-digit square root: res ends as floor(sqrt(v)), rem = v - res^2. */
-    uint64_t rem = v, res = 0, bit = (uint64_t)1 << 62;
-    while (bit > rem) bit >>= 2;
-    while (bit != 0) {
-        if (rem >= res + bit) {
-            rem -= res + bit;
-            res = (res >> 1) + bit;
-        } else {
-            res >>= 1;
-        }
-        bit >>= 2;
-    }
-    /* v >= (res + 1/2)^2 = res^2 + res + 1/4  <=>  rem > res (integers). */
-    if (rem > res) res++;
-    return res;
+    /* Newton iterations with multiplications only (Cortex-M0 has no divider and no 64-bit
+     * multiply): x = v 4^k in [2^62, 2^64); y ~ 1/sqrt(x) from a table and one 16-bit Newton
+     * step; s ~ sqrt(x) refined once by s += (x - s^2) y / 2; then s is made exactly
+     * floor(sqrt(x)) against the exact remainder x - s^2, so the result does not depend on
+     * the estimates' error (they only bound the number of final +-1 steps, 0 to 2). */
+    uint64_t x = v, sq, rem;
+    uint32_t hi, y, t, e, s;
+    int64_t r, sl;
+    unsigned k = 0;
+    if (v == 0) return 0;
+    if ((x >> 32) == 0) { x <<= 32; k = 16; }
+    if ((x >> 48) == 0) { x <<= 16; k += 8; }
+    if ((x >> 56) == 0) { x <<= 8; k += 4; }
+    if ((x >> 60) == 0) { x <<= 4; k += 2; }
+    if ((x >> 62) == 0) { x <<= 2; k += 1; }
+    hi = (uint32_t)(x >> 32);                       /* h = hi / 2^32 in [1/4, 1) */
+    y = rsqrt_seed[(hi >> 25) - 32u];               /* 1/sqrt(h), Q1.15 */
+    t = y * y;                                      /* y^2, Q2.30 (< 2^32) */
+    e = 3u * ((uint32_t)1 << 30) - (hi >> 16) * (t >> 16);   /* 3 - h y^2, Q2.30 */
+    y = y * (e >> 16);                              /* y (3 - h y^2) / 2, Q2.30, ~2^-14 */
+    /* sqrt(x) = 2^32 sqrt(h) ~ hi * y / 2^30 (error ~2^18). */
+    sq = qo_fx_umul32_u64(hi, y) >> 30;
+    s = sq > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)sq;
+    /* One Newton step on the root: s += (x - s^2) / (2 s), 1/(2 s) ~ y / 2^63 (error ~2^4). */
+    r = (int64_t)(x - qo_fx_umul32_u64(s, s));      /* |r| < 2^52: exact as int64 */
+    sl = (int64_t)s + (qo_fx_mul32_i64((int32_t)(r >> 32), (int32_t)(y >> 1)) >> 30);
+    s = sl > 0xFFFFFFFF ? 0xFFFFFFFFu : sl < 0 ? 0u : (uint32_t)sl;
+    /* Exact: floor(sqrt(x)) is the s with s^2 <= x < (s + 1)^2 (< 2^32, so no wrap). */
+    sq = qo_fx_umul32_u64(s, s);
+    while (sq > x) { sq -= 2u * (uint64_t)s - 1u; s--; }
+    rem = x - sq;
+    while (rem > 2u * (uint64_t)s) { rem -= 2u * (uint64_t)s + 1u; s++; }
+    /* Round to nearest. k = 0: v >= (s + 1/2)^2 = s^2 + s + 1/4 <=> rem > s. k >= 1:
+     * floor(sqrt(v) + 1/2) = floor((sqrt(x) + 2^(k-1)) / 2^k), and the integer 2^(k-1) lets
+     * floor(sqrt(x)) stand for sqrt(x). Never a tie. */
+    if (k == 0) return (uint64_t)s + (rem > s);
+    return ((uint64_t)s + ((uint64_t)1 << (k - 1u))) >> k;
 }
 
 qo_status qo_fx_sqrt_q30(qo_q30 x, qo_q30 *out)
@@ -249,36 +285,93 @@ qo_q30 qo_fx_cos_q28(qo_q28 angle_rad)
     return c;
 }
 
+/* round(a * b / 2^31) for |a|, |b| < 2^31 through the 32x32 product (no libgcc call). */
+static int64_t mul31s(int64_t a, int64_t b)
+{
+    return (qo_fx_mul32_i64((int32_t)a, (int32_t)b) + ((int64_t)1 << 30)) >> 31;
+}
+
+/* 2^62 / d at the midpoint of each of 64 intervals of d in [2^31, 2^32) (index d >> 25),
+ * rounded: relative error <= 2^-8, the seed of recip62 (256 bytes of flash). */
+static const uint32_t recip_seed[64] = {
+    2130836488u, 2098304633u, 2066751180u, 2036132644u, 2006408080u, 1977538899u, 1949488702u, 1922223125u,
+    1895709703u, 1869917734u, 1844818167u, 1820383490u, 1796587627u, 1773405851u, 1750814694u, 1728791868u,
+    1707316192u, 1686367527u, 1665926709u, 1645975491u, 1626496491u, 1607473140u, 1588889636u, 1570730897u,
+    1552982525u, 1535630765u, 1518662469u, 1502065065u, 1485826524u, 1469935331u, 1454380460u, 1439151345u,
+    1424237860u, 1409630292u, 1395319325u, 1381296015u, 1367551776u, 1354078359u, 1340867839u, 1327912594u,
+    1315205296u, 1302738895u, 1290506605u, 1278501893u, 1266718465u, 1255150260u, 1243791434u, 1232636354u,
+    1221679586u, 1210915890u, 1200340205u, 1189947649u, 1179733506u, 1169693221u, 1159822392u, 1150116765u,
+    1140572228u, 1131184802u, 1121950641u, 1112866020u, 1103927337u, 1095131103u, 1086473940u, 1077952576u,
+};
+
+/* About 2^62 / d for d in [2^31, 2^32): two Newton steps r += r (2^62 - d r) / 2^62 from the
+ * seed, multiplications only. The first in 16x16 products (d r / 2^32 from the high halves,
+ * relative truncation < 2^-14: 2^-8 -> ~2^-14), the second in full 64-bit products
+ * (-> ~2^-28, the truncations included). */
+static uint32_t recip62(uint32_t d)
+{
+    uint32_t r = recip_seed[(d >> 25) - 64u];
+    int32_t e32 = (int32_t)((uint32_t)1 << 30) - (int32_t)((d >> 16) * (r >> 16));   /* |.| < 2^23 */
+    int64_t e;
+    r = (uint32_t)((int64_t)r + ((int32_t)(r >> 16) * (e32 / 128)) / 128);   /* may reach 2^31 */
+    e = ((int64_t)1 << 62) - (int64_t)qo_fx_umul32_u64(d, r);   /* |e| <= 2^49 */
+    r = (uint32_t)((int64_t)r + (qo_fx_mul32_i64((int32_t)(r >> 1), (int32_t)(e >> 31)) >> 30));
+    return r;
+}
+
 qo_q28 qo_fx_atan2_q28(int32_t y, int32_t x)
 {
-    uint64_t ax = x < 0 ? (uint64_t)(-(int64_t)x) : (uint64_t)x;
-    uint64_t ay = y < 0 ? (uint64_t)(-(int64_t)y) : (uint64_t)y;
-    uint64_t mx, mn, q;
-    int64_t bx, by, t, u, p, a;
+    uint32_t ax = x < 0 ? 0u - (uint32_t)x : (uint32_t)x;
+    uint32_t ay = y < 0 ? 0u - (uint32_t)y : (uint32_t)y;
+    uint32_t mx, mn, d, r;
+    uint64_t bx;
+    int32_t by;
+    int64_t t, u, p, a;
     int swap;
-    unsigned k;
+    unsigned k, f;
     if (ax == 0 && ay == 0) return 0;
     swap = ay > ax;
     mx = swap ? ay : ax;
     mn = swap ? ax : ay;
     /* Scale so mx is in [2^30, 2^31]: the rotation below then cannot overflow, and no input
      * bit is lost (|int32| <= 2^31). */
-    while (mx < ((uint64_t)1 << 30)) { mx <<= 1; mn <<= 1; }
-    /* k = round(8 * mn / mx) in 0..8, t = mn/mx in [0, 1]. */
-    k = (unsigned)((16u * mn + mx) / (2u * mx));
+    while (mx < ((uint32_t)1 << 30)) { mx <<= 1; mn <<= 1; }
+    /* k ~ round(8 mn / mx) in 0..8 by comparisons on mn, mx / 16 (no division): a neighbour
+     * of the exact rounding only at a boundary, where |t'| below is still <= 1/16 + 2^-25. */
+    {
+        uint32_t n16 = (mn >> 4) * 16u, m1 = mx >> 4;   /* < 2^31 each */
+        k = 0;
+        if (n16 >= 7u * m1) k = 4;                    /* 16 mn >= (2k - 1) mx  <=> k up */
+        if (n16 >= (2u * k + 3u) * m1) k += 2;
+        if (n16 >= (2u * k + 1u) * m1) k += 1;
+        if (n16 >= (2u * k + 1u) * m1) k += 1;
+    }
     /* Rotate (mx, mn) by -atan(k/8), scaled by 8: the angle left is atan(by / bx) with
-     * |by / bx| <= 1/16. Exact integer arithmetic: bx <= 2^35, |by| <= 2^31. */
-    bx = (int64_t)(8u * mx + k * mn);
-    by = (int64_t)(8u * mn) - (int64_t)(k * mx);
-    q = (((uint64_t)(by < 0 ? -by : by) << 31) + (uint64_t)bx / 2u) / (uint64_t)bx;
-    t = by < 0 ? -(int64_t)q : (int64_t)q;
-    /* atan(t) = t (1 - t^2/3 + t^4/5 - t^6/7); the next term is < 2e-12. */
-    u = mul31(t, t);
-    p = -306783378;
-    p = 429496730 + mul31(u, p);
-    p = -715827883 + mul31(u, p);
-    p = ONE_Q31 + mul31(u, p);
-    a = atan_k8_q31[k] + mul31(t, p);
+     * |by / bx| <= 1/16 (+ tiny). Exact integer arithmetic: bx <= 2^35, |by| <= 2^31 + ... */
+    bx = 8u * (uint64_t)mx + (((uint64_t)(k * (mn >> 16)) << 16) + k * (mn & 0xFFFFu));
+    /* |8 mn - k mx| <= mx / 2 + tiny fits an int32: the wrapped uint32 difference is it. */
+    by = (int32_t)(8u * mn - k * mx);
+    /* t = by / bx in Q1.31 through a reciprocal of bx's top 32 bits (bx in [2^33, 2^36):
+     * d = bx / 2^f in [2^31, 2^32), truncation <= 2^-31 relative). |t| <= 1/16, so the
+     * relative errors of d and of the reciprocal (< 2^-30) cost < 2^-34 absolute, and the
+     * final rounding 2^-32: about 0.3 LSB of Q1.31 in all (0.04 LSB of the Q3.28 result). */
+    f = (bx >> 35) ? 4u : (bx >> 34) ? 3u : 2u;
+    d = (uint32_t)(bx >> f);
+    r = recip62(d);                                   /* ~2^62 / d */
+    t = (qo_fx_mul32_i64(by, (int32_t)(r >> 1)) + ((int64_t)1 << (29u + f))) >> (30u + f);
+    /* atan(t) = t (1 - t^2/3 + t^4/5 - t^6/7); the next term is < 2e-12. u = t^2 <= 2^-8:
+     * the two inner Horner steps only feed terms below u^2/5 < 2^-18, so 16x16 products
+     * (u in Q1.23, coefficients to 15 bits, truncation < 2^-22 each, < 2^-34 in the result
+     * after the two factors u and t) do; only u and the last step are full products. */
+    u = mul31s(t, t);                                 /* Q1.31, <= 2^23 */
+    {
+        int32_t u16 = (int32_t)(u >> 8);              /* Q1.23, <= 2^15 */
+        int32_t v = 429496730 + (u16 * (-306783378 >> 16)) / 128;
+        int32_t w = -715827883 + (u16 * (v >> 16)) / 128;
+        p = ONE_Q31 + mul31s(u, w);                   /* <= 2^31 */
+    }
+    /* t p with p = 2^31 possible (t = 0): as t (p - 1) + t, every factor an int32. */
+    a = atan_k8_q31[k] + ((qo_fx_mul32_i64((int32_t)t, (int32_t)(p - 1)) + t + ((int64_t)1 << 30)) >> 31);
     if (swap) a = HALF_PI_Q31 - a;
     if (x < 0) a = PI_Q31 - a;
     if (a < 0) a = 0;

@@ -33,12 +33,16 @@ static qo_quat_f32 align_to(qo_quat_f32 b, qo_quat_f32 ref)
 
 /* 4-D angle between unit a and unit b in [0, pi]: 2*atan2(|a-b|, |a+b|). Unlike acos(dot) it
  * keeps full relative precision of the small differences near 0 and near pi. */
-static float angle4(qo_quat_f32 a, qo_quat_f32 b)
+/* *sin_th = sin(th) from the same two lengths: th = 2 phi with tan(phi) = d/s, so
+ * sin(th) = 2 d s / (d^2 + s^2) - all terms positive, a few ulp, and no sinf call. */
+static float angle4(qo_quat_f32 a, qo_quat_f32 b, float *sin_th)
 {
     float dw = a.w - b.w, dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
     float sw = a.w + b.w, sx = a.x + b.x, sy = a.y + b.y, sz = a.z + b.z;
-    float d = sqrtf(dw * dw + dx * dx + dy * dy + dz * dz);
-    float s = sqrtf(sw * sw + sx * sx + sy * sy + sz * sz);
+    float d2 = dw * dw + dx * dx + dy * dy + dz * dz;
+    float s2 = sw * sw + sx * sx + sy * sy + sz * sz;
+    float d = sqrtf(d2), s = sqrtf(s2);
+    *sin_th = (d2 + s2 > 0.0f) ? 2.0f * d * s / (d2 + s2) : 0.0f;
     return 2.0f * atan2f(d, s);
 }
 
@@ -50,7 +54,7 @@ static float series_weight(float u, float th2)
 
 /* Great-circle interpolation of unit a and b with angle th = angle4(a, b), any real u
  * (extrapolation allowed), no sign flip, result normalised. th must be < pi - series angle. */
-static qo_quat_f32 slerp_weights(qo_quat_f32 a, qo_quat_f32 b, float th, float u)
+static qo_quat_f32 slerp_weights(qo_quat_f32 a, qo_quat_f32 b, float th, float sin_th, float u)
 {
     float wa, wb;
     qo_quat_f32 r, n;
@@ -59,7 +63,7 @@ static qo_quat_f32 slerp_weights(qo_quat_f32 a, qo_quat_f32 b, float th, float u
         wa = series_weight(1.0f - u, th2);
         wb = series_weight(u, th2);
     } else if (th <= 0.5f * QO_PI_F) {
-        float inv = 1.0f / sinf(th);
+        float inv = 1.0f / sin_th;
         wa = sinf((1.0f - u) * th) * inv;
         wb = sinf(u * th) * inv;
     } else {
@@ -87,12 +91,13 @@ static qo_quat_f32 slerp_weights(qo_quat_f32 a, qo_quat_f32 b, float th, float u
  * Returns 0 and *out = a when a and b are (nearly) antipodal, where the circle is undefined. */
 static int slerp_raw(qo_quat_f32 a, qo_quat_f32 b, float u, qo_quat_f32 *out)
 {
-    float th = angle4(a, b);
+    float sin_th;
+    float th = angle4(a, b, &sin_th);
     if (QO_PI_F - th < QO_SLERP_SERIES_ANGLE) {
         *out = a;
         return 0;
     }
-    *out = slerp_weights(a, b, th, u);
+    *out = slerp_weights(a, b, th, sin_th, u);
     return 1;
 }
 
@@ -110,9 +115,12 @@ static qo_status unit_in(qo_quat_f32 q, qo_quat_f32 *u)
 static qo_status unit_in2(qo_quat_f32 a, qo_quat_f32 b, qo_quat_f32 *ua, qo_quat_f32 *ub)
 {
     qo_status sa, sb;
-    if (!qo_quat_is_finite_f32(a) || !qo_quat_is_finite_f32(b)) return QO_E_NONFINITE;
+    /* Normalising succeeds only for finite non-zero inputs, so the finiteness pass is only
+     * needed to rank the errors (NaN/Inf in either input is reported before a zero one). */
     sa = qo_quat_normalize_f32(a, ua);
     sb = qo_quat_normalize_f32(b, ub);
+    if (sa == QO_OK && sb == QO_OK) return QO_OK;
+    if (!qo_quat_is_finite_f32(a) || !qo_quat_is_finite_f32(b)) return QO_E_NONFINITE;
     return (sa != QO_OK) ? sa : sb;
 }
 
@@ -168,7 +176,7 @@ static qo_status slerp_common(qo_quat_f32 a, qo_quat_f32 b, float t, int longway
 {
     qo_quat_f32 ua, ub;
     qo_status st;
-    float d, th;
+    float d, th, sin_th;
     if (out == NULL) return QO_E_NULL;
     *out = qo_quat_identity_f32();
     st = unit_in2(a, b, &ua, &ub);
@@ -180,14 +188,14 @@ static qo_status slerp_common(qo_quat_f32 a, qo_quat_f32 b, float t, int longway
     /* The flipped copy is what every branch below uses (including the series branch), so a
      * and -a interpolate to a unit quaternion, never through the origin. */
     if (longway ? (d > 0.0f) : (d < 0.0f)) ub = neg_q(ub);
-    th = angle4(ua, ub);
+    th = angle4(ua, ub, &sin_th);
     if (longway && QO_PI_F - th < QO_SLERP_SERIES_ANGLE) return QO_E_DEGENERATE;
     if (t == 0.0f) return QO_OK;
     if (t == 1.0f) {
         *out = ub;
         return QO_OK;
     }
-    *out = slerp_weights(ua, ub, th, t);
+    *out = slerp_weights(ua, ub, th, sin_th, t);
     return QO_OK;
 }
 

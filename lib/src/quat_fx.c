@@ -1,5 +1,10 @@
 /* Quaternion algebra in fixed point (Q1.30). See qorient/quat_fx.h for the contracts.
- * Integer arithmetic only: products in int64, sums rounded once with qo_fx_sum_round_i64. */
+ * Integer arithmetic only: products in int64, sums rounded once with qo_fx_sum_round_i64.
+ * mul, rotate and normalize have a fast path for components within +-1.25 (every normalised
+ * quaternion) written for Cortex-M0 (no 64-bit multiply, no divider): 16-bit column sums and
+ * one Newton reciprocal instead of libgcc's 64-bit multiply and division. It gives the
+ * identical result (same exact sum, same single rounding); other inputs take the general
+ * path. */
 #include "qorient/quat_fx.h"
 
 #include "qorient/convert_fx.h"
@@ -20,6 +25,100 @@ static int64_t sum4(int64_t p0, int64_t p1, int64_t p2, int64_t p3)
 }
 
 #define P(a, b) ((int64_t)(a) * (b))
+/* The same exact product without libgcc's 64x64 multiply (4 MULS on Cortex-M0). */
+#define PF(a, b) qo_fx_mul32_i64((a), (b))
+
+/* Fast paths: every component |c| <= 1.25 (Q1.30), i.e. any normalised quaternion with ample
+ * room for drift. Then the few products summed by mul and rotate stay below 2^63 (the bound
+ * is given at each use) and one plain int64 sum is exact: no split hi/lo sums. Other inputs
+ * take the general path, which gives the identical result. One add and compare each. */
+#define FAST_LIM 0x50000000u
+static int fast_quat(qo_quat_q30 q)
+{
+    return (uint32_t)q.w + FAST_LIM <= 2u * FAST_LIM && (uint32_t)q.x + FAST_LIM <= 2u * FAST_LIM &&
+           (uint32_t)q.y + FAST_LIM <= 2u * FAST_LIM && (uint32_t)q.z + FAST_LIM <= 2u * FAST_LIM;
+}
+
+/* round(s / 2^30) for an exact int64 sum s (ties toward +inf); |s| < 2^63 - 2^29. */
+#define RND30(s) (((s) + ((int64_t)1 << 29)) >> 30)
+
+/*
+ * The exact sum of a_i b_i, i < n, as three int32 columns, for |a_i| <= 1.25 * 2^30 and
+ * either n <= 3 or also |b_i| <= 1.25 * 2^30 (the fast paths below). Cortex-M0 has only a
+ * 32x32 -> 32 multiply and gcc's 64-bit code for it is slow, so each product is taken in
+ * centred 16-bit halves, x = xh 2^16 + xl with xl = (int16_t)x in [-2^15, 2^15) and
+ * xh = round(x / 2^16) in [-2^15, 2^15], and summed with no 64-bit arithmetic:
+ *   sum = H 2^32 + M 2^16 + L,
+ *   H: ah bh and the high part of the cross sum ah bl + al bh,
+ *   M: the low 16 bits of the cross sum and the high part of al bl,
+ *   L: the low 16 bits of al bl (unsigned).
+ * Bounds: |ah| <= 20481, |al|, |bl|, |bh| <= 2^15: the cross sum is below
+ * 20481 * 2^15 + 2^30 < 2^31, |al bl| <= 2^30, |ah bh| <= 1.25 * 2^29 (1.57 * 2^28 when b is
+ * bounded too), so |H| < 2^31 for the n used; |M| < n 2^17, L < n 2^16.
+ * (int16_t) of an int32 is modular on every two's-complement compiler (see fxmath.h).
+ */
+typedef struct cols { int32_t h, m; uint32_t l; } cols;
+
+static cols dot_cols(const int32_t *a, const int32_t *b, int n)
+{
+    cols c = { 0, 0, 0 };
+    int i;
+    for (i = 0; i < n; i++) {
+        int32_t al = (int16_t)a[i], bl = (int16_t)b[i];
+        int32_t ah = ((a[i] >> 15) + 1) >> 1, bh = ((b[i] >> 15) + 1) >> 1;
+        int32_t x = ah * bl + al * bh, ll = al * bl;
+        c.h += ah * bh + (x >> 16);
+        c.m += (int32_t)(uint16_t)x + (ll >> 16);
+        c.l += (uint16_t)ll;
+    }
+    return c;
+}
+
+/* sum / 2^sh = h 2^(32-sh) + (m >> (sh-16)) + (l + (m mod 2^(sh-16)) 2^16) / 2^sh: only the
+ * last term has a fraction (its numerator < 2^sh + 2^20 < 2^32), so it alone is rounded. */
+static int64_t rnd30(cols c)
+{
+    uint32_t f = c.l + (((uint32_t)c.m & 0x3FFFu) << 16) + ((uint32_t)1 << 29);
+    return (int64_t)c.h * 4 + ((c.m >> 14) + (int32_t)(f >> 30));
+}
+
+static int64_t rnd29(cols c)
+{
+    uint32_t f = c.l + (((uint32_t)c.m & 0x1FFFu) << 16) + ((uint32_t)1 << 28);
+    return (int64_t)c.h * 8 + ((c.m >> 13) + (int32_t)(f >> 29));
+}
+
+/* rnd30 saturated to int32 (over set on saturation), in 32-bit arithmetic unless H is near
+ * the int32 range of the result (then through rnd30's int64 value). */
+static int32_t rnd30_sat(cols c, int *over)
+{
+    if (c.h > -(1 << 28) && c.h < (1 << 28)) {
+        uint32_t f = c.l + (((uint32_t)c.m & 0x3FFFu) << 16) + ((uint32_t)1 << 29);
+        return c.h * 4 + (c.m >> 14) + (int32_t)(f >> 30);   /* |.| < 2^30 + 2^7 */
+    } else {
+        int64_t v = rnd30(c);
+        int32_t r = qo_fx_sat_i32(v);
+        if ((int64_t)r != v) *over = 1;
+        return r;
+    }
+}
+
+/* a*b for the fast range (fast_quat of both): exact, rounded once, saturated; returns 1 if a
+ * component saturated. */
+static int mul_fast(qo_quat_q30 a, qo_quat_q30 b, qo_quat_q30 *out)
+{
+    /* b's components in the order and with the signs each output pairs them with a's
+     * (negation is safe: |b_i| <= 1.25). */
+    const int32_t av[4] = { a.w, a.x, a.y, a.z };
+    const int32_t bv[16] = { b.w, -b.x, -b.y, -b.z,   b.x, b.w, b.z, -b.y,
+                             b.y, -b.z, b.w, b.x,     b.z, b.y, -b.x, b.w };
+    int over = 0;
+    out->w = rnd30_sat(dot_cols(bv, av, 4), &over);
+    out->x = rnd30_sat(dot_cols(bv + 4, av, 4), &over);
+    out->y = rnd30_sat(dot_cols(bv + 8, av, 4), &over);
+    out->z = rnd30_sat(dot_cols(bv + 12, av, 4), &over);
+    return over;
+}
 
 /* The four components of a*b, exact then rounded once, not saturated (|.| <= 2^34). */
 static void mul_wide(qo_quat_q30 a, qo_quat_q30 b, int64_t r[4])
@@ -46,6 +145,10 @@ qo_quat_q30 qo_quat_mul_q30(qo_quat_q30 a, qo_quat_q30 b)
 {
     int64_t r[4];
     qo_quat_q30 out;
+    if (fast_quat(a) && fast_quat(b)) {
+        (void)mul_fast(a, b, &out);
+        return out;
+    }
     mul_wide(a, b, r);
     (void)sat_quat(r, &out);
     return out;
@@ -55,6 +158,7 @@ qo_status qo_quat_mul_q30_checked(qo_quat_q30 a, qo_quat_q30 b, qo_quat_q30 *out
 {
     int64_t r[4];
     if (out == NULL) return QO_E_NULL;
+    if (fast_quat(a) && fast_quat(b)) return mul_fast(a, b, out) ? QO_E_OVERFLOW : QO_OK;
     mul_wide(a, b, r);
     return sat_quat(r, out) ? QO_E_OVERFLOW : QO_OK;
 }
@@ -93,36 +197,105 @@ static int64_t div_round(int64_t num, uint64_t den)
     return num < 0 ? -(int64_t)q : (int64_t)q;
 }
 
+/* 2^62 / d at the midpoint of each of 32 intervals of d in [2^31, 2^32) (index d >> 26),
+ * rounded: relative error <= 2^-6, the seed of the Newton reciprocal below. */
+static const uint32_t recip_seed[32] = {
+    2114445438u, 2051327664u, 1991868891u, 1935759908u, 1882725390u, 1832519380u, 1784921474u, 1739733588u,
+    1696777203u, 1655891006u, 1616928864u, 1579758086u, 1544257904u, 1510318170u, 1477838209u, 1446725826u,
+    1416896428u, 1388272257u, 1360781718u, 1334358772u, 1308942414u, 1284476201u, 1260907830u, 1238188770u,
+    1216273925u, 1195121335u, 1174691910u, 1154949189u, 1135859120u, 1117389866u, 1099511628u, 1082196484u,
+};
+
+/* About 2^62 / d for d in [2^31, 2^32): three Newton steps r += r (2^62 - d r) / 2^62 from
+ * the seed (2^-6 -> ~2^-12 -> 2^-24 -> ~2^-31 relative with the truncations; with two,
+ * div30's correction loop ran ~12 times per component). Only an estimate: div30 makes it
+ * exact. */
+static uint32_t recip62(uint32_t d)
+{
+    uint32_t r = recip_seed[(d >> 26) - 32u];
+    /* First step in 16x16 products (d r / 2^32 from the high halves, truncation < 2^-14). */
+    int32_t e32 = (int32_t)((uint32_t)1 << 30) - (int32_t)((d >> 16) * (r >> 16));   /* < 2^25 */
+    int i;
+    r = (uint32_t)((int64_t)r + ((int32_t)(r >> 16) * (e32 / 512)) / 32);   /* may reach 2^31 */
+    for (i = 0; i < 2; i++) {
+        int64_t e = ((int64_t)1 << 62) - (int64_t)qo_fx_umul32_u64(d, r);   /* |e| <= 2^50 */
+        r = (uint32_t)((int64_t)r + (qo_fx_mul32_i64((int32_t)(r >> 1), (int32_t)(e >> 31)) >> 30));
+    }
+    return r;
+}
+
+/* floor((a 2^30 + floor(n / 2)) / n), i.e. round(a 2^30 / n) with ties away from zero, for
+ * a <= 2^31, 2^30 <= n < 2^32, given r = recip62(n << sh) (sh = 1 if n < 2^31, else 0):
+ * an estimate from the reciprocal, then made exact against the remainder (a few steps at
+ * most; the result does not depend on the estimate's error). */
+static uint32_t div30(uint32_t a, uint32_t n, uint32_t r, unsigned sh)
+{
+    uint32_t q = (uint32_t)(qo_fx_umul32_u64(a, r) >> (32u - sh));
+    int64_t rem = (int64_t)(((uint64_t)a << 30) + (n >> 1)) - (int64_t)qo_fx_umul32_u64(q, n);
+    while (rem < 0) { q--; rem += n; }
+    while (rem >= (int64_t)n) { q++; rem -= n; }
+    return q;
+}
+
+/* x^2 exactly for x <= 2^31: three 16x16 products (the cross term once, doubled). */
+static uint64_t usq(uint32_t x)
+{
+    uint32_t h = x >> 16, l = x & 0xFFFFu, c = h * l;   /* c < 2^31 for x <= 2^31 */
+    return ((uint64_t)(h * h) << 32) + ((uint64_t)c << 17) + l * l;
+}
+
 qo_status qo_quat_normalize_q30(qo_quat_q30 q, qo_quat_q30 *out)
 {
-    int64_t c[4];
-    uint64_t m = 0, n2, n;
-    int i;
+    int32_t c[4];
+    uint32_t a[4], m = 0, nn, r;
+    uint64_t n2, n;
+    unsigned sh;
+    int i, all;
     if (out == NULL) return QO_E_NULL;
     *out = qo_quat_identity_q30();
     c[0] = q.w; c[1] = q.x; c[2] = q.y; c[3] = q.z;
-    for (i = 0; i < 4; i++) if (mag(c[i]) > m) m = mag(c[i]);
+    for (i = 0; i < 4; i++) {
+        a[i] = c[i] < 0 ? 0u - (uint32_t)c[i] : (uint32_t)c[i];   /* <= 2^31 */
+        if (a[i] > m) m = a[i];
+    }
     if (m == 0) return QO_E_DEGENERATE;
-    /* Scale (exactly) so the largest component is in [2^30, 2^31]: short quaternions keep
+    /* Scale (exactly) so the largest magnitude is in [2^30, 2^31]: short quaternions keep
      * their direction to full precision and |c|^2 uses the whole 64 bits. */
-    while (m < ((uint64_t)1 << 30)) {
-        m <<= 1;
-        for (i = 0; i < 4; i++) c[i] *= 2;
+    sh = 0;
+    while (m < ((uint32_t)1 << 30)) { m <<= 1; sh++; }
+    for (i = 0; i < 4; i++) a[i] <<= sh;
+    /* Four magnitudes below 2^31 sum to below 2^64 when squared; only four of exactly 2^31
+     * (all INT32_MIN) would carry, and halving those is exact. */
+    all = 1;
+    for (i = 0; i < 4; i++) if (a[i] != ((uint32_t)1 << 31)) all = 0;
+    if (all) for (i = 0; i < 4; i++) a[i] >>= 1;
+    n2 = usq(a[0]) + usq(a[1]) + usq(a[2]) + usq(a[3]);
+    n = qo_fx_sqrt_u64(n2);   /* |c| in units where 2^30 is 1, in [2^30, 2^32] */
+    if (n >= ((uint64_t)1 << 32)) {
+        /* Only for n2 >= (2^32 - 1/2)^2 (three components at -2^31): n = 2^32 exactly and
+         * c_i 2^30 / n is a plain rounded shift, the same as the division. */
+        int32_t o[4];
+        for (i = 0; i < 4; i++) {
+            uint32_t qi = (uint32_t)((((uint64_t)a[i] << 30) + ((uint64_t)1 << 31)) >> 32);
+            o[i] = c[i] < 0 ? -(int32_t)qi : (int32_t)qi;
+        }
+        out->w = o[0]; out->x = o[1]; out->y = o[2]; out->z = o[3];
+        return QO_OK;
     }
-    /* Four components below 2^31 sum to below 2^64; only four of exactly 2^31 (all INT32_MIN)
-     * would carry, and halving those is exact. */
-    if (m == ((uint64_t)1 << 31)) {
-        int all = 1;
-        for (i = 0; i < 4; i++) if (mag(c[i]) != m) all = 0;
-        if (all) for (i = 0; i < 4; i++) c[i] /= 2;
+    /* The quotients round(a_i 2^30 / n) (ties away from zero) through one reciprocal instead
+     * of four 64-bit divisions (each a long libgcc routine on a core without a divider),
+     * each made exact against its remainder. */
+    nn = (uint32_t)n;
+    sh = nn < ((uint32_t)1 << 31) ? 1u : 0u;
+    r = recip62(nn << sh);
+    {
+        int32_t o[4];
+        for (i = 0; i < 4; i++) {
+            uint32_t qi = div30(a[i], nn, r, sh);   /* <= 2^30 */
+            o[i] = c[i] < 0 ? -(int32_t)qi : (int32_t)qi;
+        }
+        out->w = o[0]; out->x = o[1]; out->y = o[2]; out->z = o[3];
     }
-    n2 = 0;
-    for (i = 0; i < 4; i++) n2 += mag(c[i]) * mag(c[i]);
-    n = qo_fx_sqrt_u64(n2);   /* |c| in units where 2^30 is 1, >= 2^30 */
-    out->w = qo_fx_sat_i32(div_round(c[0] * QO_Q30_ONE, n));
-    out->x = qo_fx_sat_i32(div_round(c[1] * QO_Q30_ONE, n));
-    out->y = qo_fx_sat_i32(div_round(c[2] * QO_Q30_ONE, n));
-    out->z = qo_fx_sat_i32(div_round(c[3] * QO_Q30_ONE, n));
     return QO_OK;
 }
 
@@ -142,11 +315,41 @@ qo_quat_q30 qo_quat_canonical_q30(qo_quat_q30 q)
     return r;
 }
 
+/* v + 2 (w t + u x t) of rotate, rounded once: round((v 2^30 + 2 i) / 2^30) =
+ * v + round(i / 2^29) for an integer v, with i = w t + u x t. */
+static int32_t rot_out(int32_t v, int64_t i_rnd29)
+{
+    return qo_fx_sat_i32((int64_t)v + i_rnd29);
+}
+
 qo_vec3_q30 qo_quat_rotate_q30(qo_quat_q30 q, qo_vec3_q30 v)
 {
     int64_t tt[7];
     int32_t tx, ty, tz;
     qo_vec3_q30 r;
+    if (fast_quat(q)) {
+        /* The 15-multiply form v' = v + 2 w t + 2 u x t, t = u x v. With |q_i| <= 1.25 and
+         * |v_i|, |t_i| <= 2^31: each product <= 1.25 * 2^61, a sum of two < 2^63 and of three
+         * <= 3.75 * 2^61 < 2^63 - 2^28: every int64 sum below is exact. Identical results to
+         * the general path. */
+        /* Signs folded into q (safe: |q_i| <= 1.25); v and t may be any int32. */
+        const int32_t qa[15] = { q.y, -q.z, q.z, -q.x, q.x, -q.y,
+                                 q.w, q.y, -q.z, q.w, q.z, -q.x, q.w, q.x, -q.y };
+        int32_t vb[3], tb[3];
+        vb[0] = v.z; vb[1] = v.y;
+        tx = qo_fx_sat_i32(rnd30(dot_cols(qa, vb, 2)));
+        vb[0] = v.x; vb[1] = v.z;
+        ty = qo_fx_sat_i32(rnd30(dot_cols(qa + 2, vb, 2)));
+        vb[0] = v.y; vb[1] = v.x;
+        tz = qo_fx_sat_i32(rnd30(dot_cols(qa + 4, vb, 2)));
+        tb[0] = tx; tb[1] = tz; tb[2] = ty;
+        r.x = rot_out(v.x, rnd29(dot_cols(qa + 6, tb, 3)));
+        tb[0] = ty; tb[1] = tx; tb[2] = tz;
+        r.y = rot_out(v.y, rnd29(dot_cols(qa + 9, tb, 3)));
+        tb[0] = tz; tb[1] = ty; tb[2] = tx;
+        r.z = rot_out(v.z, rnd29(dot_cols(qa + 12, tb, 3)));
+        return r;
+    }
     /* t = u x v, rounded once and saturated so every later product stays <= 2^62. */
     tx = qo_fx_sat_i32(sum4(P(q.y, v.z), -P(q.z, v.y), 0, 0));
     ty = qo_fx_sat_i32(sum4(P(q.z, v.x), -P(q.x, v.z), 0, 0));

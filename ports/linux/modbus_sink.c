@@ -4,9 +4,11 @@
 #include <errno.h>
 #include <stdio.h>
 #include <math.h>
+#include <poll.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 const qo_modbus_sink_settings qo_modbus_sink_settings_default = {
     20000u,                 /* response_timeout_us */
@@ -135,6 +137,7 @@ struct jstate {
     double cmd;        /* raw value packed this tick */
     double step;       /* max_step in raw units, 0 = unlimited */
     double tlo, thi;   /* type range */
+    int uncertain;     /* lo/hi may be stale: read the target back before the next write */
 };
 
 struct qo_modbus_sink {
@@ -149,6 +152,9 @@ struct qo_modbus_sink {
     struct jstate *js;
     uint32_t backoff_us;
     unsigned bus_failures; /* consecutive ticks failed on the bus (argument errors excluded) */
+    unsigned cur_slave;    /* slave of the request in progress (modbus_set_slave) */
+    int drained;           /* RTU: the line was drained this tick */
+    int last_errno;        /* errno of the last failed request */
     struct timespec next_attempt;
     qo_modbus_sink_stats st;
 };
@@ -171,6 +177,21 @@ static void sleep_us(unsigned us)
     d.tv_nsec = (long)(us % 1000000u) * 1000L;
     while (nanosleep(&d, &d) != 0 && errno == EINTR) {
     }
+}
+
+static void use_slave(qo_modbus_sink *s, unsigned slave)
+{
+    s->cur_slave = slave;
+    modbus_set_slave(s->ctx, (int)slave);
+}
+
+/* Every joint of `slave` must be read back before its next write: a request to it had an
+ * unknown outcome, so its reply may still come (and, on RTU, be taken for a later one). */
+static void mark_slave_uncertain(qo_modbus_sink *s, unsigned slave)
+{
+    size_t i;
+    for (i = 0; i < s->map->n_joints; i++)
+        if (s->map->joints[i].slave == slave) s->js[i].uncertain = 1;
 }
 
 /* Maps a failed libmodbus call (errno) to a status; *uncertain says whether the request may
@@ -219,7 +240,9 @@ static qo_status after_request(qo_modbus_sink *s, int rc, int *uncertain)
     *uncertain = 0;
     if (rc >= 0) return QO_OK;
     s->st.requests_failed++;
+    s->last_errno = err;
     st = classify(err, uncertain, s);
+    if (*uncertain) mark_slave_uncertain(s, s->cur_slave);
     if (s->spec.transport == QO_MODBUS_TCP && (err == EMBBADDATA || err == EMBBADSLAVE)) {
         /* On TCP this is a stale reply (an earlier request's, after a timeout): the reply
          * to this request is still on its way. Consume it (bounded by the response timeout)
@@ -244,7 +267,7 @@ static qo_status send_writes(qo_modbus_sink *s, int disable)
         for (k = 0; k < n; k++) {
             qo_status st;
             int rc;
-            modbus_set_slave(s->ctx, (int)sl->id);
+            use_slave(s, sl->id);
             rc = modbus_write_register(s->ctx, w[k].address, w[k].value);
             st = after_request(s, rc, &unc);
             sleep_us(sl->gap_us);
@@ -262,7 +285,7 @@ static qo_status read_joint_feedback(qo_modbus_sink *s, size_t i, double *raw)
     qo_status st;
     const qo_regmap_slave *sl = qo_regmap_find_slave(s->map, j->slave);
     *raw = 0.0;
-    modbus_set_slave(s->ctx, (int)j->slave);
+    use_slave(s, j->slave);
     rc = modbus_read_registers(s->ctx, j->feedback, (int)qo_reg_type_width(j->fmt.type), regs);
     st = after_request(s, rc, &unc);
     if (sl != NULL) sleep_us(sl->gap_us);
@@ -300,6 +323,13 @@ static qo_status do_connect(qo_modbus_sink *s)
         (void)modbus_rtu_set_serial_mode(s->ctx, MODBUS_RTU_RS485);
     modbus_flush(s->ctx);
     s->connected = 1;
+    /* What the sink remembers may be stale now (the drive may have restarted and lost its
+     * target, or, on RTU, a late reply may still come): read every known joint back first. */
+    {
+        size_t i;
+        for (i = 0; i < s->map->n_joints; i++)
+            if (s->js[i].have) s->js[i].uncertain = 1;
+    }
     st = send_writes(s, s->disabled);
     if (st == QO_OK && s->set.seed_from_feedback) st = seed_from_feedback(s);
     if (st != QO_OK) {
@@ -464,8 +494,10 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
     return QO_OK;
 }
 
-/* Raw value for joint i this tick, within max_step of every value the drive may hold. */
-static void limit_joint(qo_modbus_sink *s, size_t i, double target, uint16_t *regs)
+/* Raw value for joint i this tick, within max_step of every value the drive may hold.
+ * QO_E_INFEASIBLE when no such value exists (the range [lo, hi] is wider than 2 x max_step,
+ * or rounding cannot land inside the window): the joint's slave must not be written. */
+static qo_status limit_joint(qo_modbus_sink *s, size_t i, double target, uint16_t *regs)
 {
     const qo_regmap_joint *j = &s->map->joints[i];
     struct jstate *q = &s->js[i];
@@ -487,6 +519,14 @@ static void limit_joint(qo_modbus_sink *s, size_t i, double target, uint16_t *re
     if (q->have && q->step > 0.0) {
         double a = q->hi - q->step, b = q->lo + q->step;
         int tries;
+        if (!(a <= b)) {
+            /* Some value the drive may hold is more than max_step from any value: send
+             * nothing rather than guess; a read-back may narrow the range next tick. */
+            q->cmd = q->lo;
+            q->uncertain = 1;
+            s->st.blocked++;
+            return QO_E_INFEASIBLE;
+        }
         if (raw < a || raw > b) {
             raw = raw < a ? a : b;
             s->st.rate_limited++;
@@ -501,12 +541,113 @@ static void limit_joint(qo_modbus_sink *s, size_t i, double target, uint16_t *re
                 raw = packed > b ? floor(b) : ceil(a);
             st = qo_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
         }
+        if (packed > b || packed < a) {
+            q->cmd = q->lo;
+            q->uncertain = 1;
+            s->st.blocked++;
+            return QO_E_INFEASIBLE;
+        }
     } else {
         st = qo_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
     }
     (void)st;
     q->cmd = packed;
     if (limited) s->st.common.limited++;
+    return QO_OK;
+}
+
+/* RTU: reads and drops whatever arrives during one response timeout, then flushes, so a late
+ * reply to an earlier request is gone before the read-back (once per tick: the line is
+ * shared by every slave). */
+static void drain_line(qo_modbus_sink *s)
+{
+    struct timespec t0, now;
+    int fd = modbus_get_socket(s->ctx);
+    int64_t total = (int64_t)s->set.response_timeout_us, el;
+    if (s->drained) return;
+    s->drained = 1;
+    s->st.drains++;
+    now_ts(&t0);
+    for (;;) {
+        struct pollfd pf;
+        uint8_t junk[64];
+        ssize_t n;
+        int rc;
+        now_ts(&now);
+        el = (int64_t)(now.tv_sec - t0.tv_sec) * 1000000 + (int64_t)(now.tv_nsec - t0.tv_nsec) / 1000;
+        if (fd < 0 || el >= total) break;
+        pf.fd = fd;
+        pf.events = POLLIN;
+        pf.revents = 0;
+        rc = poll(&pf, 1, (int)((total - el + 999) / 1000));
+        if (rc < 0 && errno == EINTR) continue;
+        if (rc <= 0) break;
+        n = read(fd, junk, sizeof junk);
+        if (n <= 0) break;
+        s->st.drained_bytes += (uint64_t)n;
+    }
+    modbus_flush(s->ctx);
+}
+
+/* Before the first write of a tick to the slave of groups[g0...]: every uncertain joint of
+ * that slave is read back (FC03 on its group's target registers) and its range collapsed to
+ * the value read. An exception reply (targets not readable) falls back to the feedback
+ * registers, or keeps the old range. Any other failure: nothing may be written to that
+ * slave this tick; the error is returned and the joints stay uncertain. */
+static qo_status settle_slave(qo_modbus_sink *s, size_t g0)
+{
+    unsigned slave = s->groups[g0].slave;
+    size_t g, i;
+    int any = 0;
+    for (g = g0; g < s->n_groups && s->groups[g].slave == slave; g++)
+        for (i = 0; i < s->groups[g].n_items; i++)
+            if (s->js[s->items[s->groups[g].first_item + i].joint].uncertain) any = 1;
+    if (!any) return QO_OK;
+    if (s->spec.transport == QO_MODBUS_RTU) drain_line(s);
+    for (g = g0; g < s->n_groups && s->groups[g].slave == slave; g++) {
+        const struct group *gr = &s->groups[g];
+        uint16_t regs[QO_REGMAP_MAX_REGISTERS];
+        qo_status st;
+        int rc, unc, need = 0;
+        for (i = 0; i < gr->n_items; i++)
+            if (s->js[s->items[gr->first_item + i].joint].uncertain) need = 1;
+        if (!need) continue;
+        memset(regs, 0, sizeof regs);
+        use_slave(s, slave);
+        s->st.readbacks++;
+        rc = modbus_read_registers(s->ctx, gr->start, (int)gr->count, regs);
+        st = after_request(s, rc, &unc);
+        sleep_us(gr->gap_us);
+        /* Only "illegal function / address" says the targets cannot be read; any other
+         * exception (busy, device failure) is transient: hold the slave, retry next tick. */
+        if (st != QO_OK &&
+            (unc || (s->last_errno != MODBUS_ENOBASE + MODBUS_EXCEPTION_ILLEGAL_FUNCTION &&
+                     s->last_errno != MODBUS_ENOBASE + MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS)))
+            return st;
+        if (st != QO_OK) s->st.readback_fallbacks++;
+        for (i = 0; i < gr->n_items; i++) {
+            const struct item *it = &s->items[gr->first_item + i];
+            const qo_regmap_joint *j = &s->map->joints[it->joint];
+            struct jstate *q = &s->js[it->joint];
+            double raw;
+            if (!q->uncertain) continue;
+            if (st == QO_OK) {
+                if (qo_reg_unpack_raw(j->fmt.type, j->fmt.order, regs + it->offset, &raw) != QO_OK)
+                    return QO_E_PROTOCOL;
+            } else if (j->has_feedback) {
+                /* Weaker: feedback lags the target (see modbus_sink.h). */
+                qo_status fs = read_joint_feedback(s, it->joint, &raw);
+                if (fs != QO_OK) return fs;
+            } else {
+                q->uncertain = 0; /* the link is in step; the old range stays */
+                continue;
+            }
+            q->have = 1;
+            q->lo = q->hi = raw;
+            q->uncertain = 0;
+        }
+    }
+    return QO_OK;
 }
 
 static void fail_action(qo_modbus_sink *s)
@@ -558,7 +699,7 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
                                uint64_t tick)
 {
     size_t g, i;
-    qo_status st = QO_OK;
+    qo_status st = QO_OK, held = QO_OK;
     (void)tick;
     if (s == NULL) return QO_E_NULL;
     s->st.common.writes++;
@@ -568,14 +709,32 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
     for (i = 0; i < n; i++)
         if (!isfinite(targets[i])) return rejected(s, QO_E_NONFINITE);
     if (!s->connected) return tick_result(s, QO_E_DISCONNECTED);
+    s->drained = 0;
     for (g = 0; g < s->n_groups && st == QO_OK; g++) {
         struct group *gr = &s->groups[g];
         int rc, unc;
-        for (i = 0; i < gr->n_items; i++) {
-            const struct item *it = &s->items[gr->first_item + i];
-            limit_joint(s, it->joint, (double)targets[it->joint], gr->regs + it->offset);
+        if (g == 0 || gr->slave != s->groups[g - 1].slave) {
+            /* First group of a slave: read back what is uncertain, then limit and pack every
+             * group of the slave before sending any, so a blocked joint holds the whole
+             * slave this tick. */
+            size_t h;
+            int blocked = 0;
+            st = settle_slave(s, g);
+            if (st != QO_OK) break;
+            for (h = g; h < s->n_groups && s->groups[h].slave == gr->slave; h++)
+                for (i = 0; i < s->groups[h].n_items; i++) {
+                    const struct item *it = &s->items[s->groups[h].first_item + i];
+                    if (limit_joint(s, it->joint, (double)targets[it->joint],
+                                    s->groups[h].regs + it->offset) != QO_OK)
+                        blocked = 1;
+                }
+            if (blocked) {
+                held = QO_E_INFEASIBLE;
+                g = h - 1; /* skip the slave; the other slaves are still written */
+                continue;
+            }
         }
-        modbus_set_slave(s->ctx, (int)gr->slave);
+        use_slave(s, gr->slave);
         rc = modbus_write_registers(s->ctx, gr->start, (int)gr->count, gr->regs);
         st = after_request(s, rc, &unc);
         for (i = 0; i < gr->n_items; i++) {
@@ -584,13 +743,15 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
                 q->have = 1;
                 q->lo = q->hi = q->cmd;
             } else if (unc && q->have) {
-                /* The drive may hold the old or the new value: keep both reachable. */
+                /* The drive may hold the old or the new value: keep both reachable (used
+                 * only when the read-back falls back, see settle_slave). */
                 if (q->cmd < q->lo) q->lo = q->cmd;
                 if (q->cmd > q->hi) q->hi = q->cmd;
             }
         }
         sleep_us(gr->gap_us);
     }
+    if (st == QO_OK) st = held;
     return tick_result(s, st);
 }
 

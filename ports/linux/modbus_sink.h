@@ -8,7 +8,7 @@
  *   qo_modbus_sink_settings, qo_modbus_sink_settings_default
  *   qo_modbus_sink_open()        connect, send the slaves' init writes, seed from feedback
  *   qo_modbus_sink_as_sink()     the generic qo_sink view
- *   qo_modbus_sink_write()       one tick: limit, pack, FC16 per contiguous run
+ *   qo_modbus_sink_write()       one tick: read back after a fault, limit, pack, FC16 per run
  *   qo_modbus_sink_service()     reconnect with backoff, outside the periodic deadline
  *   qo_modbus_sink_enable()      leave the "disabled" state after the disable action
  *   qo_modbus_sink_seed()        tell the sink where the drives are (no feedback registers)
@@ -19,26 +19,52 @@
  * What one write() does, in order:
  *   1. every target is checked (NaN/Inf -> nothing is sent), clamped to the joint's
  *      [min, max] and converted to register units;
- *   2. rate limit, in register units after rounding, so the drive NEVER receives a change
+ *   2. read-back (only after a fault): a joint is "uncertain" after any request to its
+ *      slave had an unknown outcome (timeout, garbled or misattributable reply, lost link)
+ *      and after every reconnection (the drive may have restarted and lost its target).
+ *      Before the first write of a tick to a slave with uncertain joints, the sink reads
+ *      their target registers back (FC03 over each FC16 group holding one; on RTU after
+ *      draining the line for one response timeout) and sets lo = hi = the value read, which
+ *      is what the drive holds. FC03 is another function code than FC16, so a late FC16
+ *      echo cannot be taken for its reply (libmodbus rejects it, the read-back fails); and
+ *      since a drive answers in order, a successful read-back means no earlier reply of
+ *      that slave is still on its way: the next FC16 reply is the FC16's own. A failed
+ *      read-back sends nothing more this tick (the drives hold), returns its error, and is
+ *      retried next tick. An exception 0x01/0x02 (targets not readable on that drive) falls
+ *      back to the joint's feedback registers, else keeps the old range (see 3.); any other
+ *      exception is a failed read-back. A fault-free tick sends no read-back;
+ *   3. rate limit, in register units after rounding, so the drive NEVER receives a change
  *      bigger than max_step from what it may hold. The sink remembers, per joint, the range
- *      [lo, hi] of values the drive may hold: one value after a confirmed write, both the old
- *      and the new value after a write whose outcome is unknown (timeout, garbled reply,
- *      lost link). A new value is always within max_step of every value in that range, so
- *      after a fault the stream resumes from the last value actually written and walks
- *      toward the new target at max_step per tick. A Modbus exception reply means "not
- *      applied" and leaves the range as it was. Before the first write the range is seeded
- *      from the feedback registers (when the map has them) or from qo_modbus_sink_seed();
- *      a joint with neither gets its first target unlimited (and that is counted nowhere:
- *      give the map feedback registers or call seed if that matters);
- *   3. the targets and the slaves' constant registers are packed (linux/modbus_pack.h) and
+ *      [lo, hi] of values the drive may hold: one value after a confirmed write or a
+ *      read-back, both the old and the new value after a write whose outcome is unknown.
+ *      A new value is always within max_step of every value in that range (the window
+ *      [hi - max_step, lo + max_step]); so after a fault the stream resumes from what the
+ *      drive holds and walks toward the new target at max_step per tick. A Modbus exception
+ *      reply to a write means "not applied" and leaves the range as it was. If the window
+ *      is empty (the range is wider than 2 x max_step; widening alone keeps it within
+ *      max_step, so this is a guard, not a path) or rounding cannot land inside it, NOTHING
+ *      is sent to that joint's slave this tick: write() returns QO_E_INFEASIBLE (after the
+ *      other slaves were written), `blocked` counts it, and the joint is read back next
+ *      tick. Before the first write the range is seeded from the feedback registers (when
+ *      the map has them) or from qo_modbus_sink_seed(); a joint with neither gets its first
+ *      target unlimited (and that is counted nowhere: give the map feedback registers or
+ *      call seed if that matters);
+ *      Weaker cases: the feedback fallback assumes the feedback shows the target (a drive
+ *      whose position lags its target seeds the limit from the lagging position); keeping
+ *      the old range misses a drive that restarted. On RTU a reply later than the response
+ *      timeout plus the drain (about two response timeouts) that slips past both can still
+ *      be misattributed: RTU has no transaction id; keep the timeout above the drive's worst
+ *      reply latency.
+ *   4. the targets and the slaves' constant registers are packed (linux/modbus_pack.h) and
  *      sent as one FC16 per run of strictly contiguous registers of one slave, split at the
  *      slave's max_registers (never inside a 32-bit value); runs go out in slave, then
  *      address order, each followed by the slave's gap_us of silence;
- *   4. the tick stops at the first failed request, modbus_flush() drops any stale reply,
- *      and the failure is counted. On TCP a reply with the wrong transaction id (the late
- *      answer to an earlier, timed-out request) is followed by one more bounded receive to
- *      consume this request's own reply, so the link is in step again at once. A tick thus
- *      costs at most two response timeouts (plus the gaps).
+ *   5. the tick stops at the first failed request (read-back or write), modbus_flush()
+ *      drops any stale reply, and the failure is counted. On TCP a reply with the wrong
+ *      transaction id (the late answer to an earlier, timed-out request) is followed by one
+ *      more bounded receive to consume this request's own reply, so the link is in step
+ *      again at once. A tick thus costs at most two response timeouts plus the answered
+ *      read-backs and the gaps (RTU: drain + one timeout).
  * libmodbus's own error recovery is NONE: its LINK mode can loop for ever.
  *
  * After `fail_threshold` consecutive failed ticks (or at once when the link is lost) the
@@ -132,6 +158,14 @@ typedef struct qo_modbus_sink_stats {
     uint64_t clamped;            /* joint values changed by min/max */
     uint64_t saturated;          /* joint values changed by the register type's range */
     uint64_t actions;            /* failure actions taken */
+    uint64_t readbacks;          /* FC03 read-backs of target registers (after an unknown
+                                    outcome or a (re)connection; never in a fault-free tick) */
+    uint64_t readback_fallbacks; /* read-backs answered by an exception: feedback used, or
+                                    the old range kept */
+    uint64_t blocked;            /* joint values not sent: no value within max_step of every
+                                    value the drive may hold (the slave held that tick) */
+    uint64_t drains;             /* RTU: line drains before a read-back */
+    uint64_t drained_bytes;      /* RTU: bytes dropped by the drains (late replies, noise) */
     unsigned groups;             /* FC16 requests per tick */
     int disabled;                /* 1 while in the disabled state */
     qo_status last_error;        /* last failure, QO_OK if none yet */
@@ -155,11 +189,14 @@ qo_status qo_modbus_sink_as_sink(qo_modbus_sink *s, qo_sink *out);
 /* One tick; see the header comment. `targets` holds map->n_joints values in joint units.
  * Returns QO_OK; QO_E_NULL; QO_E_RANGE (n != number of joints); QO_E_NONFINITE (nothing
  * sent); QO_E_STATE (closed, or disabled); QO_E_DISCONNECTED (link down, nothing sent);
- * QO_E_TIMEOUT; QO_E_PROTOCOL (exception or malformed reply); QO_E_IO (other errors). */
+ * QO_E_TIMEOUT; QO_E_PROTOCOL (exception or malformed reply); QO_E_IO (other errors);
+ * QO_E_INFEASIBLE (a joint had no value within max_step of every value its drive may hold:
+ * its slave was not written, the others were). A failed read-back returns its bus error. */
 qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n,
                                uint64_t tick);
 
-/* Reconnection, outside the deadline. When the link is up: QO_OK at once. When down and the
+/* Reconnection, outside the deadline. A reconnection marks every joint with a known range
+ * uncertain (read back before its next write). When the link is up: QO_OK at once. When down and the
  * backoff has not expired: QO_E_DISCONNECTED at once. Otherwise one attempt (bounded by the
  * response timeout per request): QO_OK when reconnected, else its error and a doubled
  * backoff. QO_E_NULL, QO_E_STATE after close. */
@@ -171,7 +208,8 @@ qo_status qo_modbus_sink_service(qo_modbus_sink *s);
 qo_status qo_modbus_sink_enable(qo_modbus_sink *s);
 
 /* Declares the drives' current positions (joint units, n = number of joints) as the start of
- * the rate limit. QO_OK, QO_E_NULL, QO_E_RANGE, QO_E_NONFINITE (nothing changed). */
+ * the rate limit. A joint already marked uncertain is still read back before its next write
+ * (the read value wins). QO_OK, QO_E_NULL, QO_E_RANGE, QO_E_NONFINITE (nothing changed). */
 qo_status qo_modbus_sink_seed(qo_modbus_sink *s, const float *positions, size_t n);
 
 /* Reads every joint's feedback registers (FC03) into out[0..n-1] in joint units; joints

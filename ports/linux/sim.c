@@ -8,6 +8,7 @@
 #include <string.h>
 #include <sys/socket.h>
 #include <netinet/in.h>
+#include <netinet/tcp.h>
 #include <arpa/inet.h>
 #include <time.h>
 #include <unistd.h>
@@ -17,7 +18,7 @@
 #include "linux/modbus_sink.h" /* qo_modbus_parse_spec, qo_modbus_new_ctx */
 
 const qo_sim_settings qo_sim_settings_default = {
-    0.05, NULL, { QO_SIM_FAULT_NONE, 0, 0.0, 0, 0 }, 1
+    0.05, NULL, { QO_SIM_FAULT_NONE, 0, 0.0, 0, 0 }, 1, 0
 };
 
 struct sim_joint {
@@ -169,6 +170,22 @@ static qo_sim_fault_kind decide(qo_sim *s, uint64_t k)
     return f->kind;
 }
 
+/* 1 when req is an FC03 whose range covers a joint's target register. Holds nothing. */
+static int reads_a_target(const qo_sim *s, unsigned slave, const uint8_t *req, int off, int len)
+{
+    unsigned addr, n;
+    size_t i;
+    if (len < off + 5 || req[off] != MODBUS_FC_READ_HOLDING_REGISTERS) return 0;
+    addr = ((unsigned)req[off + 1] << 8) | req[off + 2];
+    n = ((unsigned)req[off + 3] << 8) | req[off + 4];
+    for (i = 0; i < s->map->n_joints; i++) {
+        const qo_regmap_joint *j = &s->map->joints[i];
+        unsigned w = (unsigned)qo_reg_type_width(j->fmt.type);
+        if (j->slave == slave && j->address < addr + n && addr < j->address + w) return 1;
+    }
+    return 0;
+}
+
 /* Serves one framed request. `off` is the header length (TCP 7, RTU 1). */
 static void serve(qo_sim *s, const uint8_t *req, int len)
 {
@@ -191,6 +208,10 @@ static void serve(qo_sim *s, const uint8_t *req, int len)
     delay = s->set.fault.delay_ms;
     pthread_mutex_unlock(&s->mu);
 
+    if (fk == QO_SIM_FAULT_NONE && s->set.targets_unreadable && reads_a_target(s, slave, req, off, len)) {
+        modbus_reply_exception(s->ctx, req, MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
+        goto done;
+    }
     switch (fk) {
     case QO_SIM_FAULT_EXCEPTION:
         modbus_reply_exception(s->ctx, req, MODBUS_EXCEPTION_SLAVE_OR_SERVER_FAILURE);
@@ -230,6 +251,7 @@ static void serve(qo_sim *s, const uint8_t *req, int len)
         pthread_mutex_unlock(&s->mu);
         break;
     }
+done:
     pthread_mutex_lock(&s->mu);
     pthread_cond_broadcast(&s->cv);
     pthread_mutex_unlock(&s->mu);
@@ -264,6 +286,10 @@ static void tcp_loop(qo_sim *s)
         if (pf[0].revents & POLLIN) {
             int fd = accept(s->listen_fd, NULL, NULL);
             if (fd >= 0) {
+                int one = 1;
+                /* Replies go out at once, as a drive's: with Nagle a late reply could hold
+                 * back the next one and leave the link one reply behind. */
+                (void)setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
                 /* One master at a time, as most drives: a reconnecting master replaces the
                  * old connection, which it may have abandoned without closing. */
                 if (s->client_fd >= 0) close(s->client_fd);

@@ -20,7 +20,8 @@
  * served. Every target write is logged to `log` (may be NULL) as CSV, one line per joint
  * written, after the header "t_s,request,slave,joint_index,joint,value" (t_s: seconds since
  * start, monotonic; request: 1-based request number; value in joint units, %.9g).
- * Requests for a slave not in the map are answered with exception 0x0B (TCP) or ignored
+ * Every holding register, target registers included, can be read back with FC03 (unless
+ * `targets_unreadable`). Requests for a slave not in the map are answered with exception 0x0B (TCP) or ignored
  * (RTU, as on a shared bus).
  *
  * Fault injection. Request number k (1-based, counting every request received) is faulted
@@ -68,9 +69,12 @@ typedef struct qo_sim_settings {
     FILE *log;           /* CSV of received target writes, or NULL; not closed by the sim */
     qo_sim_fault fault;
     uint64_t seed;       /* PRNG seed for `share` */
+    int targets_unreadable; /* 1: an FC03 covering a joint's target registers is answered
+                               with exception 0x02 (illegal data address), as on drives
+                               whose targets are write-only; 0: readable (default) */
 } qo_sim_settings;
 
-/* lag 0.05 s, no log, no fault, seed 1. */
+/* lag 0.05 s, no log, no fault, seed 1, targets readable. */
 extern const qo_sim_settings qo_sim_settings_default;
 
 typedef struct qo_sim_stats {

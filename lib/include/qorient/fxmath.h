@@ -8,6 +8,9 @@
  * Index:
  *   QO_Q28_PI, QO_Q28_HALF_PI, QO_Q28_TWO_PI   pi, pi/2, 2pi in Q3.28 (each rounded to nearest)
  *   qo_fx_sat_i32          saturate an int64 to int32
+ *   qo_fx_mul32_i64        exact signed 32x32 -> 64 product (static inline; 4 16x16 products on ARMv6-M)
+ *   qo_fx_umul32_u64       exact unsigned 32x32 -> 64 product (static inline; likewise)
+ *   qo_fx_mul32_i64_parts, qo_fx_umul32_u64_parts   the 16x16 partial-product forms themselves
  *   qo_fx_add_q30          saturating a + b (any one format)
  *   qo_fx_sub_q30          saturating a - b (any one format)
  *   qo_fx_neg_q30          saturating -a (any one format)
@@ -40,12 +43,19 @@
  * (strided sweeps of the whole int32 domain + 4M random inputs); "bytes" = Thumb code for
  * Cortex-M0+ at -O2 (arm-none-eabi-gcc 12, -ffunction-sections; integer helpers
  * __aeabi_lmul / __aeabi_(u)ldivmod from libgcc not counted). No RAM tables, no static state.
+ * Cortex-M0/M0+ (ARMv6-M) has no divider and only a 32x32 -> 32 multiply, so the hot paths
+ * (sqrt_u64, atan2_q28 and the quaternion operations built on them) use no 64-bit division
+ * and take their 64-bit products through qo_fx_umul32_u64 / qo_fx_mul32_i64 below; the
+ * instruction counts per call on an emulated M0 are measured by tools/qemu-icount.sh.
  *   mul_q30/q28/q16    exact 64-bit product, rounded once, saturated.  worst 0.5 LSB. 76 bytes.
  *   add/sub/neg, sat   saturating.  exact.  32-64 bytes.
  *   sum_round_i64      exact hi/lo split sum, one rounding.  exact.  324 bytes.
  *   div_q30/q28/q16    64-bit integer division, remainder rounding.  worst 0.5 LSB. 164 bytes.
- *   sqrt_u64           digit-by-digit integer root (32 steps) + exact rounding from the
- *                      remainder: correctly rounded.  180 bytes.
+ *   sqrt_u64           Newton with multiplications only: v normalised by an even shift,
+ *                      1/sqrt seed from a 96-entry table (192 bytes) + one 16-bit Newton
+ *                      step, the root refined once by s += (x - s^2) y / 2, then made exactly
+ *                      floor(sqrt) against the exact remainder (0-2 steps) and rounded:
+ *                      correctly rounded, every uint64.  816 bytes.
  *   sqrt_q30           sqrt_u64(x << 30).  worst 0.5 LSB (correctly rounded).  196 bytes.
  *   rsqrt_q30          correctly rounded sqrt of x * 2^32 or 2^34, one rounded division.
  *                      worst 0.99 LSB.  352 bytes.
@@ -58,14 +68,17 @@
  *                      worst 0.94 LSB (sincos_q28), 0.98 LSB (half).  1110 bytes, 11 consts.
  *   atan2_q28          octant folding to t = min/max in [0, 1]; the nearest k = 0..8 is
  *                      taken and (x, y) rotated by -atan(k/8) EXACTLY in integers
- *                      (8x + ky, 8y - kx), so one division gives |t'| <= 1/16; then
- *                      atan(t') = t'(1 - t'^2/3 + t'^4/5 - t'^6/7) in Q1.31 plus the 9-entry
- *                      atan(k/8) const table (72 bytes). worst 0.67 LSB of Q3.28 (2.5e-9 rad;
- *                      libfixmath's fix16_atan2 is off by up to 1e-2 rad). 692 bytes.
+ *                      (8x + ky, 8y - kx), so |t'| <= 1/16; k by three comparisons and
+ *                      t' = by/bx through a Newton reciprocal of bx's top 32 bits (64-entry
+ *                      seed table, 256 bytes, a 16-bit and a 64-bit step: ~2^-28, < 2^-32
+ *                      absolute on t'), no division; then atan(t') = t'(1 - t'^2/3 + t'^4/5
+ *                      - t'^6/7) in Q1.31 plus the 9-entry atan(k/8) const table (72 bytes).
+ *                      worst 0.70 LSB of Q3.28 (2.6e-9 rad; libfixmath's fix16_atan2 is off
+ *                      by up to 1e-2 rad). 1380 bytes.
  *   asin/acos_q28      atan2 of (x, sqrt(1 - x^2)) with 1 - x^2 exact in Q2.60, so +-1 and
  *                      their neighbourhood keep full accuracy. worst 0.77 LSB. 220/250 bytes.
  *   wrap_pi_q28        one exact 2pi step in Q3.60. worst 0.07 LSB. 76 bytes.
- * The whole of fxmath_fx.c is 5.1 kB of Cortex-M0+ code.
+ * The whole of fxmath_fx.c is 5.8 kB of Cortex-M0+ code (incl. 520 bytes of const tables).
  * Portability: the fixed core needs two's-complement int32_t/int64_t and an arithmetic right
  * shift of negative values (true of gcc and clang on every target); fxmath_fx.c checks this at
  * compile time.
@@ -91,6 +104,57 @@ extern "C" {
 
 /* v clamped to [INT32_MIN, INT32_MAX]. */
 int32_t qo_fx_sat_i32(int64_t v);
+
+/*
+ * Exact products (int64_t)a * b and (uint64_t)a * b, for every int32 / uint32 input.
+ * Why they exist: ARMv6-M (Cortex-M0/M0+) has only a 32x32 -> 32 MULS, so a C 64-bit product
+ * becomes a call to libgcc's general 64x64 __aeabi_lmul (~40 instructions plus the call).
+ * Written as four 16x16 partial products, the same product is 4 MULS and a few adds inline.
+ * On targets with a widening multiply the compiler does as well either way.
+ * The signed product is the unsigned one of the two's-complement bit patterns with the
+ * high word corrected (the int64 conversion of a value below 2^63 in magnitude is exact).
+ */
+static inline uint64_t qo_fx_umul32_u64_parts(uint32_t a, uint32_t b)
+{
+    uint32_t ah = a >> 16, bh = b >> 16, al = a & 0xFFFFu, bl = b & 0xFFFFu;
+    uint32_t ll = al * bl, mid = al * bh, hi = ah * bh, lo;
+    uint32_t hl = ah * bl;
+    mid += hl;                                   /* may carry: worth 2^48 */
+    hi += (mid >> 16) + ((uint32_t)(mid < hl) << 16);
+    lo = ll + (mid << 16);
+    hi += (uint32_t)(lo < ll);
+    return ((uint64_t)hi << 32) | lo;
+}
+
+/* The partial products pay only where there is no widening multiply (ARMv6-M); everywhere
+ * else (x86-64, ARMv7-M UMULL/SMULL, RV32M mulhu) the plain C product is one or two
+ * instructions. Both are exact, so results are bit-identical on every target; define
+ * QO_FX_MUL_PARTS to force the partial products (tests compare the two). */
+static inline uint64_t qo_fx_umul32_u64(uint32_t a, uint32_t b)
+{
+#if defined(__ARM_ARCH_6M__) || defined(QO_FX_MUL_PARTS)
+    return qo_fx_umul32_u64_parts(a, b);
+#else
+    return (uint64_t)a * b;
+#endif
+}
+
+/* Two's complement: a * b = ua * ub - 2^32 (b [a < 0] + a [b < 0]) mod 2^64. */
+static inline int64_t qo_fx_mul32_i64_parts(int32_t a, int32_t b)
+{
+    uint64_t u = qo_fx_umul32_u64_parts((uint32_t)a, (uint32_t)b);
+    uint32_t corr = ((uint32_t)b & (uint32_t)(a >> 31)) + ((uint32_t)a & (uint32_t)(b >> 31));
+    return (int64_t)(u - ((uint64_t)corr << 32));
+}
+
+static inline int64_t qo_fx_mul32_i64(int32_t a, int32_t b)
+{
+#if defined(__ARM_ARCH_6M__) || defined(QO_FX_MUL_PARTS)
+    return qo_fx_mul32_i64_parts(a, b);
+#else
+    return (int64_t)a * b;
+#endif
+}
 
 /* a + b, a - b and -a, saturated. Formats must match; the result is in that format. Used for
  * every format (Q1.30, Q3.28, Q16.16): the _q30 suffix names the family, not a restriction.

@@ -1,0 +1,95 @@
+/* bench/compare/k_qorient.c - qorient float32 kernels of the comparison (see bench.h). The
+ * library is called as a user calls it: through its public functions, compiled separately
+ * (no inlining across the call), with every status checked by the caller (ignored here). */
+#include "bench.h"
+#include "qorient/convert.h"
+#include "qorient/euler.h"
+#include "qorient/interp.h"
+#include "qorient/quat.h"
+
+static const bk_input *g_in;
+static qo_quat_f32 g_q[BK_N];
+static qo_vec3_f32 g_v[BK_N];
+static qo_mat3_f32 g_m[BK_N];
+static qo_euler_f32 g_e[BK_N];
+
+void bk_qorient_load(const bk_input *in) { g_in = in; }
+
+static void fetch(bk_output *o)
+{
+    int i;
+    for (i = 0; i < BK_N; i++) {
+        o->q[i] = g_q[i];
+        o->v[i] = g_v[i];
+        o->m[i] = g_m[i];
+        o->e[i][0] = g_e[i].a1; o->e[i][1] = g_e[i].a2; o->e[i][2] = g_e[i].a3;
+    }
+}
+
+void bk_qorient_mul(void);
+void bk_qorient_mul(void)
+{
+    int i;
+    for (i = 0; i < BK_N; i++) g_q[i] = qo_quat_mul_f32(g_in->qa[i], g_in->qb[i]);
+}
+
+void bk_qorient_rotate(void);
+void bk_qorient_rotate(void)
+{
+    int i;
+    for (i = 0; i < BK_N; i++) g_v[i] = qo_quat_rotate_f32(g_in->qa[i], g_in->v[i]);
+}
+
+void bk_qorient_normalize(void);
+void bk_qorient_normalize(void)
+{
+    int i;
+    for (i = 0; i < BK_N; i++) (void)qo_quat_normalize_f32(g_in->qn[i], &g_q[i]);
+}
+
+void bk_qorient_to_mat3(void);
+void bk_qorient_to_mat3(void)
+{
+    int i;
+    for (i = 0; i < BK_N; i++) (void)qo_quat_to_mat3_f32(g_in->qa[i], &g_m[i]);
+}
+
+void bk_qorient_from_mat3(void);
+void bk_qorient_from_mat3(void)
+{
+    int i;
+    for (i = 0; i < BK_N; i++) (void)qo_quat_from_mat3_f32(&g_in->m[i], &g_q[i]);
+}
+
+static void euler(qo_euler_seq seq)
+{
+    int i;
+    for (i = 0; i < BK_N; i++) (void)qo_quat_to_euler_f32(g_in->qa[i], seq, &g_e[i], NULL);
+}
+
+void bk_qorient_to_euler_XYZ(void);
+void bk_qorient_to_euler_XYZ(void) { euler(QO_EULER_XYZ); }
+void bk_qorient_to_euler_ZYX(void);
+void bk_qorient_to_euler_ZYX(void) { euler(QO_EULER_ZYX); }
+void bk_qorient_to_euler_ZXZ(void);
+void bk_qorient_to_euler_ZXZ(void) { euler(QO_EULER_ZXZ); }
+
+void bk_qorient_slerp(void);
+void bk_qorient_slerp(void)
+{
+    int i;
+    for (i = 0; i < BK_N; i++) (void)qo_quat_slerp_f32(g_in->qa[i], g_in->qb[i], g_in->t[i], &g_q[i]);
+}
+
+const bk_kernel bk_qorient_kernels[] = {
+    { "qorient", "mul", bk_qorient_mul, fetch },
+    { "qorient", "rotate", bk_qorient_rotate, fetch },
+    { "qorient", "normalize", bk_qorient_normalize, fetch },
+    { "qorient", "to_mat3", bk_qorient_to_mat3, fetch },
+    { "qorient", "from_mat3", bk_qorient_from_mat3, fetch },
+    { "qorient", "to_euler_XYZ", bk_qorient_to_euler_XYZ, fetch },
+    { "qorient", "to_euler_ZYX", bk_qorient_to_euler_ZYX, fetch },
+    { "qorient", "to_euler_ZXZ", bk_qorient_to_euler_ZXZ, fetch },
+    { "qorient", "slerp", bk_qorient_slerp, fetch },
+    { 0, 0, 0, 0 }
+};
