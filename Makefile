@@ -145,3 +145,4 @@ clean:
 -include mk/install.mk
 -include mk/bench.mk
 -include mk/qemu.mk
+-include mk/fuzz.mk
