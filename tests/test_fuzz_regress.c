@@ -6,6 +6,10 @@
  * its entry point renamed), with the same property checks: a violation fails the test and
  * names the file. The directory is ./fuzz, or $QO_FUZZ_DIR.
  */
+/* 64-bit directory offsets on 32-bit hosts (armhf under qemu-user on a 64-bit file system):
+ * without it readdir() fails with EOVERFLOW and the corpus looks empty. */
+#define _FILE_OFFSET_BITS 64
+
 #include <dirent.h>
 #include <setjmp.h>
 #include <stdarg.h>
