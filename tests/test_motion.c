@@ -1166,6 +1166,30 @@ static void test_supported_range(void **state)
     assert_int_equal(qo_motion_set_limits_f32(&pl, 3.0f, 1, &bad), QO_E_RANGE);
     assert_int_equal(pl.braking, 1);
     check_all_finite("range end 1e30", &pl, 2);
+    /* SYNC_PHASE after a move of 6e-36: the scalar limits vmax/|d| overflowed the unit solve
+     * and a later re-plan ran at twice vmax (fuzz finding); now per joint, within the limits */
+    {
+        qo_motion_settings_f32 ps = {QO_MOTION_SCURVE, QO_MOTION_SYNC_PHASE};
+        static const float seq_t[3] = {9.9f, 22.65f, 22.65f}, seq_g[3] = {6.25366151e-36f, 12.7f, -12.6f};
+        int s_i, k;
+        l = qo_motion_limits_default;
+        l.vmax = 27.0f;
+        l.amax = 18.0f;
+        l.jmax = 5.0f;
+        p0[0] = 2.57138268e-42f;
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, p0, 0.0f, &ps), QO_OK);
+        for (s_i = 0; s_i < 3; s_i++) {
+            tg[0] = seq_g[s_i];
+            assert_int_equal(qo_motion_set_target_f32(&pl, seq_t[s_i], tg, &cl), QO_OK);
+            for (k = 0; k <= 40; k++) {
+                float t = pl.t0 + qo_motion_duration_f32(&pl) * (float)k / 40.0f;
+                assert_int_equal(qo_motion_sample_f32(&pl, t, pos, vel, acc), QO_OK);
+                if (!(fabsf(vel[0]) <= 27.0f * 1.001f && fabsf(acc[0]) <= 18.0f * 1.001f))
+                    fail_msg("PHASE re-plan %d to %g at t %g: vel %g acc %g over vmax 27 amax 18", s_i,
+                             (double)seq_g[s_i], (double)t, (double)vel[0], (double)acc[0]);
+            }
+        }
+    }
     /* last line of defence: a hand-made phase that overflows samples as the final position at
      * rest with QO_E_RANGE */
     l = qo_motion_limits_default;

@@ -612,7 +612,9 @@ static int plan_phase(qo_motion_planner_f32 *pl)
         ls.amax = fminf(ls.amax, jt->lim.amax / ad);
         ls.jmax = fminf(ls.jmax, jt->lim.jmax / ad);
     }
-    if (!(isfinite(ls.vmax) && isfinite(ls.amax) && isfinite(ls.jmax))) return 0;
+    /* The scalar profile's limits are ratios limit / |d|: a tiny d makes them so large that
+     * the unit solve's products (amax^2 / jmax...) overflow; such a plan goes per joint. */
+    if (!(limit_in_range(ls.vmax) && limit_in_range(ls.amax) && limit_in_range(ls.jmax))) return 0;
     solve_min(sc, kv, ka, 1.0f, &ls, &vc, &tc);
     n = build(sc, kv, ka, vc, tc, &ls, g);
     load(&unit, 0.0f, kv, ka, g, n, 1.0f);

@@ -67,7 +67,9 @@
  *     profile s: 0 -> 1 with limits min_i(vmax_i/|d_i|) etc. Possible only when every joint's
  *     (v0, a0) is proportional to its displacement d_i (all at rest is the usual case), within
  *     1e-6 of max(vmax, |v0|) and max(amax, |a0|), which bounds the velocity / acceleration
- *     step the straight line may introduce; otherwise the plan falls back to TIME and
+ *     step the straight line may introduce, and when the scalar limits min_i(vmax_i/|d_i|)...
+ *     lie in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] (a tiny d_i makes them overflow
+ *     float32 products); otherwise the plan falls back to TIME and
  *     qo_motion_sync_used() says so. The straight line can take longer than TIME sync, because
  *     the binding limit may come from different joints for v, a and j.
  *
