@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <string.h>
 #include <math.h>
+#include <float.h>
 #include <cmocka.h>
 
 #include "qorient/motion.h"
@@ -1081,6 +1082,132 @@ static void test_sync_gap_reported(void **state)
     check_plan(&pl, "sync gap", 0, 4000);
 }
 
+/* Supported range (fuzz findings): tiny / subnormal limits, positions near FLT_MAX, targets and
+ * range ends beyond QO_MOTION_POS_MAX get their status and the safe state; every sample stays
+ * finite; the sampler's last line of defence. */
+static void check_all_finite(const char *name, const qo_motion_planner_f32 *pl, size_t n)
+{
+    float pos[NJ], vel[NJ], acc[NJ], end = qo_motion_end_time_f32(pl);
+    size_t i;
+    int k;
+    if (!isfinite(qo_motion_duration_f32(pl))) fail_msg("%s: duration %g", name, (double)qo_motion_duration_f32(pl));
+    for (k = 0; k <= 20; k++) {
+        float t = pl->t0 + (end - pl->t0) * (float)k / 20.0f;
+        qo_status st = qo_motion_sample_f32(pl, t, pos, vel, acc);
+        if (st != QO_OK) fail_msg("%s: sample at %g status %d", name, (double)t, (int)st);
+        for (i = 0; i < n; i++)
+            if (!isfinite(pos[i]) || !isfinite(vel[i]) || !isfinite(acc[i]))
+                fail_msg("%s: joint %zu at %g: pos %g vel %g acc %g", name, i, (double)t, (double)pos[i],
+                         (double)vel[i], (double)acc[i]);
+    }
+}
+
+static void test_supported_range(void **state)
+{
+    qo_motion_joint_f32 jts[NJ];
+    qo_motion_planner_f32 pl;
+    qo_motion_limits_f32 l = qo_motion_limits_default, bad;
+    float p0[2] = {0.0f, 0.0f}, tg[2], pos[2], vel[2], acc[2];
+    uint32_t cl;
+    (void)state;
+    /* denormal / too small / too large limits: QO_E_LIMIT, planner unusable */
+    l.vmax = 1.8e-42f;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, p0, 0.0f, NULL), QO_E_LIMIT);
+    assert_int_equal(pl.n, 0);
+    l.vmax = QO_MOTION_LIMIT_MIN * 0.5f;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, p0, 0.0f, NULL), QO_E_LIMIT);
+    l.vmax = 1.0f;
+    l.jmax = QO_MOTION_LIMIT_MAX * 2.0f;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, p0, 0.0f, NULL), QO_E_LIMIT);
+    /* the smallest vmax: a move of 1 takes ~1/vmax seconds (cruise), finite */
+    l = qo_motion_limits_default;
+    l.vmax = QO_MOTION_LIMIT_MIN;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, p0, 0.0f, NULL), QO_OK);
+    tg[0] = 1.0f;
+    assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, tg, &cl), QO_OK);
+    if (!(fabs((double)qo_motion_duration_f32(&pl) - 1.0 / (double)QO_MOTION_LIMIT_MIN) < 1e-3 / (double)QO_MOTION_LIMIT_MIN))
+        fail_msg("vmax %g: duration %g, want ~%g", (double)l.vmax, (double)qo_motion_duration_f32(&pl),
+                 1.0 / (double)QO_MOTION_LIMIT_MIN);
+    check_all_finite("smallest vmax", &pl, 1);
+    /* start at -FLT_MAX: QO_E_RANGE; at the range end: accepted */
+    l = qo_motion_limits_default;
+    p0[0] = -FLT_MAX;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, p0, 0.0f, NULL), QO_E_RANGE);
+    assert_int_equal(pl.n, 0);
+    p0[0] = -QO_MOTION_POS_MAX;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, p0, 0.0f, NULL), QO_OK);
+    /* moving joint, then a target beyond the range: QO_E_RANGE, brakes from the current state */
+    p0[0] = 0.0f;
+    p0[1] = 5.0f;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 2, (qo_motion_limits_f32[]){l, l}, p0, 0.0f, NULL), QO_OK);
+    tg[0] = 10.0f;
+    tg[1] = 5.0f;
+    assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, tg, &cl), QO_OK);
+    assert_int_equal(qo_motion_sample_f32(&pl, 2.0f, pos, vel, NULL), QO_OK);
+    tg[0] = 1e30f;
+    cl = 99u;
+    assert_int_equal(qo_motion_set_target_f32(&pl, 2.0f, tg, &cl), QO_E_RANGE);
+    assert_int_equal(cl, 0u);
+    assert_int_equal(pl.braking, 1);
+    assert_int_equal(qo_motion_sample_f32(&pl, 2.0f, pos, vel, acc), QO_OK);
+    if (!(vel[0] > 0.0f) || pos[1] != 5.0f || vel[1] != 0.0f)
+        fail_msg("brake after target 1e30: joint 0 vel %g (want still moving), joint 1 pos %g vel %g (want 5 at rest)",
+                 (double)vel[0], (double)pos[1], (double)vel[1]);
+    check_all_finite("brake after target 1e30", &pl, 2);
+    /* a subnormal vmax via set_limits: QO_E_LIMIT and a brake */
+    bad = l;
+    bad.vmax = 1.8e-42f;
+    assert_int_equal(qo_motion_set_limits_f32(&pl, 2.5f, 0, &bad), QO_E_LIMIT);
+    assert_int_equal(pl.braking, 1);
+    check_all_finite("set_limits denormal vmax", &pl, 2);
+    /* a range whose end is beyond QO_MOTION_POS_MAX pulling the goal there: QO_E_RANGE */
+    bad = l;
+    bad.pmin = bad.pmax = 1e30f;
+    assert_int_equal(qo_motion_set_limits_f32(&pl, 3.0f, 1, &bad), QO_E_RANGE);
+    assert_int_equal(pl.braking, 1);
+    check_all_finite("range end 1e30", &pl, 2);
+    /* SYNC_PHASE after a move of 6e-36: the scalar limits vmax/|d| overflowed the unit solve
+     * and a later re-plan ran at twice vmax (fuzz finding); now per joint, within the limits */
+    {
+        qo_motion_settings_f32 ps = {QO_MOTION_SCURVE, QO_MOTION_SYNC_PHASE};
+        static const float seq_t[3] = {9.9f, 22.65f, 22.65f}, seq_g[3] = {6.25366151e-36f, 12.7f, -12.6f};
+        int s_i, k;
+        l = qo_motion_limits_default;
+        l.vmax = 27.0f;
+        l.amax = 18.0f;
+        l.jmax = 5.0f;
+        p0[0] = 2.57138268e-42f;
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, p0, 0.0f, &ps), QO_OK);
+        for (s_i = 0; s_i < 3; s_i++) {
+            tg[0] = seq_g[s_i];
+            assert_int_equal(qo_motion_set_target_f32(&pl, seq_t[s_i], tg, &cl), QO_OK);
+            for (k = 0; k <= 40; k++) {
+                float t = pl.t0 + qo_motion_duration_f32(&pl) * (float)k / 40.0f;
+                assert_int_equal(qo_motion_sample_f32(&pl, t, pos, vel, acc), QO_OK);
+                if (!(fabsf(vel[0]) <= 27.0f * 1.001f && fabsf(acc[0]) <= 18.0f * 1.001f))
+                    fail_msg("PHASE re-plan %d to %g at t %g: vel %g acc %g over vmax 27 amax 18", s_i,
+                             (double)seq_g[s_i], (double)t, (double)vel[0], (double)acc[0]);
+            }
+        }
+    }
+    /* last line of defence: a hand-made phase that overflows samples as the final position at
+     * rest with QO_E_RANGE */
+    l = qo_motion_limits_default;
+    p0[0] = 0.0f;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, p0, 0.0f, NULL), QO_OK);
+    jts[0].nph = 1;
+    jts[0].ph[0].t = 0.0f;
+    jts[0].ph[0].d = 1e20f;
+    jts[0].ph[0].p = jts[0].ph[0].v = jts[0].ph[0].a = 0.0f;
+    jts[0].ph[0].j = FLT_MAX;
+    jts[0].final = 3.0f;
+    jts[0].duration = 1e20f;
+    pl.duration = 1e20f;
+    assert_int_equal(qo_motion_sample_f32(&pl, 1e10f, pos, vel, acc), QO_E_RANGE);
+    if (pos[0] != 3.0f || vel[0] != 0.0f || acc[0] != 0.0f)
+        fail_msg("defence: pos %g vel %g acc %g, want 3 at rest", (double)pos[0], (double)vel[0], (double)acc[0]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1099,6 +1226,7 @@ int main(void)
         cmocka_unit_test(test_bad_args),
         cmocka_unit_test(test_edges),
         cmocka_unit_test(test_q16_sampler),
+        cmocka_unit_test(test_supported_range),
     };
     return cmocka_run_group_tests_name("motion", tests, NULL, NULL);
 }

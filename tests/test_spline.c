@@ -892,6 +892,73 @@ static void test_replan_continues(void **state)
     }
 }
 
+/* Plans whose float32 samples would overflow (fuzz findings): refused with QO_E_RANGE and the
+ * empty plan, or, where the bound lets them through, every sample finite. */
+static void expect_range_or_finite(const char *name, qo_spline_profile prof, size_t nk, const float *t,
+                                   const float *p, const unsigned char *wrap, int must_fail)
+{
+    float cf[COEF_CAP], pos[1], vel[1], acc[1];
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    qo_spline_f32 sp;
+    qo_status st;
+    size_t k;
+    int i;
+    set.profile = prof;
+    set.wrap = wrap;
+    st = qo_spline_init_f32(1, nk, t, p, &set, cf, COEF_CAP, &sp);
+    if (st != QO_OK) {
+        if (st != QO_E_RANGE || sp.n_keys != 0 || sp.coef != NULL)
+            fail_msg("%s: init status %d n_keys %zu, want QO_E_RANGE and the empty plan", name, (int)st, sp.n_keys);
+        if (qo_spline_sample_f32(&sp, t[0], pos, vel, acc, NULL) != QO_E_STATE) fail_msg("%s: sample of empty plan", name);
+        return;
+    }
+    if (must_fail) fail_msg("%s: init accepted a plan whose samples overflow", name);
+    for (k = 0; k + 1 < nk; k++)
+        for (i = 0; i <= 8; i++) {
+            float tt = (float)((double)t[k] + ((double)t[k + 1] - (double)t[k]) * i / 8.0);
+            st = qo_spline_sample_f32(&sp, tt, pos, vel, acc, NULL);
+            if (st != QO_OK || !isfinite(pos[0]) || !isfinite(vel[0]) || !isfinite(acc[0]))
+                fail_msg("%s: t %.9g status %d pos %g vel %g acc %g", name, (double)tt, (int)st, (double)pos[0],
+                         (double)vel[0], (double)acc[0]);
+        }
+}
+
+static void test_range_overflow(void **state)
+{
+    static const float t_lin[2] = {0.0f, 1e-4f}, p_lin[2] = {FLT_MAX, 2.0f};
+    static const float t_cr[3] = {0.0f, 1e-10f, 2e-10f}, p_cr[3] = {6e19f, -6e19f, 6e19f};
+    static const float t_big[3] = {0.0f, 1.0f, FLT_MAX}, p_big[3] = {0.0f, 1.0f, -3.0f};
+    static const float t_wide[3] = {-FLT_MAX, 0.0f, FLT_MAX}, p_wide[3] = {1.0f, 5e30f, -1.0f};
+    static const float t_w[4] = {0.0f, 1e-20f, 2e-20f, 3e-20f}, p_w[4] = {0.0f, 3.0f, -3.0f, 3.0f};
+    static const float t_ok[2] = {0.0f, 1.0f}, p_ok[2] = {0.0f, 1e28f};
+    static const unsigned char wr[1] = {1};
+    float cf[COEF_CAP], pos[1], vel[1], acc[1];
+    qo_spline_f32 sp;
+    (void)state;
+    expect_range_or_finite("LINEAR FLT_MAX -> 2 in 1e-4 s", QO_SPLINE_LINEAR, 2, t_lin, p_lin, NULL, 1);
+    expect_range_or_finite("CATMULL_ROM +-6e19 in 1e-10 s", QO_SPLINE_CATMULL_ROM, 3, t_cr, p_cr, NULL, 1);
+    expect_range_or_finite("QUINTIC wrapped steps in 1e-20 s", QO_SPLINE_QUINTIC, 4, t_w, p_w, wr, 1);
+    expect_range_or_finite("QUINTIC key at t = FLT_MAX", QO_SPLINE_QUINTIC, 3, t_big, p_big, NULL, 0);
+    expect_range_or_finite("QUINTIC keys at -+FLT_MAX", QO_SPLINE_QUINTIC, 3, t_wide, p_wide, NULL, 1);
+    expect_range_or_finite("CUBIC_C2 keys at -+FLT_MAX", QO_SPLINE_CUBIC_C2, 3, t_wide, p_wide, NULL, 1);
+    /* inside the supported range (C2 at rest: acc bound 1.8e29): accepted */
+    assert_int_equal(qo_spline_init_f32(1, 2, t_ok, p_ok, &qo_spline_settings_default, cf, COEF_CAP, &sp), QO_OK);
+    expect_range_or_finite("LINEAR 0 -> 1e28 in 1 s", QO_SPLINE_LINEAR, 2, t_ok, p_ok, NULL, 0);
+    /* last line of defence: a hand-made plan whose segment overflows gives QO_E_RANGE and the
+     * segment's start key at rest (layout of spline.c: K times, min/max/period, rows) */
+    memset(cf, 0, sizeof cf);
+    cf[0] = 0.0f; cf[1] = 1.0f;
+    cf[2] = -INFINITY; cf[3] = INFINITY; cf[4] = 0.0f;
+    cf[5] = 7.0f; cf[6] = FLT_MAX; cf[7] = FLT_MAX;
+    cf[11] = 7.0f;
+    sp.n_joints = 1; sp.n_keys = 2; sp.profile = QO_SPLINE_QUINTIC; sp.wrap_output = 0; sp.coef = cf;
+    pos[0] = vel[0] = acc[0] = 99.0f;
+    assert_int_equal(qo_spline_sample_f32(&sp, 0.75f, pos, vel, acc, NULL), QO_E_RANGE);
+    if (pos[0] != 7.0f || vel[0] != 0.0f || acc[0] != 0.0f)
+        fail_msg("defence: pos %g vel %g acc %g, want 7 at rest", (double)pos[0], (double)vel[0], (double)acc[0]);
+    assert_int_equal(qo_spline_sample_f32(&sp, 2.0f, pos, vel, acc, NULL), QO_OK);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -907,6 +974,7 @@ int main(void)
         cmocka_unit_test(test_edges),
         cmocka_unit_test(test_many_joints_keys),
         cmocka_unit_test(test_replan_continues),
+        cmocka_unit_test(test_range_overflow),
     };
     return cmocka_run_group_tests_name("spline", tests, NULL, NULL);
 }

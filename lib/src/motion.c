@@ -454,15 +454,65 @@ static mstate joint_state(const qo_motion_joint_f32 *jt, float tau)
     return s;
 }
 
+/* Within [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] (NaN fails): keeps every ratio and product
+ * of limits, positions and durations the planner forms inside float32. */
+static int limit_in_range(float x)
+{
+    return x >= QO_MOTION_LIMIT_MIN && x <= QO_MOTION_LIMIT_MAX;
+}
+
 static int limits_ok(const qo_motion_limits_f32 *l)
 {
-    if (!(isfinite(l->vmax) && l->vmax > 0.0f)) return 0;
-    if (!(isfinite(l->amax) && l->amax > 0.0f)) return 0;
-    if (!(isfinite(l->jmax) && l->jmax > 0.0f)) return 0;
+    if (!limit_in_range(l->vmax) || !limit_in_range(l->amax) || !limit_in_range(l->jmax)) return 0;
     if (isnan(l->pmin) || isnan(l->pmax) || l->pmin > l->pmax) return 0;
     if (l->pmin == INFINITY || l->pmax == -INFINITY) return 0;
-    if (!(isfinite(l->wrap) && l->wrap >= 0.0f)) return 0;
+    if (!(l->wrap >= 0.0f && l->wrap <= QO_MOTION_POS_MAX)) return 0;
     return 1;
+}
+
+static int pos_in_range(float p)
+{
+    return fabsf(p) <= QO_MOTION_POS_MAX; /* NaN fails */
+}
+
+/* Every phase of every joint, its end state and the durations finite, positions in range:
+ * checked after each plan so that a sample of an accepted plan cannot overflow. */
+static int plan_ok(const qo_motion_planner_f32 *pl)
+{
+    size_t i;
+    unsigned k;
+    if (!isfinite(pl->duration)) return 0;
+    for (i = 0; i < pl->n; i++) {
+        const qo_motion_joint_f32 *jt = &pl->joints[i];
+        if (!pos_in_range(jt->final) || !isfinite(jt->duration)) return 0;
+        for (k = 0; k < jt->nph; k++) {
+            const qo_motion_phase_f32 *ph = &jt->ph[k];
+            float d = ph->d;
+            float v1 = ph->v + d * (ph->a + 0.5f * d * ph->j);
+            if (!(pos_in_range(ph->p) && isfinite(ph->t) && isfinite(d) && isfinite(ph->v) &&
+                  isfinite(ph->a) && isfinite(ph->j) && isfinite(v1) && isfinite(ph->a + d * ph->j) &&
+                  isfinite(ph->p + d * (ph->v + d * (0.5f * ph->a + d * ph->j * (1.0f / 6.0f))))))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* Safe state when no finite plan exists: every joint held at rest where it is (its captured
+ * position, which is in range because it came from a checked plan or init). */
+static void plan_hold(qo_motion_planner_f32 *pl)
+{
+    size_t i;
+    for (i = 0; i < pl->n; i++) {
+        qo_motion_joint_f32 *jt = &pl->joints[i];
+        jt->nph = 0;
+        jt->final = jt->goal = jt->w_p;
+        jt->duration = 0.0f;
+    }
+    pl->duration = 0.0f;
+    pl->sync_used = QO_MOTION_SYNC_NONE;
+    pl->unsynced = 0;
+    pl->braking = 1;
 }
 
 /* Short way round for a continuous joint: d in (-w/2, w/2]. */
@@ -481,6 +531,10 @@ static void capture(qo_motion_planner_f32 *pl, float t_now)
     for (i = 0; i < pl->n; i++) {
         qo_motion_joint_f32 *jt = &pl->joints[i];
         mstate s = joint_state(jt, t_now - pl->t0);
+        if (!(pos_in_range(s.p) && isfinite(s.v) && isfinite(s.a))) {
+            s.p = jt->final; /* not expected for a checked plan: its end, at rest */
+            s.v = s.a = 0.0f;
+        }
         jt->w_p = s.p;
         jt->w_v = s.v;
         jt->w_a = pl->settings.profile == QO_MOTION_SCURVE ? s.a : 0.0f;
@@ -520,6 +574,13 @@ static void plan_brake(qo_motion_planner_f32 *pl)
     pl->braking = 1;
 }
 
+/* Brake; hold if even the stop would not be finite. */
+static void plan_brake_safe(qo_motion_planner_f32 *pl)
+{
+    plan_brake(pl);
+    if (!plan_ok(pl)) plan_hold(pl);
+}
+
 /* Straight-line plan if every (v, a) is proportional to the displacement; 0 if not possible. */
 static int plan_phase(qo_motion_planner_f32 *pl)
 {
@@ -551,7 +612,9 @@ static int plan_phase(qo_motion_planner_f32 *pl)
         ls.amax = fminf(ls.amax, jt->lim.amax / ad);
         ls.jmax = fminf(ls.jmax, jt->lim.jmax / ad);
     }
-    if (!(isfinite(ls.vmax) && isfinite(ls.amax) && isfinite(ls.jmax))) return 0;
+    /* The scalar profile's limits are ratios limit / |d|: a tiny d makes them so large that
+     * the unit solve's products (amax^2 / jmax...) overflow; such a plan goes per joint. */
+    if (!(limit_in_range(ls.vmax) && limit_in_range(ls.amax) && limit_in_range(ls.jmax))) return 0;
     solve_min(sc, kv, ka, 1.0f, &ls, &vc, &tc);
     n = build(sc, kv, ka, vc, tc, &ls, g);
     load(&unit, 0.0f, kv, ka, g, n, 1.0f);
@@ -638,6 +701,15 @@ static void plan_goals(qo_motion_planner_f32 *pl)
     pl->sync_used = pl->settings.sync == QO_MOTION_SYNC_NONE ? QO_MOTION_SYNC_NONE : QO_MOTION_SYNC_TIME;
 }
 
+/* Plans toward the goals; QO_E_RANGE with the safe brake if the plan is not finite. */
+static qo_status plan_goals_checked(qo_motion_planner_f32 *pl)
+{
+    plan_goals(pl);
+    if (plan_ok(pl)) return QO_OK;
+    plan_brake_safe(pl);
+    return QO_E_RANGE;
+}
+
 qo_status qo_motion_init_f32(qo_motion_planner_f32 *pl, qo_motion_joint_f32 *joints, size_t n,
                              const qo_motion_limits_f32 *limits, const float *start, float t0,
                              const qo_motion_settings_f32 *settings)
@@ -664,6 +736,8 @@ qo_status qo_motion_init_f32(qo_motion_planner_f32 *pl, qo_motion_joint_f32 *joi
     if (!isfinite(t0)) return QO_E_NONFINITE;
     for (i = 0; i < n; i++)
         if (!isfinite(start[i])) return QO_E_NONFINITE;
+    for (i = 0; i < n; i++)
+        if (!pos_in_range(start[i])) return QO_E_RANGE;
     for (i = 0; i < n; i++) {
         qo_motion_joint_f32 *jt = &joints[i];
         jt->lim = limits[i];
@@ -701,7 +775,7 @@ qo_status qo_motion_set_target_f32(qo_motion_planner_f32 *pl, float t_now, const
     for (i = 0; i < pl->n; i++) {
         if (!isfinite(targets[i])) {
             capture(pl, t_now);
-            plan_brake(pl);
+            plan_brake_safe(pl);
             return QO_E_NONFINITE;
         }
     }
@@ -716,11 +790,15 @@ qo_status qo_motion_set_target_f32(qo_motion_planner_f32 *pl, float t_now, const
             g = jt->lim.pmax;
             mask |= (uint32_t)1 << i;
         }
+        if (!pos_in_range(g)) {
+            plan_brake_safe(pl);
+            return QO_E_RANGE;
+        }
         jt->goal = g;
     }
-    plan_goals(pl);
-    if (clamped) *clamped = mask;
-    return QO_OK;
+    st = plan_goals_checked(pl);
+    if (clamped && st == QO_OK) *clamped = mask;
+    return st;
 }
 
 qo_status qo_motion_set_limits_f32(qo_motion_planner_f32 *pl, float t_now, size_t i,
@@ -734,7 +812,7 @@ qo_status qo_motion_set_limits_f32(qo_motion_planner_f32 *pl, float t_now, size_
     if (i >= pl->n) return QO_E_RANGE;
     capture(pl, t_now);
     if (!limits_ok(limits)) {
-        plan_brake(pl);
+        plan_brake_safe(pl);
         return QO_E_LIMIT;
     }
     pl->joints[i].lim = *limits;
@@ -742,9 +820,12 @@ qo_status qo_motion_set_limits_f32(qo_motion_planner_f32 *pl, float t_now, size_
         qo_motion_joint_f32 *jt = &pl->joints[k];
         if (jt->goal < jt->lim.pmin) jt->goal = jt->lim.pmin;
         if (jt->goal > jt->lim.pmax) jt->goal = jt->lim.pmax;
+        if (!pos_in_range(jt->goal)) {
+            plan_brake_safe(pl); /* a range end beyond the supported range */
+            return QO_E_RANGE;
+        }
     }
-    plan_goals(pl);
-    return QO_OK;
+    return plan_goals_checked(pl);
 }
 
 qo_status qo_motion_brake_f32(qo_motion_planner_f32 *pl, float t_now)
@@ -755,7 +836,9 @@ qo_status qo_motion_brake_f32(qo_motion_planner_f32 *pl, float t_now)
     if (st != QO_OK) return st;
     capture(pl, t_now);
     plan_brake(pl);
-    return QO_OK;
+    if (plan_ok(pl)) return QO_OK;
+    plan_hold(pl);
+    return QO_E_RANGE;
 }
 
 qo_status qo_motion_sample_f32(const qo_motion_planner_f32 *pl, float t, float *pos, float *vel, float *acc)
@@ -776,6 +859,13 @@ qo_status qo_motion_sample_f32(const qo_motion_planner_f32 *pl, float t, float *
     }
     for (i = 0; i < pl->n; i++) {
         mstate s = joint_state(&pl->joints[i], tau);
+        if (!(isfinite(s.p) && isfinite(s.v) && isfinite(s.a))) {
+            /* last line of defence (plans are checked, so not expected): the plan's final
+             * position at rest */
+            s.p = pl->joints[i].final;
+            s.v = s.a = 0.0f;
+            st = QO_E_RANGE;
+        }
         pos[i] = s.p;
         if (vel) vel[i] = s.v;
         if (acc) acc[i] = s.a;

@@ -238,6 +238,32 @@ static void key_velocities(float *coef, size_t nj, size_t nk, size_t j, const fl
     }
 }
 
+/* Every sampled value stays finite: for s in [0, 1] each Horner partial sum of p, p' and p''
+ * is at most the sum of |b_n| weighted by n^0, n, n(n-1), so bounding those sums (divided by
+ * h, h^2 as the sampler does) below QO_SPLINE_MAX_VALUE bounds every intermediate of
+ * qo_spline_sample_f32 with a margin for its rounding. */
+static int segments_bounded(const float *coef, size_t nj, size_t nk)
+{
+    size_t k, j, n;
+    for (k = 0; k + 1 < nk; k++) {
+        float h = coef[k + 1] - coef[k];
+        for (j = 0; j < nj; j++) {
+            const float *b = row_of_c(coef, nj, nk, k, j);
+            float s0 = 0.0f, s1 = 0.0f, s2 = 0.0f;
+            for (n = 0; n < COEF_W; n++) {
+                float m = fabsf(b[n]);
+                s0 += m;
+                s1 += (float)n * m;
+                s2 += (float)(n * (n - (n > 0))) * m;
+            }
+            if (!(s0 <= QO_SPLINE_MAX_VALUE && s1 / h <= QO_SPLINE_MAX_VALUE &&
+                  (s2 / h) / h <= QO_SPLINE_MAX_VALUE))
+                return 0;
+        }
+    }
+    return 1;
+}
+
 qo_status qo_spline_init_f32(size_t n_joints, size_t n_keys, const float *t, const float *p,
                              const qo_spline_settings_f32 *set, float *coef, size_t coef_len,
                              qo_spline_f32 *out)
@@ -339,7 +365,9 @@ qo_status qo_spline_init_f32(size_t n_joints, size_t n_keys, const float *t, con
             last[3] = last[4] = last[5] = 0.0f;
         }
     }
-    if (!all_finite(coef + n_keys + 3 * n_joints, COEF_W * n_keys * n_joints)) return QO_E_RANGE;
+    if (!all_finite(coef + n_keys + 3 * n_joints, COEF_W * n_keys * n_joints) ||
+        !segments_bounded(coef, n_joints, n_keys))
+        return QO_E_RANGE;
     out->n_joints = n_joints;
     out->n_keys = n_keys;
     out->profile = set->profile;
@@ -418,6 +446,13 @@ qo_status qo_spline_sample_f32(const qo_spline_f32 *s, float t, float *pos, floa
             x = b[0];
             v = (mode == 2) ? b[1] : 0.0f;
             a = (mode == 2) ? b[2] : 0.0f;
+        }
+        if (!(isfinite(x) && isfinite(v) && isfinite(a))) {
+            /* last line of defence (init bounds the segments, so not expected): the key
+             * the segment started from, held at rest */
+            x = b[0];
+            v = a = 0.0f;
+            st = QO_E_RANGE;
         }
         if (jr[2] > 0.0f && s->wrap_output) x = wrap_half(x, jr[2]);
         if (x < jr[0]) { x = jr[0]; c = -1; }

@@ -67,7 +67,9 @@
  *     profile s: 0 -> 1 with limits min_i(vmax_i/|d_i|) etc. Possible only when every joint's
  *     (v0, a0) is proportional to its displacement d_i (all at rest is the usual case), within
  *     1e-6 of max(vmax, |v0|) and max(amax, |a0|), which bounds the velocity / acceleration
- *     step the straight line may introduce; otherwise the plan falls back to TIME and
+ *     step the straight line may introduce, and when the scalar limits min_i(vmax_i/|d_i|)...
+ *     lie in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] (a tiny d_i makes them overflow
+ *     float32 products); otherwise the plan falls back to TIME and
  *     qo_motion_sync_used() says so. The straight line can take longer than TIME sync, because
  *     the binding limit may come from different joints for v, a and j.
  *
@@ -125,6 +127,18 @@ extern "C" {
 #define QO_MOTION_MAX_JOINTS 32
 /* Phases of one joint's plan: 3 (velocity change) + 1 (cruise) + 3 (stop). */
 #define QO_MOTION_MAX_PHASES 7
+/* Supported range, so that no float32 product, ratio or duration of a plan can overflow:
+ * vmax, amax, jmax in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] (subnormal or tiny limits
+ * would give durations beyond float, huge ones overflowing products: QO_E_LIMIT); start
+ * positions, targets (after clamping to [pmin, pmax]) and wrap periods within
+ * +-QO_MOTION_POS_MAX (QO_E_RANGE / QO_E_LIMIT). Every plan is also checked after it is made:
+ * each phase's coefficients, its end state, the durations and the final positions must be
+ * finite (positions within +-QO_MOTION_POS_MAX); a plan that is not gets QO_E_RANGE and the
+ * safe state: a brake from the state at t_now, or, if even that is not finite, every joint
+ * held at rest where it is. */
+#define QO_MOTION_LIMIT_MIN 1e-6f
+#define QO_MOTION_LIMIT_MAX 1e12f
+#define QO_MOTION_POS_MAX 1e18f
 /* Upper bound of root-search steps in one solve (typically 5-12 are used; bounded anyway). */
 #define QO_MOTION_BISECT_ITERS 48
 
@@ -147,9 +161,10 @@ typedef struct qo_motion_settings_f32 {
 /* SCURVE, SYNC_TIME. */
 extern const qo_motion_settings_f32 qo_motion_settings_default;
 
-/* Limits of one joint. vmax, amax, jmax: > 0 and finite (jmax also for TRAPEZOID, where it is
- * unused). pmin <= pmax, each finite or -INFINITY / +INFINITY (= no range; the default).
- * wrap: 0 = ordinary joint, > 0 finite = continuous joint with that period (2*pi rad, 360 deg). */
+/* Limits of one joint. vmax, amax, jmax: in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] (jmax
+ * also for TRAPEZOID, where it is unused). pmin <= pmax, each finite or -INFINITY / +INFINITY
+ * (= no range; the default). wrap: 0 = ordinary joint, in (0, QO_MOTION_POS_MAX] = continuous
+ * joint with that period (2*pi rad, 360 deg). */
 typedef struct qo_motion_limits_f32 {
     float vmax, amax, jmax;
     float pmin, pmax;
@@ -199,8 +214,9 @@ typedef struct qo_motion_planner_f32 {
  * Start positions are not clamped to the range (the first target will be).
  * Returns QO_OK; QO_E_NULL (pl, joints, limits or start NULL); QO_E_TOO_FEW (n == 0);
  * QO_E_CAPACITY (n > QO_MOTION_MAX_JOINTS); QO_E_ARG (unknown profile or sync);
- * QO_E_LIMIT (a vmax/amax/jmax not > 0 and finite, pmin > pmax or NaN, wrap < 0 or not
- * finite); QO_E_NONFINITE (a start position or t0 not finite).
+ * QO_E_LIMIT (a vmax/amax/jmax outside [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] or NaN,
+ * pmin > pmax or NaN, wrap < 0, NaN or above QO_MOTION_POS_MAX); QO_E_NONFINITE (a start
+ * position or t0 not finite); QO_E_RANGE (a start position beyond +-QO_MOTION_POS_MAX).
  * On any error (pl non-NULL) the planner is left with n = 0, so every later call returns
  * QO_E_STATE: it never moves anything.
  */
@@ -216,7 +232,10 @@ qo_status qo_motion_init_f32(qo_motion_planner_f32 *pl, qo_motion_joint_f32 *joi
  * Returns QO_OK; QO_E_NULL (pl or targets NULL); QO_E_STATE (planner not initialised);
  * QO_E_NONFINITE (t_now or a target NaN/Inf: the planner then brakes every joint to rest from
  * its state at t_now, if t_now is finite, else the plan is unchanged); QO_E_ORDER (t_now
- * earlier than the last plan's t0: plan unchanged). *clamped is 0 on every error.
+ * earlier than the last plan's t0: plan unchanged); QO_E_RANGE (a target, after clamping,
+ * beyond +-QO_MOTION_POS_MAX, or the plan would not be finite: every joint brakes from its
+ * state at t_now, or is held at rest there if even the stop would not be finite).
+ * *clamped is 0 on every error.
  */
 qo_status qo_motion_set_target_f32(qo_motion_planner_f32 *pl, float t_now, const float *targets,
                                    uint32_t *clamped);
@@ -226,7 +245,10 @@ qo_status qo_motion_set_target_f32(qo_motion_planner_f32 *pl, float t_now, const
  * state at t_now (so lowering vmax on the fly first brakes into the new limits).
  * Returns QO_OK; QO_E_NULL; QO_E_STATE; QO_E_RANGE (i >= n); QO_E_NONFINITE (t_now);
  * QO_E_ORDER (t_now < t0); QO_E_LIMIT (bad limits as in init: the old limits stay and every
- * joint brakes to rest from t_now). A goal outside a new, narrower range is clamped again.
+ * joint brakes to rest from t_now); QO_E_RANGE (a goal clamped into a range end beyond
+ * +-QO_MOTION_POS_MAX, or the plan would not be finite: the new limits stay and every joint
+ * brakes, or is held, as for set_target). A goal outside a new, narrower range is clamped
+ * again.
  */
 qo_status qo_motion_set_limits_f32(qo_motion_planner_f32 *pl, float t_now, size_t i,
                                    const qo_motion_limits_f32 *limits);
@@ -234,7 +256,8 @@ qo_status qo_motion_set_limits_f32(qo_motion_planner_f32 *pl, float t_now, size_
 /*
  * Safety stop: every joint brakes from its state at t_now to rest as fast as its limits allow
  * (no synchronisation). The rest positions become the new goals.
- * Returns QO_OK; QO_E_NULL; QO_E_STATE; QO_E_NONFINITE (t_now); QO_E_ORDER (t_now < t0).
+ * Returns QO_OK; QO_E_NULL; QO_E_STATE; QO_E_NONFINITE (t_now); QO_E_ORDER (t_now < t0);
+ * QO_E_RANGE (the stop would not be finite: every joint is held at rest where it is).
  */
 qo_status qo_motion_brake_f32(qo_motion_planner_f32 *pl, float t_now);
 
@@ -243,7 +266,9 @@ qo_status qo_motion_brake_f32(qo_motion_planner_f32 *pl, float t_now);
  * accelerations [u/s^2] into n-element arrays; vel and acc may be NULL. Before the plan's t0
  * the state at t0 is given (QO_E_RANGE); after the end the final positions at rest.
  * Returns QO_OK; QO_E_NULL (pl or pos NULL); QO_E_STATE; QO_E_NONFINITE (t NaN/Inf: outputs are
- * the state at t0); QO_E_RANGE (t < t0).
+ * the state at t0); QO_E_RANGE (t < t0; or, as a last line of defence not reachable for the
+ * checked plans, a joint's sample would not be finite: that joint gets its final position at
+ * rest).
  */
 qo_status qo_motion_sample_f32(const qo_motion_planner_f32 *pl, float t, float *pos, float *vel,
                                float *acc);

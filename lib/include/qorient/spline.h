@@ -136,6 +136,13 @@ typedef struct qo_spline_f32 {
     const float *coef;        /* K times, N*(min, max, period), K*N*6 coefficients */
 } qo_spline_f32;
 
+/* Supported range: every position, velocity and acceleration a plan can produce between its
+ * keys must stay within +-QO_SPLINE_MAX_VALUE (units, units/s, units/s^2), so that the
+ * float32 sampler cannot overflow. qo_spline_init_f32() checks a bound on each segment
+ * (sum of |b_n|, sum of n |b_n| / h, sum of n (n-1) |b_n| / h^2) and refuses a plan beyond it
+ * with QO_E_RANGE: e.g. keys near FLT_MAX, or a step of 1e30 in 1 s, or 1 in 1e-16 s. */
+#define QO_SPLINE_MAX_VALUE 1e30f
+
 /* Floats of coef storage for N joints and K keys: K + 3N + 6KN. Returns 0 when n_joints == 0,
  * n_keys < 2 or the size overflows size_t. */
 size_t qo_spline_coef_len(size_t n_joints, size_t n_keys);
@@ -155,8 +162,9 @@ size_t qo_spline_coef_len(size_t n_joints, size_t n_keys);
  *   QO_E_NONFINITE a time, position, given velocity/acceleration or end velocity is NaN/Inf;
  *   QO_E_ORDER     times not strictly increasing (equal times included);
  *   QO_E_RANGE     a time difference overflows, the wrap period is not finite and > 0 while a
- *                  joint is wrapped, or a coefficient overflows float (keys too far apart for
- *                  their time step);
+ *                  joint is wrapped, a coefficient overflows float, or a segment could
+ *                  sample a position, velocity or acceleration beyond QO_SPLINE_MAX_VALUE
+ *                  (keys too large or too far apart for their time step; see above);
  *   QO_E_LIMIT     a position limit is NaN, or min > max for a joint.
  * On error *out is the empty plan (n_joints as given, n_keys == 0, coef NULL): sampling it
  * returns QO_E_STATE. The contents of coef are then unspecified.
@@ -172,7 +180,10 @@ qo_status qo_spline_init_f32(size_t n_joints, size_t n_keys, const float *t, con
  * clamped[j] is -1 (held at min), +1 (held at max) or 0.
  * Returns QO_OK; QO_E_NULL (s or pos NULL: the non-NULL outputs are zeroed when N is known);
  * QO_E_STATE (s->n_keys == 0: outputs zeroed); QO_E_NONFINITE (t is NaN/Inf: the first key
- * held at rest is written, limits applied).
+ * held at rest is written, limits applied); QO_E_RANGE (last line of defence, not reachable
+ * for a plan qo_spline_init_f32() accepted: a joint's sample would not be finite; that joint
+ * gets the key its segment started from, held at rest, limits applied, and the other joints
+ * their normal sample). QO_E_NONFINITE takes precedence.
  */
 qo_status qo_spline_sample_f32(const qo_spline_f32 *s, float t, float *pos, float *vel,
                                float *acc, int8_t *clamped);
