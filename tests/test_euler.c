@@ -526,6 +526,33 @@ static void test_just_off_singular_all24(void **state)
                     }
 }
 
+/* Range ends: every combination of a1, a3 in {-pi, -pi/2, 0, pi/2, pi} and a2 at the ends and
+ * middle of its range (ends are singular): recomposes, stays in range, flagged iff singular. */
+static void test_range_ends_all24(void **state)
+{
+    static const double e13[] = { -PI_D, -PI_D / 2, 0.0, PI_D / 2, PI_D };
+    int seq, i1, i2, i3;
+    (void)state;
+    for (seq = 0; seq < 24; seq++)
+        for (i1 = 0; i1 < 5; i1++)
+            for (i2 = 0; i2 < 3; i2++)
+                for (i3 = 0; i3 < 5; i3++) {
+                    double a2 = is_proper_name(seq) ? (i2 == 0 ? 0.0 : (i2 == 1 ? PI_D / 2 : PI_D))
+                                                    : (i2 == 0 ? -PI_D / 2 : (i2 == 1 ? 0.0 : PI_D / 2));
+                    dq r = ref_quat(seq, e13[i1], a2, e13[i3]);
+                    qo_quat_f32 qf = f_from_dq(r);
+                    qo_euler_f32 e;
+                    qo_euler_info_f32 info;
+                    double err;
+                    assert_int_equal(qo_quat_to_euler_f32(qf, (qo_euler_seq)seq, &e, &info), QO_OK);
+                    err = recompose_err(seq, e, dq_from_f(qf));
+                    check_ranges(seq, e, "range ends");
+                    if (err > 1e-5 || info.locked != (i2 != 1))
+                        fail_msg("range ends %s (%.9g %.9g %.9g) -> (%.9g %.9g %.9g) locked %d err %.3g",
+                                 k_names[seq], e13[i1], a2, e13[i3], e.a1, e.a2, e.a3, info.locked, err);
+                }
+}
+
 /* ---- bad inputs ------------------------------------------------------------------------- */
 static void expect_to_euler_error(qo_quat_f32 q, qo_euler_seq seq, float band, qo_status want,
                                   const char *what)
@@ -734,6 +761,7 @@ int main(void)
         cmocka_unit_test(test_exactly_singular_all24),
         cmocka_unit_test(test_singular_free_angle_choice),
         cmocka_unit_test(test_just_off_singular_all24),
+        cmocka_unit_test(test_range_ends_all24),
         cmocka_unit_test(test_to_euler_bad_inputs),
         cmocka_unit_test(test_near_through_singularity_all24),
         cmocka_unit_test(test_near_across_wrap_and_turns),

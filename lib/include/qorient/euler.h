@@ -37,9 +37,10 @@
  * singular value; locked = (margin <= band). At lock only the sum (or difference) of a1 and a3
  * is determined by the rotation. Our documented choice, scipy's: a3 = 0 and a1 takes all of
  * it, so the angles still compose to the input rotation. When the input is not exactly
- * singular but inside the band, forcing a3 = 0 moves the composed rotation by at most
- * 2*asin(2*sin(margin/2)) ~= 2*margin (rad): the part of the rotation that tells a1 from a3
- * has size sin(margin/2). The middle angle is never snapped; a1 is the best fit given a2, a3.
+ * singular but inside the band, forcing a3 = 0 moves the composed rotation by at most about
+ * 2*margin rad (2*asin(2*sin(margin/2)) for margin <= pi/3): the part of the rotation that
+ * tells a1 from a3 has size sin(margin/2). The middle angle is never snapped; a1 is the best
+ * fit given a2 and a3.
  *
  * Why QO_EULER_LOCK_BAND_F32 is 2e-6 rad (and not the 1e-3 of matrix-based code):
  *   - The middle angle and the margin are computed directly from the quaternion (Bernardes &
@@ -47,8 +48,8 @@
  *     margin LINEARLY. Measured (bench/accuracy_euler): an exactly singular rotation built by
  *     qo_quat_from_euler_f32 with the float nearest pi/2 (or pi) shows a margin <= 8.7e-8 rad;
  *     with every component further moved by up to 2 ulp (upstream float noise), <= 3.8e-7
- *     rad. An asin/acos form would turn 1e-7 of noise into sqrt(1e-7) ~ 3e-4 rad, which is why
- *     such code (PX4) needs 1e-3. 2e-6 leaves 5x headroom over the noisy case: every exactly
+ *     rad. An asin/acos form would turn 1e-7 of noise into sqrt(2e-7) ~ 4.5e-4 rad, which is
+ *     why such code (PX4) needs 1e-3. 2e-6 leaves 5x headroom over the noisy case: every exactly
  *     singular float32 input is flagged.
  *   - A flagged input recomposes within 2*margin <= 4e-6 rad (measured worst 3.2e-6 rad), inside
  *     the 1e-5 rad goal. A band of 1e-3 would let flagged inputs recompose up to 2e-3 rad off.
