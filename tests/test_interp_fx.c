@@ -43,36 +43,14 @@ static double rng_u(void) { return (double)(rng_next() >> 11) * (1.0 / 900719925
 static double rng_range(double lo, double hi) { return lo + (hi - lo) * rng_u(); }
 
 /* ---- double reference quaternion algebra ------------------------------------------------ */
-typedef struct { double w, x, y, z; } dq;
+#include "common/dq.h"
 
-static double dq_dot(dq a, dq b) { return a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z; }
 /* Sign-exact dot product for the short-way decision: the products of two Q1.30 values need
  * 60 bits, beyond double; long double (64-bit mantissa or more) holds them and their sum. */
 static long double dq_dot_exact(dq a, dq b)
 {
     return (long double)a.w * b.w + (long double)a.x * b.x + (long double)a.y * b.y +
            (long double)a.z * b.z;
-}
-static double dq_norm(dq a) { return sqrt(dq_dot(a, a)); }
-static dq dq_scale(dq a, double k) { dq r = { a.w * k, a.x * k, a.y * k, a.z * k }; return r; }
-static dq dq_neg(dq a) { return dq_scale(a, -1.0); }
-static dq dq_unit(dq a) { return dq_scale(a, 1.0 / dq_norm(a)); }
-static dq dq_add(dq a, dq b) { dq r = { a.w + b.w, a.x + b.x, a.y + b.y, a.z + b.z }; return r; }
-static dq dq_conj(dq a) { dq r = { a.w, -a.x, -a.y, -a.z }; return r; }
-static dq dq_mul(dq a, dq b)
-{
-    dq r;
-    r.w = a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z;
-    r.x = a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y;
-    r.y = a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x;
-    r.z = a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w;
-    return r;
-}
-static dq dq_axis_angle(double ax, double ay, double az, double ang)
-{
-    double n = sqrt(ax * ax + ay * ay + az * az), s = sin(ang / 2) / n;
-    dq r = { cos(ang / 2), ax * s, ay * s, az * s };
-    return r;
 }
 /* rotation angle (sign-free) between the orientations of a and b, any norm */
 static double rot_err(dq a, dq b)
@@ -139,11 +117,6 @@ static qo_quat_q30 x_from(dq q)
 static dq dq_from_x(qo_quat_q30 q)
 {
     dq r = { q.w / Q30, q.x / Q30, q.y / Q30, q.z / Q30 };
-    return r;
-}
-static qo_quat_f32 f_from(dq q)
-{
-    qo_quat_f32 r = { (float)q.w, (float)q.x, (float)q.y, (float)q.z };
     return r;
 }
 static dq dq_from_f(qo_quat_f32 q) { dq r = { q.w, q.x, q.y, q.z }; return r; }
