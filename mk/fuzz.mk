@@ -31,12 +31,15 @@ FUZZ_LIB_OBJ  := $(FUZZ_LIB_SRC:%.c=$(FUZZ_BUILD)/obj/%.o)
 
 .PHONY: fuzz fuzz-ci fuzz-build
 
-fuzz-build: $(FUZZ_BIN)
+# The packages first (tools/deps.sh fuzz: clang and its libclang-rt-N-dev), then the build.
+fuzz-build:
+	@sh tools/deps.sh fuzz
+	@$(MAKE) -s --no-print-directory $(FUZZ_BIN)
 
-fuzz: $(FUZZ_BIN)
+fuzz: fuzz-build
 	@FUZZ_BUILD=$(FUZZ_BUILD) sh fuzz/run.sh $(FUZZ_SECONDS) $(or $(FUZZ_TARGETS),$(FUZZ_NAMES))
 
-fuzz-ci: $(FUZZ_BIN)
+fuzz-ci: fuzz-build
 	@FUZZ_BUILD=$(FUZZ_BUILD) sh fuzz/run.sh $(FUZZ_CI_SECONDS) $(or $(FUZZ_TARGETS),$(FUZZ_NAMES))
 
 $(FUZZ_BUILD)/obj/lib/%.o: lib/%.c

@@ -15,13 +15,12 @@
  *               (200 Hz, 3 ms timeout, as on TCP: late replies are frequent there);
  *   SIGINT      SIGINT through qo_streamer_install_stop_signals at 0.8 s, mid-motion.
  * For every scenario the test checks:
- *   period   every deadline is either a tick or a counted overrun: ticks + overruns is at
- *            most elapsed * rate + 2 (nothing made up in a burst) and at least (elapsed -
- *            50 ms) * rate (nothing lost uncounted; the last 50 ms may be if the loop was
- *            preempted when the stop came); overruns at most 2 per faulted request plus half
- *            the deadlines - a gross bound only (a reconnection inside the deadline would
- *            break it), because a shared CI machine under ASan overruns on its own; the
- *            measured numbers are printed;
+ *   period   every deadline is either a tick or a counted overrun: ticks + overruns equals
+ *            the span the streamer accounted for / period, and that span ends after the stop
+ *            was requested and before the join returned (nothing made up in a burst, nothing
+ *            lost uncounted). Checked against the streamer's own account, so a loaded machine
+ *            cannot fail it; how many deadlines were overruns is timing, printed, not asserted
+ *            (bench/bench_jitter.c measures it);
  *   reported the failures are in the streamer's statistics (sink_errors, one per failed
  *            tick) and in the sink's own counter for that fault (timeouts, exceptions,
  *            failure actions, failed opens, bad frames);
@@ -504,8 +503,8 @@ static void run_scenario(enum scen sc)
     qo_modbus_sink_stats ms;
     qo_sim_stats sst;
     char spec[128], sim_spec[128];
-    double t0, t_stop, elapsed, worst;
-    uint64_t faults = 0, deadlines, lost, overrun_bound;
+    double t0, t_stop, t_req = 0.0, elapsed, worst;
+    uint64_t faults = 0, deadlines, lost;
     unsigned lines, instances, over;
     qo_status run_st;
     size_t i;
@@ -602,6 +601,7 @@ static void run_scenario(enum scen sc)
         break;
     case S_SIGINT:
         sleep_until_s(t0 + 0.8); /* mid-motion: the targets are far from the final ones */
+        t_req = mono_s() - t0;
         raise(SIGINT);
         faults = 1;
         break;
@@ -616,10 +616,13 @@ static void run_scenario(enum scen sc)
         break;
     }
 
-    if (sc != S_SIGINT) sleep_until_s(t0 + t_stop);
-    elapsed = mono_s() - t0;
-    qo_streamer_request_stop(&str);
+    if (sc != S_SIGINT) {
+        sleep_until_s(t0 + t_stop);
+        t_req = mono_s() - t0;
+        qo_streamer_request_stop(&str);
+    }
     run_st = qo_streamer_join(&str);
+    elapsed = mono_s() - t0;
     if (sc == S_SIGINT) {
         struct sigaction dfl;
         memset(&dfl, 0, sizeof dfl);
@@ -731,22 +734,26 @@ static void run_scenario(enum scen sc)
         break;
     }
 
-    /* period: every deadline is a tick or a counted overrun (none made up, none invented);
-     * the last 50 ms may be uncounted if the loop was preempted when the stop came */
+    /* period: every deadline is a tick or a counted overrun (none made up, none invented).
+     * Judged against the streamer's own account of the span it covered, and that span against
+     * this thread's clock, so that a loaded machine (threads kept off the CPU) cannot fail it:
+     * the span ends after the stop was requested and before the join returned. */
     deadlines = ss.ticks + ss.overruns;
-    if ((double)deadlines > elapsed * rate + 2.0 ||
-        (double)deadlines < (elapsed - 0.05) * rate)
-        fail_msg("%s: %llu ticks + %llu overruns in %.4f s at %.0f Hz", what,
-                 (unsigned long long)ss.ticks, (unsigned long long)ss.overruns, elapsed,
-                 rate);
+    {
+        const uint64_t period_ns = (uint64_t)(1e9 / rate + 0.5);
+        const double span_end = (double)(ss.origin_ns + ss.span_ns) * 1e-9;
+        if (deadlines != ss.span_ns / period_ns || ss.span_ns % period_ns != 0u)
+            fail_msg("%s: %llu ticks + %llu overruns, but the span covered is %llu ns at %.0f Hz",
+                     what, (unsigned long long)ss.ticks, (unsigned long long)ss.overruns,
+                     (unsigned long long)ss.span_ns, rate);
+        if (span_end < t0 + t_req || span_end > t0 + elapsed + 1.0 / rate)
+            fail_msg("%s: deadlines accounted up to %.4f s, stop requested at %.4f s, joined at "
+                     "%.4f s", what, span_end - t0, t_req, elapsed);
+    }
     /* one write per tick, plus the final write of qo_streamer_run */
     if (app.writes != ss.ticks + 1u) fail_msg("%s: %llu writes for %llu ticks", what,
                                          (unsigned long long)app.writes,
                                          (unsigned long long)ss.ticks);
-    overrun_bound = 2u * faults + deadlines / 2u;
-    if (ss.overruns > overrun_bound)
-        fail_msg("%s: %llu overruns, bound %llu", what, (unsigned long long)ss.overruns,
-                 (unsigned long long)overrun_bound);
 
     /* no step above the limit, over the whole run and every simulator instance */
     if (app.ms != NULL) qo_modbus_sink_free(app.ms);

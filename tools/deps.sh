@@ -1,6 +1,6 @@
 #!/bin/sh
 # Installs the Debian packages a make target needs, when they are missing.
-#   sh tools/deps.sh build|test|demo
+#   sh tools/deps.sh build|test|demo|fuzz
 # On Debian bookworm / Raspberry Pi OS: uses apt-get, through sudo when not root (sudo asks for
 # your password; nothing is installed without it). Set QO_NO_INSTALL=1 to only list what is
 # missing and fail instead.
@@ -8,11 +8,20 @@ set -eu
 BUILD="build-essential pkg-config libmodbus-dev libgpiod-dev libinih-dev"
 TEST="$BUILD libcmocka-dev"
 DEMO="$BUILD gnuplot-nox"
+# libFuzzer and the sanitizer runtimes are in libclang-rt-N-dev, only a Recommends of clang: named
+# for the clang that is installed (14 on Debian 12, 19 on Debian 13), after clang itself.
+FUZZ="$BUILD clang"
 case ${1:-build} in
 build) want=$BUILD;;
 test) want=$TEST;;
 demo) want=$DEMO;;
-*) echo "usage: tools/deps.sh build|test|demo" >&2; exit 2;;
+fuzz)
+    if ! dpkg -s clang >/dev/null 2>&1; then sh "$0" fuzz-clang || exit 1; fi
+    v=$(clang --version 2>/dev/null | sed -n 's/.*clang version \([0-9][0-9]*\)\..*/\1/p' | head -n 1)
+    [ -n "$v" ] || { echo "qorient: cannot tell the version of clang" >&2; exit 1; }
+    want="$FUZZ libclang-rt-$v-dev";;
+fuzz-clang) want=$FUZZ;;
+*) echo "usage: tools/deps.sh build|test|demo|fuzz" >&2; exit 2;;
 esac
 missing=""
 for p in $want; do

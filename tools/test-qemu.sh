@@ -39,8 +39,10 @@ done
 
 pkgs="make pkg-config"
 [ "$need_cm" = 1 ] && pkgs="$pkgs gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm"
-case $need_linux in *arm64*) pkgs="$pkgs gcc-aarch64-linux-gnu qemu-user";; esac
-case $need_linux in *armhf*) pkgs="$pkgs gcc-arm-linux-gnueabihf qemu-user";; esac
+# The cross C libraries are only Recommends of the cross gcc: named, or a --no-install-recommends
+# install leaves the compiler falling back to the host's /usr/include.
+case $need_linux in *arm64*) pkgs="$pkgs gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user";; esac
+case $need_linux in *armhf*) pkgs="$pkgs gcc-arm-linux-gnueabihf libc6-dev-armhf-cross qemu-user";; esac
 command -v dpkg >/dev/null 2>&1 || unavailable "not a Debian system (dpkg missing); needs:$pkgs"
 missing=""
 for p in $pkgs; do

@@ -147,6 +147,8 @@ static void merge_pending(qo_streamer *s)
     l->stats_dropped += p->stats_dropped;
     l->sink_errors_consecutive = p->sink_errors_consecutive;
     if (p->period_err_max_ns > l->period_err_max_ns) l->period_err_max_ns = p->period_err_max_ns;
+    l->origin_ns = s->origin_ns;
+    l->span_ns = s->next_ns - s->origin_ns; /* consistent with the counts merged here */
     for (i = 0; i < s->pend_n; i++) qo_jitter_hist_add(&s->hist, s->pend_lat[i]);
     s->pend_n = 0;
     {
@@ -267,6 +269,19 @@ static void rt_setup(qo_streamer *s, int *restore_policy, struct sched_param *re
     prefault_stack();
 }
 
+/* At the stop, the deadlines that passed since the last tick (a loaded machine may have kept the
+ * thread off the CPU) are overruns too: every deadline up to the stop is accounted for. */
+static void account_passed_deadlines(qo_streamer *s)
+{
+    uint64_t now = s->cfg.now(s->cfg.clock_ctx);
+    if (now >= s->next_ns) {
+        uint64_t passed = (now - s->next_ns) / s->period_ns + 1u;
+        s->next_ns += passed * s->period_ns;
+        s->pend.overruns += passed;
+        s->pend.overrun_events++;
+    }
+}
+
 qo_status qo_streamer_finish(qo_streamer *s)
 {
     qo_status st;
@@ -289,6 +304,7 @@ qo_status qo_streamer_run(qo_streamer *s)
     s->next_ns = s->origin_ns;
     s->have_last_wake = 0;
     while (!s->stop) (void)qo_streamer_tick(s);
+    account_passed_deadlines(s);
     st = qo_streamer_finish(s);
     /* Publish what is still parked (the reader may have held the lock at the last tick). */
     pthread_mutex_lock(&s->lock);

@@ -146,6 +146,10 @@ typedef struct qo_streamer_stats {
     uint64_t lat_count;            /* latency samples in the histogram */
     uint64_t lat_p50_ns, lat_p99_ns, lat_max_ns; /* wake latency: nearest-rank, bin resolution */
     uint64_t period_err_max_ns;    /* max |interval between consecutive ticks - period|, skips excluded */
+    uint64_t span_ns;              /* every deadline in [origin, origin + span_ns) was a tick or an
+                                    * overrun: ticks + overruns == span_ns / period (qo_streamer_run
+                                    * also counts the deadlines that passed before it saw the stop) */
+    uint64_t origin_ns;            /* the clock's time of trajectory time 0 (cfg.now's clock) */
 } qo_streamer_stats;
 
 /* RT setup outcome flags (qo_streamer_rt_report). */

@@ -187,23 +187,24 @@ aarch64|armhf)
     QRUN="$QEMU -cpu $QCPU -L /usr/$TRIPLE -E LD_LIBRARY_PATH=/usr/$TRIPLE/lib:$L"
     # LeakSanitizer cannot stop the world under qemu-user (it exits 1 after the report): off.
     export ASAN_OPTIONS=detect_leaks=0
+    # The command runs as the target's build/qorient under qemu-user (binfmt_misc is not
+    # assumed), through $QORIENT: for the shell tests and for the cmocka programs that run the
+    # command as a child (test_fuzz_regress's cli_* cases), never the host's build.
+    QW=$PWD/$OUT/qorient-qemu
+    printf '#!/bin/sh\nexec %s %s "$@"\n' "$QRUN" "$PWD/$OUT/qorient" >"$QW"
+    chmod +x "$QW"
+    QORIENT=$QW; export QORIENT
     for src in tests/test_*.c; do
         n=$(basename "$src" .c)
         if ! wanted "$n"; then skip_it "$n" "QEMU_SKIP"; continue; fi
         if [ ! -f "$OUT/tests/$n" ]; then build_failed "$n" "$LOGS/build.log"; continue; fi
         run "$n" bin $QRUN "$OUT/tests/$n"
     done
-    # Shell tests drive the command through $QORIENT: a wrapper runs the target's build/qorient
-    # under qemu-user (binfmt_misc is not assumed).
-    QW=$PWD/$OUT/qorient-qemu
-    printf '#!/bin/sh\nexec %s %s "$@"\n' "$QRUN" "$PWD/$OUT/qorient" >"$QW"
-    chmod +x "$QW"
     for sh in tests/test_*.sh; do
         n=$(basename "$sh" .sh)
         if ! wanted "$n"; then skip_it "$n" "QEMU_SKIP"; continue; fi
         if host_cc_test "$sh"; then skip_it "$n" "builds and runs a program with the host's cc"; continue; fi
         if [ ! -f "$OUT/qorient" ]; then build_failed "$n" "$LOGS/build.log"; continue; fi
-        QORIENT=$QW; export QORIENT
         run "$n" sh sh "$sh"
     done
     ;;
