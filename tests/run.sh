@@ -1,9 +1,10 @@
 #!/bin/sh
 # Runs the cmocka test programs and the shell tests given on the command line
 # (programs first, then `--`, then shell scripts), adds up what each reports and prints
+# a labelled line per program ("== NAME: N passed, M failed"), a summary of them at the end and
 # one closing line "N passed, M failed". Exit status 1 if anything failed or a program
 # crashed (a crash counts as one failure even if cmocka had no chance to report it).
-passed=0; failed=0; crashed=""
+passed=0; failed=0; crashed=""; summary=""
 tmp=${TMPDIR:-/tmp}/qorient-run.$$
 trap 'rm -f "$tmp"' EXIT INT TERM
 mode=bin
@@ -21,9 +22,14 @@ for t in "$@"; do
     p=${p:-0}; f=${f:-0}
     passed=$((passed + p)); failed=$((failed + f))
     if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
-        failed=$((failed + 1)); crashed="$crashed $t(rc=$rc)"
+        failed=$((failed + 1)); crashed="$crashed $t(rc=$rc)"; f="$f+crash"
     fi
+    line=$(printf '%-28s %5s passed, %s failed' "$(basename "$t"):" "$p" "$f")
+    echo "== $line"
+    summary="$summary
+  $line"
 done
+echo "== summary per program:$summary"
 [ -n "$crashed" ] && echo "crashed or exited non-zero without a report:$crashed"
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ] && [ "$passed" -gt 0 ]
