@@ -10,7 +10,11 @@
 #   lib/src/*.c            portable core; *_fx.c files are the fixed-point core (no float at all)
 #   ports/mock/*.c         recording sink (host only)
 #   ports/linux/*.c        Linux ports (libmodbus, libgpiod, streamer, simulator)
-#   ports/linux/cli/*.c    the `qorient` command
+#   cli/*.c                the `qorient` command: main, option/number parsing and the portable
+#                          subcommands (convert, slerp, plan, gimbal), which need only the core
+#   cli/linux/*.c          its Linux-only subcommands (stream, sim): they need the Linux ports
+#                          (libmodbus, libgpiod, threads); kept apart so the portable part can be
+#                          built and fuzzed without them
 #   tests/test_*.c         one cmocka program each; tests/common/*.c linked into all of them
 #   tests/test_*.sh        shell tests of the command, run with build/qorient
 #   bench/*.c              figure programs (accuracy_*.c run by `make figures`)
@@ -40,7 +44,7 @@ PORT_DEFS  += $(shell $(PKG_CONFIG) --atleast-version=2 libgpiod 2>/dev/null && 
 CORE_SRC  := $(sort $(wildcard lib/src/*.c))
 FX_SRC    := $(sort $(wildcard lib/src/*_fx.c))
 PORT_SRC  := $(sort $(wildcard ports/mock/*.c ports/linux/*.c))
-CLI_SRC   := $(sort $(wildcard ports/linux/cli/*.c))
+CLI_SRC   := $(sort $(wildcard cli/*.c cli/linux/*.c))
 TEST_SRC  := $(sort $(wildcard tests/test_*.c))
 TEST_COMMON := $(sort $(wildcard tests/common/*.c))
 TEST_SH   := $(sort $(wildcard tests/test_*.sh))
@@ -69,6 +73,10 @@ $(BUILD)/obj/lib/%.o: lib/%.c
 $(BUILD)/obj/ports/%.o: ports/%.c
 	@mkdir -p $(@D)
 	$(CC) -MMD -MP $(STD) $(WARN) $(FPFLAGS) $(OPT) $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports $(PKG_CFLAGS) -c $< -o $@
+
+$(BUILD)/obj/cli/%.o: cli/%.c
+	@mkdir -p $(@D)
+	$(CC) -MMD -MP $(STD) $(WARN) $(FPFLAGS) $(OPT) $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports -Icli $(PKG_CFLAGS) -c $< -o $@
 
 $(BUILD)/libqorient.a: $(CORE_OBJ)
 	@mkdir -p $(@D)

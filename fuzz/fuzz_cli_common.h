@@ -1,5 +1,5 @@
 /*
- * fuzz/fuzz_cli_common.h - running a `qorient` subcommand entry point (ports/linux/cli/cli.h)
+ * fuzz/fuzz_cli_common.h - running a `qorient` subcommand entry point (cli/cli.h)
  * inside a fuzz target: the fuzzer's bytes become the command's input (a temporary file, given
  * as FILE or put on fd 0 under stdin), its standard output is captured in a second temporary
  * file and checked, its standard error goes to /dev/null (set QO_FUZZ_VERBOSE=1 to keep it).
@@ -21,7 +21,7 @@
 #include <unistd.h>
 
 #include "fuzz_common.h"
-#include "linux/cli/cli.h"
+#include "../cli/cli.h"
 
 typedef int (*qo_fz_cli_fn)(int argc, char **argv);
 

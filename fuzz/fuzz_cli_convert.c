@@ -1,6 +1,6 @@
 /*
  * fuzz/fuzz_cli_convert.c - `qorient convert FROM TO [--degrees] [--fixed]` and
- * `qorient slerp [--fixed]` (ports/linux/cli/convert.c) end to end: the first byte picks the
+ * `qorient slerp [--fixed]` (cli/convert.c) end to end: the first byte picks the
  * subcommand, the representations and the options, the rest is the command's standard input.
  * Properties (DESIGN.md's text contract): exit status 0 or 1; every output line is a list of
  * finite numbers, "error: REASON", or a copied blank/'#' line; one output line per input line.

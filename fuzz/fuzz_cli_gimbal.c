@@ -1,5 +1,5 @@
 /*
- * fuzz/fuzz_cli_gimbal.c - `qorient gimbal` (ports/linux/cli/gimbal.c over qorient/gimbal.h)
+ * fuzz/fuzz_cli_gimbal.c - `qorient gimbal` (cli/gimbal.c over qorient/gimbal.h)
  * end to end: the first two bytes pick the axis sequence, rate, interpolation, hold band,
  * rate limit and --degrees; the rest is the keyframe text 't,w,x,y,z' given as FILE.
  * Properties: exit status 0 or 1 (valid options); every output row is a list of finite

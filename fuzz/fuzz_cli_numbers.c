@@ -1,13 +1,13 @@
 /*
  * fuzz/fuzz_cli_numbers.c - the command's number parser qo_cli_parse_numbers
- * (ports/linux/cli/cli.h) on raw text: first byte = max (0..31), the rest the line, copied
+ * (cli/cli.h) on raw text: first byte = max (0..31), the rest the line, copied
  * into an exactly sized buffer (and out[] exactly max doubles) so ASan sees any overrun.
  * Properties from the header: returns 0, -1 or -2; *n <= max; a blank or '#' line gives
  * *n == 0 with 0; on 0 the fields are exactly the non-empty comma/blank separated tokens and
  * each value is what strtod reads from its token (an independent split done here).
  */
 #include "fuzz_common.h"
-#include "linux/cli/cli.h"
+#include "../cli/cli.h"
 
 #ifndef QO_FUZZ_ENTRY
 #define QO_FUZZ_ENTRY LLVMFuzzerTestOneInput

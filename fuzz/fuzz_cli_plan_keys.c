@@ -1,5 +1,5 @@
 /*
- * fuzz/fuzz_cli_plan_keys.c - `qorient plan` over keyframes (ports/linux/cli/plan_keys.c,
+ * fuzz/fuzz_cli_plan_keys.c - `qorient plan` over keyframes (cli/plan_keys.c,
  * qorient/spline.h underneath) end to end: the first two bytes pick the profile, columns,
  * end condition, derivative rule, rate, limits, wrap and --fixed; the rest is the keyframe
  * CSV given as FILE. Properties: exit status 0 or 1 (valid options; 2 only with no output);

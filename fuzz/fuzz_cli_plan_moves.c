@@ -1,6 +1,6 @@
 /*
  * fuzz/fuzz_cli_plan_moves.c - `qorient plan --profile trapezoid|scurve` (the limited moves of
- * ports/linux/cli/plan_moves.c over qorient/motion.h) end to end: the first two bytes pick
+ * cli/plan_moves.c over qorient/motion.h) end to end: the first two bytes pick
  * the profile, the limits (from a small table, one value or one per joint), rate, sync, joint
  * limits, wrap, --degrees and --fixed; the rest is the target CSV given as FILE.
  * Properties: exit status 0 or 1 (the options are valid); every output row is a list of

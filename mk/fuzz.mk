@@ -26,7 +26,7 @@ FUZZ_CFLAGS   := $(STD) $(WARN) $(FPFLAGS) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-
 FUZZ_SRC      := $(sort $(wildcard fuzz/fuzz_*.c))
 FUZZ_NAMES    := $(FUZZ_SRC:fuzz/fuzz_%.c=%)
 FUZZ_BIN      := $(FUZZ_NAMES:%=$(FUZZ_BUILD)/fuzz_%)
-FUZZ_LIB_SRC  := $(CORE_SRC) $(PORT_SRC) $(filter-out ports/linux/cli/main.c,$(CLI_SRC))
+FUZZ_LIB_SRC  := $(CORE_SRC) $(PORT_SRC) $(filter-out cli/main.c,$(CLI_SRC))
 FUZZ_LIB_OBJ  := $(FUZZ_LIB_SRC:%.c=$(FUZZ_BUILD)/obj/%.o)
 
 .PHONY: fuzz fuzz-ci fuzz-build
@@ -49,6 +49,10 @@ $(FUZZ_BUILD)/obj/lib/%.o: lib/%.c
 $(FUZZ_BUILD)/obj/ports/%.o: ports/%.c
 	@mkdir -p $(@D)
 	$(FUZZ_CC) -MMD -MP $(FUZZ_CFLAGS) $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports $(PKG_CFLAGS) -c $< -o $@
+
+$(FUZZ_BUILD)/obj/cli/%.o: cli/%.c
+	@mkdir -p $(@D)
+	$(FUZZ_CC) -MMD -MP $(FUZZ_CFLAGS) $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports -Icli $(PKG_CFLAGS) -c $< -o $@
 
 $(FUZZ_BUILD)/libqo_fuzz.a: $(FUZZ_LIB_OBJ)
 	rm -f $@ && ar rcs $@ $^

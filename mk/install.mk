@@ -47,7 +47,7 @@ QO_SOFILE  := libqorient.so.$(QO_VERSION)
 CORE_HDR  := $(sort $(wildcard lib/include/qorient/*.h))
 LINUX_HDR := $(sort $(wildcard ports/linux/*.h))
 MOCK_HDR  := $(sort $(wildcard ports/mock/*.h))
-MANPAGE   := ports/linux/cli/qorient.1
+MANPAGE   := cli/qorient.1
 
 .PHONY: install uninstall install-check shared examples
 

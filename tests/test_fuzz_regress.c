@@ -31,7 +31,7 @@
 /* The command's targets run build/qorient (the test is not linked with the CLI objects);
  * its number parser is compiled in from its source. */
 #define QO_FUZZ_CLI_EXEC 1
-#include "../ports/linux/cli/util.c"
+#include "../cli/util.c"
 
 #define QO_FUZZ_ENTRY fuzz_one_quat
 #include "../fuzz/fuzz_quat.c"

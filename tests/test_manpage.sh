@@ -1,9 +1,9 @@
 #!/bin/sh
-# The manual page ports/linux/cli/qorient.1 against the command: its version, every subcommand
+# The manual page cli/qorient.1 against the command: its version, every subcommand
 # has its section, every option any --help text shows is documented in the page, and the page
 # formats without a warning (groff -ww, when groff is installed; mandoc -T lint when mandoc is).
 Q=${QORIENT:-build/qorient}
-MAN=ports/linux/cli/qorient.1
+MAN=cli/qorient.1
 pass=0; fail=0
 ok()  { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }

@@ -1,6 +1,6 @@
 /* `qorient sim`: the simulated drive bank as a command, for demos and for testing a
  * streamer (or any Modbus master) without hardware. */
-#include "cli.h"
+#include "../cli.h"
 
 #include <errno.h>
 #include <getopt.h>

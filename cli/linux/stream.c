@@ -7,7 +7,7 @@
  * their velocities) and hands the targets to the sink. Progress on a terminal, a summary at
  * the end, a clean stop on SIGINT/SIGTERM leaving the drives on the last sampled target.
  */
-#include "cli.h"
+#include "../cli.h"
 
 #include <errno.h>
 #include <math.h>
