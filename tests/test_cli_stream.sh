@@ -65,5 +65,32 @@ printf '0,0,0\n' | $Q stream --map $MAP --modbus "tcp://127.0.0.1:$PORT" --profi
 $Q stream --map $MAP "$T/keys" > /dev/null 2>&1; [ $? = 2 ] && ok || bad "no --modbus/--gpio accepted"
 $Q stream --help | grep -q -- "--dry-run" && ok || bad "--help does not document --dry-run"
 
+# 4. Success means the drive holds it (the issue's case): a 0.1 s plan moves j1 to 3.0, far
+#    beyond max_step 0.05 per tick. The stream keeps sending until the drive holds 3.0 (exit
+#    0, the simulator's last logged j1 is 3), and with a --settle too short for the catch-up
+#    it exits 1 naming j1 and how far it is short.
+start_sim() {
+    $Q sim --map $MAP --listen tcp://127.0.0.1:0 --lag 0 --log "$T/log2.csv" --duration 60 > "$T/sim2.out" 2>&1 &
+    SIMPID=$!
+    i=0
+    while ! grep -q '^listening' "$T/sim2.out" 2>/dev/null && [ $i -lt 100 ]; do sleep 0.05; i=$((i + 1)); done
+    PORT=$(sed -n 's/^listening tcp:\/\/127.0.0.1:\([0-9]*\)$/\1/p' "$T/sim2.out")
+}
+stop_sim() { kill "$SIMPID" 2>/dev/null; wait "$SIMPID" 2>/dev/null; SIMPID=""; }
+printf '0,0,0,0,0,0,0\n0.1,3,0,0,0,0,0\n' > "$T/far.csv"
+start_sim
+$Q stream --map $MAP --modbus "tcp://127.0.0.1:$PORT" --rate 100 --profile linear --hold 0 --no-rt --quiet \
+    "$T/far.csv" > "$T/out" 2> "$T/err"; rc=$?
+stop_sim
+[ "$rc" = 0 ] && grep -q 'final ok$' "$T/out" && ok || bad "held final target: rc=$rc $(cat "$T/out" "$T/err")"
+j1=$(awk -F, '$5 == "j1" { v = $6 } END { print v }' "$T/log2.csv")
+[ "$j1" = 3 ] && ok || bad "the drive's last j1 target is '$j1', not 3"
+start_sim
+$Q stream --map $MAP --modbus "tcp://127.0.0.1:$PORT" --rate 100 --profile linear --hold 0 --no-rt --quiet \
+    --settle 0.1 "$T/far.csv" > "$T/out" 2> "$T/err"; rc=$?
+stop_sim
+[ "$rc" = 1 ] && grep -q 'final short$' "$T/out" && grep -q "j1 at [0-9.]*, short by [0-9.]*;" "$T/err" &&
+    ! grep -q "j2 at" "$T/err" && ok || bad "short of the final target: rc=$rc $(cat "$T/out" "$T/err")"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -1016,6 +1016,115 @@ static void test_readback_exception_fallback(void **state)
     fclose(log);
 }
 
+/* "Done" is the drive holding the final target: a move far beyond max_step per tick ends
+ * only when the catch-up arrived and reads back (the issue's case: j1 to 3.0 with max_step
+ * 0.05 after one tick of the plan). Checked against the simulator's own target registers. */
+static void test_settle_until_held(void **state)
+{
+    static const struct {
+        const char *name;
+        qo_sim_fault fault;
+        int unreadable;
+    } cases[] = {
+        { "clean", { QO_SIM_FAULT_NONE, 0, 0.0, 0, 0 }, 0 },
+        { "drop 20%", { QO_SIM_FAULT_DROP, 0, 0.2, 0, 0 }, 0 },
+        { "exception 20%", { QO_SIM_FAULT_EXCEPTION, 0, 0.2, 0, 0 }, 0 },
+        { "targets unreadable (feedback confirms)", { QO_SIM_FAULT_NONE, 0, 0.0, 0, 0 }, 1 },
+    };
+    /* 5.0 is clamped to max 3.2; -0.0004 rounds to 0 counts (scale 1000) */
+    const float final[NJ] = { 3.0f, -2.0f, 5.0f, -0.0004f, 0.001f, 0.0f };
+    const double goal[NJ] = { 3.0, -2.0, 3.2, 0.0, 0.001, 0.0 };
+    size_t c, i;
+    (void)state;
+    load_six();
+    for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        qo_sim *sim = NULL;
+        qo_sim_settings ss = qo_sim_settings_default;
+        qo_modbus_sink *s = NULL;
+        qo_modbus_sink_settings set = test_settings();
+        qo_modbus_settle_report rep;
+        float zero[NJ] = { 0 };
+        double dl;
+        char spec[64];
+        qo_status st;
+        ss.lag_s = 0.0;
+        ss.seed = 11;
+        ss.targets_unreadable = cases[c].unreadable;
+        assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, &ss, &sim), QO_OK);
+        snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+        set.fail_threshold = 1000; /* faults must not end the link: settle retries */
+        assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+        assert_int_equal(qo_modbus_sink_write(s, zero, NJ, 0), QO_OK);
+        assert_int_equal(qo_sim_set_fault(sim, &cases[c].fault), QO_OK);
+        /* the plan's last tick: one write, far short of 3.0 (max_step 0.05) */
+        (void)qo_modbus_sink_write(s, final, NJ, 1);
+        /* 3.2 / 0.05 = 64 ticks for the slowest joint: 2 x 65 ticks of 2 ms + 0.5 s */
+        dl = qo_modbus_sink_settle_time(s, final, NJ, 0.002);
+        if (fabs(dl - (2.0 * 65 * 0.002 + QO_MODBUS_SETTLE_SLACK_S)) > 2 * 0.002 + 1e-9)
+            fail_msg("%s: default deadline %.6f s", cases[c].name, dl);
+        /* a deadline of 0 writes nothing and names the joints that are short */
+        st = qo_modbus_sink_settle(s, final, NJ, 0.002, 0.0, &rep);
+        assert_int_equal(st, QO_E_TIMEOUT);
+        assert_int_equal(rep.reached, 0);
+        assert_int_equal(rep.ticks, 0);
+        if (cases[c].fault.kind == QO_SIM_FAULT_NONE && (!rep.short_of[0] || !rep.short_of[2] || rep.short_of[5]))
+            fail_msg("%s: short joints %d %d %d", cases[c].name, rep.short_of[0], rep.short_of[2], rep.short_of[5]);
+        st = qo_modbus_sink_settle(s, final, NJ, 0.002, 10.0, &rep);
+        qo_sim_stop(sim); /* before the checks: the registers are read after the last request */
+        sim = NULL;
+        if (st != QO_OK) fail_msg("%s: settle %s after %.3f s", cases[c].name, qo_status_str(st), rep.elapsed_s);
+        assert_int_equal(rep.reached, 1);
+        assert_true(rep.ticks >= 63); /* 3.15 left at 0.05 per tick */
+        for (i = 0; i < NJ; i++) {
+            if (rep.short_of[i] || fabs(rep.goal[i] - goal[i]) > 1e-12 || rep.held[i] != rep.goal[i])
+                fail_msg("%s: joint %u goal %.9g held %.9g short %d, want goal %.9g", cases[c].name,
+                         (unsigned)i, rep.goal[i], rep.held[i], rep.short_of[i], goal[i]);
+        }
+        qo_modbus_sink_free(s);
+    }
+}
+
+/* The same, against the simulator's registers (an independent reading of what it holds). */
+static void test_settle_matches_drive(void **state)
+{
+    const float final[NJ] = { 3.0f, -2.0f, 1.0f, 0.5f, 0.25f, -3.0f };
+    qo_sim *sim;
+    qo_modbus_sink *s = NULL;
+    qo_modbus_sink_settings set = test_settings();
+    qo_modbus_settle_report rep;
+    char spec[64];
+    size_t i;
+    (void)state;
+    load_six();
+    sim = start_tcp_sim(NULL, NULL, 0.0, spec, sizeof spec);
+    assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+    assert_int_equal(qo_modbus_sink_settle(s, final, NJ, 0.001,
+                                           qo_modbus_sink_settle_time(s, final, NJ, 0.001), &rep),
+                     QO_OK);
+    for (i = 0; i < NJ; i++) {
+        double tgt, pos;
+        assert_int_equal(qo_sim_get_joint(sim, i, &tgt, &pos), QO_OK);
+        if (tgt != (double)lround((double)final[i] * 1000.0) / 1000.0)
+            fail_msg("joint %u: drive holds %.9g, want %.9g", (unsigned)i, tgt, (double)final[i]);
+    }
+    /* bad arguments: report written, nothing sent */
+    assert_int_equal(qo_modbus_sink_settle(s, final, NJ - 1, 0.001, 1.0, &rep), QO_E_RANGE);
+    assert_int_equal(rep.reached, 0);
+    assert_int_equal(qo_modbus_sink_settle(s, final, NJ, 0.0, 1.0, &rep), QO_E_LIMIT);
+    assert_int_equal(qo_modbus_sink_settle(s, final, NJ, 0.001, NAN, &rep), QO_E_LIMIT);
+    assert_int_equal(qo_modbus_sink_settle(NULL, final, NJ, 0.001, 1.0, &rep), QO_E_NULL);
+    assert_int_equal(qo_modbus_sink_settle(s, final, NJ, 0.001, 1.0, NULL), QO_E_NULL);
+    {
+        float bad[NJ] = { 0, 0, NAN, 0, 0, 0 };
+        assert_int_equal(qo_modbus_sink_settle(s, bad, NJ, 0.001, 1.0, &rep), QO_E_NONFINITE);
+        assert_true(isnan(rep.held[0]));
+    }
+    qo_modbus_sink_close(s);
+    assert_int_equal(qo_modbus_sink_settle(s, final, NJ, 0.001, 1.0, &rep), QO_E_STATE);
+    qo_modbus_sink_free(s);
+    qo_sim_stop(sim);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1031,6 +1140,8 @@ int main(void)
         cmocka_unit_test(test_rtu_late_reply),
         cmocka_unit_test(test_drive_restart_target_zero),
         cmocka_unit_test(test_readback_exception_fallback),
+        cmocka_unit_test(test_settle_until_held),
+        cmocka_unit_test(test_settle_matches_drive),
     };
     return cmocka_run_group_tests_name("modbus_sink", tests, NULL, NULL);
 }

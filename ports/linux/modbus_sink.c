@@ -843,6 +843,149 @@ qo_status qo_modbus_sink_read_feedback(qo_modbus_sink *s, float *out, size_t n)
     return st;
 }
 
+/* The raw (register-unit) value the drive must hold for target v: clamped, saturated to
+ * the type, rounded by packing; the rate limit does not apply to a goal. */
+static double goal_raw(const qo_modbus_sink *s, size_t i, double v)
+{
+    const qo_regmap_joint *j = &s->map->joints[i];
+    uint16_t regs[2];
+    double raw, packed;
+    if (v < j->min) v = j->min;
+    if (v > j->max) v = j->max;
+    (void)qo_reg_raw_from_value(&j->fmt, v, &raw);
+    if (raw < s->js[i].tlo) raw = s->js[i].tlo;
+    if (raw > s->js[i].thi) raw = s->js[i].thi;
+    (void)qo_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
+    return packed;
+}
+
+static int joint_holds(const qo_modbus_sink *s, size_t i, double goal)
+{
+    const struct jstate *q = &s->js[i];
+    return q->have && !q->uncertain && q->lo == goal && q->hi == goal;
+}
+
+static int args_ok(const qo_modbus_sink *s, const float *final, size_t n)
+{
+    size_t i;
+    if (s == NULL || final == NULL || n != s->map->n_joints) return 0;
+    for (i = 0; i < n; i++)
+        if (!isfinite(final[i])) return 0;
+    return 1;
+}
+
+double qo_modbus_sink_settle_time(const qo_modbus_sink *s, const float *final, size_t n,
+                                  double period_s)
+{
+    double ticks = 1.0;
+    size_t i;
+    if (!args_ok(s, final, n) || !(period_s > 0.0) || !isfinite(period_s))
+        return QO_MODBUS_SETTLE_SLACK_S;
+    for (i = 0; i < n; i++) {
+        const struct jstate *q = &s->js[i];
+        double g = goal_raw(s, i, (double)final[i]), d, t;
+        if (!q->have || q->step <= 0.0) continue;
+        d = fmax(fabs(g - q->lo), fabs(g - q->hi));
+        t = ceil(d / q->step) + 1.0;
+        if (t > ticks) ticks = t;
+    }
+    return 2.0 * ticks * period_s + QO_MODBUS_SETTLE_SLACK_S;
+}
+
+static double since_s(const struct timespec *t0)
+{
+    struct timespec now;
+    now_ts(&now);
+    return (double)(now.tv_sec - t0->tv_sec) + (double)(now.tv_nsec - t0->tv_nsec) * 1e-9;
+}
+
+/* Reads every joint's target back (the read-back of a fault, forced): the value read is
+ * what the drive holds. QO_OK or the first bus error. */
+static qo_status confirm_targets(qo_modbus_sink *s)
+{
+    size_t g, i;
+    for (i = 0; i < s->map->n_joints; i++) s->js[i].uncertain = 1;
+    s->drained = 1; /* the last write was answered: nothing is late on the line */
+    for (g = 0; g < s->n_groups; g++) {
+        qo_status st;
+        if (g > 0 && s->groups[g].slave == s->groups[g - 1].slave) continue;
+        st = settle_slave(s, g);
+        if (st != QO_OK) return st;
+    }
+    return QO_OK;
+}
+
+static void settle_report(const qo_modbus_sink *s, const double *goal,
+                          qo_modbus_settle_report *out)
+{
+    size_t i;
+    out->reached = 1;
+    for (i = 0; i < out->n; i++) {
+        const qo_regmap_joint *j = &s->map->joints[i];
+        const struct jstate *q = &s->js[i];
+        double v = NAN, gv = NAN;
+        (void)qo_reg_value_from_raw(&j->fmt, goal[i], &gv);
+        if (q->have && q->lo == q->hi) (void)qo_reg_value_from_raw(&j->fmt, q->lo, &v);
+        out->goal[i] = gv;
+        out->held[i] = v;
+        out->short_of[i] = !joint_holds(s, i, goal[i]);
+        if (out->short_of[i]) out->reached = 0;
+    }
+}
+
+qo_status qo_modbus_sink_settle(qo_modbus_sink *s, const float *final, size_t n,
+                                double period_s, double deadline_s,
+                                qo_modbus_settle_report *out)
+{
+    double goal[QO_REGMAP_MAX_JOINTS];
+    struct timespec t0, next;
+    int64_t period_ns;
+    size_t i;
+    if (out == NULL) return QO_E_NULL;
+    memset(out, 0, sizeof *out);
+    for (i = 0; i < QO_REGMAP_MAX_JOINTS; i++) out->goal[i] = out->held[i] = NAN;
+    out->deadline_s = deadline_s;
+    if (s == NULL || final == NULL) return QO_E_NULL;
+    if (n != s->map->n_joints) return QO_E_RANGE;
+    if (!args_ok(s, final, n)) return QO_E_NONFINITE;
+    if (!(period_s > 0.0) || !isfinite(period_s) || !(deadline_s >= 0.0) || !isfinite(deadline_s))
+        return QO_E_LIMIT;
+    if (s->closed || s->disabled) return QO_E_STATE;
+    out->n = n;
+    for (i = 0; i < n; i++) goal[i] = goal_raw(s, i, (double)final[i]);
+    period_ns = (int64_t)(period_s * 1e9 + 0.5);
+    if (period_ns < 1) period_ns = 1;
+    now_ts(&t0);
+    next = t0;
+    for (;;) {
+        int all = s->connected;
+        for (i = 0; i < n && all; i++) all = joint_holds(s, i, goal[i]);
+        /* Acknowledged is not yet held: confirm by reading the targets back. */
+        if (all && confirm_targets(s) == QO_OK) {
+            for (i = 0; i < n && all; i++) all = joint_holds(s, i, goal[i]);
+            if (all) break;
+        }
+        if (since_s(&t0) >= deadline_s) break;
+        if (!s->connected) (void)qo_modbus_sink_service(s);
+        if (s->connected) {
+            (void)qo_modbus_sink_write(s, final, n, out->ticks);
+            out->ticks++;
+        }
+        next.tv_nsec += (long)(period_ns % 1000000000);
+        next.tv_sec += (time_t)(period_ns / 1000000000);
+        if (next.tv_nsec >= 1000000000L) {
+            next.tv_sec++;
+            next.tv_nsec -= 1000000000L;
+        }
+        while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, NULL) == EINTR) {
+        }
+        if (s->closed || s->disabled) break;
+    }
+    out->elapsed_s = since_s(&t0);
+    settle_report(s, goal, out);
+    return out->reached ? QO_OK : QO_E_TIMEOUT;
+}
+
 qo_status qo_modbus_sink_get_stats(const qo_modbus_sink *s, qo_modbus_sink_stats *out)
 {
     if (out == NULL) return QO_E_NULL;

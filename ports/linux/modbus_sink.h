@@ -14,6 +14,8 @@
  *   qo_modbus_sink_seed()        tell the sink where the drives are (no feedback registers)
  *   qo_modbus_sink_read_feedback()  read the feedback registers (FC03)
  *   qo_modbus_sink_get_stats()   counters
+ *   qo_modbus_sink_settle_time() the default settle deadline for a final target
+ *   qo_modbus_sink_settle()      after the plan: send the final target until the drives hold it
  *   qo_modbus_sink_close()       drop the link (idempotent); qo_modbus_sink_free() frees
  *
  * What one write() does, in order:
@@ -216,6 +218,48 @@ qo_status qo_modbus_sink_seed(qo_modbus_sink *s, const float *positions, size_t 
  * without feedback get NaN. QO_OK, QO_E_NULL, QO_E_RANGE, QO_E_STATE, QO_E_DISCONNECTED or
  * the bus error (out is all NaN then). */
 qo_status qo_modbus_sink_read_feedback(qo_modbus_sink *s, float *out, size_t n);
+
+/* What qo_modbus_sink_settle found. Joint units; NaN where nothing is known. */
+typedef struct qo_modbus_settle_report {
+    int reached;                        /* 1: every joint holds its goal (read back) */
+    uint64_t ticks;                     /* writes sent while settling */
+    double elapsed_s;                   /* time spent settling */
+    double deadline_s;                  /* the deadline it was given */
+    size_t n;                           /* joints */
+    double goal[QO_REGMAP_MAX_JOINTS];  /* the final target as the drive must hold it: clamped
+                                           to min/max and the type range, rounded to the
+                                           register's resolution */
+    double held[QO_REGMAP_MAX_JOINTS];  /* the value the drive is known to hold (acknowledged
+                                           or read back), NaN when unknown (a write of unknown
+                                           outcome) */
+    int short_of[QO_REGMAP_MAX_JOINTS]; /* 1 when held != goal (or unknown) at the end */
+} qo_modbus_settle_report;
+
+/* The default settle deadline in seconds for `final` (n joint targets, joint units) at one
+ * write per `period_s`: twice the time the max_step catch-up needs from what the drives
+ * are known to hold (ceil(distance / max_step) ticks for the slowest joint, plus one), plus
+ * QO_MODBUS_SETTLE_SLACK_S for replies and read-backs. A joint without max_step, or whose
+ * held value is unknown, needs one tick. Returns the deadline, or QO_MODBUS_SETTLE_SLACK_S
+ * when an argument is NULL, n does not match, a target is not finite or period_s <= 0. */
+#define QO_MODBUS_SETTLE_SLACK_S 0.5
+double qo_modbus_sink_settle_time(const qo_modbus_sink *s, const float *final, size_t n,
+                                  double period_s);
+
+/* "Done" means the drives hold the final target, not that the plan ended: the max_step
+ * window lets a drive lag a fast plan by many ticks. Writes `final` (joint units, n =
+ * number of joints) once per `period_s` (absolute CLOCK_MONOTONIC deadlines, reconnecting
+ * with the usual backoff when the link is down) until every joint's last acknowledged
+ * target equals its goal (see the report), then reads the targets back (FC03; on a drive
+ * whose targets are unreadable, its feedback registers, see the header comment) and stops
+ * when the values read are the goals too; or until `deadline_s` seconds have passed.
+ * *out is always written. Returns QO_OK (reached); QO_E_TIMEOUT (deadline passed: see
+ * out->short_of); QO_E_NULL; QO_E_RANGE (n); QO_E_NONFINITE; QO_E_LIMIT (period_s not > 0,
+ * deadline_s negative or not finite); QO_E_STATE (closed or disabled). Blocks the caller
+ * for up to deadline_s plus one tick's requests: call it from the thread that owns the
+ * sink, after the streamer stopped. */
+qo_status qo_modbus_sink_settle(qo_modbus_sink *s, const float *final, size_t n,
+                                double period_s, double deadline_s,
+                                qo_modbus_settle_report *out);
 
 /* Copies the counters (zeroed when s is NULL). QO_OK or QO_E_NULL. */
 qo_status qo_modbus_sink_get_stats(const qo_modbus_sink *s, qo_modbus_sink_stats *out);
