@@ -19,101 +19,9 @@ const qo_modbus_sink_settings qo_modbus_sink_settings_default = {
     2000000u,               /* reconnect_max_us */
     0,                      /* rs485 */
     1,                      /* seed_from_feedback */
-    0u                      /* open_timeout_us: the response timeout */
+    0u,                     /* open_timeout_us: the response timeout */
+    0u                      /* silence_us: automatic */
 };
-
-/* ---- spec ------------------------------------------------------------------------------ */
-
-static int parse_int(const char *s, size_t len, long lo, long hi, long *out)
-{
-    char buf[24];
-    char *end;
-    long v;
-    if (len == 0 || len >= sizeof buf) return -1;
-    memcpy(buf, s, len);
-    buf[len] = '\0';
-    if (buf[0] < '0' || buf[0] > '9') return -1;
-    errno = 0;
-    v = strtol(buf, &end, 10);
-    if (errno != 0 || *end != '\0' || v < lo || v > hi) return -1;
-    *out = v;
-    return 0;
-}
-
-qo_status qo_modbus_parse_spec(const char *text, qo_modbus_spec *out)
-{
-    if (out == NULL) return QO_E_NULL;
-    memset(out, 0, sizeof *out);
-    if (text == NULL) return QO_E_NULL;
-    if (strncmp(text, "tcp://", 6) == 0) {
-        const char *h = text + 6, *colon = strrchr(h, ':');
-        size_t hl = colon != NULL ? (size_t)(colon - h) : strlen(h);
-        long port = 502;
-        if (hl >= sizeof out->host) goto bad;
-        if (colon != NULL && parse_int(colon + 1, strlen(colon + 1), 0, 65535, &port) != 0) goto bad;
-        out->transport = QO_MODBUS_TCP;
-        if (hl == 0) strcpy(out->host, "127.0.0.1");
-        else {
-            memcpy(out->host, h, hl);
-            out->host[hl] = '\0';
-        }
-        out->port = (int)port;
-        return QO_OK;
-    }
-    if (strncmp(text, "rtu:", 4) == 0) {
-        const char *d = text + 4, *c1 = strchr(d, ',');
-        size_t dl = c1 != NULL ? (size_t)(c1 - d) : strlen(d);
-        long baud = 19200;
-        out->transport = QO_MODBUS_RTU;
-        out->parity = 'E';
-        out->data_bits = 8;
-        out->stop_bits = 1;
-        if (dl == 0 || dl >= sizeof out->device) goto bad;
-        memcpy(out->device, d, dl);
-        out->device[dl] = '\0';
-        if (c1 != NULL) {
-            const char *b = c1 + 1, *c2 = strchr(b, ',');
-            size_t bl = c2 != NULL ? (size_t)(c2 - b) : strlen(b);
-            if (parse_int(b, bl, 1, 10000000, &baud) != 0) goto bad;
-            if (c2 != NULL) {
-                const char *f = c2 + 1;
-                char p;
-                if (strlen(f) != 3 || f[0] < '5' || f[0] > '8' || (f[2] != '1' && f[2] != '2'))
-                    goto bad;
-                p = f[1];
-                if (p == 'n') p = 'N';
-                if (p == 'e') p = 'E';
-                if (p == 'o') p = 'O';
-                if (p != 'N' && p != 'E' && p != 'O') goto bad;
-                out->data_bits = f[0] - '0';
-                out->parity = p;
-                out->stop_bits = f[2] - '0';
-            }
-        }
-        out->baud = (int)baud;
-        return QO_OK;
-    }
-bad:
-    memset(out, 0, sizeof *out);
-    return QO_E_CONFIG;
-}
-
-modbus_t *qo_modbus_new_ctx(const qo_modbus_spec *spec)
-{
-    if (spec == NULL) return NULL;
-    if (spec->transport == QO_MODBUS_TCP) {
-        struct in_addr a;
-        char port[16];
-        /* modbus_new_tcp takes IPv4 literals only; names and IPv6 go through the _pi API. */
-        if (inet_pton(AF_INET, spec->host, &a) == 1) return modbus_new_tcp(spec->host, spec->port);
-        snprintf(port, sizeof port, "%d", spec->port);
-        return modbus_new_tcp_pi(spec->host, port);
-    }
-    if (spec->transport == QO_MODBUS_RTU)
-        return modbus_new_rtu(spec->device, spec->baud, spec->parity, spec->data_bits,
-                              spec->stop_bits);
-    return NULL;
-}
 
 /* ---- sink ------------------------------------------------------------------------------ */
 
@@ -138,6 +46,9 @@ struct jstate {
     double step;       /* max_step in raw units, 0 = unlimited */
     double tlo, thi;   /* type range */
     int uncertain;     /* lo/hi may be stale: read the target back before the next write */
+    int pend;          /* TCP: an FC16 with this joint is outstanding (pcmd sent) */
+    double pcmd;       /* ... the value it carries */
+    double plo, phi;   /* ... and the range before it (restored on an exception reply) */
 };
 
 struct qo_modbus_sink {
@@ -156,6 +67,10 @@ struct qo_modbus_sink {
     int drained;           /* RTU: the line was drained this tick */
     int last_errno;        /* errno of the last failed request */
     struct timespec next_attempt;
+    struct timespec tick_deadline; /* TCP: the tick waits for outstanding replies until this */
+    uint32_t silence_us;   /* the effective silence before a TCP link counts as broken */
+    qo_modbus_tcp *tcp;    /* TCP: requests matched by transaction id; NULL on RTU */
+    int connect_ok;        /* the last do_connect got the link up (its requests failed) */
     qo_modbus_sink_stats st;
 };
 
@@ -226,6 +141,14 @@ static void link_down(qo_modbus_sink *s)
         s->st.disconnects++;
         modbus_close(s->ctx);
     }
+    if (s->tcp != NULL) {
+        size_t i;
+        s->st.stale_replies += s->tcp->stale;
+        s->tcp->stale = 0;
+        qo_modbus_tcp_reset(s->tcp, -1);
+        /* an outstanding write's reply will never be read: old or new, read back */
+        for (i = 0; i < s->map->n_joints; i++) s->js[i].pend = 0;
+    }
     s->connected = 0;
     s->st.common.connected = 0;
     now_ts(&s->next_attempt); /* first reconnection may be tried at once */
@@ -243,16 +166,216 @@ static qo_status after_request(qo_modbus_sink *s, int rc, int *uncertain)
     s->last_errno = err;
     st = classify(err, uncertain, s);
     if (*uncertain) mark_slave_uncertain(s, s->cur_slave);
-    if (s->spec.transport == QO_MODBUS_TCP && (err == EMBBADDATA || err == EMBBADSLAVE)) {
-        /* On TCP this is a stale reply (an earlier request's, after a timeout): the reply
-         * to this request is still on its way. Consume it (bounded by the response timeout)
-         * so the link is back in step now instead of staying one reply behind. */
-        uint8_t rsp[MODBUS_TCP_MAX_ADU_LENGTH];
-        (void)modbus_receive_confirmation(s->ctx, rsp);
-    }
-    /* A late or partial reply must not be read as the answer to the next request. */
+    /* RTU: a late or partial reply must not be read as the answer to the next request. */
     modbus_flush(s->ctx);
     s->st.last_error = st;
+    return st;
+}
+
+/* ---- one request ----------------------------------------------------------------------- */
+
+static void add_us(struct timespec *t, uint64_t us)
+{
+    t->tv_sec += (time_t)(us / 1000000u);
+    t->tv_nsec += (long)(us % 1000000u) * 1000L;
+    if (t->tv_nsec >= 1000000000L) {
+        t->tv_sec++;
+        t->tv_nsec -= 1000000000L;
+    }
+}
+
+static int64_t us_between(const struct timespec *a, const struct timespec *b)
+{
+    return (int64_t)(b->tv_sec - a->tv_sec) * 1000000 + (int64_t)(b->tv_nsec - a->tv_nsec) / 1000;
+}
+
+/* An FC16 of joint targets whose reply arrived (in its own call or later): the drive holds
+ * what it carried, or, after an exception, what it held before. */
+static void group_answered(qo_modbus_sink *s, size_t g, int applied)
+{
+    const struct group *gr = &s->groups[g];
+    size_t i;
+    for (i = 0; i < gr->n_items; i++) {
+        struct jstate *q = &s->js[s->items[gr->first_item + i].joint];
+        if (!q->pend) continue;
+        if (applied) {
+            q->have = 1;
+            q->lo = q->hi = q->pcmd;
+        } else {
+            q->lo = q->plo;
+            q->hi = q->phi;
+        }
+        q->pend = 0;
+    }
+}
+
+/* The meaning of a reply PDU to a request with function code fc: QO_OK (rregs filled for
+ * FC03, when rregs is not NULL); QO_E_PROTOCOL for an exception (*applied 0) or a malformed
+ * reply (*applied 1: the drive took the request, what it did is unknown). */
+static qo_status judge_reply(qo_modbus_sink *s, const qo_modbus_tcp_slot *r, unsigned count,
+                             uint16_t *rregs, int *applied)
+{
+    unsigned k;
+    *applied = 0;
+    if (r->len >= 2 && r->pdu[0] == (uint8_t)(r->fc | 0x80)) {
+        s->st.exceptions++;
+        s->last_errno = MODBUS_ENOBASE + r->pdu[1];
+        return QO_E_PROTOCOL;
+    }
+    *applied = 1;
+    if (r->len < 1 || r->pdu[0] != r->fc) goto bad;
+    if (r->fc == MODBUS_FC_READ_HOLDING_REGISTERS) {
+        if (rregs == NULL) return QO_OK;
+        if (r->len != 2 + 2 * (size_t)count || r->pdu[1] != 2 * count) goto bad;
+        for (k = 0; k < count; k++)
+            rregs[k] = (uint16_t)(((unsigned)r->pdu[2 + 2 * k] << 8) | r->pdu[3 + 2 * k]);
+    } else if (r->len != 5) {
+        goto bad;
+    }
+    return QO_OK;
+bad:
+    s->st.protocol_errors++;
+    s->last_errno = EMBBADDATA;
+    return QO_E_PROTOCOL;
+}
+
+/* A reply that came after the call that sent its request returned: taken and applied. */
+static void take_late(qo_modbus_sink *s, unsigned slave)
+{
+    qo_modbus_tcp_slot r;
+    int applied;
+    if (!qo_modbus_tcp_take(s->tcp, slave, &r)) return;
+    s->st.late_replies++;
+    (void)judge_reply(s, &r, 0, NULL, &applied);
+    /* a late read-back or init write changes nothing: its joints are read back again */
+    if (r.tag >= 0) group_answered(s, (size_t)r.tag, applied);
+}
+
+/* TCP: collects the replies that arrived since the last call (without blocking) and applies
+ * them. QO_OK, or QO_E_DISCONNECTED when the link broke (the caller drops it). */
+static qo_status tcp_collect(qo_modbus_sink *s)
+{
+    size_t i;
+    qo_status st = qo_modbus_tcp_pump(s->tcp, -1, NULL);
+    if (st != QO_OK) {
+        if (st == QO_E_PROTOCOL) s->st.protocol_errors++;
+        return QO_E_DISCONNECTED;
+    }
+    for (i = 0; i < s->map->n_slaves; i++) take_late(s, s->map->slaves[i].id);
+    return QO_OK;
+}
+
+/* TCP: `slave` may get a request only when its previous one is answered. Waits for it until
+ * the tick's deadline. QO_OK (free); QO_E_TIMEOUT (still outstanding: skip this slave);
+ * QO_E_DISCONNECTED (broken, or nothing received for silence_us: the caller drops it).
+ * A request outstanding for silence_us while other replies do arrive is abandoned (its
+ * joints are read back) rather than the link dropped. */
+static qo_status tcp_wait_free(qo_modbus_sink *s, unsigned slave)
+{
+    struct timespec now;
+    qo_status st;
+    if (!qo_modbus_tcp_busy(s->tcp, slave)) return QO_OK;
+    st = qo_modbus_tcp_pump(s->tcp, (int)slave, &s->tick_deadline);
+    if (st == QO_OK) {
+        take_late(s, slave);
+        return QO_OK;
+    }
+    if (st != QO_E_TIMEOUT) {
+        if (st == QO_E_PROTOCOL) s->st.protocol_errors++;
+        return QO_E_DISCONNECTED;
+    }
+    now_ts(&now);
+    if (us_between(&s->tcp->slot[slave].sent, &now) < (int64_t)s->silence_us) return QO_E_TIMEOUT;
+    if (us_between(&s->tcp->slot[slave].sent, &s->tcp->last_rx) <= 0) {
+        s->st.silences++;
+        return QO_E_DISCONNECTED;
+    }
+    s->st.abandoned++;
+    qo_modbus_tcp_abandon(s->tcp, slave);
+    mark_slave_uncertain(s, slave);
+    return QO_OK;
+}
+
+/* One request to `slave`: FC16 (count registers from wregs), FC06 (wregs[0]) or FC03 (into
+ * rregs). *uncertain: the outcome is unknown (it may have been applied). On TCP a request
+ * without a reply within the response timeout stays outstanding (QO_E_TIMEOUT, *pending 1):
+ * its reply is taken later (tag >= 0: the group whose joints it carries). A slave whose
+ * previous request is still outstanding gets nothing: QO_E_TIMEOUT, *pending 1, *sent 0. */
+static qo_status xfer(qo_modbus_sink *s, unsigned slave, int fc, uint16_t addr, unsigned count,
+                      const uint16_t *wregs, uint16_t *rregs, int tag, int *uncertain,
+                      int *pending, int *sent)
+{
+    uint8_t pdu[QO_MODBUS_PDU_MAX];
+    size_t len = 0, k;
+    struct timespec dl;
+    qo_modbus_tcp_slot r;
+    qo_status st;
+    int rc, applied;
+    *uncertain = 0;
+    *pending = 0;
+    *sent = 1;
+    use_slave(s, slave);
+    if (s->tcp == NULL) {
+        if (fc == MODBUS_FC_WRITE_MULTIPLE_REGISTERS) rc = modbus_write_registers(s->ctx, addr, (int)count, wregs);
+        else if (fc == MODBUS_FC_WRITE_SINGLE_REGISTER) rc = modbus_write_register(s->ctx, addr, wregs[0]);
+        else rc = modbus_read_registers(s->ctx, addr, (int)count, rregs);
+        return after_request(s, rc, uncertain);
+    }
+    st = tcp_wait_free(s, slave);
+    if (st != QO_OK) {
+        *sent = 0;
+        *pending = st == QO_E_TIMEOUT;
+        if (st == QO_E_TIMEOUT) s->st.skipped++;
+        s->st.last_error = st;
+        return st;
+    }
+    pdu[len++] = (uint8_t)fc;
+    pdu[len++] = (uint8_t)(addr >> 8);
+    pdu[len++] = (uint8_t)(addr & 0xFF);
+    if (fc == MODBUS_FC_WRITE_SINGLE_REGISTER) {
+        pdu[len++] = (uint8_t)(wregs[0] >> 8);
+        pdu[len++] = (uint8_t)(wregs[0] & 0xFF);
+    } else {
+        pdu[len++] = (uint8_t)(count >> 8);
+        pdu[len++] = (uint8_t)(count & 0xFF);
+        if (fc == MODBUS_FC_WRITE_MULTIPLE_REGISTERS) {
+            pdu[len++] = (uint8_t)(2 * count);
+            for (k = 0; k < count; k++) {
+                pdu[len++] = (uint8_t)(wregs[k] >> 8);
+                pdu[len++] = (uint8_t)(wregs[k] & 0xFF);
+            }
+        }
+    }
+    s->st.requests++;
+    st = qo_modbus_tcp_send(s->tcp, slave, pdu, len, tag);
+    if (st == QO_OK) {
+        now_ts(&dl);
+        add_us(&dl, s->set.response_timeout_us);
+        st = qo_modbus_tcp_pump(s->tcp, (int)slave, &dl);
+    }
+    if (st == QO_E_TIMEOUT) {
+        s->st.timeouts++;
+        s->st.requests_failed++;
+        s->st.last_error = st;
+        *uncertain = 1;
+        *pending = 1;
+        return QO_E_TIMEOUT;
+    }
+    if (st != QO_OK) {
+        if (st == QO_E_PROTOCOL) s->st.protocol_errors++;
+        s->st.requests_failed++;
+        *uncertain = 1;
+        s->st.last_error = QO_E_DISCONNECTED;
+        return QO_E_DISCONNECTED;
+    }
+    (void)qo_modbus_tcp_take(s->tcp, slave, &r);
+    st = judge_reply(s, &r, count, rregs, &applied);
+    if (st != QO_OK) {
+        s->st.requests_failed++;
+        s->st.last_error = st;
+        *uncertain = applied; /* malformed: taken, but what it did is unknown */
+        if (applied) mark_slave_uncertain(s, slave);
+    }
     return st;
 }
 
@@ -266,10 +389,9 @@ static qo_status send_writes(qo_modbus_sink *s, int disable)
         size_t n = disable ? sl->n_disable : sl->n_init;
         for (k = 0; k < n; k++) {
             qo_status st;
-            int rc;
-            use_slave(s, sl->id);
-            rc = modbus_write_register(s->ctx, w[k].address, w[k].value);
-            st = after_request(s, rc, &unc);
+            int pend, sent;
+            st = xfer(s, sl->id, MODBUS_FC_WRITE_SINGLE_REGISTER, w[k].address, 1, &w[k].value,
+                      NULL, -1, &unc, &pend, &sent);
             sleep_us(sl->gap_us);
             if (st != QO_OK) return st;
         }
@@ -281,13 +403,12 @@ static qo_status read_joint_feedback(qo_modbus_sink *s, size_t i, double *raw)
 {
     const qo_regmap_joint *j = &s->map->joints[i];
     uint16_t regs[2] = { 0, 0 };
-    int rc, unc;
+    int unc, pend, sent;
     qo_status st;
     const qo_regmap_slave *sl = qo_regmap_find_slave(s->map, j->slave);
     *raw = 0.0;
-    use_slave(s, j->slave);
-    rc = modbus_read_registers(s->ctx, j->feedback, (int)qo_reg_type_width(j->fmt.type), regs);
-    st = after_request(s, rc, &unc);
+    st = xfer(s, j->slave, MODBUS_FC_READ_HOLDING_REGISTERS, j->feedback,
+              (unsigned)qo_reg_type_width(j->fmt.type), NULL, regs, -1, &unc, &pend, &sent);
     if (sl != NULL) sleep_us(sl->gap_us);
     if (st != QO_OK) return st;
     return qo_reg_unpack_raw(j->fmt.type, j->fmt.order, regs, raw);
@@ -314,6 +435,7 @@ static qo_status do_connect(qo_modbus_sink *s)
     qo_status st;
     int err;
     modbus_close(s->ctx);
+    s->connect_ok = 0;
     if (modbus_connect(s->ctx) != 0) {
         err = errno;
         s->st.last_error = err == ETIMEDOUT ? QO_E_TIMEOUT : QO_E_DISCONNECTED;
@@ -321,7 +443,8 @@ static qo_status do_connect(qo_modbus_sink *s)
     }
     if (s->spec.transport == QO_MODBUS_RTU && s->set.rs485)
         (void)modbus_rtu_set_serial_mode(s->ctx, MODBUS_RTU_RS485);
-    modbus_flush(s->ctx);
+    if (s->tcp != NULL) qo_modbus_tcp_reset(s->tcp, modbus_get_socket(s->ctx));
+    else modbus_flush(s->ctx);
     s->connected = 1;
     /* What the sink remembers may be stale now (the drive may have restarted and lost its
      * target, or, on RTU, a late reply may still come): read every known joint back first. */
@@ -335,6 +458,8 @@ static qo_status do_connect(qo_modbus_sink *s)
     if (st != QO_OK) {
         modbus_close(s->ctx);
         s->connected = 0;
+        if (s->tcp != NULL) qo_modbus_tcp_reset(s->tcp, -1);
+        s->connect_ok = 1; /* the link came up; the drives' answers did not */
         return st;
     }
     s->st.common.connected = 1;
@@ -435,7 +560,7 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
         settings->fail_threshold == 0)
         return QO_E_LIMIT;
     if (settings->response_timeout_us > 10000000u || settings->byte_timeout_us > 10000000u ||
-        settings->open_timeout_us > 10000000u ||
+        settings->open_timeout_us > 10000000u || settings->silence_us > 60000000u ||
         settings->reconnect_max_us < settings->reconnect_min_us ||
         (settings->on_fail != QO_MODBUS_ON_FAIL_HOLD && settings->on_fail != QO_MODBUS_ON_FAIL_DISABLE))
         return QO_E_CONFIG;
@@ -466,6 +591,16 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
         if (s->js == NULL) st = QO_E_CAPACITY;
     }
     if (st == QO_OK) st = build_groups(s);
+    if (st == QO_OK && s->spec.transport == QO_MODBUS_TCP) {
+        s->tcp = calloc(1, sizeof *s->tcp);
+        if (s->tcp == NULL) st = QO_E_CAPACITY;
+        else qo_modbus_tcp_reset(s->tcp, -1);
+    }
+    s->silence_us = settings->silence_us;
+    if (s->silence_us == 0) {
+        uint64_t a = 10u * (uint64_t)settings->response_timeout_us;
+        s->silence_us = a < 100000u ? 100000u : a > 60000000u ? 60000000u : (uint32_t)a;
+    }
     if (st == QO_OK) {
         for (i = 0; i < map->n_joints; i++) {
             const qo_regmap_joint *j = &map->joints[i];
@@ -483,7 +618,22 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
         /* The first connection may take its time (it is outside the control loop); every
          * later request, reconnections included, gets the response timeout. */
         modbus_set_response_timeout(s->ctx, o / 1000000u, o % 1000000u);
+        s->set.response_timeout_us = o;
         st = do_connect(s);
+        {
+            /* The link came up but a request failed (an exception, a lost reply): retried
+             * as during streaming, with the reconnection backoff, a few times. A link that
+             * does not come up at all fails at once. */
+            uint32_t back = settings->reconnect_min_us;
+            int tries;
+            for (tries = 0; st != QO_OK && s->connect_ok && tries < QO_MODBUS_OPEN_RETRIES; tries++) {
+                s->st.reconnect_attempts++;
+                sleep_us(back);
+                back = back > settings->reconnect_max_us / 2 ? settings->reconnect_max_us : 2 * back;
+                st = do_connect(s);
+            }
+        }
+        s->set.response_timeout_us = r;
         modbus_set_response_timeout(s->ctx, r / 1000000u, r % 1000000u);
     }
     if (st != QO_OK) {
@@ -608,15 +758,14 @@ static qo_status settle_slave(qo_modbus_sink *s, size_t g0)
         const struct group *gr = &s->groups[g];
         uint16_t regs[QO_REGMAP_MAX_REGISTERS];
         qo_status st;
-        int rc, unc, need = 0;
+        int unc, pend, sent, need = 0;
         for (i = 0; i < gr->n_items; i++)
             if (s->js[s->items[gr->first_item + i].joint].uncertain) need = 1;
         if (!need) continue;
         memset(regs, 0, sizeof regs);
-        use_slave(s, slave);
-        s->st.readbacks++;
-        rc = modbus_read_registers(s->ctx, gr->start, (int)gr->count, regs);
-        st = after_request(s, rc, &unc);
+        st = xfer(s, slave, MODBUS_FC_READ_HOLDING_REGISTERS, gr->start, gr->count, NULL, regs,
+                  -1, &unc, &pend, &sent);
+        if (sent) s->st.readbacks++;
         sleep_us(gr->gap_us);
         /* Only "illegal function / address" says the targets cannot be read; any other
          * exception (busy, device failure) is transient: hold the slave, retry next tick. */
@@ -657,8 +806,10 @@ static void fail_action(qo_modbus_sink *s)
         s->disabled = 1;
         s->st.disabled = 1;
         if (s->connected) (void)send_writes(s, 1); /* best effort: the link is failing */
+        link_down(s);
     }
-    link_down(s);
+    /* HOLD: the drives keep their last target and the link stays: closing and reopening a
+     * link that is not broken only adds a slow first reply (the reconnect spiral). */
 }
 
 /* A rejected call (bad arguments, wrong state): counted, but it says nothing about the bus. */
@@ -700,6 +851,7 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
 {
     size_t g, i;
     qo_status st = QO_OK, held = QO_OK;
+    int soft = 0; /* TCP: a slave skipped or left waiting for its reply this tick */
     (void)tick;
     if (s == NULL) return QO_E_NULL;
     s->st.common.writes++;
@@ -710,9 +862,15 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
         if (!isfinite(targets[i])) return rejected(s, QO_E_NONFINITE);
     if (!s->connected) return tick_result(s, QO_E_DISCONNECTED);
     s->drained = 0;
+    if (s->tcp != NULL) {
+        /* Replies that came after their tick are taken first: the drive's state is known. */
+        now_ts(&s->tick_deadline);
+        add_us(&s->tick_deadline, s->set.response_timeout_us);
+        if (tcp_collect(s) != QO_OK) return tick_result(s, QO_E_DISCONNECTED);
+    }
     for (g = 0; g < s->n_groups && st == QO_OK; g++) {
         struct group *gr = &s->groups[g];
-        int rc, unc;
+        int unc, pend, sent;
         if (g == 0 || gr->slave != s->groups[g - 1].slave) {
             /* First group of a slave: read back what is uncertain, then limit and pack every
              * group of the slave before sending any, so a blocked joint holds the whole
@@ -734,11 +892,44 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
                 continue;
             }
         }
-        use_slave(s, gr->slave);
-        rc = modbus_write_registers(s->ctx, gr->start, (int)gr->count, gr->regs);
-        st = after_request(s, rc, &unc);
+        if (s->tcp != NULL) {
+            /* TCP: noted before sending, so a reply taken in a later call finds them */
+            for (i = 0; i < gr->n_items; i++) {
+                struct jstate *q = &s->js[s->items[gr->first_item + i].joint];
+                q->pend = 1;
+                q->pcmd = q->cmd;
+                q->plo = q->lo;
+                q->phi = q->hi;
+            }
+        }
+        st = xfer(s, gr->slave, MODBUS_FC_WRITE_MULTIPLE_REGISTERS, gr->start, gr->count,
+                  gr->regs, NULL, (int)g, &unc, &pend, &sent);
+        if (s->tcp != NULL) {
+            if (!sent) {
+                for (i = 0; i < gr->n_items; i++) s->js[s->items[gr->first_item + i].joint].pend = 0;
+            } else if (st == QO_OK || (st == QO_E_PROTOCOL && !unc)) {
+                group_answered(s, g, st == QO_OK);
+            }
+        }
+        if (pend) {
+            /* TCP, no reply yet: the request stays outstanding; this slave's later groups
+             * wait for the next tick, the other slaves are still written. The drive may hold
+             * the old or the new value until the reply comes. */
+            for (i = 0; i < gr->n_items; i++) {
+                struct jstate *q = &s->js[s->items[gr->first_item + i].joint];
+                if (sent && q->have) {
+                    if (q->cmd < q->lo) q->lo = q->cmd;
+                    if (q->cmd > q->hi) q->hi = q->cmd;
+                }
+            }
+            soft = 1;
+            while (g + 1 < s->n_groups && s->groups[g + 1].slave == gr->slave) g++;
+            st = QO_OK;
+            continue;
+        }
         for (i = 0; i < gr->n_items; i++) {
             struct jstate *q = &s->js[s->items[gr->first_item + i].joint];
+            if (s->tcp != NULL) break; /* done by group_answered */
             if (st == QO_OK) {
                 q->have = 1;
                 q->lo = q->hi = q->cmd;
@@ -752,6 +943,14 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
         sleep_us(gr->gap_us);
     }
     if (st == QO_OK) st = held;
+    if (st == QO_OK && soft) {
+        /* Not every target went out, but nothing failed: a reply is late. Counted as a
+         * failed write; not towards fail_threshold (silence_us bounds the wait). */
+        s->st.common.writes_failed++;
+        s->st.common.consecutive_failures++;
+        s->st.last_error = QO_E_TIMEOUT;
+        return QO_E_TIMEOUT;
+    }
     return tick_result(s, st);
 }
 
@@ -862,7 +1061,7 @@ static double goal_raw(const qo_modbus_sink *s, size_t i, double v)
 static int joint_holds(const qo_modbus_sink *s, size_t i, double goal)
 {
     const struct jstate *q = &s->js[i];
-    return q->have && !q->uncertain && q->lo == goal && q->hi == goal;
+    return q->have && !q->uncertain && !q->pend && q->lo == goal && q->hi == goal;
 }
 
 static int args_ok(const qo_modbus_sink *s, const float *final, size_t n)
@@ -906,6 +1105,8 @@ static qo_status confirm_targets(qo_modbus_sink *s)
     size_t g, i;
     for (i = 0; i < s->map->n_joints; i++) s->js[i].uncertain = 1;
     s->drained = 1; /* the last write was answered: nothing is late on the line */
+    now_ts(&s->tick_deadline);
+    add_us(&s->tick_deadline, s->set.response_timeout_us);
     for (g = 0; g < s->n_groups; g++) {
         qo_status st;
         if (g > 0 && s->groups[g].slave == s->groups[g - 1].slave) continue;
@@ -992,6 +1193,7 @@ qo_status qo_modbus_sink_get_stats(const qo_modbus_sink *s, qo_modbus_sink_stats
     memset(out, 0, sizeof *out);
     if (s == NULL) return QO_E_NULL;
     *out = s->st;
+    if (s->tcp != NULL) out->stale_replies += s->tcp->stale;
     return QO_OK;
 }
 
@@ -1012,6 +1214,7 @@ void qo_modbus_sink_free(qo_modbus_sink *s)
     free(s->groups);
     free(s->items);
     free(s->js);
+    free(s->tcp);
     free(s);
 }
 

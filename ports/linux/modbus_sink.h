@@ -3,8 +3,7 @@
  * RTU or TCP (libmodbus), using a register map (linux/regmap.h).
  *
  * Index:
- *   qo_modbus_spec, qo_modbus_parse_spec()   "tcp://HOST:PORT" / "rtu:DEVICE,BAUD,8N1"
- *   qo_modbus_new_ctx()                       a libmodbus context for a parsed spec
+ *   (specs and contexts: linux/modbus_link.h, included)
  *   qo_modbus_sink_settings, qo_modbus_sink_settings_default
  *   qo_modbus_sink_open()        connect, send the slaves' init writes, seed from feedback
  *   qo_modbus_sink_as_sink()     the generic qo_sink view
@@ -89,33 +88,8 @@
 
 #include "qorient/sink.h"
 #include "qorient/status.h"
+#include "linux/modbus_link.h"
 #include "linux/regmap.h"
-
-typedef enum qo_modbus_transport { QO_MODBUS_TCP = 0, QO_MODBUS_RTU } qo_modbus_transport;
-
-#define QO_MODBUS_SPEC_MAX 128
-
-typedef struct qo_modbus_spec {
-    qo_modbus_transport transport;
-    char host[QO_MODBUS_SPEC_MAX];   /* TCP: address or name (IPv4 literal for the sim) */
-    int port;                        /* TCP: 0..65535 (0 = ephemeral, listen side only) */
-    char device[QO_MODBUS_SPEC_MAX]; /* RTU: serial device path */
-    int baud;                        /* RTU: > 0 */
-    char parity;                     /* RTU: 'N', 'E' or 'O' */
-    int data_bits;                   /* RTU: 5..8 */
-    int stop_bits;                   /* RTU: 1 or 2 */
-} qo_modbus_spec;
-
-/* Parses "tcp://HOST:PORT" (PORT optional, default 502; HOST may be empty: 127.0.0.1) or
- * "rtu:DEVICE[,BAUD[,FRAME]]" with FRAME = data bits, parity N/E/O, stop bits, e.g. "8N1"
- * (defaults 19200 and 8E1, the Modbus serial line default). Returns QO_OK, QO_E_NULL or
- * QO_E_CONFIG (*out zeroed on error). */
-qo_status qo_modbus_parse_spec(const char *text, qo_modbus_spec *out);
-
-/* A libmodbus context for the spec, or NULL (bad spec or libmodbus failure): modbus_new_tcp
- * for an IPv4 literal, modbus_new_tcp_pi for a host name or IPv6 address (client side only:
- * the simulator listens on IPv4 literals), modbus_new_rtu for a serial device. */
-modbus_t *qo_modbus_new_ctx(const qo_modbus_spec *spec);
 
 typedef enum qo_modbus_fail_action {
     QO_MODBUS_ON_FAIL_HOLD = 0, /* drives keep their last target; resume after reconnect */
@@ -141,10 +115,15 @@ typedef struct qo_modbus_sink_settings {
                                      and feedback reads in qo_modbus_sink_open only (outside any
                                      control loop, so it can be generous); 0 = the response
                                      timeout; at most 10000000 */
+    uint32_t silence_us;          /* TCP: a request unanswered this long makes the link count
+                                     as broken (reconnect) when nothing at all came back since
+                                     it was sent, else it is abandoned and its joints read
+                                     back; 0 = max(100 ms, 10 x the response timeout); at most
+                                     60000000 */
 } qo_modbus_sink_settings;
 
 /* 20 ms response, 5 ms byte timeout, threshold 5, HOLD, backoff 50 ms .. 2 s, no RS485 ioctl,
- * seed from feedback, open timeout 0 (= the response timeout). */
+ * seed from feedback, open timeout 0 (= the response timeout), silence 0 (automatic). */
 extern const qo_modbus_sink_settings qo_modbus_sink_settings_default;
 
 typedef struct qo_modbus_sink_stats {
@@ -168,6 +147,14 @@ typedef struct qo_modbus_sink_stats {
                                     value the drive may hold (the slave held that tick) */
     uint64_t drains;             /* RTU: line drains before a read-back */
     uint64_t drained_bytes;      /* RTU: bytes dropped by the drains (late replies, noise) */
+    uint64_t skipped;            /* TCP: slave-ticks not sent because that slave's previous
+                                    request was still unanswered at the tick's deadline */
+    uint64_t late_replies;       /* TCP: replies taken after their request's call returned
+                                    (accepted: the drive's state is then known) */
+    uint64_t stale_replies;      /* TCP: replies matching no outstanding request (dropped) */
+    uint64_t abandoned;          /* TCP: requests given up after silence_us (joints read back) */
+    uint64_t silences;           /* TCP: links dropped because nothing came back for
+                                    silence_us */
     unsigned groups;             /* FC16 requests per tick */
     int disabled;                /* 1 while in the disabled state */
     qo_status last_error;        /* last failure, QO_OK if none yet */
@@ -176,8 +163,14 @@ typedef struct qo_modbus_sink_stats {
 
 typedef struct qo_modbus_sink qo_modbus_sink;
 
+/* qo_modbus_sink_open retries a connection whose link came up but whose init writes or
+ * feedback reads failed (an exception, a lost reply) this many times, with the backoff. */
+#define QO_MODBUS_OPEN_RETRIES 4
+
 /* Validates settings (NULL = defaults) and `map` (kept by pointer: it must outlive the sink),
- * connects to `spec`, sends the init writes and seeds from feedback.
+ * connects to `spec`, sends the init writes and seeds from feedback (retried up to
+ * QO_MODBUS_OPEN_RETRIES times with the reconnection backoff when the link came up but a
+ * request failed: one exception while connecting does not fail the open).
  * Returns QO_OK with *out set; on error *out is NULL and nothing stays open:
  * QO_E_NULL; QO_E_CONFIG (bad spec, empty map, bad settings); QO_E_LIMIT (a zero timeout);
  * QO_E_IO, QO_E_TIMEOUT, QO_E_DISCONNECTED, QO_E_PROTOCOL (connection or init failed). */

@@ -15,7 +15,7 @@
 
 #include <modbus.h>
 
-#include "linux/modbus_sink.h" /* qo_modbus_parse_spec, qo_modbus_new_ctx */
+#include "linux/modbus_link.h"
 
 const qo_sim_settings qo_sim_settings_default = {
     0.05, NULL, { QO_SIM_FAULT_NONE, 0, 0.0, 0, 0 }, 1, 0
