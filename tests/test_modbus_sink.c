@@ -456,15 +456,27 @@ static void test_arguments_and_specs(void **state)
     set.reconnect_max_us = 10;
     assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_CONFIG);
     set = test_settings();
-    /* a host name goes through modbus_new_tcp_pi; the simulator wants an IPv4 literal */
+    /* a host name goes through modbus_new_tcp_pi; the simulator listens on literals and
+     * localhost only */
     assert_int_equal(qo_modbus_parse_spec("tcp://localhost:1", &sp), QO_OK);
     {
         modbus_t *ctx = qo_modbus_new_ctx(&sp);
         assert_non_null(ctx);
         modbus_free(ctx);
-        assert_int_equal(qo_sim_start("tcp://localhost:0", &map, NULL, &sim), QO_E_CONFIG);
+        assert_int_equal(qo_sim_start("tcp://no-such-host.invalid:0", &map, NULL, &sim), QO_E_CONFIG);
         assert_null(sim);
     }
+    /* IPv6 in brackets */
+    assert_int_equal(qo_modbus_parse_spec("tcp://[::1]:1502", &sp), QO_OK);
+    assert_string_equal(sp.host, "::1");
+    assert_int_equal(sp.port, 1502);
+    assert_int_equal(qo_modbus_parse_spec("tcp://[fe80::1]", &sp), QO_OK);
+    assert_string_equal(sp.host, "fe80::1");
+    assert_int_equal(sp.port, 502);
+    assert_int_equal(qo_modbus_parse_spec("tcp://[::1", &sp), QO_E_CONFIG);
+    assert_int_equal(qo_modbus_parse_spec("tcp://[]:1", &sp), QO_E_CONFIG);
+    assert_int_equal(qo_modbus_parse_spec("tcp://[::1]x", &sp), QO_E_CONFIG);
+    assert_int_equal(qo_modbus_parse_spec("tcp://[::1]:", &sp), QO_E_CONFIG);
     /* port 1 on loopback: nobody listens */
     assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_DISCONNECTED);
     assert_null(s);
@@ -1193,6 +1205,66 @@ static void test_tcp_late_replies_accepted(void **state)
     fclose(log);
 }
 
+/* The simulator's reply latency model: parsing, and replies held back by it are late
+ * replies for the sink (a 40 ms sleep always exceeds a 10 ms timeout: no timing assert). */
+static void test_sim_lag_dist(void **state)
+{
+    static const char *bad[] = { "", "0.5", "0.5:", "0:1ms", "-1:1ms", "0.5:1", "0.5:2-1ms",
+                                 "0.5:1ms,", "0.5:1ms,x", "1:70000ms", "a:1ms", "0.5:-1ms",
+                                 "1:1ms,1:1ms,1:1ms,1:1ms,1:1ms,1:1ms,1:1ms,1:1ms,1:1ms" };
+    qo_sim_settings ss = qo_sim_settings_default;
+    qo_sim *sim = NULL;
+    qo_modbus_sink *s = NULL;
+    qo_modbus_sink_settings set = test_settings();
+    qo_modbus_sink_stats st;
+    char spec[64];
+    size_t i;
+    unsigned k;
+    (void)state;
+    assert_int_equal(qo_sim_parse_lag_dist("0.97:0-0.2ms,0.03:5-12ms", &ss), QO_OK);
+    assert_int_equal(ss.n_lag, 2);
+    assert_true(ss.lag[0].share == 0.97 && ss.lag[0].lo_ms == 0.0 && ss.lag[0].hi_ms == 0.2);
+    assert_true(ss.lag[1].share == 0.03 && ss.lag[1].lo_ms == 5.0 && ss.lag[1].hi_ms == 12.0);
+    assert_int_equal(qo_sim_parse_lag_dist("2:150us,1:3ms", &ss), QO_OK);
+    assert_true(ss.n_lag == 2 && ss.lag[0].lo_ms == 0.15 && ss.lag[0].hi_ms == 0.15 && ss.lag[1].lo_ms == 3.0);
+    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        ss.n_lag = 5;
+        if (qo_sim_parse_lag_dist(bad[i], &ss) != QO_E_CONFIG || ss.n_lag != 0)
+            fail_msg("lag-dist '%s' accepted", bad[i]);
+    }
+    assert_int_equal(qo_sim_parse_lag_dist(NULL, &ss), QO_E_NULL);
+    assert_int_equal(qo_sim_parse_lag_dist("1:1ms", NULL), QO_E_NULL);
+    /* a bucket out of range is refused by start as well */
+    load_six();
+    ss = qo_sim_settings_default;
+    ss.n_lag = 1;
+    ss.lag[0].share = 1.0;
+    ss.lag[0].lo_ms = 2.0;
+    ss.lag[0].hi_ms = 1.0;
+    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, &ss, &sim), QO_E_CONFIG);
+    assert_null(sim);
+    assert_int_equal(qo_sim_parse_lag_dist("0.8:0ms,0.2:40ms", &ss), QO_OK);
+    ss.lag_s = 0.0;
+    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, &ss, &sim), QO_OK);
+    snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+    set.response_timeout_us = 10000;
+    set.open_timeout_us = 500000; /* the open is not what is tested here */
+    assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+    for (k = 0; k < 60; k++) {
+        float t[NJ];
+        targets_at(k, t);
+        (void)qo_modbus_sink_write(s, t, NJ, k);
+    }
+    assert_int_equal(qo_modbus_sink_get_stats(s, &st), QO_OK);
+    if (st.timeouts == 0 || st.late_replies + 1 < st.timeouts || st.common.reconnects != 0 ||
+        st.protocol_errors != 0)
+        fail_msg("lag-dist replies: timeouts %llu late %llu reconnects %llu protocol %llu",
+                 (unsigned long long)st.timeouts, (unsigned long long)st.late_replies,
+                 (unsigned long long)st.common.reconnects, (unsigned long long)st.protocol_errors);
+    qo_modbus_sink_free(s);
+    qo_sim_stop(sim);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1210,6 +1282,7 @@ int main(void)
         cmocka_unit_test(test_readback_exception_fallback),
         cmocka_unit_test(test_settle_until_held),
         cmocka_unit_test(test_tcp_late_replies_accepted),
+        cmocka_unit_test(test_sim_lag_dist),
         cmocka_unit_test(test_settle_matches_drive),
     };
     return cmocka_run_group_tests_name("modbus_sink", tests, NULL, NULL);

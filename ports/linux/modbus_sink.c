@@ -71,6 +71,7 @@ struct qo_modbus_sink {
     uint32_t silence_us;   /* the effective silence before a TCP link counts as broken */
     qo_modbus_tcp *tcp;    /* TCP: requests matched by transaction id; NULL on RTU */
     int connect_ok;        /* the last do_connect got the link up (its requests failed) */
+    int in_tick;           /* inside write() or settle: tick_deadline bounds the waits */
     qo_modbus_sink_stats st;
 };
 
@@ -275,6 +276,11 @@ static qo_status tcp_wait_free(qo_modbus_sink *s, unsigned slave)
     struct timespec now;
     qo_status st;
     if (!qo_modbus_tcp_busy(s->tcp, slave)) return QO_OK;
+    if (!s->in_tick) {
+        /* outside a tick (open, reconnection, feedback reads): one response timeout */
+        now_ts(&s->tick_deadline);
+        add_us(&s->tick_deadline, s->set.response_timeout_us);
+    }
     st = qo_modbus_tcp_pump(s->tcp, (int)slave, &s->tick_deadline);
     if (st == QO_OK) {
         take_late(s, slave);
@@ -868,6 +874,7 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
         add_us(&s->tick_deadline, s->set.response_timeout_us);
         if (tcp_collect(s) != QO_OK) return tick_result(s, QO_E_DISCONNECTED);
     }
+    s->in_tick = 1;
     for (g = 0; g < s->n_groups && st == QO_OK; g++) {
         struct group *gr = &s->groups[g];
         int unc, pend, sent;
@@ -878,6 +885,14 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
             size_t h;
             int blocked = 0;
             st = settle_slave(s, g);
+            if (st == QO_E_TIMEOUT && s->tcp != NULL) {
+                /* TCP: the read-back is outstanding (or still waits for an earlier reply):
+                 * this slave holds until it is answered, the others go on */
+                soft = 1;
+                st = QO_OK;
+                while (g + 1 < s->n_groups && s->groups[g + 1].slave == gr->slave) g++;
+                continue;
+            }
             if (st != QO_OK) break;
             for (h = g; h < s->n_groups && s->groups[h].slave == gr->slave; h++)
                 for (i = 0; i < s->groups[h].n_items; i++) {
@@ -942,6 +957,7 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
         }
         sleep_us(gr->gap_us);
     }
+    s->in_tick = 0;
     if (st == QO_OK) st = held;
     if (st == QO_OK && soft) {
         /* Not every target went out, but nothing failed: a reply is late. Counted as a

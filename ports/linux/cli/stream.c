@@ -485,8 +485,10 @@ int qo_cli_stream(int argc, char **argv)
         if (ms) {
             qo_modbus_sink_stats ms_st;
             if (qo_modbus_sink_get_stats(ms, &ms_st) == QO_OK)
-                printf(" requests %llu timeouts %llu exceptions %llu reconnects %llu rate_limited %llu clamped %llu",
+                printf(" requests %llu timeouts %llu late_replies %llu skipped %llu exceptions %llu reconnects %llu"
+                       " rate_limited %llu clamped %llu",
                        (unsigned long long)ms_st.requests, (unsigned long long)ms_st.timeouts,
+                       (unsigned long long)ms_st.late_replies, (unsigned long long)ms_st.skipped,
                        (unsigned long long)ms_st.exceptions, (unsigned long long)ms_st.common.reconnects,
                        (unsigned long long)ms_st.rate_limited, (unsigned long long)ms_st.clamped);
         }
