@@ -59,6 +59,13 @@ grep -q "wire budget per tick: $want us; highest rate: 141.7 Hz" "$T/out" && ok 
 $Q stream --map $MAP --modbus rtu:/dev/null,115200,8N1 --rate 500 "$T/keys" > /dev/null 2> "$T/err"; rc=$?
 [ "$rc" = 1 ] && grep -q "at most 141.7 Hz" "$T/err" && ok || bad "rate over the wire budget: rc=$rc $(cat "$T/err")"
 
+# ... and a slave that has only constant registers is one more request per tick, as sent
+printf '[slave.2]\nconstant = 0x10=5\n[joint.a]\nslave = 1\naddress = 0\ntype = int32\n' > "$T/const.ini"
+printf '0,0\n1,0.5\n' > "$T/one.csv"
+$Q stream --map "$T/const.ini" --modbus tcp://127.0.0.1:1502 --dry-run "$T/one.csv" > "$T/out" 2>&1; rc=$?
+[ "$rc" = 0 ] && grep -q '^dry-run: 2 request(s) per tick' "$T/out" && grep -q '  slave 2: registers 16..16' "$T/out" &&
+    ok || bad "dry-run of a constant-only slave: rc=$rc $(cat "$T/out")"
+
 # 3. Errors name what is wrong
 printf '[joint.a]\nslave = 1\naddress = 0\ntype = int33\n' > "$T/bad.ini"
 $Q stream --map "$T/bad.ini" --modbus "tcp://127.0.0.1:$PORT" "$T/keys" > /dev/null 2> "$T/err"; rc=$?

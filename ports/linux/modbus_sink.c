@@ -1,4 +1,5 @@
 #include "linux/modbus_sink.h"
+#include "linux/modbus_layout.h"
 
 #include <arpa/inet.h>
 #include <errno.h>
@@ -25,20 +26,6 @@ const qo_modbus_sink_settings qo_modbus_sink_settings_default = {
 
 /* ---- sink ------------------------------------------------------------------------------ */
 
-struct item {
-    size_t joint;     /* joint index */
-    unsigned offset;  /* register offset inside the group */
-};
-
-struct group {
-    unsigned slave;
-    unsigned gap_us;
-    uint16_t start;
-    unsigned count;
-    uint16_t regs[QO_REGMAP_MAX_REGISTERS]; /* constants pre-filled; joints packed per tick */
-    size_t first_item, n_items;
-};
-
 struct jstate {
     int have;          /* lo/hi known */
     double lo, hi;     /* raw values the drive may hold */
@@ -57,9 +44,7 @@ struct qo_modbus_sink {
     qo_modbus_spec spec;
     modbus_t *ctx;
     int connected, closed, disabled;
-    struct group *groups;
-    size_t n_groups;
-    struct item *items;
+    qo_modbus_layout *lay;  /* the requests of one tick */
     struct jstate *js;
     uint32_t backoff_us;
     unsigned bus_failures; /* consecutive ticks failed on the bus (argument errors excluded) */
@@ -194,10 +179,10 @@ static int64_t us_between(const struct timespec *a, const struct timespec *b)
  * what it carried, or, after an exception, what it held before. */
 static void group_answered(qo_modbus_sink *s, size_t g, int applied)
 {
-    const struct group *gr = &s->groups[g];
+    const qo_modbus_request *gr = &s->lay->req[g];
     size_t i;
     for (i = 0; i < gr->n_items; i++) {
-        struct jstate *q = &s->js[s->items[gr->first_item + i].joint];
+        struct jstate *q = &s->js[s->lay->item[gr->first_item + i].joint];
         if (!q->pend) continue;
         if (applied) {
             q->have = 1;
@@ -476,81 +461,6 @@ static qo_status do_connect(qo_modbus_sink *s)
     return QO_OK;
 }
 
-static int cmp_cell(const void *a, const void *b)
-{
-    const unsigned *x = a, *y = b; /* {slave, address, width, kind/index} */
-    if (x[0] != y[0]) return x[0] < y[0] ? -1 : 1;
-    if (x[1] != y[1]) return x[1] < y[1] ? -1 : 1;
-    return 0;
-}
-
-/* Builds the FC16 groups: cells (joint targets and constants) sorted by slave and address,
- * merged while strictly contiguous and within the slave's max_registers. */
-static qo_status build_groups(qo_modbus_sink *s)
-{
-    const qo_regmap *m = s->map;
-    size_t nc = 0, i, k, max_cells = m->n_joints;
-    unsigned (*cells)[5];
-    for (i = 0; i < m->n_slaves; i++) max_cells += m->slaves[i].n_constant;
-    cells = calloc(max_cells, sizeof *cells);
-    s->groups = calloc(max_cells, sizeof *s->groups);
-    s->items = calloc(m->n_joints, sizeof *s->items);
-    if (cells == NULL || s->groups == NULL || s->items == NULL) {
-        free(cells);
-        return QO_E_CAPACITY;
-    }
-    for (i = 0; i < m->n_joints; i++) {
-        cells[nc][0] = m->joints[i].slave;
-        cells[nc][1] = m->joints[i].address;
-        cells[nc][2] = (unsigned)qo_reg_type_width(m->joints[i].fmt.type);
-        cells[nc][3] = 1; /* joint */
-        cells[nc][4] = (unsigned)i;
-        nc++;
-    }
-    for (i = 0; i < m->n_slaves; i++) {
-        for (k = 0; k < m->slaves[i].n_constant; k++) {
-            cells[nc][0] = m->slaves[i].id;
-            cells[nc][1] = m->slaves[i].constant[k].address;
-            cells[nc][2] = 1;
-            cells[nc][3] = 0; /* constant */
-            cells[nc][4] = m->slaves[i].constant[k].value;
-            nc++;
-        }
-    }
-    qsort(cells, nc, sizeof *cells, cmp_cell);
-    s->n_groups = 0;
-    {
-        size_t nitems = 0;
-        struct group *g = NULL;
-        for (i = 0; i < nc; i++) {
-            const qo_regmap_slave *sl = qo_regmap_find_slave(m, cells[i][0]);
-            unsigned maxr = sl != NULL ? sl->max_registers : QO_REGMAP_MAX_REGISTERS;
-            if (g == NULL || g->slave != cells[i][0] || g->start + g->count != cells[i][1] ||
-                g->count + cells[i][2] > maxr) {
-                g = &s->groups[s->n_groups++];
-                g->slave = cells[i][0];
-                g->gap_us = sl != NULL ? sl->gap_us : 0;
-                g->start = (uint16_t)cells[i][1];
-                g->count = 0;
-                g->first_item = nitems;
-                g->n_items = 0;
-            }
-            if (cells[i][3] == 1) {
-                s->items[nitems].joint = cells[i][4];
-                s->items[nitems].offset = g->count;
-                nitems++;
-                g->n_items++;
-            } else {
-                g->regs[g->count] = (uint16_t)cells[i][4];
-            }
-            g->count += cells[i][2];
-        }
-    }
-    free(cells);
-    s->st.groups = (unsigned)s->n_groups;
-    return QO_OK;
-}
-
 qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
                               const qo_modbus_sink_settings *settings, qo_modbus_sink **out)
 {
@@ -596,7 +506,11 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
         s->js = calloc(map->n_joints, sizeof *s->js);
         if (s->js == NULL) st = QO_E_CAPACITY;
     }
-    if (st == QO_OK) st = build_groups(s);
+    if (st == QO_OK) {
+        s->lay = malloc(sizeof *s->lay);
+        st = s->lay == NULL ? QO_E_CAPACITY : qo_modbus_layout_build(map, s->lay);
+        if (st == QO_OK) s->st.groups = (unsigned)s->lay->n_requests;
+    }
     if (st == QO_OK && s->spec.transport == QO_MODBUS_TCP) {
         s->tcp = calloc(1, sizeof *s->tcp);
         if (s->tcp == NULL) st = QO_E_CAPACITY;
@@ -752,21 +666,21 @@ static void drain_line(qo_modbus_sink *s)
  * slave this tick; the error is returned and the joints stay uncertain. */
 static qo_status settle_slave(qo_modbus_sink *s, size_t g0)
 {
-    unsigned slave = s->groups[g0].slave;
+    unsigned slave = s->lay->req[g0].slave;
     size_t g, i;
     int any = 0;
-    for (g = g0; g < s->n_groups && s->groups[g].slave == slave; g++)
-        for (i = 0; i < s->groups[g].n_items; i++)
-            if (s->js[s->items[s->groups[g].first_item + i].joint].uncertain) any = 1;
+    for (g = g0; g < s->lay->n_requests && s->lay->req[g].slave == slave; g++)
+        for (i = 0; i < s->lay->req[g].n_items; i++)
+            if (s->js[s->lay->item[s->lay->req[g].first_item + i].joint].uncertain) any = 1;
     if (!any) return QO_OK;
     if (s->spec.transport == QO_MODBUS_RTU) drain_line(s);
-    for (g = g0; g < s->n_groups && s->groups[g].slave == slave; g++) {
-        const struct group *gr = &s->groups[g];
+    for (g = g0; g < s->lay->n_requests && s->lay->req[g].slave == slave; g++) {
+        const qo_modbus_request *gr = &s->lay->req[g];
         uint16_t regs[QO_REGMAP_MAX_REGISTERS];
         qo_status st;
         int unc, pend, sent, need = 0;
         for (i = 0; i < gr->n_items; i++)
-            if (s->js[s->items[gr->first_item + i].joint].uncertain) need = 1;
+            if (s->js[s->lay->item[gr->first_item + i].joint].uncertain) need = 1;
         if (!need) continue;
         memset(regs, 0, sizeof regs);
         st = xfer(s, slave, MODBUS_FC_READ_HOLDING_REGISTERS, gr->start, gr->count, NULL, regs,
@@ -781,7 +695,7 @@ static qo_status settle_slave(qo_modbus_sink *s, size_t g0)
             return st;
         if (st != QO_OK) s->st.readback_fallbacks++;
         for (i = 0; i < gr->n_items; i++) {
-            const struct item *it = &s->items[gr->first_item + i];
+            const qo_modbus_item *it = &s->lay->item[gr->first_item + i];
             const qo_regmap_joint *j = &s->map->joints[it->joint];
             struct jstate *q = &s->js[it->joint];
             double raw;
@@ -875,10 +789,10 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
         if (tcp_collect(s) != QO_OK) return tick_result(s, QO_E_DISCONNECTED);
     }
     s->in_tick = 1;
-    for (g = 0; g < s->n_groups && st == QO_OK; g++) {
-        struct group *gr = &s->groups[g];
+    for (g = 0; g < s->lay->n_requests && st == QO_OK; g++) {
+        qo_modbus_request *gr = &s->lay->req[g];
         int unc, pend, sent;
-        if (g == 0 || gr->slave != s->groups[g - 1].slave) {
+        if (g == 0 || gr->slave != s->lay->req[g - 1].slave) {
             /* First group of a slave: read back what is uncertain, then limit and pack every
              * group of the slave before sending any, so a blocked joint holds the whole
              * slave this tick. */
@@ -890,15 +804,15 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
                  * this slave holds until it is answered, the others go on */
                 soft = 1;
                 st = QO_OK;
-                while (g + 1 < s->n_groups && s->groups[g + 1].slave == gr->slave) g++;
+                while (g + 1 < s->lay->n_requests && s->lay->req[g + 1].slave == gr->slave) g++;
                 continue;
             }
             if (st != QO_OK) break;
-            for (h = g; h < s->n_groups && s->groups[h].slave == gr->slave; h++)
-                for (i = 0; i < s->groups[h].n_items; i++) {
-                    const struct item *it = &s->items[s->groups[h].first_item + i];
+            for (h = g; h < s->lay->n_requests && s->lay->req[h].slave == gr->slave; h++)
+                for (i = 0; i < s->lay->req[h].n_items; i++) {
+                    const qo_modbus_item *it = &s->lay->item[s->lay->req[h].first_item + i];
                     if (limit_joint(s, it->joint, (double)targets[it->joint],
-                                    s->groups[h].regs + it->offset) != QO_OK)
+                                    s->lay->req[h].regs + it->offset) != QO_OK)
                         blocked = 1;
                 }
             if (blocked) {
@@ -910,7 +824,7 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
         if (s->tcp != NULL) {
             /* TCP: noted before sending, so a reply taken in a later call finds them */
             for (i = 0; i < gr->n_items; i++) {
-                struct jstate *q = &s->js[s->items[gr->first_item + i].joint];
+                struct jstate *q = &s->js[s->lay->item[gr->first_item + i].joint];
                 q->pend = 1;
                 q->pcmd = q->cmd;
                 q->plo = q->lo;
@@ -921,7 +835,7 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
                   gr->regs, NULL, (int)g, &unc, &pend, &sent);
         if (s->tcp != NULL) {
             if (!sent) {
-                for (i = 0; i < gr->n_items; i++) s->js[s->items[gr->first_item + i].joint].pend = 0;
+                for (i = 0; i < gr->n_items; i++) s->js[s->lay->item[gr->first_item + i].joint].pend = 0;
             } else if (st == QO_OK || (st == QO_E_PROTOCOL && !unc)) {
                 group_answered(s, g, st == QO_OK);
             }
@@ -931,19 +845,19 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
              * wait for the next tick, the other slaves are still written. The drive may hold
              * the old or the new value until the reply comes. */
             for (i = 0; i < gr->n_items; i++) {
-                struct jstate *q = &s->js[s->items[gr->first_item + i].joint];
+                struct jstate *q = &s->js[s->lay->item[gr->first_item + i].joint];
                 if (sent && q->have) {
                     if (q->cmd < q->lo) q->lo = q->cmd;
                     if (q->cmd > q->hi) q->hi = q->cmd;
                 }
             }
             soft = 1;
-            while (g + 1 < s->n_groups && s->groups[g + 1].slave == gr->slave) g++;
+            while (g + 1 < s->lay->n_requests && s->lay->req[g + 1].slave == gr->slave) g++;
             st = QO_OK;
             continue;
         }
         for (i = 0; i < gr->n_items; i++) {
-            struct jstate *q = &s->js[s->items[gr->first_item + i].joint];
+            struct jstate *q = &s->js[s->lay->item[gr->first_item + i].joint];
             if (s->tcp != NULL) break; /* done by group_answered */
             if (st == QO_OK) {
                 q->have = 1;
@@ -1123,9 +1037,9 @@ static qo_status confirm_targets(qo_modbus_sink *s)
     s->drained = 1; /* the last write was answered: nothing is late on the line */
     now_ts(&s->tick_deadline);
     add_us(&s->tick_deadline, s->set.response_timeout_us);
-    for (g = 0; g < s->n_groups; g++) {
+    for (g = 0; g < s->lay->n_requests; g++) {
         qo_status st;
-        if (g > 0 && s->groups[g].slave == s->groups[g - 1].slave) continue;
+        if (g > 0 && s->lay->req[g].slave == s->lay->req[g - 1].slave) continue;
         st = settle_slave(s, g);
         if (st != QO_OK) return st;
     }
@@ -1227,8 +1141,7 @@ void qo_modbus_sink_free(qo_modbus_sink *s)
     if (s == NULL) return;
     qo_modbus_sink_close(s);
     if (s->ctx != NULL) modbus_free(s->ctx);
-    free(s->groups);
-    free(s->items);
+    free(s->lay);
     free(s->js);
     free(s->tcp);
     free(s);
