@@ -35,6 +35,12 @@ $Q stream --map $MAP --modbus "tcp://127.0.0.1:$PORT" --rate 100 --timeout-ms 50
     --profile scurve --vmax 2 --amax 4 --jmax 20 --sync time "$T/targets" > "$T/out" 2> "$T/err"; rc=$?
 [ "$rc" = 0 ] && ok || bad "stream exit status $rc: $(cat "$T/err")"
 grep -q '^summary: ticks [1-9]' "$T/out" && grep -q 'final ok$' "$T/out" && ok || bad "summary: $(cat "$T/out")"
+# every field of the summary is explained by --help
+$Q stream --help > "$T/help"
+for f in $(sed -n 's/^summary: //p' "$T/out" | awk '{ for (i = 1; i <= NF; i += 2) print $i }'); do
+    case $f in jitter_*) f='jitter_\*_us' ;; esac
+    grep -q "^  $f " "$T/help" && ok || bad "summary field $f is not explained by stream --help"
+done
 # Stop the simulator (SIGTERM: it finishes its log) before reading the log: a log read while
 # it is being written can end in half a line.
 kill "$SIMPID" 2>/dev/null; wait "$SIMPID" 2>/dev/null; SIMPID=""

@@ -1070,6 +1070,7 @@ static void test_settle_until_held(void **state)
         assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, &ss, &sim), QO_OK);
         snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
         set.fail_threshold = 1000; /* faults must not end the link: settle retries */
+        set.silence_us = 100000;   /* a dropped reply: reconnect soon */
         assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
         assert_int_equal(qo_modbus_sink_write(s, zero, NJ, 0), QO_OK);
         assert_int_equal(qo_sim_set_fault(sim, &cases[c].fault), QO_OK);

@@ -518,8 +518,10 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
     }
     s->silence_us = settings->silence_us;
     if (s->silence_us == 0) {
-        uint64_t a = 10u * (uint64_t)settings->response_timeout_us;
-        s->silence_us = a < 100000u ? 100000u : a > 60000000u ? 60000000u : (uint32_t)a;
+        /* long enough for a loaded machine's scheduling stalls (tens of ms seen on the
+         * 2-core CI box), short enough that the drives do not hold for long */
+        uint64_t a = 20u * (uint64_t)settings->response_timeout_us;
+        s->silence_us = a < 1000000u ? 1000000u : a > 60000000u ? 60000000u : (uint32_t)a;
     }
     if (st == QO_OK) {
         for (i = 0; i < map->n_joints; i++) {

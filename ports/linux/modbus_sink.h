@@ -118,7 +118,7 @@ typedef struct qo_modbus_sink_settings {
     uint32_t silence_us;          /* TCP: a request unanswered this long makes the link count
                                      as broken (reconnect) when nothing at all came back since
                                      it was sent, else it is abandoned and its joints read
-                                     back; 0 = max(100 ms, 10 x the response timeout); at most
+                                     back; 0 = max(1 s, 20 x the response timeout); at most
                                      60000000 */
 } qo_modbus_sink_settings;
 

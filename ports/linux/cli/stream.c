@@ -35,7 +35,9 @@ static const char stream_usage[] =
     "  --map FILE          register map (INI, see examples/maps); its joints, in file order,\n"
     "                      are the plan's columns p1..pN\n"
     "  --modbus SPEC       tcp://HOST:PORT or rtu:DEVICE,BAUD,8N1 (parity N, E or O)\n"
-    "  --timeout-ms MS     response timeout (default 0.8 x the period, within 2..20 ms)\n"
+    "  --timeout-ms MS     response timeout (default 0.8 x the period, within 2..20 ms);\n"
+    "                      on TCP a later reply is still accepted at the next tick, and a\n"
+    "                      link silent for 20 x this (at least 1 s) is reconnected\n"
     "  --on-fail hold|disable  after repeated failures: hold the last target (default) or\n"
     "                      send the map's disable writes\n"
     "  --turnaround-us US  the drives' reply delay, for the RTU wire budget (default 0)\n"
@@ -59,7 +61,32 @@ static const char stream_usage[] =
     "\n"
     "On RTU a --rate above what the wire allows is refused (see --dry-run). Live progress\n"
     "(rate, jitter, errors) is shown on a terminal; a summary line 'summary: ...' is printed\n"
-    "at the end. SIGINT/SIGTERM stop cleanly: the drives get the last sampled target.\n"
+    "at the end. SIGINT/SIGTERM stop cleanly: the drives get the last sampled target.\n";
+
+/* Apart from stream_usage: C99 guarantees string literals of 4095 characters only. */
+static const char stream_fields[] =
+    "\n"
+    "Summary fields (counts over the whole run, settling included):\n"
+    "  ticks         periods the streamer ran (sampled and handed to the sink)\n"
+    "  overruns      periods skipped because a tick's work ended after the next deadline\n"
+    "  jitter_*_us   wake-up latency after each deadline: median, 99th percentile, maximum\n"
+    "  sink_errors   ticks whose targets did not all reach the drives (any of the below)\n"
+    "  requests      Modbus requests sent (writes, read-backs, feedback reads)\n"
+    "  timeouts      requests not answered within --timeout-ms\n"
+    "  late_replies  TCP: replies taken after their tick, matched by transaction id and\n"
+    "                accepted (the drive applied the write)\n"
+    "  skipped       TCP: slave-ticks not sent because that slave's previous request was\n"
+    "                still unanswered (one outstanding request per slave, never queued)\n"
+    "  exceptions    exception replies (the drive refused a request: nothing applied)\n"
+    "  reconnects    links re-established after a broken or silent connection\n"
+    "  rate_limited  joint values held back by the map's max_step\n"
+    "  clamped       joint values changed by the map's min/max\n"
+    "  settle_s      Modbus: time spent after the plan until the drives held the final\n"
+    "                target (see --settle)\n"
+    "  final         ok: the drives hold the final target (read back); short: not within\n"
+    "                --settle (each short joint is named on stderr); or the status of the\n"
+    "                last write (GPIO, or stopped by a signal)\n"
+    "\n"
     "Exit status 0 when the plan ran to its end and (Modbus) every drive holds the final\n"
     "target; 1 on a runtime error (map, device, unreachable drive, failed plan, a drive short\n"
     "of its final target after --settle: each such joint is named with how far it is short);\n"
@@ -258,7 +285,7 @@ int qo_cli_stream(int argc, char **argv)
         const char *a = argv[i];
         const char *val = (i + 1 < argc) ? argv[i + 1] : NULL;
 #define TAKE(opt, var) if (strcmp(a, opt) == 0) { if (!val) { fprintf(stderr, "qorient stream: %s needs a value\n", opt); goto usage; } var = val; i++; continue; }
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) { fputs(stream_usage, stdout); free(pargv); return 0; }
+        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) { fputs(stream_usage, stdout); fputs(stream_fields, stdout); free(pargv); return 0; }
         TAKE("--map", map_path)
         TAKE("--modbus", modbus)
         TAKE("--gpio", gpio)
