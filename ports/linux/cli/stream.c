@@ -77,7 +77,8 @@ static const char stream_fields[] =
     "                accepted (the drive applied the write)\n"
     "  skipped       TCP: slave-ticks not sent because that slave's previous request was\n"
     "                still unanswered (one outstanding request per slave, never queued)\n"
-    "  exceptions    exception replies (the drive refused a request: nothing applied)\n"
+    "  readbacks     target registers read back to learn what a drive holds (after an\n"
+    "                unknown outcome or a reconnection; 0 in a fault-free run)\n"    "  exceptions    exception replies (the drive refused a request: nothing applied)\n"
     "  reconnects    links re-established after a broken or silent connection\n"
     "  rate_limited  joint values held back by the map's max_step\n"
     "  clamped       joint values changed by the map's min/max\n"
@@ -512,10 +513,11 @@ int qo_cli_stream(int argc, char **argv)
         if (ms) {
             qo_modbus_sink_stats ms_st;
             if (qo_modbus_sink_get_stats(ms, &ms_st) == QO_OK)
-                printf(" requests %llu timeouts %llu late_replies %llu skipped %llu exceptions %llu reconnects %llu"
-                       " rate_limited %llu clamped %llu",
+                printf(" requests %llu timeouts %llu late_replies %llu skipped %llu readbacks %llu exceptions %llu"
+                       " reconnects %llu rate_limited %llu clamped %llu",
                        (unsigned long long)ms_st.requests, (unsigned long long)ms_st.timeouts,
                        (unsigned long long)ms_st.late_replies, (unsigned long long)ms_st.skipped,
+                       (unsigned long long)ms_st.readbacks,
                        (unsigned long long)ms_st.exceptions, (unsigned long long)ms_st.common.reconnects,
                        (unsigned long long)ms_st.rate_limited, (unsigned long long)ms_st.clamped);
         }
