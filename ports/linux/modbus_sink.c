@@ -1,4 +1,5 @@
 #include "linux/modbus_sink.h"
+#include "linux/joint_guard.h"
 #include "linux/modbus_layout.h"
 
 #include <arpa/inet.h>
@@ -26,18 +27,6 @@ const qo_modbus_sink_settings qo_modbus_sink_settings_default = {
 
 /* ---- sink ------------------------------------------------------------------------------ */
 
-struct jstate {
-    int have;          /* lo/hi known */
-    double lo, hi;     /* raw values the drive may hold */
-    double cmd;        /* raw value packed this tick */
-    double step;       /* max_step in raw units, 0 = unlimited */
-    double tlo, thi;   /* type range */
-    int uncertain;     /* lo/hi may be stale: read the target back before the next write */
-    int pend;          /* TCP: an FC16 with this joint is outstanding (pcmd sent) */
-    double pcmd;       /* ... the value it carries */
-    double plo, phi;   /* ... and the range before it (restored on an exception reply) */
-};
-
 struct qo_modbus_sink {
     const qo_regmap *map;
     qo_modbus_sink_settings set;
@@ -45,7 +34,7 @@ struct qo_modbus_sink {
     modbus_t *ctx;
     int connected, closed, disabled;
     qo_modbus_layout *lay;  /* the requests of one tick */
-    struct jstate *js;
+    qo_joint_guard *js;
     uint32_t backoff_us;
     unsigned bus_failures; /* consecutive ticks failed on the bus (argument errors excluded) */
     unsigned cur_slave;    /* slave of the request in progress (modbus_set_slave) */
@@ -181,18 +170,8 @@ static void group_answered(qo_modbus_sink *s, size_t g, int applied)
 {
     const qo_modbus_request *gr = &s->lay->req[g];
     size_t i;
-    for (i = 0; i < gr->n_items; i++) {
-        struct jstate *q = &s->js[s->lay->item[gr->first_item + i].joint];
-        if (!q->pend) continue;
-        if (applied) {
-            q->have = 1;
-            q->lo = q->hi = q->pcmd;
-        } else {
-            q->lo = q->plo;
-            q->hi = q->phi;
-        }
-        q->pend = 0;
-    }
+    for (i = 0; i < gr->n_items; i++)
+        qo_joint_guard_answered(&s->js[s->lay->item[gr->first_item + i].joint], applied);
 }
 
 /* The meaning of a reply PDU to a request with function code fc: QO_OK (rregs filled for
@@ -414,8 +393,7 @@ static qo_status seed_from_feedback(qo_modbus_sink *s)
         if (s->js[i].have || !s->map->joints[i].has_feedback) continue;
         st = read_joint_feedback(s, i, &raw);
         if (st != QO_OK) return st;
-        s->js[i].have = 1;
-        s->js[i].lo = s->js[i].hi = raw;
+        qo_joint_guard_known(&s->js[i], raw);
     }
     return QO_OK;
 }
@@ -524,11 +502,7 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
         s->silence_us = a < 1000000u ? 1000000u : a > 60000000u ? 60000000u : (uint32_t)a;
     }
     if (st == QO_OK) {
-        for (i = 0; i < map->n_joints; i++) {
-            const qo_regmap_joint *j = &map->joints[i];
-            s->js[i].step = j->max_step * fabs(j->fmt.scale);
-            (void)qo_reg_type_range(j->fmt.type, &s->js[i].tlo, &s->js[i].thi);
-        }
+        for (i = 0; i < map->n_joints; i++) qo_joint_guard_init(&s->js[i], &map->joints[i]);
         s->ctx = qo_modbus_new_ctx(&s->spec);
         if (s->ctx == NULL) st = QO_E_CONFIG;
     }
@@ -571,61 +545,14 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
  * or rounding cannot land inside the window): the joint's slave must not be written. */
 static qo_status limit_joint(qo_modbus_sink *s, size_t i, double target, uint16_t *regs)
 {
-    const qo_regmap_joint *j = &s->map->joints[i];
-    struct jstate *q = &s->js[i];
-    double v = target, raw, packed;
-    int limited = 0;
-    qo_status st;
-    if (v < j->min) v = j->min;
-    if (v > j->max) v = j->max;
-    if (v != target) {
-        s->st.clamped++;
-        limited = 1;
-    }
-    (void)qo_reg_raw_from_value(&j->fmt, v, &raw); /* finite: checked by the caller */
-    if (raw < q->tlo || raw > q->thi) {
-        raw = raw < q->tlo ? q->tlo : q->thi;
-        s->st.saturated++;
-        limited = 1;
-    }
-    if (q->have && q->step > 0.0) {
-        double a = q->hi - q->step, b = q->lo + q->step;
-        int tries;
-        if (!(a <= b)) {
-            /* Some value the drive may hold is more than max_step from any value: send
-             * nothing rather than guess; a read-back may narrow the range next tick. */
-            q->cmd = q->lo;
-            q->uncertain = 1;
-            s->st.blocked++;
-            return QO_E_INFEASIBLE;
-        }
-        if (raw < a || raw > b) {
-            raw = raw < a ? a : b;
-            s->st.rate_limited++;
-            limited = 1;
-        }
-        st = qo_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
-        /* Rounding to the register's resolution must not push the step past max_step. */
-        for (tries = 0; tries < 4 && (packed > b || packed < a); tries++) {
-            if (j->fmt.type == QO_REG_FLOAT32)
-                raw = (double)nextafterf((float)packed, packed > b ? -INFINITY : INFINITY);
-            else
-                raw = packed > b ? floor(b) : ceil(a);
-            st = qo_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
-        }
-        if (packed > b || packed < a) {
-            q->cmd = q->lo;
-            q->uncertain = 1;
-            s->st.blocked++;
-            return QO_E_INFEASIBLE;
-        }
-    } else {
-        st = qo_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
-    }
-    (void)st;
-    q->cmd = packed;
-    if (limited) s->st.common.limited++;
-    return QO_OK;
+    unsigned changed;
+    qo_status st = qo_joint_guard_limit(&s->js[i], &s->map->joints[i], target, regs, &changed);
+    if (changed & QO_GUARD_CLAMPED) s->st.clamped++;
+    if (changed & QO_GUARD_SATURATED) s->st.saturated++;
+    if (changed & QO_GUARD_RATE_LIMITED) s->st.rate_limited++;
+    if (st != QO_OK) s->st.blocked++;
+    else if (changed) s->st.common.limited++;
+    return st;
 }
 
 /* RTU: reads and drops whatever arrives during one response timeout, then flushes, so a late
@@ -699,7 +626,7 @@ static qo_status settle_slave(qo_modbus_sink *s, size_t g0)
         for (i = 0; i < gr->n_items; i++) {
             const qo_modbus_item *it = &s->lay->item[gr->first_item + i];
             const qo_regmap_joint *j = &s->map->joints[it->joint];
-            struct jstate *q = &s->js[it->joint];
+            qo_joint_guard *q = &s->js[it->joint];
             double raw;
             if (!q->uncertain) continue;
             if (st == QO_OK) {
@@ -713,9 +640,7 @@ static qo_status settle_slave(qo_modbus_sink *s, size_t g0)
                 q->uncertain = 0; /* the link is in step; the old range stays */
                 continue;
             }
-            q->have = 1;
-            q->lo = q->hi = raw;
-            q->uncertain = 0;
+            qo_joint_guard_known(q, raw);
         }
     }
     return QO_OK;
@@ -825,13 +750,8 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
         }
         if (s->tcp != NULL) {
             /* TCP: noted before sending, so a reply taken in a later call finds them */
-            for (i = 0; i < gr->n_items; i++) {
-                struct jstate *q = &s->js[s->lay->item[gr->first_item + i].joint];
-                q->pend = 1;
-                q->pcmd = q->cmd;
-                q->plo = q->lo;
-                q->phi = q->hi;
-            }
+            for (i = 0; i < gr->n_items; i++)
+                qo_joint_guard_sent(&s->js[s->lay->item[gr->first_item + i].joint]);
         }
         st = xfer(s, gr->slave, MODBUS_FC_WRITE_MULTIPLE_REGISTERS, gr->start, gr->count,
                   gr->regs, NULL, (int)g, &unc, &pend, &sent);
@@ -846,30 +766,20 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
             /* TCP, no reply yet: the request stays outstanding; this slave's later groups
              * wait for the next tick, the other slaves are still written. The drive may hold
              * the old or the new value until the reply comes. */
-            for (i = 0; i < gr->n_items; i++) {
-                struct jstate *q = &s->js[s->lay->item[gr->first_item + i].joint];
-                if (sent && q->have) {
-                    if (q->cmd < q->lo) q->lo = q->cmd;
-                    if (q->cmd > q->hi) q->hi = q->cmd;
-                }
-            }
+            for (i = 0; sent && i < gr->n_items; i++)
+                qo_joint_guard_unknown(&s->js[s->lay->item[gr->first_item + i].joint]);
             soft = 1;
             while (g + 1 < s->lay->n_requests && s->lay->req[g + 1].slave == gr->slave) g++;
             st = QO_OK;
             continue;
         }
         for (i = 0; i < gr->n_items; i++) {
-            struct jstate *q = &s->js[s->lay->item[gr->first_item + i].joint];
+            qo_joint_guard *q = &s->js[s->lay->item[gr->first_item + i].joint];
             if (s->tcp != NULL) break; /* done by group_answered */
-            if (st == QO_OK) {
-                q->have = 1;
-                q->lo = q->hi = q->cmd;
-            } else if (unc && q->have) {
-                /* The drive may hold the old or the new value: keep both reachable (used
-                 * only when the read-back falls back, see settle_slave). */
-                if (q->cmd < q->lo) q->lo = q->cmd;
-                if (q->cmd > q->hi) q->hi = q->cmd;
-            }
+            /* unknown: the drive may hold the old or the new value, both stay reachable
+             * (used only when the read-back falls back, see settle_slave) */
+            if (st == QO_OK) qo_joint_guard_known(q, q->cmd);
+            else if (unc) qo_joint_guard_unknown(q);
         }
         sleep_us(gr->gap_us);
     }
@@ -974,26 +884,14 @@ qo_status qo_modbus_sink_read_feedback(qo_modbus_sink *s, float *out, size_t n)
     return st;
 }
 
-/* The raw (register-unit) value the drive must hold for target v: clamped, saturated to
- * the type, rounded by packing; the rate limit does not apply to a goal. */
 static double goal_raw(const qo_modbus_sink *s, size_t i, double v)
 {
-    const qo_regmap_joint *j = &s->map->joints[i];
-    uint16_t regs[2];
-    double raw, packed;
-    if (v < j->min) v = j->min;
-    if (v > j->max) v = j->max;
-    (void)qo_reg_raw_from_value(&j->fmt, v, &raw);
-    if (raw < s->js[i].tlo) raw = s->js[i].tlo;
-    if (raw > s->js[i].thi) raw = s->js[i].thi;
-    (void)qo_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
-    return packed;
+    return qo_joint_guard_goal(&s->js[i], &s->map->joints[i], v);
 }
 
 static int joint_holds(const qo_modbus_sink *s, size_t i, double goal)
 {
-    const struct jstate *q = &s->js[i];
-    return q->have && !q->uncertain && !q->pend && q->lo == goal && q->hi == goal;
+    return qo_joint_guard_holds(&s->js[i], goal);
 }
 
 static int args_ok(const qo_modbus_sink *s, const float *final, size_t n)
@@ -1013,7 +911,7 @@ double qo_modbus_sink_settle_time(const qo_modbus_sink *s, const float *final, s
     if (!args_ok(s, final, n) || !(period_s > 0.0) || !isfinite(period_s))
         return QO_MODBUS_SETTLE_SLACK_S;
     for (i = 0; i < n; i++) {
-        const struct jstate *q = &s->js[i];
+        const qo_joint_guard *q = &s->js[i];
         double g = goal_raw(s, i, (double)final[i]), d, t;
         if (!q->have || q->step <= 0.0) continue;
         d = fmax(fabs(g - q->lo), fabs(g - q->hi));
@@ -1055,7 +953,7 @@ static void settle_report(const qo_modbus_sink *s, const double *goal,
     out->reached = 1;
     for (i = 0; i < out->n; i++) {
         const qo_regmap_joint *j = &s->map->joints[i];
-        const struct jstate *q = &s->js[i];
+        const qo_joint_guard *q = &s->js[i];
         double v = NAN, gv = NAN;
         (void)qo_reg_value_from_raw(&j->fmt, goal[i], &gv);
         if (q->have && q->lo == q->hi) (void)qo_reg_value_from_raw(&j->fmt, q->lo, &v);

@@ -2,6 +2,12 @@
  * ports/linux/modbus_sink.h - a qo_sink that streams joint targets to drives over Modbus
  * RTU or TCP (libmodbus), using a register map (linux/regmap.h).
  *
+ * The sink orchestrates three parts, split along libmodbus's own seams:
+ *   linux/modbus_link.h    specs, contexts, Modbus TCP framed by us (late replies matched by
+ *                          transaction id); shared with the simulator
+ *   linux/modbus_layout.h  map -> the FC16 requests of one tick (pure; also the wire budget's)
+ *   linux/joint_guard.h    clamp, type range and the max_step window per joint (pure)
+ *
  * Index:
  *   (specs and contexts: linux/modbus_link.h, included)
  *   qo_modbus_sink_settings, qo_modbus_sink_settings_default
@@ -60,17 +66,29 @@
  *      sent as one FC16 per run of strictly contiguous registers of one slave, split at the
  *      slave's max_registers (never inside a 32-bit value); runs go out in slave, then
  *      address order, each followed by the slave's gap_us of silence;
- *   5. the tick stops at the first failed request (read-back or write), modbus_flush()
- *      drops any stale reply, and the failure is counted. On TCP a reply with the wrong
- *      transaction id (the late answer to an earlier, timed-out request) is followed by one
- *      more bounded receive to consume this request's own reply, so the link is in step
- *      again at once. A tick thus costs at most two response timeouts plus the answered
- *      read-backs and the gaps (RTU: drain + one timeout).
+ *   5. RTU: the tick stops at the first failed request (read-back or write), modbus_flush()
+ *      drops any stale reply, and the failure is counted. A tick costs at most the drain
+ *      and one response timeout plus the answered read-backs and the gaps.
+ *   5. TCP: at most one request per slave is outstanding. Replies that arrived since the
+ *      last tick are taken first, matched by transaction id, and accepted: an FC16's
+ *      joints then hold what it carried (an exception: what they held before), so a late
+ *      reply is no error and needs no read-back (`late_replies`). A slave whose request is
+ *      still unanswered is waited for until one response timeout after the tick began; if
+ *      still unanswered, its tick is skipped (`skipped`; nothing is queued) and write()
+ *      returns QO_E_TIMEOUT, which does NOT count towards fail_threshold. A request
+ *      without a reply within the response timeout stays outstanding the same way (its
+ *      joints may hold the old or the new value meanwhile). A request unanswered for
+ *      silence_us drops the link (reconnect with the backoff) when nothing at all came back
+ *      since it was sent, else it is abandoned and its joints read back; a reply that
+ *      matches nothing is dropped (`stale_replies`). A broken socket or a byte stream that
+ *      is not Modbus TCP drops the link at once.
  * libmodbus's own error recovery is NONE: its LINK mode can loop for ever.
  *
- * After `fail_threshold` consecutive failed ticks (or at once when the link is lost) the
- * sink closes the link and takes its failure action: HOLD leaves the drives on their last
- * target; DISABLE first sends every slave's `disable` writes (best effort) and then refuses
+ * After `fail_threshold` consecutive failed ticks the sink takes its failure action: HOLD
+ * leaves the drives on their last target and the link as it is (closing a working link
+ * would only add a slow first reply: the reconnect spiral); a link found broken is closed
+ * at once. DISABLE closes the link after first sending every slave's `disable` writes
+ * (best effort) and then refuses
  * writes (QO_E_STATE) until qo_modbus_sink_enable(). While the link is down write() returns
  * QO_E_DISCONNECTED at once, without touching the bus; qo_modbus_sink_service() (called by
  * the streamer after its deadline work) reconnects with exponential backoff, resends the

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <poll.h>
 #include <pthread.h>
+#include <sched.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/socket.h>
@@ -18,7 +19,7 @@
 #include "linux/modbus_link.h"
 
 const qo_sim_settings qo_sim_settings_default = {
-    0.05, NULL, { QO_SIM_FAULT_NONE, 0, 0.0, 0, 0 }, 1, 0, { { 0.0, 0.0, 0.0 } }, 0
+    0.05, NULL, { QO_SIM_FAULT_NONE, 0, 0.0, 0, 0 }, 1, 0, { { 0.0, 0.0, 0.0 } }, 0, 0
 };
 
 struct sim_joint {
@@ -566,6 +567,7 @@ qo_status qo_sim_start(const char *spec, const qo_regmap *map, const qo_sim_sett
     if (spec == NULL || map == NULL) return QO_E_NULL;
     if (settings == NULL) settings = &qo_sim_settings_default;
     if (map->n_joints == 0 || !(settings->lag_s >= 0.0) || !isfinite(settings->lag_s) ||
+        settings->rt_priority < 0 || settings->rt_priority > 99 ||
         !fault_ok(&settings->fault) || !lag_ok(settings))
         return QO_E_CONFIG;
     s = calloc(1, sizeof *s);
@@ -629,7 +631,23 @@ qo_status qo_sim_start(const char *spec, const qo_regmap *map, const qo_sim_sett
     clock_gettime(CLOCK_MONOTONIC, &s->t0);
     s->last = s->t0;
     if (s->set.log != NULL) fputs("t_s,request,slave,joint_index,joint,value\n", s->set.log);
-    if (pthread_create(&s->thread, NULL, thread_main, s) != 0) { st = QO_E_IO; goto fail; }
+    {
+        int started = 0;
+        if (settings->rt_priority > 0) {
+            pthread_attr_t at;
+            struct sched_param sp;
+            memset(&sp, 0, sizeof sp);
+            sp.sched_priority = settings->rt_priority;
+            pthread_attr_init(&at);
+            if (pthread_attr_setinheritsched(&at, PTHREAD_EXPLICIT_SCHED) == 0 &&
+                pthread_attr_setschedpolicy(&at, SCHED_FIFO) == 0 &&
+                pthread_attr_setschedparam(&at, &sp) == 0)
+                started = pthread_create(&s->thread, &at, thread_main, s) == 0;
+            pthread_attr_destroy(&at);
+        }
+        /* without the privilege (EPERM): a normal thread */
+        if (!started && pthread_create(&s->thread, NULL, thread_main, s) != 0) { st = QO_E_IO; goto fail; }
+    }
     *out = s;
     return QO_OK;
 fail:

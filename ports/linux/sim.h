@@ -91,6 +91,10 @@ typedef struct qo_sim_settings {
                                whose targets are write-only; 0: readable (default) */
     qo_sim_lag lag[QO_SIM_LAG_MAX]; /* reply latency buckets (see above) */
     size_t n_lag;                   /* 0 = reply at once */
+    int rt_priority;     /* > 0: run the server thread SCHED_FIFO at this priority (1..99),
+                            best effort (without the privilege it runs normally): a drive
+                            has its own CPU, so CPU-bound processes on the master's machine
+                            must not slow its replies; 0 = normal scheduling (default) */
 } qo_sim_settings;
 
 /* Parses "SHARE:LO-HIms[,SHARE:LO-HIms...]" (also "SHARE:Xms" for a fixed delay; "us" for
@@ -100,7 +104,7 @@ typedef struct qo_sim_settings {
  * buckets; set->n_lag is 0 then). */
 qo_status qo_sim_parse_lag_dist(const char *text, qo_sim_settings *set);
 
-/* lag 0.05 s, no log, no fault, seed 1, targets readable, replies at once. */
+/* lag 0.05 s, no log, no fault, seed 1, targets readable, replies at once, no RT. */
 extern const qo_sim_settings qo_sim_settings_default;
 
 typedef struct qo_sim_stats {

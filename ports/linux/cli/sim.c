@@ -17,7 +17,8 @@ static void sim_usage(FILE *f)
 {
     fputs("usage: qorient sim --map FILE [--listen SPEC] [--lag SECONDS] [--log FILE]\n"
           "                   [--lag-dist DIST] [--fault KIND] [--fault-share P]\n"
-          "                   [--fault-after N] [--fault-count N] [--seed N] [--duration S]\n\n"
+          "                   [--fault-after N] [--fault-count N] [--seed N] [--duration S]\n"
+          "                   [--no-rt]\n\n"
           "Serves the register map FILE as a bank of simulated servo drives (Modbus server).\n"
           "Each joint moves toward its last target with a first-order lag and reports its\n"
           "position in its feedback registers. It serves one master at a time, as most\n"
@@ -41,6 +42,9 @@ static void sim_usage(FILE *f)
           "  --fault-count N   at most N faults in all (default 0 = no limit); with\n"
           "                    --fault-after: the N requests after the first N\n"
           "  --seed N          seed of the fault PRNG (default 1)\n"
+          "  --no-rt           do not ask for SCHED_FIFO 70 for the server thread (asked by\n"
+          "                    default, best effort: a drive has its own CPU, so other\n"
+          "                    processes on this machine should not slow its replies)\n"
           "  --duration S      stop after S seconds (default: run until SIGINT/SIGTERM)\n\n"
           "Prints 'listening SPEC' (with the actual port) when ready, and on exit\n"
           "'requests N target_writes N faults N connections N bad_frames N'.\n"
@@ -94,6 +98,7 @@ int qo_cli_sim(int argc, char **argv)
         { "lag", required_argument, NULL, 'g' },
         { "log", required_argument, NULL, 'o' },
         { "lag-dist", required_argument, NULL, 'L' },
+        { "no-rt", no_argument, NULL, 'R' },
         { "fault", required_argument, NULL, 'f' },
         { "fault-share", required_argument, NULL, 'p' },
         { "fault-after", required_argument, NULL, 'a' },
@@ -115,6 +120,9 @@ int qo_cli_sim(int argc, char **argv)
     FILE *log = NULL;
     sigset_t sigs;
 
+    /* A drive has its own CPU: best effort, the server thread preempts CPU-bound processes
+     * (below the streamer's SCHED_FIFO 80, so a master on the same machine goes first). */
+    set.rt_priority = 70;
     while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
         uint64_t u;
         switch (c) {
@@ -127,6 +135,7 @@ int qo_cli_sim(int argc, char **argv)
             }
             break;
         case 'o': log_path = optarg; break;
+        case 'R': set.rt_priority = 0; break;
         case 'L':
             if (qo_sim_parse_lag_dist(optarg, &set) != QO_OK) {
                 fprintf(stderr, "qorient sim: bad --lag-dist '%s' (SHARE:LO-HIms,...)\n", optarg);
