@@ -1266,6 +1266,28 @@ static void test_sim_lag_dist(void **state)
     qo_sim_stop(sim);
 }
 
+/* The link's reconnection backoff: min first, doubling, capped, reset by a success. */
+static void test_link_backoff(void **state)
+{
+    static const uint32_t want[] = { 1000, 2000, 4000, 5000, 5000 };
+    qo_modbus_backoff b;
+    size_t i;
+    (void)state;
+    qo_modbus_backoff_init(&b, 1000, 5000);
+    assert_true(qo_modbus_backoff_due(&b));
+    for (i = 0; i < sizeof want / sizeof want[0]; i++) assert_int_equal(qo_modbus_backoff_failed(&b), want[i]);
+    assert_false(qo_modbus_backoff_due(&b)); /* 5 ms ahead */
+    qo_modbus_backoff_now(&b);
+    assert_true(qo_modbus_backoff_due(&b));
+    qo_modbus_backoff_reset(&b);
+    assert_int_equal(qo_modbus_backoff_failed(&b), 1000);
+    qo_modbus_backoff_init(&b, 1500000, 2500000); /* carries into the seconds */
+    assert_int_equal(qo_modbus_backoff_failed(&b), 1500000);
+    assert_int_equal(qo_modbus_backoff_failed(&b), 2500000);
+    assert_true(b.next.tv_nsec >= 0 && b.next.tv_nsec < 1000000000L);
+    assert_int_equal(qo_modbus_link_connect(NULL, NULL, 0, NULL), QO_E_NULL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1284,6 +1306,7 @@ int main(void)
         cmocka_unit_test(test_settle_until_held),
         cmocka_unit_test(test_tcp_late_replies_accepted),
         cmocka_unit_test(test_sim_lag_dist),
+        cmocka_unit_test(test_link_backoff),
         cmocka_unit_test(test_settle_matches_drive),
     };
     return cmocka_run_group_tests_name("modbus_sink", tests, NULL, NULL);

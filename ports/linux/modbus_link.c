@@ -112,6 +112,62 @@ modbus_t *qo_modbus_new_ctx(const qo_modbus_spec *spec)
     return NULL;
 }
 
+/* ---- backoff and connection ------------------------------------------------------------ */
+
+void qo_modbus_backoff_init(qo_modbus_backoff *b, uint32_t min_us, uint32_t max_us)
+{
+    b->min_us = min_us;
+    b->max_us = max_us;
+    b->cur_us = 0;
+    clock_gettime(CLOCK_MONOTONIC, &b->next);
+}
+
+void qo_modbus_backoff_now(qo_modbus_backoff *b)
+{
+    clock_gettime(CLOCK_MONOTONIC, &b->next);
+}
+
+int qo_modbus_backoff_due(const qo_modbus_backoff *b)
+{
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return now.tv_sec > b->next.tv_sec ||
+           (now.tv_sec == b->next.tv_sec && now.tv_nsec >= b->next.tv_nsec);
+}
+
+uint32_t qo_modbus_backoff_failed(qo_modbus_backoff *b)
+{
+    uint64_t w = b->cur_us == 0 ? b->min_us : (uint64_t)b->cur_us * 2u;
+    if (w > b->max_us) w = b->max_us;
+    b->cur_us = (uint32_t)w;
+    clock_gettime(CLOCK_MONOTONIC, &b->next);
+    b->next.tv_sec += (time_t)(w / 1000000u);
+    b->next.tv_nsec += (long)(w % 1000000u) * 1000L;
+    if (b->next.tv_nsec >= 1000000000L) {
+        b->next.tv_sec++;
+        b->next.tv_nsec -= 1000000000L;
+    }
+    return b->cur_us;
+}
+
+void qo_modbus_backoff_reset(qo_modbus_backoff *b)
+{
+    b->cur_us = 0;
+}
+
+qo_status qo_modbus_link_connect(modbus_t *ctx, const qo_modbus_spec *spec, int rs485,
+                                 qo_modbus_tcp *tcp)
+{
+    if (ctx == NULL || spec == NULL) return QO_E_NULL;
+    modbus_close(ctx);
+    if (modbus_connect(ctx) != 0) return errno == ETIMEDOUT ? QO_E_TIMEOUT : QO_E_DISCONNECTED;
+    if (spec->transport == QO_MODBUS_RTU && rs485)
+        (void)modbus_rtu_set_serial_mode(ctx, MODBUS_RTU_RS485);
+    if (tcp != NULL) qo_modbus_tcp_reset(tcp, modbus_get_socket(ctx));
+    else modbus_flush(ctx);
+    return QO_OK;
+}
+
 /* ---- TCP ------------------------------------------------------------------------------- */
 
 void qo_modbus_tcp_reset(qo_modbus_tcp *t, int fd)

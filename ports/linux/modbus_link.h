@@ -6,6 +6,8 @@
  * Index:
  *   qo_modbus_spec, qo_modbus_parse_spec()   "tcp://HOST:PORT" / "rtu:DEVICE,BAUD,8N1"
  *   qo_modbus_new_ctx()                       a libmodbus context for a parsed spec
+ *   qo_modbus_link_connect()                  (re)connect a context; TCP: hand the socket over
+ *   qo_modbus_backoff                         exponential reconnection backoff
  *   qo_modbus_tcp                             one TCP connection's outstanding requests
  *   qo_modbus_tcp_reset()     a new socket: forget every request and partial frame
  *   qo_modbus_tcp_send()      send one request PDU to a unit (at most one outstanding each)
@@ -60,6 +62,43 @@ qo_status qo_modbus_parse_spec(const char *text, qo_modbus_spec *out);
  * for a serial device. */
 modbus_t *qo_modbus_new_ctx(const qo_modbus_spec *spec);
 
+/* ---- reconnection backoff ------------------------------------------------------------- */
+
+typedef struct qo_modbus_backoff {
+    uint32_t min_us, max_us;  /* first wait after a failure, ceiling */
+    uint32_t cur_us;          /* current wait, 0 after a success */
+    struct timespec next;     /* CLOCK_MONOTONIC: no attempt before this */
+} qo_modbus_backoff;
+
+/* min_us >= 1, max_us >= min_us (not checked: the caller validated its settings). An
+ * attempt is due at once. */
+void qo_modbus_backoff_init(qo_modbus_backoff *b, uint32_t min_us, uint32_t max_us);
+
+/* An attempt is due at once (the link just went down); the current wait stays. */
+void qo_modbus_backoff_now(qo_modbus_backoff *b);
+
+/* 1 when an attempt may be made now. */
+int qo_modbus_backoff_due(const qo_modbus_backoff *b);
+
+/* After a failed attempt: the wait doubles (min_us first, at most max_us) and the next
+ * attempt is due after it. Returns the new wait, us. */
+uint32_t qo_modbus_backoff_failed(qo_modbus_backoff *b);
+
+/* After a success: the next failure waits min_us again. */
+void qo_modbus_backoff_reset(qo_modbus_backoff *b);
+
+/* ---- connection ------------------------------------------------------------------------ */
+
+typedef struct qo_modbus_tcp qo_modbus_tcp;
+
+/* Closes ctx (if open) and connects it. RTU with rs485: tries MODBUS_RTU_RS485 (failure
+ * ignored: ptys and many USB adapters refuse it) and flushes. TCP with tcp != NULL: the
+ * socket is handed to it (qo_modbus_tcp_reset), so requests bypass libmodbus's reader.
+ * Returns QO_OK; QO_E_NULL; QO_E_TIMEOUT (connect timed out); QO_E_DISCONNECTED (refused,
+ * unreachable, no device). */
+qo_status qo_modbus_link_connect(modbus_t *ctx, const qo_modbus_spec *spec, int rs485,
+                                 qo_modbus_tcp *tcp);
+
 /* ---- Modbus TCP requests matched by transaction id ------------------------------------ */
 
 #define QO_MODBUS_PDU_MAX 253 /* function code + data */
@@ -75,7 +114,7 @@ typedef struct qo_modbus_tcp_slot {
     uint8_t pdu[QO_MODBUS_PDU_MAX];
 } qo_modbus_tcp_slot;
 
-typedef struct qo_modbus_tcp {
+struct qo_modbus_tcp {
     int fd;                       /* the connected socket, -1 when none */
     uint16_t next_tid;
     size_t rx_len;
@@ -84,7 +123,7 @@ typedef struct qo_modbus_tcp {
     uint64_t late;                /* replies taken after the call that sent them returned */
     uint64_t stale;               /* replies matching no outstanding request (dropped) */
     qo_modbus_tcp_slot slot[256]; /* one per unit id */
-} qo_modbus_tcp;
+};
 
 /* Forgets every outstanding request and partial frame; fd is the new socket (-1: none).
  * The transaction id keeps counting, so a reply to the old socket can never match. */

@@ -35,12 +35,11 @@ struct qo_modbus_sink {
     int connected, closed, disabled;
     qo_modbus_layout *lay;  /* the requests of one tick */
     qo_joint_guard *js;
-    uint32_t backoff_us;
+    qo_modbus_backoff backoff;
     unsigned bus_failures; /* consecutive ticks failed on the bus (argument errors excluded) */
     unsigned cur_slave;    /* slave of the request in progress (modbus_set_slave) */
     int drained;           /* RTU: the line was drained this tick */
     int last_errno;        /* errno of the last failed request */
-    struct timespec next_attempt;
     struct timespec tick_deadline; /* TCP: the tick waits for outstanding replies until this */
     uint32_t silence_us;   /* the effective silence before a TCP link counts as broken */
     qo_modbus_tcp *tcp;    /* TCP: requests matched by transaction id; NULL on RTU */
@@ -52,11 +51,6 @@ struct qo_modbus_sink {
 static void now_ts(struct timespec *t)
 {
     clock_gettime(CLOCK_MONOTONIC, t);
-}
-
-static int ts_before(const struct timespec *a, const struct timespec *b)
-{
-    return a->tv_sec < b->tv_sec || (a->tv_sec == b->tv_sec && a->tv_nsec < b->tv_nsec);
 }
 
 static void sleep_us(unsigned us)
@@ -126,7 +120,7 @@ static void link_down(qo_modbus_sink *s)
     }
     s->connected = 0;
     s->st.common.connected = 0;
-    now_ts(&s->next_attempt); /* first reconnection may be tried at once */
+    qo_modbus_backoff_now(&s->backoff); /* first reconnection may be tried at once */
 }
 
 /* One request's bookkeeping after a libmodbus call that returned rc. */
@@ -402,18 +396,12 @@ static qo_status seed_from_feedback(qo_modbus_sink *s)
 static qo_status do_connect(qo_modbus_sink *s)
 {
     qo_status st;
-    int err;
-    modbus_close(s->ctx);
     s->connect_ok = 0;
-    if (modbus_connect(s->ctx) != 0) {
-        err = errno;
-        s->st.last_error = err == ETIMEDOUT ? QO_E_TIMEOUT : QO_E_DISCONNECTED;
-        return s->st.last_error;
+    st = qo_modbus_link_connect(s->ctx, &s->spec, s->set.rs485, s->tcp);
+    if (st != QO_OK) {
+        s->st.last_error = st;
+        return st;
     }
-    if (s->spec.transport == QO_MODBUS_RTU && s->set.rs485)
-        (void)modbus_rtu_set_serial_mode(s->ctx, MODBUS_RTU_RS485);
-    if (s->tcp != NULL) qo_modbus_tcp_reset(s->tcp, modbus_get_socket(s->ctx));
-    else modbus_flush(s->ctx);
     s->connected = 1;
     /* What the sink remembers may be stale now (the drive may have restarted and lost its
      * target, or, on RTU, a late reply may still come): read every known joint back first. */
@@ -434,7 +422,7 @@ static qo_status do_connect(qo_modbus_sink *s)
     s->st.common.connected = 1;
     s->st.common.consecutive_failures = 0;
     s->bus_failures = 0;
-    s->backoff_us = 0;
+    qo_modbus_backoff_reset(&s->backoff);
     s->st.backoff_us = 0;
     return QO_OK;
 }
@@ -478,6 +466,7 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
     s->map = map;
     s->set = *settings;
     s->st.last_error = QO_OK;
+    qo_modbus_backoff_init(&s->backoff, settings->reconnect_min_us, settings->reconnect_max_us);
     st = qo_modbus_parse_spec(spec, &s->spec);
     if (st == QO_OK && (s->spec.transport == QO_MODBUS_TCP && s->spec.port == 0)) st = QO_E_CONFIG;
     if (st == QO_OK) {
@@ -798,32 +787,18 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
 
 qo_status qo_modbus_sink_service(qo_modbus_sink *s)
 {
-    struct timespec now;
     qo_status st;
     if (s == NULL) return QO_E_NULL;
     if (s->closed) return QO_E_STATE;
     if (s->connected) return QO_OK;
-    now_ts(&now);
-    if (ts_before(&now, &s->next_attempt)) return QO_E_DISCONNECTED;
+    if (!qo_modbus_backoff_due(&s->backoff)) return QO_E_DISCONNECTED;
     s->st.reconnect_attempts++;
     st = do_connect(s);
     if (st == QO_OK) {
         s->st.common.reconnects++;
         return QO_OK;
     }
-    {
-        uint64_t b = s->backoff_us == 0 ? s->set.reconnect_min_us : (uint64_t)s->backoff_us * 2u;
-        if (b > s->set.reconnect_max_us) b = s->set.reconnect_max_us;
-        s->backoff_us = (uint32_t)b;
-        s->st.backoff_us = s->backoff_us;
-        now_ts(&s->next_attempt);
-        s->next_attempt.tv_sec += (time_t)(b / 1000000u);
-        s->next_attempt.tv_nsec += (long)(b % 1000000u) * 1000L;
-        if (s->next_attempt.tv_nsec >= 1000000000L) {
-            s->next_attempt.tv_sec++;
-            s->next_attempt.tv_nsec -= 1000000000L;
-        }
-    }
+    s->st.backoff_us = qo_modbus_backoff_failed(&s->backoff);
     return st;
 }
 

@@ -3,8 +3,9 @@
  * RTU or TCP (libmodbus), using a register map (linux/regmap.h).
  *
  * The sink orchestrates three parts, split along libmodbus's own seams:
- *   linux/modbus_link.h    specs, contexts, Modbus TCP framed by us (late replies matched by
- *                          transaction id); shared with the simulator
+ *   linux/modbus_link.h    specs, contexts, connect, reconnection backoff, Modbus TCP
+ *                          framed by us (late replies matched by transaction id); the
+ *                          simulator shares its specs and contexts
  *   linux/modbus_layout.h  map -> the FC16 requests of one tick (pure; also the wire budget's)
  *   linux/joint_guard.h    clamp, type range and the max_step window per joint (pure)
  *
