@@ -14,12 +14,19 @@ trap cleanup EXIT INT TERM
 ok()  { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 
-# Simulator on an ephemeral port; wait (bounded) for its 'listening' line.
-$Q sim --map $MAP --listen tcp://127.0.0.1:0 --lag 0 --log "$T/log.csv" --duration 60 > "$T/sim.out" 2>&1 &
-SIMPID=$!
-i=0
-while ! grep -q '^listening' "$T/sim.out" 2>/dev/null && [ $i -lt 100 ]; do sleep 0.05; i=$((i + 1)); done
-PORT=$(sed -n 's/^listening tcp:\/\/127.0.0.1:\([0-9]*\)$/\1/p' "$T/sim.out")
+# A simulator on an ephemeral port (LOG, then more sim options); waits (bounded) for its
+# 'listening' line and sets PORT and HOST.
+start_sim() {
+    log=$1; shift
+    $Q sim --map $MAP --lag 0 --log "$log" --duration 60 "$@" > "$T/sim.out" 2>&1 &
+    SIMPID=$!
+    i=0
+    while ! grep -q '^listening' "$T/sim.out" 2>/dev/null && [ $i -lt 100 ]; do sleep 0.05; i=$((i + 1)); done
+    PORT=$(sed -n 's/^listening tcp:\/\/.*:\([0-9]*\)$/\1/p' "$T/sim.out")
+    HOST=$(sed -n 's/^listening tcp:\/\/\(.*\):[0-9]*$/\1/p' "$T/sim.out")
+}
+stop_sim() { kill "$SIMPID" 2>/dev/null; wait "$SIMPID" 2>/dev/null; SIMPID=""; }
+start_sim "$T/log.csv" --listen tcp://127.0.0.1:0
 [ -n "$PORT" ] && ok || bad "simulator did not start: $(cat "$T/sim.out")"
 
 # 1. A jerk-limited move of six joints, re-planned mid-motion, streamed at 100 Hz.
@@ -28,6 +35,12 @@ $Q stream --map $MAP --modbus "tcp://127.0.0.1:$PORT" --rate 100 --timeout-ms 50
     --profile scurve --vmax 2 --amax 4 --jmax 20 --sync time "$T/targets" > "$T/out" 2> "$T/err"; rc=$?
 [ "$rc" = 0 ] && ok || bad "stream exit status $rc: $(cat "$T/err")"
 grep -q '^summary: ticks [1-9]' "$T/out" && grep -q 'final ok$' "$T/out" && ok || bad "summary: $(cat "$T/out")"
+# every field of the summary is explained by --help
+$Q stream --help > "$T/help"
+for f in $(sed -n 's/^summary: //p' "$T/out" | awk '{ for (i = 1; i <= NF; i += 2) print $i }'); do
+    case $f in jitter_*) f='jitter_\*_us' ;; esac
+    grep -q "^  $f " "$T/help" && ok || bad "summary field $f is not explained by stream --help"
+done
 # Stop the simulator (SIGTERM: it finishes its log) before reading the log: a log read while
 # it is being written can end in half a line.
 kill "$SIMPID" 2>/dev/null; wait "$SIMPID" 2>/dev/null; SIMPID=""
@@ -52,6 +65,13 @@ grep -q "wire budget per tick: $want us; highest rate: 141.7 Hz" "$T/out" && ok 
 $Q stream --map $MAP --modbus rtu:/dev/null,115200,8N1 --rate 500 "$T/keys" > /dev/null 2> "$T/err"; rc=$?
 [ "$rc" = 1 ] && grep -q "at most 141.7 Hz" "$T/err" && ok || bad "rate over the wire budget: rc=$rc $(cat "$T/err")"
 
+# ... and a slave that has only constant registers is one more request per tick, as sent
+printf '[slave.2]\nconstant = 0x10=5\n[joint.a]\nslave = 1\naddress = 0\ntype = int32\n' > "$T/const.ini"
+printf '0,0\n1,0.5\n' > "$T/one.csv"
+$Q stream --map "$T/const.ini" --modbus tcp://127.0.0.1:1502 --dry-run "$T/one.csv" > "$T/out" 2>&1; rc=$?
+[ "$rc" = 0 ] && grep -q '^dry-run: 2 request(s) per tick' "$T/out" && grep -q '  slave 2: registers 16..16' "$T/out" &&
+    ok || bad "dry-run of a constant-only slave: rc=$rc $(cat "$T/out")"
+
 # 3. Errors name what is wrong
 printf '[joint.a]\nslave = 1\naddress = 0\ntype = int33\n' > "$T/bad.ini"
 $Q stream --map "$T/bad.ini" --modbus "tcp://127.0.0.1:$PORT" "$T/keys" > /dev/null 2> "$T/err"; rc=$?
@@ -64,6 +84,38 @@ printf '0,0,0\n' | $Q stream --map $MAP --modbus "tcp://127.0.0.1:$PORT" --profi
 [ "$rc" = 1 ] && ok || bad "plan with the wrong joint count accepted: rc=$rc"
 $Q stream --map $MAP "$T/keys" > /dev/null 2>&1; [ $? = 2 ] && ok || bad "no --modbus/--gpio accepted"
 $Q stream --help | grep -q -- "--dry-run" && ok || bad "--help does not document --dry-run"
+
+# 4. Success means the drive holds it (the issue's case): a 0.1 s plan moves j1 to 3.0, far
+#    beyond max_step 0.05 per tick. The stream keeps sending until the drive holds 3.0 (exit
+#    0, the simulator's last logged j1 is 3), and with a --settle too short for the catch-up
+#    it exits 1 naming j1 and how far it is short.
+printf '0,0,0,0,0,0,0\n0.1,3,0,0,0,0,0\n' > "$T/far.csv"
+start_sim "$T/log2.csv" --listen tcp://127.0.0.1:0
+$Q stream --map $MAP --modbus "tcp://127.0.0.1:$PORT" --rate 100 --profile linear --hold 0 --no-rt --quiet \
+    "$T/far.csv" > "$T/out" 2> "$T/err"; rc=$?
+stop_sim
+[ "$rc" = 0 ] && grep -q 'final ok$' "$T/out" && ok || bad "held final target: rc=$rc $(cat "$T/out" "$T/err")"
+j1=$(awk -F, '$5 == "j1" { v = $6 } END { print v }' "$T/log2.csv")
+[ "$j1" = 3 ] && ok || bad "the drive's last j1 target is '$j1', not 3"
+start_sim "$T/log2.csv" --listen tcp://127.0.0.1:0
+$Q stream --map $MAP --modbus "tcp://127.0.0.1:$PORT" --rate 100 --profile linear --hold 0 --no-rt --quiet \
+    --settle 0.1 "$T/far.csv" > "$T/out" 2> "$T/err"; rc=$?
+stop_sim
+[ "$rc" = 1 ] && grep -q 'final short$' "$T/out" && grep -q "j1 at [0-9.]*, short by [0-9.]*;" "$T/err" &&
+    ! grep -q "j2 at" "$T/err" && ok || bad "short of the final target: rc=$rc $(cat "$T/out" "$T/err")"
+
+# 5. One exception while connecting (the drive's very first reply) does not abort the stream;
+#    over IPv6 loopback where the machine has it, and late replies (--lag-dist) cost nothing.
+L=tcp://127.0.0.1:0
+grep -q '^0*1 ' /proc/net/if_inet6 2>/dev/null && L='tcp://[::1]:0'
+start_sim "$T/log3.csv" --listen "$L" --fault exception --fault-share 1 --fault-count 1 \
+    --lag-dist 0.9:0-0.2ms,0.1:30-40ms
+$Q stream --map $MAP --modbus "tcp://$HOST:$PORT" --rate 100 --no-rt --quiet --timeout-ms 10 \
+    --profile scurve --vmax 2 --amax 4 --jmax 20 --sync time "$T/targets" > "$T/out" 2> "$T/err"; rc=$?
+stop_sim
+[ "$rc" = 0 ] && grep -q 'final ok$' "$T/out" && grep -q ' reconnects 0 ' "$T/out" &&
+    ! grep -q ' late_replies 0 ' "$T/out" && grep -q 'faults 1 ' "$T/sim.out" && ok ||
+    bad "exception while connecting, late replies ($L): rc=$rc $(cat "$T/out" "$T/err" "$T/sim.out")"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

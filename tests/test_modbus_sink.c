@@ -456,15 +456,27 @@ static void test_arguments_and_specs(void **state)
     set.reconnect_max_us = 10;
     assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_CONFIG);
     set = test_settings();
-    /* a host name goes through modbus_new_tcp_pi; the simulator wants an IPv4 literal */
+    /* a host name goes through modbus_new_tcp_pi; the simulator listens on literals and
+     * localhost only */
     assert_int_equal(qo_modbus_parse_spec("tcp://localhost:1", &sp), QO_OK);
     {
         modbus_t *ctx = qo_modbus_new_ctx(&sp);
         assert_non_null(ctx);
         modbus_free(ctx);
-        assert_int_equal(qo_sim_start("tcp://localhost:0", &map, NULL, &sim), QO_E_CONFIG);
+        assert_int_equal(qo_sim_start("tcp://no-such-host.invalid:0", &map, NULL, &sim), QO_E_CONFIG);
         assert_null(sim);
     }
+    /* IPv6 in brackets */
+    assert_int_equal(qo_modbus_parse_spec("tcp://[::1]:1502", &sp), QO_OK);
+    assert_string_equal(sp.host, "::1");
+    assert_int_equal(sp.port, 1502);
+    assert_int_equal(qo_modbus_parse_spec("tcp://[fe80::1]", &sp), QO_OK);
+    assert_string_equal(sp.host, "fe80::1");
+    assert_int_equal(sp.port, 502);
+    assert_int_equal(qo_modbus_parse_spec("tcp://[::1", &sp), QO_E_CONFIG);
+    assert_int_equal(qo_modbus_parse_spec("tcp://[]:1", &sp), QO_E_CONFIG);
+    assert_int_equal(qo_modbus_parse_spec("tcp://[::1]x", &sp), QO_E_CONFIG);
+    assert_int_equal(qo_modbus_parse_spec("tcp://[::1]:", &sp), QO_E_CONFIG);
     /* port 1 on loopback: nobody listens */
     assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_DISCONNECTED);
     assert_null(s);
@@ -798,8 +810,10 @@ static void test_two_timeouts_then_recovery(void **state)
     qo_modbus_sink *s = NULL;
     qo_modbus_sink_settings set = test_settings();
     qo_modbus_sink_stats st;
-    /* request 21 = the FC16 of tick 20: applied, no reply (timeout); request 22 = the
-     * read-back that tick 21 sends first: no reply either (a second timeout in a row) */
+    /* request 21 = the FC16 of tick 20: applied, never answered; on TCP it stays
+     * outstanding (the slave's ticks are skipped) until silence_us passes with nothing
+     * received: the link is dead, reconnected, and the targets read back: request 22, the
+     * read-back, is not answered either (a second silence), request 23 is. */
     qo_sim_fault drop2 = { QO_SIM_FAULT_DROP, 0, 0.0, 20, 2 };
     struct tick_log tl;
     double last[NJ], worst;
@@ -810,6 +824,7 @@ static void test_two_timeouts_then_recovery(void **state)
     load_six();
     assert_non_null(log);
     set.response_timeout_us = 30000;
+    set.silence_us = 100000;
     set.fail_threshold = 10; /* no failure action: the sink recovers on its own */
     sim = start_tcp_sim(log, NULL, 0.0, spec, sizeof spec);
     assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
@@ -821,22 +836,21 @@ static void test_two_timeouts_then_recovery(void **state)
         (void)qo_modbus_sink_service(s);
     }
     assert_int_equal(qo_modbus_sink_get_stats(s, &st), QO_OK);
-    if (tl.failed != 2 || tl.first_fail != 20 || tl.second_fail != 21 ||
-        tl.first_status != QO_E_TIMEOUT || tl.second_status != QO_E_TIMEOUT ||
-        st.timeouts != 2 || st.readbacks != 2 || st.common.reconnects != 0)
-        fail_msg("two timeouts: failed %u at %u (%s) and %u (%s), timeouts %llu, read-backs "
-                 "%llu, reconnects %llu; want 2 at 20 and 21, both TIMEOUT, 2, 2, 0",
-                 tl.failed, tl.first_fail, qo_status_str(tl.first_status), tl.second_fail,
-                 qo_status_str(tl.second_status), (unsigned long long)st.timeouts,
-                 (unsigned long long)st.readbacks, (unsigned long long)st.common.reconnects);
-    /* one FC16 per tick but tick 21 (held: its read-back failed), two read-backs, six
-     * feedback reads at open: nothing more (no read-back once the range is known again) */
-    assert_int_equal(st.requests, (NTICKS - 1) + 2 + NJ);
+    /* each silence costs at most silence / timeout + 2 ticks (30 ms each, or less) */
+    if (tl.first_fail != 20 || tl.first_status != QO_E_TIMEOUT || tl.second_fail != 21 ||
+        tl.last_fail > 20 + 2 * (100 / 30 + 3) || st.timeouts != 2 || st.silences != 2 ||
+        st.common.reconnects != 2 || st.readbacks != 2 || st.skipped == 0 || st.late_replies != 0)
+        fail_msg("two lost replies: failed %u (first at %u, %s; last at %u), timeouts %llu, "
+                 "silences %llu, reconnects %llu, read-backs %llu, skipped %llu, late %llu",
+                 tl.failed, tl.first_fail, qo_status_str(tl.first_status), tl.last_fail,
+                 (unsigned long long)st.timeouts, (unsigned long long)st.silences,
+                 (unsigned long long)st.common.reconnects, (unsigned long long)st.readbacks,
+                 (unsigned long long)st.skipped, (unsigned long long)st.late_replies);
     check_final(sim, "two timeouts");
     qo_modbus_sink_free(s);
     qo_sim_stop(sim);
     worst = check_log(log, &map, last, &lines); /* fails on any step above max_step */
-    assert_int_equal(lines, (NTICKS - 1) * NJ);
+    assert_int_equal(lines, (NTICKS - tl.failed + 1) * NJ); /* tick 20 arrived, unanswered */
     assert_true(worst > 0.99);
     fclose(log);
 }
@@ -987,6 +1001,7 @@ static void test_readback_exception_fallback(void **state)
     assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, &ss, &sim), QO_OK);
     snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
     set.response_timeout_us = 30000;
+    set.silence_us = 100000;
     set.fail_threshold = 10;
     assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
     assert_int_equal(qo_modbus_sink_seed(s, zero, 2), QO_OK); /* b has no feedback */
@@ -999,21 +1014,278 @@ static void test_readback_exception_fallback(void **state)
         (void)qo_modbus_sink_service(s);
     }
     assert_int_equal(qo_modbus_sink_get_stats(s, &st), QO_OK);
-    /* tick 20 times out; tick 21 reads back, gets 0x02, takes a's feedback, keeps b's range
-     * (old and new value) and writes; no read-back after that */
-    if (tl.failed != 1 || tl.first_fail != 20 || st.readbacks != 1 ||
-        st.readback_fallbacks != 1 || st.exceptions != 1)
-        fail_msg("fallback: failed %u (first at %u), read-backs %llu, fallbacks %llu, "
-                 "exceptions %llu; want 1 at 20, 1, 1, 1", tl.failed, tl.first_fail,
+    /* tick 20 is never answered: after the silence the link is reconnected; the next tick
+     * reads back, gets 0x02, takes a's feedback, keeps b's range (old and new value) and
+     * writes; no read-back after that */
+    if (tl.first_fail != 20 || tl.last_fail > 20 + 100 / 30 + 3 || st.silences != 1 ||
+        st.readbacks != 1 || st.readback_fallbacks != 1 || st.exceptions != 1)
+        fail_msg("fallback: failed %u (first at %u, last at %u), silences %llu, read-backs %llu, "
+                 "fallbacks %llu, exceptions %llu; want first at 20, 1, 1, 1, 1", tl.failed,
+                 tl.first_fail, tl.last_fail, (unsigned long long)st.silences,
                  (unsigned long long)st.readbacks, (unsigned long long)st.readback_fallbacks,
                  (unsigned long long)st.exceptions);
-    /* FC16 per tick, a's feedback at open, the read-back and a's feedback after it */
-    assert_int_equal(st.requests, NTICKS + 3);
+    /* FC16 per tick sent, a's feedback at open, the read-back and a's feedback after it */
+    assert_int_equal(st.requests, NTICKS - tl.failed + 1 + 3);
     qo_modbus_sink_free(s);
     qo_sim_stop(sim);
     (void)check_log(log, &map, last, &lines); /* fails on any step above max_step */
-    assert_int_equal(lines, NTICKS * 2);
+    assert_int_equal(lines, (NTICKS - tl.failed + 1) * 2);
     fclose(log);
+}
+
+/* "Done" is the drive holding the final target: a move far beyond max_step per tick ends
+ * only when the catch-up arrived and reads back (the issue's case: j1 to 3.0 with max_step
+ * 0.05 after one tick of the plan). Checked against the simulator's own target registers. */
+static void test_settle_until_held(void **state)
+{
+    static const struct {
+        const char *name;
+        qo_sim_fault fault;
+        int unreadable;
+    } cases[] = {
+        { "clean", { QO_SIM_FAULT_NONE, 0, 0.0, 0, 0 }, 0 },
+        { "drop 20%", { QO_SIM_FAULT_DROP, 0, 0.2, 0, 0 }, 0 },
+        { "exception 20%", { QO_SIM_FAULT_EXCEPTION, 0, 0.2, 0, 0 }, 0 },
+        { "targets unreadable (feedback confirms)", { QO_SIM_FAULT_NONE, 0, 0.0, 0, 0 }, 1 },
+    };
+    /* 5.0 is clamped to max 3.2; -0.0004 rounds to 0 counts (scale 1000) */
+    const float final[NJ] = { 3.0f, -2.0f, 5.0f, -0.0004f, 0.001f, 0.0f };
+    const double goal[NJ] = { 3.0, -2.0, 3.2, 0.0, 0.001, 0.0 };
+    size_t c, i;
+    (void)state;
+    load_six();
+    for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        qo_sim *sim = NULL;
+        qo_sim_settings ss = qo_sim_settings_default;
+        qo_modbus_sink *s = NULL;
+        qo_modbus_sink_settings set = test_settings();
+        qo_modbus_settle_report rep;
+        float zero[NJ] = { 0 };
+        double dl;
+        char spec[64];
+        qo_status st;
+        ss.lag_s = 0.0;
+        ss.seed = 11;
+        ss.targets_unreadable = cases[c].unreadable;
+        assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, &ss, &sim), QO_OK);
+        snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+        set.fail_threshold = 1000; /* faults must not end the link: settle retries */
+        set.silence_us = 100000;   /* a dropped reply: reconnect soon */
+        assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+        assert_int_equal(qo_modbus_sink_write(s, zero, NJ, 0), QO_OK);
+        assert_int_equal(qo_sim_set_fault(sim, &cases[c].fault), QO_OK);
+        /* the plan's last tick: one write, far short of 3.0 (max_step 0.05) */
+        (void)qo_modbus_sink_write(s, final, NJ, 1);
+        /* 3.2 / 0.05 = 64 ticks for the slowest joint: 2 x 65 ticks of 2 ms + 0.5 s */
+        dl = qo_modbus_sink_settle_time(s, final, NJ, 0.002);
+        if (fabs(dl - (2.0 * 65 * 0.002 + QO_MODBUS_SETTLE_SLACK_S)) > 2 * 0.002 + 1e-9)
+            fail_msg("%s: default deadline %.6f s", cases[c].name, dl);
+        /* a deadline of 0 writes nothing and names the joints that are short */
+        st = qo_modbus_sink_settle(s, final, NJ, 0.002, 0.0, &rep);
+        assert_int_equal(st, QO_E_TIMEOUT);
+        assert_int_equal(rep.reached, 0);
+        assert_int_equal(rep.ticks, 0);
+        if (cases[c].fault.kind == QO_SIM_FAULT_NONE && (!rep.short_of[0] || !rep.short_of[2] || rep.short_of[5]))
+            fail_msg("%s: short joints %d %d %d", cases[c].name, rep.short_of[0], rep.short_of[2], rep.short_of[5]);
+        st = qo_modbus_sink_settle(s, final, NJ, 0.002, 10.0, &rep);
+        qo_sim_stop(sim); /* before the checks: the registers are read after the last request */
+        sim = NULL;
+        if (st != QO_OK) fail_msg("%s: settle %s after %.3f s", cases[c].name, qo_status_str(st), rep.elapsed_s);
+        assert_int_equal(rep.reached, 1);
+        assert_true(rep.ticks >= 63); /* 3.15 left at 0.05 per tick */
+        for (i = 0; i < NJ; i++) {
+            if (rep.short_of[i] || fabs(rep.goal[i] - goal[i]) > 1e-12 || rep.held[i] != rep.goal[i])
+                fail_msg("%s: joint %u goal %.9g held %.9g short %d, want goal %.9g", cases[c].name,
+                         (unsigned)i, rep.goal[i], rep.held[i], rep.short_of[i], goal[i]);
+        }
+        qo_modbus_sink_free(s);
+    }
+}
+
+/* The same, against the simulator's registers (an independent reading of what it holds). */
+static void test_settle_matches_drive(void **state)
+{
+    const float final[NJ] = { 3.0f, -2.0f, 1.0f, 0.5f, 0.25f, -3.0f };
+    qo_sim *sim;
+    qo_modbus_sink *s = NULL;
+    qo_modbus_sink_settings set = test_settings();
+    qo_modbus_settle_report rep;
+    char spec[64];
+    size_t i;
+    (void)state;
+    load_six();
+    sim = start_tcp_sim(NULL, NULL, 0.0, spec, sizeof spec);
+    assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+    assert_int_equal(qo_modbus_sink_settle(s, final, NJ, 0.001,
+                                           qo_modbus_sink_settle_time(s, final, NJ, 0.001), &rep),
+                     QO_OK);
+    for (i = 0; i < NJ; i++) {
+        double tgt, pos;
+        assert_int_equal(qo_sim_get_joint(sim, i, &tgt, &pos), QO_OK);
+        if (tgt != (double)lround((double)final[i] * 1000.0) / 1000.0)
+            fail_msg("joint %u: drive holds %.9g, want %.9g", (unsigned)i, tgt, (double)final[i]);
+    }
+    /* bad arguments: report written, nothing sent */
+    assert_int_equal(qo_modbus_sink_settle(s, final, NJ - 1, 0.001, 1.0, &rep), QO_E_RANGE);
+    assert_int_equal(rep.reached, 0);
+    assert_int_equal(qo_modbus_sink_settle(s, final, NJ, 0.0, 1.0, &rep), QO_E_LIMIT);
+    assert_int_equal(qo_modbus_sink_settle(s, final, NJ, 0.001, NAN, &rep), QO_E_LIMIT);
+    assert_int_equal(qo_modbus_sink_settle(NULL, final, NJ, 0.001, 1.0, &rep), QO_E_NULL);
+    assert_int_equal(qo_modbus_sink_settle(s, final, NJ, 0.001, 1.0, NULL), QO_E_NULL);
+    {
+        float bad[NJ] = { 0, 0, NAN, 0, 0, 0 };
+        assert_int_equal(qo_modbus_sink_settle(s, bad, NJ, 0.001, 1.0, &rep), QO_E_NONFINITE);
+        assert_true(isnan(rep.held[0]));
+    }
+    qo_modbus_sink_close(s);
+    assert_int_equal(qo_modbus_sink_settle(s, final, NJ, 0.001, 1.0, &rep), QO_E_STATE);
+    qo_modbus_sink_free(s);
+    qo_sim_stop(sim);
+}
+
+/* TCP: replies later than the response timeout cost no connection. 5% of the replies come
+ * 40 ms late (timeout 20 ms): each is matched by its transaction id in a later tick and
+ * accepted; that slave's ticks in between are skipped (never queued); no reconnection, no
+ * protocol error, no step above max_step, final targets exact. */
+static void test_tcp_late_replies_accepted(void **state)
+{
+    FILE *log = tmpfile();
+    qo_sim *sim;
+    qo_modbus_sink *s = NULL;
+    qo_modbus_sink_settings set = test_settings();
+    qo_modbus_sink_stats st;
+    qo_sim_stats sst;
+    qo_sim_fault late = { QO_SIM_FAULT_DELAY, 40, 0.05, 0, 0 };
+    qo_sim_fault none = { QO_SIM_FAULT_NONE, 0, 0.0, 0, 0 };
+    struct tick_log tl;
+    double last[NJ];
+    unsigned lines, k, ok = 0;
+    char spec[64];
+    (void)state;
+    memset(&tl, 0, sizeof tl);
+    load_six();
+    assert_non_null(log);
+    set.response_timeout_us = 20000;
+    set.fail_threshold = 3; /* would end the link at once if late replies counted as failures */
+    sim = start_tcp_sim(log, NULL, 0.0, spec, sizeof spec);
+    assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+    assert_int_equal(qo_sim_set_fault(sim, &late), QO_OK);
+    for (k = 0; k < NTICKS; k++) {
+        float t[NJ];
+        qo_status r;
+        targets_at(k, t);
+        r = qo_modbus_sink_write(s, t, NJ, k);
+        note_tick(&tl, k, r);
+        if (r != QO_OK && r != QO_E_TIMEOUT) fail_msg("tick %u: %s", k, qo_status_str(r));
+        (void)qo_modbus_sink_service(s);
+    }
+    assert_int_equal(qo_sim_set_fault(sim, &none), QO_OK);
+    for (k = 0; k < 100 && ok < 3; k++) {
+        float t[NJ];
+        targets_at(NTICKS - 1, t);
+        if (qo_modbus_sink_write(s, t, NJ, NTICKS + k) == QO_OK) ok++;
+    }
+    assert_int_equal(ok, 3);
+    assert_int_equal(qo_modbus_sink_get_stats(s, &st), QO_OK);
+    assert_int_equal(qo_sim_get_stats(sim, &sst), QO_OK);
+    if (sst.faults == 0 || st.timeouts != sst.faults || st.late_replies != st.timeouts ||
+        st.common.reconnects != 0 || st.disconnects != 0 || st.protocol_errors != 0 ||
+        st.stale_replies != 0 || st.readbacks != 0 || st.silences != 0 ||
+        st.skipped > 2 * st.timeouts)
+        fail_msg("late replies: sim faults %llu, timeouts %llu, late %llu, skipped %llu, "
+                 "reconnects %llu, disconnects %llu, protocol %llu, stale %llu, read-backs %llu",
+                 (unsigned long long)sst.faults, (unsigned long long)st.timeouts,
+                 (unsigned long long)st.late_replies, (unsigned long long)st.skipped,
+                 (unsigned long long)st.common.reconnects, (unsigned long long)st.disconnects,
+                 (unsigned long long)st.protocol_errors, (unsigned long long)st.stale_replies,
+                 (unsigned long long)st.readbacks);
+    check_final(sim, "late replies");
+    qo_modbus_sink_free(s);
+    qo_sim_stop(sim);
+    (void)check_log(log, &map, last, &lines); /* fails on any step above max_step */
+    fclose(log);
+}
+
+/* The simulator's reply latency model: parsing, and replies held back by it are late
+ * replies for the sink (a 40 ms sleep always exceeds a 10 ms timeout: no timing assert). */
+static void test_sim_lag_dist(void **state)
+{
+    static const char *bad[] = { "", "0.5", "0.5:", "0:1ms", "-1:1ms", "0.5:1", "0.5:2-1ms",
+                                 "0.5:1ms,", "0.5:1ms,x", "1:70000ms", "a:1ms", "0.5:-1ms",
+                                 "1:1ms,1:1ms,1:1ms,1:1ms,1:1ms,1:1ms,1:1ms,1:1ms,1:1ms" };
+    qo_sim_settings ss = qo_sim_settings_default;
+    qo_sim *sim = NULL;
+    qo_modbus_sink *s = NULL;
+    qo_modbus_sink_settings set = test_settings();
+    qo_modbus_sink_stats st;
+    char spec[64];
+    size_t i;
+    unsigned k;
+    (void)state;
+    assert_int_equal(qo_sim_parse_lag_dist("0.97:0-0.2ms,0.03:5-12ms", &ss), QO_OK);
+    assert_int_equal(ss.n_lag, 2);
+    assert_true(ss.lag[0].share == 0.97 && ss.lag[0].lo_ms == 0.0 && ss.lag[0].hi_ms == 0.2);
+    assert_true(ss.lag[1].share == 0.03 && ss.lag[1].lo_ms == 5.0 && ss.lag[1].hi_ms == 12.0);
+    assert_int_equal(qo_sim_parse_lag_dist("2:150us,1:3ms", &ss), QO_OK);
+    assert_true(ss.n_lag == 2 && ss.lag[0].lo_ms == 0.15 && ss.lag[0].hi_ms == 0.15 && ss.lag[1].lo_ms == 3.0);
+    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        ss.n_lag = 5;
+        if (qo_sim_parse_lag_dist(bad[i], &ss) != QO_E_CONFIG || ss.n_lag != 0)
+            fail_msg("lag-dist '%s' accepted", bad[i]);
+    }
+    assert_int_equal(qo_sim_parse_lag_dist(NULL, &ss), QO_E_NULL);
+    assert_int_equal(qo_sim_parse_lag_dist("1:1ms", NULL), QO_E_NULL);
+    /* a bucket out of range is refused by start as well */
+    load_six();
+    ss = qo_sim_settings_default;
+    ss.n_lag = 1;
+    ss.lag[0].share = 1.0;
+    ss.lag[0].lo_ms = 2.0;
+    ss.lag[0].hi_ms = 1.0;
+    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, &ss, &sim), QO_E_CONFIG);
+    assert_null(sim);
+    assert_int_equal(qo_sim_parse_lag_dist("0.8:0ms,0.2:40ms", &ss), QO_OK);
+    ss.lag_s = 0.0;
+    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, &ss, &sim), QO_OK);
+    snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+    set.response_timeout_us = 10000;
+    set.open_timeout_us = 500000; /* the open is not what is tested here */
+    assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
+    for (k = 0; k < 60; k++) {
+        float t[NJ];
+        targets_at(k, t);
+        (void)qo_modbus_sink_write(s, t, NJ, k);
+    }
+    assert_int_equal(qo_modbus_sink_get_stats(s, &st), QO_OK);
+    if (st.timeouts == 0 || st.late_replies + 1 < st.timeouts || st.common.reconnects != 0 ||
+        st.protocol_errors != 0)
+        fail_msg("lag-dist replies: timeouts %llu late %llu reconnects %llu protocol %llu",
+                 (unsigned long long)st.timeouts, (unsigned long long)st.late_replies,
+                 (unsigned long long)st.common.reconnects, (unsigned long long)st.protocol_errors);
+    qo_modbus_sink_free(s);
+    qo_sim_stop(sim);
+}
+
+/* The link's reconnection backoff: min first, doubling, capped, reset by a success. */
+static void test_link_backoff(void **state)
+{
+    static const uint32_t want[] = { 1000, 2000, 4000, 5000, 5000 };
+    qo_modbus_backoff b;
+    size_t i;
+    (void)state;
+    qo_modbus_backoff_init(&b, 1000, 5000);
+    assert_true(qo_modbus_backoff_due(&b));
+    for (i = 0; i < sizeof want / sizeof want[0]; i++) assert_int_equal(qo_modbus_backoff_failed(&b), want[i]);
+    assert_false(qo_modbus_backoff_due(&b)); /* 5 ms ahead */
+    qo_modbus_backoff_now(&b);
+    assert_true(qo_modbus_backoff_due(&b));
+    qo_modbus_backoff_reset(&b);
+    assert_int_equal(qo_modbus_backoff_failed(&b), 1000);
+    qo_modbus_backoff_init(&b, 1500000, 2500000); /* carries into the seconds */
+    assert_int_equal(qo_modbus_backoff_failed(&b), 1500000);
+    assert_int_equal(qo_modbus_backoff_failed(&b), 2500000);
+    assert_true(b.next.tv_nsec >= 0 && b.next.tv_nsec < 1000000000L);
+    assert_int_equal(qo_modbus_link_connect(NULL, NULL, 0, NULL), QO_E_NULL);
 }
 
 int main(void)
@@ -1031,6 +1303,11 @@ int main(void)
         cmocka_unit_test(test_rtu_late_reply),
         cmocka_unit_test(test_drive_restart_target_zero),
         cmocka_unit_test(test_readback_exception_fallback),
+        cmocka_unit_test(test_settle_until_held),
+        cmocka_unit_test(test_tcp_late_replies_accepted),
+        cmocka_unit_test(test_sim_lag_dist),
+        cmocka_unit_test(test_link_backoff),
+        cmocka_unit_test(test_settle_matches_drive),
     };
     return cmocka_run_group_tests_name("modbus_sink", tests, NULL, NULL);
 }

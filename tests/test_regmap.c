@@ -277,6 +277,69 @@ static void test_null_and_small_buffers(void **state)
     assert_int_equal(n, 0);
 }
 
+/* Writes `len` bytes to a file and loads it. */
+static qo_status load_bytes(const char *bytes, size_t len, char *err, size_t err_len)
+{
+    FILE *f = fopen("build/test_regmap_bytes.ini", "wb");
+    qo_status st;
+    assert_non_null(f);
+    assert_int_equal(fwrite(bytes, 1, len, f), len);
+    fclose(f);
+    st = qo_regmap_load("build/test_regmap_bytes.ini", &map, err, err_len);
+    remove("build/test_regmap_bytes.ini");
+    return st;
+}
+
+/* Input that is not a text map: an endless one stops, a NUL is an error wherever it is, a
+ * byte-order mark is skipped. */
+static void test_bounded_and_binary_input(void **state)
+{
+    static const char nul_after_comment[] =
+        "[joint.a]\nslave = 1\naddress = 0\ntype = int16\n; note\0bogus = 1\n";
+    static const char bom[] = "\xEF\xBB\xBF[joint.a]\nslave = 1\naddress = 7\ntype = int16\n";
+    static char big[QO_REGMAP_MAX_BYTES + 4096];
+    char err[256];
+    size_t i, len = 0;
+    (void)state;
+    /* /dev/zero never ends: refused at the first line of NUL bytes, not read for ever */
+    assert_int_equal(qo_regmap_load("/dev/zero", &map, err, sizeof err), QO_E_CONFIG);
+    assert_non_null(strstr(err, "/dev/zero:1: NUL byte"));
+    assert_int_equal(map.n_joints, 0);
+    /* a NUL inside a comment must not end the line there and expose a key after it */
+    assert_int_equal(load_bytes(nul_after_comment, sizeof nul_after_comment - 1, err, sizeof err),
+                     QO_E_CONFIG);
+    if (strstr(err, ":5: NUL byte") == NULL) fail_msg("message: %s", err);
+    /* a NUL on line 1 of an otherwise good map */
+    assert_int_equal(load_bytes("\0[joint.a]\n", 12, err, sizeof err), QO_E_CONFIG);
+    assert_non_null(strstr(err, ":1: NUL byte"));
+    /* a UTF-8 byte-order mark, from a file and from memory */
+    assert_int_equal(load_bytes(bom, sizeof bom - 1, err, sizeof err), QO_OK);
+    assert_int_equal(map.n_joints, 1);
+    assert_int_equal(map.joints[0].address, 7);
+    assert_int_equal(qo_regmap_parse(bom, "bom.ini", &map, err, sizeof err), QO_OK);
+    assert_string_equal(map.joints[0].name, "a");
+    /* the mark is a mark only at the very start */
+    assert_int_equal(qo_regmap_parse("[joint.a]\n\xEF\xBB\xBFslave = 1\naddress = 0\ntype = int16\n",
+                                     "mid.ini", &map, err, sizeof err), QO_E_CONFIG);
+    /* too many lines, and too many bytes (comment lines: nothing else is wrong with them) */
+    for (i = 0; len + 3 < sizeof big && i <= QO_REGMAP_MAX_LINES; i++) {
+        big[len++] = ';';
+        big[len++] = '\n';
+    }
+    big[len] = '\0';
+    assert_int_equal(qo_regmap_parse(big, "lines.ini", &map, err, sizeof err), QO_E_CAPACITY);
+    assert_non_null(strstr(err, "lines"));
+    for (len = 0; len + 100 < sizeof big;) {
+        memset(big + len, ' ', 98);
+        big[len] = ';';
+        big[len + 98] = '\n';
+        len += 99;
+    }
+    big[len] = '\0';
+    assert_int_equal(qo_regmap_parse(big, "bytes.ini", &map, err, sizeof err), QO_E_CAPACITY);
+    assert_int_equal(map.n_joints, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -286,6 +349,7 @@ int main(void)
         cmocka_unit_test(test_example_files),
         cmocka_unit_test(test_long_lists),
         cmocka_unit_test(test_null_and_small_buffers),
+        cmocka_unit_test(test_bounded_and_binary_input),
     };
     return cmocka_run_group_tests_name("regmap", tests, NULL, NULL);
 }

@@ -23,7 +23,7 @@
  *            (bench/bench_jitter.c measures it);
  *   reported the failures are in the streamer's statistics (sink_errors, one per failed
  *            tick) and in the sink's own counter for that fault (timeouts, exceptions,
- *            failure actions, failed opens, bad frames);
+ *            silences, failed opens, bad frames);
  *   recovery the simulator holds the final targets (to the register resolution, 0.5e-3
  *            rad) at the end, which only writes after the fault can have put there; for
  *            SIGINT it holds the last sampled target (the streamer's defined final target);
@@ -154,6 +154,7 @@ struct app {
     qo_status open_error;       /* what the first failed open returned */
     /* the sink's counters, copied at the end */
     uint64_t opens, reconnects, timeouts, exceptions, protocol_errors, disconnects, actions;
+    uint64_t silences;
     uint64_t requests_failed, rate_limited, readbacks;
     /* per-tick record, written by the streamer thread, read after the join */
     uint64_t writes, fails, held;
@@ -638,6 +639,7 @@ static void run_scenario(enum scen sc)
         app.protocol_errors += ms.protocol_errors;
         app.disconnects += ms.disconnects;
         app.actions += ms.actions;
+        app.silences += ms.silences;
         app.requests_failed += ms.requests_failed;
         app.rate_limited += ms.rate_limited;
         app.reconnects += ms.common.reconnects;
@@ -715,9 +717,12 @@ static void run_scenario(enum scen sc)
                                                        (unsigned long long)app.exceptions);
         break;
     case S_PULLED:
-        if (app.timeouts == 0 || app.actions == 0 || px.dropped == 0)
-            fail_msg("%s: timeouts %llu, failure actions %llu, bytes black-holed %llu", what,
-                     (unsigned long long)app.timeouts, (unsigned long long)app.actions,
+        /* TCP: the request stays outstanding (ticks skipped) until silence_us (1 s) passes
+         * with nothing received: then the link is dropped and reconnected */
+        if (app.timeouts == 0 || app.silences == 0 || app.reconnects == 0 || px.dropped == 0)
+            fail_msg("%s: timeouts %llu, silences %llu, reconnects %llu, bytes black-holed %llu",
+                     what, (unsigned long long)app.timeouts, (unsigned long long)app.silences,
+                     (unsigned long long)app.reconnects,
                      (unsigned long long)px.dropped);
         break;
     case S_RTU_GARBAGE:

@@ -16,23 +16,35 @@
 static void sim_usage(FILE *f)
 {
     fputs("usage: qorient sim --map FILE [--listen SPEC] [--lag SECONDS] [--log FILE]\n"
-          "                   [--fault KIND] [--fault-share P] [--fault-after N]\n"
-          "                   [--fault-count N] [--seed N] [--duration S]\n\n"
+          "                   [--lag-dist DIST] [--fault KIND] [--fault-share P]\n"
+          "                   [--fault-after N] [--fault-count N] [--seed N] [--duration S]\n"
+          "                   [--no-rt]\n\n"
           "Serves the register map FILE as a bank of simulated servo drives (Modbus server).\n"
           "Each joint moves toward its last target with a first-order lag and reports its\n"
-          "position in its feedback registers.\n\n"
+          "position in its feedback registers. It serves one master at a time, as most\n"
+          "drives do: a new TCP connection replaces the previous one. Requests are answered\n"
+          "in order.\n\n"
           "  --map FILE        register map (INI; see examples/maps)\n"
-          "  --listen SPEC     tcp://HOST:PORT (HOST default 127.0.0.1, PORT 0 = any free\n"
-          "                    port) or rtu:DEVICE,BAUD,8N1 (parity N, E or O);\n"
+          "  --listen SPEC     tcp://HOST:PORT (HOST an IPv4 address, localhost or [IPv6],\n"
+          "                    default 127.0.0.1; PORT 0 = any free port) or\n"
+          "                    rtu:DEVICE,BAUD,8N1 (parity N, E or O);\n"
           "                    default tcp://127.0.0.1:0\n"
           "  --lag SECONDS     time constant of the joints' lag (default 0.05; 0 = instant)\n"
           "  --log FILE        CSV of every target received: t_s,request,slave,joint_index,\n"
           "                    joint,value ('-' = standard output)\n"
+          "  --lag-dist DIST   reply latency: SHARE:LO-HIms[,SHARE:LO-HIms...], e.g.\n"
+          "                    0.97:0-0.2ms,0.03:5-12ms (97% within 0.2 ms, 3% after 5 to\n"
+          "                    12 ms, uniform; 'us' for microseconds); the write is applied\n"
+          "                    at once, the reply waits (default: reply at once)\n"
           "  --fault KIND      delay:MS, drop, exception or close\n"
           "  --fault-share P   fault each request with probability P (0..1)\n"
           "  --fault-after N   fault the requests after the first N ...\n"
-          "  --fault-count N   ... and only N of them (default 0 = all following)\n"
+          "  --fault-count N   at most N faults in all (default 0 = no limit); with\n"
+          "                    --fault-after: the N requests after the first N\n"
           "  --seed N          seed of the fault PRNG (default 1)\n"
+          "  --no-rt           do not ask for SCHED_FIFO 70 for the server thread (asked by\n"
+          "                    default, best effort: a drive has its own CPU, so other\n"
+          "                    processes on this machine should not slow its replies)\n"
           "  --duration S      stop after S seconds (default: run until SIGINT/SIGTERM)\n\n"
           "Prints 'listening SPEC' (with the actual port) when ready, and on exit\n"
           "'requests N target_writes N faults N connections N bad_frames N'.\n"
@@ -85,6 +97,8 @@ int qo_cli_sim(int argc, char **argv)
         { "listen", required_argument, NULL, 'l' },
         { "lag", required_argument, NULL, 'g' },
         { "log", required_argument, NULL, 'o' },
+        { "lag-dist", required_argument, NULL, 'L' },
+        { "no-rt", no_argument, NULL, 'R' },
         { "fault", required_argument, NULL, 'f' },
         { "fault-share", required_argument, NULL, 'p' },
         { "fault-after", required_argument, NULL, 'a' },
@@ -106,6 +120,9 @@ int qo_cli_sim(int argc, char **argv)
     FILE *log = NULL;
     sigset_t sigs;
 
+    /* A drive has its own CPU: best effort, the server thread preempts CPU-bound processes
+     * (below the streamer's SCHED_FIFO 80, so a master on the same machine goes first). */
+    set.rt_priority = 70;
     while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
         uint64_t u;
         switch (c) {
@@ -118,6 +135,13 @@ int qo_cli_sim(int argc, char **argv)
             }
             break;
         case 'o': log_path = optarg; break;
+        case 'R': set.rt_priority = 0; break;
+        case 'L':
+            if (qo_sim_parse_lag_dist(optarg, &set) != QO_OK) {
+                fprintf(stderr, "qorient sim: bad --lag-dist '%s' (SHARE:LO-HIms,...)\n", optarg);
+                return 2;
+            }
+            break;
         case 'f':
             if (parse_fault(optarg, &set.fault) != 0) {
                 fprintf(stderr, "qorient sim: bad --fault '%s' (delay:MS, drop, exception, close)\n",

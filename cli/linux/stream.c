@@ -35,7 +35,9 @@ static const char stream_usage[] =
     "  --map FILE          register map (INI, see examples/maps); its joints, in file order,\n"
     "                      are the plan's columns p1..pN\n"
     "  --modbus SPEC       tcp://HOST:PORT or rtu:DEVICE,BAUD,8N1 (parity N, E or O)\n"
-    "  --timeout-ms MS     response timeout (default 0.8 x the period, within 2..20 ms)\n"
+    "  --timeout-ms MS     response timeout (default 0.8 x the period, within 2..20 ms);\n"
+    "                      on TCP a later reply is still accepted at the next tick, and a\n"
+    "                      link silent for 20 x this (at least 1 s) is reconnected\n"
     "  --on-fail hold|disable  after repeated failures: hold the last target (default) or\n"
     "                      send the map's disable writes\n"
     "  --turnaround-us US  the drives' reply delay, for the RTU wire budget (default 0)\n"
@@ -47,6 +49,10 @@ static const char stream_usage[] =
     "Streaming:\n"
     "  --rate HZ           tick rate (default 100); also the rate the plan is sampled at\n"
     "  --hold S            keep streaming the final target for S seconds (default 0.2)\n"
+    "  --settle S          Modbus: after the plan (and --hold), keep sending the final target\n"
+    "                      until every drive holds it (acknowledged, then read back) or S\n"
+    "                      seconds pass; default: twice the max_step catch-up time from\n"
+    "                      what the drives hold, plus 0.5 s\n"
     "  --dry-run           check the map and the plan, print the per-tick wire budget (and\n"
     "                      for RTU the highest rate the line allows), send nothing\n"
     "  --no-rt             do not ask for SCHED_FIFO / mlockall\n"
@@ -55,9 +61,37 @@ static const char stream_usage[] =
     "\n"
     "On RTU a --rate above what the wire allows is refused (see --dry-run). Live progress\n"
     "(rate, jitter, errors) is shown on a terminal; a summary line 'summary: ...' is printed\n"
-    "at the end. SIGINT/SIGTERM stop cleanly: the drives get the last sampled target.\n"
-    "Exit status 0; 1 on a runtime error (map, device, unreachable drive, failed plan, final\n"
-    "write failed); 2 on a usage error.\n";
+    "at the end. SIGINT/SIGTERM stop cleanly: the drives get the last sampled target.\n";
+
+/* Apart from stream_usage: C99 guarantees string literals of 4095 characters only. */
+static const char stream_fields[] =
+    "\n"
+    "Summary fields (counts over the whole run, settling included):\n"
+    "  ticks         periods the streamer ran (sampled and handed to the sink)\n"
+    "  overruns      periods skipped because a tick's work ended after the next deadline\n"
+    "  jitter_*_us   wake-up latency after each deadline: median, 99th percentile, maximum\n"
+    "  sink_errors   ticks whose targets did not all reach the drives (any of the below)\n"
+    "  requests      Modbus requests sent (writes, read-backs, feedback reads)\n"
+    "  timeouts      requests not answered within --timeout-ms\n"
+    "  late_replies  TCP: replies taken after their tick, matched by transaction id and\n"
+    "                accepted (the drive applied the write)\n"
+    "  skipped       TCP: slave-ticks not sent because that slave's previous request was\n"
+    "                still unanswered (one outstanding request per slave, never queued)\n"
+    "  readbacks     target registers read back to learn what a drive holds (after an\n"
+    "                unknown outcome or a reconnection; 0 in a fault-free run)\n"    "  exceptions    exception replies (the drive refused a request: nothing applied)\n"
+    "  reconnects    links re-established after a broken or silent connection\n"
+    "  rate_limited  joint values held back by the map's max_step\n"
+    "  clamped       joint values changed by the map's min/max\n"
+    "  settle_s      Modbus: time spent after the plan until the drives held the final\n"
+    "                target (see --settle)\n"
+    "  final         ok: the drives hold the final target (read back); short: not within\n"
+    "                --settle (each short joint is named on stderr); or the status of the\n"
+    "                last write (GPIO, or stopped by a signal)\n"
+    "\n"
+    "Exit status 0 when the plan ran to its end and (Modbus) every drive holds the final\n"
+    "target; 1 on a runtime error (map, device, unreachable drive, failed plan, a drive short\n"
+    "of its final target after --settle: each such joint is named with how far it is short);\n"
+    "2 on a usage error. Stopped by a signal: 0 when the last sampled target was written.\n";
 
 struct plan_table {
     size_t rows, cols, n;   /* cols = 1 + k*n, k = 1 (p), 2 (p,v) or 3 (p,v,a) */
@@ -69,6 +103,7 @@ struct stream_ctx {
     const struct plan_table *plan;
     double hold;
     qo_streamer *st;
+    volatile sig_atomic_t ended; /* the plan ran to its end (not stopped by a signal) */
 };
 
 /* Runs `qorient plan` with args into a temporary file and reads the table back. */
@@ -165,7 +200,10 @@ static qo_status sample_plan(void *vctx, double t, float *targets, size_t n)
     double tp = pt->t0 + t, tend = pt->v[(pt->rows - 1) * pt->cols];
     size_t j;
     for (j = 0; j < n; j++) targets[j] = (float)plan_at(pt, tp, j);
-    if (tp >= tend + c->hold) qo_streamer_request_stop(c->st);
+    if (tp >= tend + c->hold) {
+        c->ended = 1;
+        qo_streamer_request_stop(c->st);
+    }
     return QO_OK;
 }
 
@@ -198,11 +236,35 @@ static void print_budget(const qo_wire_budget *b, const qo_modbus_spec *spec, do
     }
 }
 
+/* After the plan: the drives must hold its last row (see qo_modbus_sink_settle). Names every
+ * joint that is short on stderr. 0 when reached, else 1; *elapsed = time spent settling. */
+static int stream_settle(qo_modbus_sink *ms, const qo_regmap *map, const struct plan_table *pt,
+                         size_t n, double rate, double settle, double *elapsed)
+{
+    float final[QO_REGMAP_MAX_JOINTS];
+    qo_modbus_settle_report rep;
+    qo_status s;
+    size_t j;
+    for (j = 0; j < n; j++) final[j] = (float)pt->v[(pt->rows - 1) * pt->cols + 1 + j];
+    if (settle < 0) settle = qo_modbus_sink_settle_time(ms, final, n, 1.0 / rate);
+    s = qo_modbus_sink_settle(ms, final, n, 1.0 / rate, settle, &rep);
+    *elapsed = rep.elapsed_s;
+    if (s == QO_OK) return 0;
+    fprintf(stderr, "qorient stream: the drives do not hold the final target after %.3f s of --settle (%s):",
+            rep.deadline_s, qo_status_str(s));
+    for (j = 0; j < rep.n; j++)
+        if (rep.short_of[j])
+            fprintf(stderr, " %s at %.9g, short by %.9g;", map->joints[j].name, rep.held[j],
+                    rep.goal[j] - rep.held[j]);
+    fputc('\n', stderr);
+    return 1;
+}
+
 int qo_cli_stream(int argc, char **argv)
 {
     const char *map_path = NULL, *modbus = NULL, *gpio = NULL, *lines = NULL, *rate_s = "100";
     const char *spu_s = NULL, *step_rate_s = NULL, *on_fail = "hold";
-    double rate = 100.0, hold = 0.2, timeout_ms = -1, turnaround = 0;
+    double rate = 100.0, hold = 0.2, timeout_ms = -1, turnaround = 0, settle = -1;
     int dry = 0, no_rt = 0, quiet = 0, i, pargc = 0, rc = 1;
     char **pargv = calloc((size_t)argc + 1, sizeof *pargv);
     static qo_regmap map; /* 20 KiB: not on the stack */
@@ -224,7 +286,7 @@ int qo_cli_stream(int argc, char **argv)
         const char *a = argv[i];
         const char *val = (i + 1 < argc) ? argv[i + 1] : NULL;
 #define TAKE(opt, var) if (strcmp(a, opt) == 0) { if (!val) { fprintf(stderr, "qorient stream: %s needs a value\n", opt); goto usage; } var = val; i++; continue; }
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) { fputs(stream_usage, stdout); free(pargv); return 0; }
+        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) { fputs(stream_usage, stdout); fputs(stream_fields, stdout); free(pargv); return 0; }
         TAKE("--map", map_path)
         TAKE("--modbus", modbus)
         TAKE("--gpio", gpio)
@@ -233,7 +295,8 @@ int qo_cli_stream(int argc, char **argv)
         TAKE("--step-rate", step_rate_s)
         TAKE("--on-fail", on_fail)
         TAKE("--rate", rate_s)
-        if (strcmp(a, "--hold") == 0 || strcmp(a, "--timeout-ms") == 0 || strcmp(a, "--turnaround-us") == 0) {
+        if (strcmp(a, "--hold") == 0 || strcmp(a, "--timeout-ms") == 0 || strcmp(a, "--turnaround-us") == 0 ||
+            strcmp(a, "--settle") == 0) {
             char *end;
             double v;
             if (!val) { fprintf(stderr, "qorient stream: %s needs a value\n", a); goto usage; }
@@ -242,7 +305,8 @@ int qo_cli_stream(int argc, char **argv)
                 fprintf(stderr, "qorient stream: %s: '%s' is not a non-negative number\n", a, val);
                 goto usage;
             }
-            if (a[2] == 'h') hold = v; else if (a[2] == 't' && a[3] == 'i') timeout_ms = v; else turnaround = v;
+            if (a[2] == 'h') hold = v; else if (a[2] == 's') settle = v;
+            else if (a[2] == 't' && a[3] == 'i') timeout_ms = v; else turnaround = v;
             i++;
             continue;
         }
@@ -400,6 +464,7 @@ int qo_cli_stream(int argc, char **argv)
     sc.plan = &pt;
     sc.hold = hold;
     sc.st = &st;
+    sc.ended = 0;
     s = qo_streamer_init(&st, &cfg);
     if (s != QO_OK) {
         fprintf(stderr, "qorient stream: %s\n", qo_status_str(s));
@@ -419,7 +484,8 @@ int qo_cli_stream(int argc, char **argv)
         volatile sig_atomic_t *stop = qo_streamer_stop_flag(&st);
         qo_streamer_stats ss;
         qo_status fin;
-        double elapsed = 0;
+        double elapsed = 0, settle_s = 0;
+        int settled = -1;
         while (!*stop) {
             nanosleep(&ts, NULL);
             elapsed += 0.25;
@@ -432,6 +498,8 @@ int qo_cli_stream(int argc, char **argv)
         }
         fin = qo_streamer_join(&st);
         if (tty) fputc('\n', stderr);
+        /* The plan ended: success is the drives holding its last row, not the last write. */
+        if (ms && sc.ended) settled = stream_settle(ms, &map, &pt, n_joints, rate, settle, &settle_s);
         qo_streamer_stats_read(&st, &ss);
         {
             const char *warn = NULL;
@@ -445,13 +513,18 @@ int qo_cli_stream(int argc, char **argv)
         if (ms) {
             qo_modbus_sink_stats ms_st;
             if (qo_modbus_sink_get_stats(ms, &ms_st) == QO_OK)
-                printf(" requests %llu timeouts %llu exceptions %llu reconnects %llu rate_limited %llu clamped %llu",
+                printf(" requests %llu timeouts %llu late_replies %llu skipped %llu readbacks %llu exceptions %llu"
+                       " reconnects %llu rate_limited %llu clamped %llu",
                        (unsigned long long)ms_st.requests, (unsigned long long)ms_st.timeouts,
+                       (unsigned long long)ms_st.late_replies, (unsigned long long)ms_st.skipped,
+                       (unsigned long long)ms_st.readbacks,
                        (unsigned long long)ms_st.exceptions, (unsigned long long)ms_st.common.reconnects,
                        (unsigned long long)ms_st.rate_limited, (unsigned long long)ms_st.clamped);
         }
-        printf(" final %s\n", qo_status_str(fin));
-        if (fin != QO_OK) {
+        if (settled >= 0) printf(" settle_s %.3f final %s\n", settle_s, settled == 0 ? "ok" : "short");
+        else printf(" final %s\n", qo_status_str(fin));
+        if (settled > 0) goto out;
+        if (fin != QO_OK && settled < 0) {
             fprintf(stderr, "qorient stream: the final target did not reach the drives: %s\n", qo_status_str(fin));
             goto out;
         }

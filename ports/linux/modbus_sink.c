@@ -1,4 +1,6 @@
 #include "linux/modbus_sink.h"
+#include "linux/joint_guard.h"
+#include "linux/modbus_layout.h"
 
 #include <arpa/inet.h>
 #include <errno.h>
@@ -19,126 +21,11 @@ const qo_modbus_sink_settings qo_modbus_sink_settings_default = {
     2000000u,               /* reconnect_max_us */
     0,                      /* rs485 */
     1,                      /* seed_from_feedback */
-    0u                      /* open_timeout_us: the response timeout */
+    0u,                     /* open_timeout_us: the response timeout */
+    0u                      /* silence_us: automatic */
 };
-
-/* ---- spec ------------------------------------------------------------------------------ */
-
-static int parse_int(const char *s, size_t len, long lo, long hi, long *out)
-{
-    char buf[24];
-    char *end;
-    long v;
-    if (len == 0 || len >= sizeof buf) return -1;
-    memcpy(buf, s, len);
-    buf[len] = '\0';
-    if (buf[0] < '0' || buf[0] > '9') return -1;
-    errno = 0;
-    v = strtol(buf, &end, 10);
-    if (errno != 0 || *end != '\0' || v < lo || v > hi) return -1;
-    *out = v;
-    return 0;
-}
-
-qo_status qo_modbus_parse_spec(const char *text, qo_modbus_spec *out)
-{
-    if (out == NULL) return QO_E_NULL;
-    memset(out, 0, sizeof *out);
-    if (text == NULL) return QO_E_NULL;
-    if (strncmp(text, "tcp://", 6) == 0) {
-        const char *h = text + 6, *colon = strrchr(h, ':');
-        size_t hl = colon != NULL ? (size_t)(colon - h) : strlen(h);
-        long port = 502;
-        if (hl >= sizeof out->host) goto bad;
-        if (colon != NULL && parse_int(colon + 1, strlen(colon + 1), 0, 65535, &port) != 0) goto bad;
-        out->transport = QO_MODBUS_TCP;
-        if (hl == 0) strcpy(out->host, "127.0.0.1");
-        else {
-            memcpy(out->host, h, hl);
-            out->host[hl] = '\0';
-        }
-        out->port = (int)port;
-        return QO_OK;
-    }
-    if (strncmp(text, "rtu:", 4) == 0) {
-        const char *d = text + 4, *c1 = strchr(d, ',');
-        size_t dl = c1 != NULL ? (size_t)(c1 - d) : strlen(d);
-        long baud = 19200;
-        out->transport = QO_MODBUS_RTU;
-        out->parity = 'E';
-        out->data_bits = 8;
-        out->stop_bits = 1;
-        if (dl == 0 || dl >= sizeof out->device) goto bad;
-        memcpy(out->device, d, dl);
-        out->device[dl] = '\0';
-        if (c1 != NULL) {
-            const char *b = c1 + 1, *c2 = strchr(b, ',');
-            size_t bl = c2 != NULL ? (size_t)(c2 - b) : strlen(b);
-            if (parse_int(b, bl, 1, 10000000, &baud) != 0) goto bad;
-            if (c2 != NULL) {
-                const char *f = c2 + 1;
-                char p;
-                if (strlen(f) != 3 || f[0] < '5' || f[0] > '8' || (f[2] != '1' && f[2] != '2'))
-                    goto bad;
-                p = f[1];
-                if (p == 'n') p = 'N';
-                if (p == 'e') p = 'E';
-                if (p == 'o') p = 'O';
-                if (p != 'N' && p != 'E' && p != 'O') goto bad;
-                out->data_bits = f[0] - '0';
-                out->parity = p;
-                out->stop_bits = f[2] - '0';
-            }
-        }
-        out->baud = (int)baud;
-        return QO_OK;
-    }
-bad:
-    memset(out, 0, sizeof *out);
-    return QO_E_CONFIG;
-}
-
-modbus_t *qo_modbus_new_ctx(const qo_modbus_spec *spec)
-{
-    if (spec == NULL) return NULL;
-    if (spec->transport == QO_MODBUS_TCP) {
-        struct in_addr a;
-        char port[16];
-        /* modbus_new_tcp takes IPv4 literals only; names and IPv6 go through the _pi API. */
-        if (inet_pton(AF_INET, spec->host, &a) == 1) return modbus_new_tcp(spec->host, spec->port);
-        snprintf(port, sizeof port, "%d", spec->port);
-        return modbus_new_tcp_pi(spec->host, port);
-    }
-    if (spec->transport == QO_MODBUS_RTU)
-        return modbus_new_rtu(spec->device, spec->baud, spec->parity, spec->data_bits,
-                              spec->stop_bits);
-    return NULL;
-}
 
 /* ---- sink ------------------------------------------------------------------------------ */
-
-struct item {
-    size_t joint;     /* joint index */
-    unsigned offset;  /* register offset inside the group */
-};
-
-struct group {
-    unsigned slave;
-    unsigned gap_us;
-    uint16_t start;
-    unsigned count;
-    uint16_t regs[QO_REGMAP_MAX_REGISTERS]; /* constants pre-filled; joints packed per tick */
-    size_t first_item, n_items;
-};
-
-struct jstate {
-    int have;          /* lo/hi known */
-    double lo, hi;     /* raw values the drive may hold */
-    double cmd;        /* raw value packed this tick */
-    double step;       /* max_step in raw units, 0 = unlimited */
-    double tlo, thi;   /* type range */
-    int uncertain;     /* lo/hi may be stale: read the target back before the next write */
-};
 
 struct qo_modbus_sink {
     const qo_regmap *map;
@@ -146,27 +33,24 @@ struct qo_modbus_sink {
     qo_modbus_spec spec;
     modbus_t *ctx;
     int connected, closed, disabled;
-    struct group *groups;
-    size_t n_groups;
-    struct item *items;
-    struct jstate *js;
-    uint32_t backoff_us;
+    qo_modbus_layout *lay;  /* the requests of one tick */
+    qo_joint_guard *js;
+    qo_modbus_backoff backoff;
     unsigned bus_failures; /* consecutive ticks failed on the bus (argument errors excluded) */
     unsigned cur_slave;    /* slave of the request in progress (modbus_set_slave) */
     int drained;           /* RTU: the line was drained this tick */
     int last_errno;        /* errno of the last failed request */
-    struct timespec next_attempt;
+    struct timespec tick_deadline; /* TCP: the tick waits for outstanding replies until this */
+    uint32_t silence_us;   /* the effective silence before a TCP link counts as broken */
+    qo_modbus_tcp *tcp;    /* TCP: requests matched by transaction id; NULL on RTU */
+    int connect_ok;        /* the last do_connect got the link up (its requests failed) */
+    int in_tick;           /* inside write() or settle: tick_deadline bounds the waits */
     qo_modbus_sink_stats st;
 };
 
 static void now_ts(struct timespec *t)
 {
     clock_gettime(CLOCK_MONOTONIC, t);
-}
-
-static int ts_before(const struct timespec *a, const struct timespec *b)
-{
-    return a->tv_sec < b->tv_sec || (a->tv_sec == b->tv_sec && a->tv_nsec < b->tv_nsec);
 }
 
 static void sleep_us(unsigned us)
@@ -226,9 +110,17 @@ static void link_down(qo_modbus_sink *s)
         s->st.disconnects++;
         modbus_close(s->ctx);
     }
+    if (s->tcp != NULL) {
+        size_t i;
+        s->st.stale_replies += s->tcp->stale;
+        s->tcp->stale = 0;
+        qo_modbus_tcp_reset(s->tcp, -1);
+        /* an outstanding write's reply will never be read: old or new, read back */
+        for (i = 0; i < s->map->n_joints; i++) s->js[i].pend = 0;
+    }
     s->connected = 0;
     s->st.common.connected = 0;
-    now_ts(&s->next_attempt); /* first reconnection may be tried at once */
+    qo_modbus_backoff_now(&s->backoff); /* first reconnection may be tried at once */
 }
 
 /* One request's bookkeeping after a libmodbus call that returned rc. */
@@ -243,16 +135,211 @@ static qo_status after_request(qo_modbus_sink *s, int rc, int *uncertain)
     s->last_errno = err;
     st = classify(err, uncertain, s);
     if (*uncertain) mark_slave_uncertain(s, s->cur_slave);
-    if (s->spec.transport == QO_MODBUS_TCP && (err == EMBBADDATA || err == EMBBADSLAVE)) {
-        /* On TCP this is a stale reply (an earlier request's, after a timeout): the reply
-         * to this request is still on its way. Consume it (bounded by the response timeout)
-         * so the link is back in step now instead of staying one reply behind. */
-        uint8_t rsp[MODBUS_TCP_MAX_ADU_LENGTH];
-        (void)modbus_receive_confirmation(s->ctx, rsp);
-    }
-    /* A late or partial reply must not be read as the answer to the next request. */
+    /* RTU: a late or partial reply must not be read as the answer to the next request. */
     modbus_flush(s->ctx);
     s->st.last_error = st;
+    return st;
+}
+
+/* ---- one request ----------------------------------------------------------------------- */
+
+static void add_us(struct timespec *t, uint64_t us)
+{
+    t->tv_sec += (time_t)(us / 1000000u);
+    t->tv_nsec += (long)(us % 1000000u) * 1000L;
+    if (t->tv_nsec >= 1000000000L) {
+        t->tv_sec++;
+        t->tv_nsec -= 1000000000L;
+    }
+}
+
+static int64_t us_between(const struct timespec *a, const struct timespec *b)
+{
+    return (int64_t)(b->tv_sec - a->tv_sec) * 1000000 + (int64_t)(b->tv_nsec - a->tv_nsec) / 1000;
+}
+
+/* An FC16 of joint targets whose reply arrived (in its own call or later): the drive holds
+ * what it carried, or, after an exception, what it held before. */
+static void group_answered(qo_modbus_sink *s, size_t g, int applied)
+{
+    const qo_modbus_request *gr = &s->lay->req[g];
+    size_t i;
+    for (i = 0; i < gr->n_items; i++)
+        qo_joint_guard_answered(&s->js[s->lay->item[gr->first_item + i].joint], applied);
+}
+
+/* The meaning of a reply PDU to a request with function code fc: QO_OK (rregs filled for
+ * FC03, when rregs is not NULL); QO_E_PROTOCOL for an exception (*applied 0) or a malformed
+ * reply (*applied 1: the drive took the request, what it did is unknown). */
+static qo_status judge_reply(qo_modbus_sink *s, const qo_modbus_tcp_slot *r, unsigned count,
+                             uint16_t *rregs, int *applied)
+{
+    unsigned k;
+    *applied = 0;
+    if (r->len >= 2 && r->pdu[0] == (uint8_t)(r->fc | 0x80)) {
+        s->st.exceptions++;
+        s->last_errno = MODBUS_ENOBASE + r->pdu[1];
+        return QO_E_PROTOCOL;
+    }
+    *applied = 1;
+    if (r->len < 1 || r->pdu[0] != r->fc) goto bad;
+    if (r->fc == MODBUS_FC_READ_HOLDING_REGISTERS) {
+        if (rregs == NULL) return QO_OK;
+        if (r->len != 2 + 2 * (size_t)count || r->pdu[1] != 2 * count) goto bad;
+        for (k = 0; k < count; k++)
+            rregs[k] = (uint16_t)(((unsigned)r->pdu[2 + 2 * k] << 8) | r->pdu[3 + 2 * k]);
+    } else if (r->len != 5) {
+        goto bad;
+    }
+    return QO_OK;
+bad:
+    s->st.protocol_errors++;
+    s->last_errno = EMBBADDATA;
+    return QO_E_PROTOCOL;
+}
+
+/* A reply that came after the call that sent its request returned: taken and applied. */
+static void take_late(qo_modbus_sink *s, unsigned slave)
+{
+    qo_modbus_tcp_slot r;
+    int applied;
+    if (!qo_modbus_tcp_take(s->tcp, slave, &r)) return;
+    s->st.late_replies++;
+    (void)judge_reply(s, &r, 0, NULL, &applied);
+    /* a late read-back or init write changes nothing: its joints are read back again */
+    if (r.tag >= 0) group_answered(s, (size_t)r.tag, applied);
+}
+
+/* TCP: collects the replies that arrived since the last call (without blocking) and applies
+ * them. QO_OK, or QO_E_DISCONNECTED when the link broke (the caller drops it). */
+static qo_status tcp_collect(qo_modbus_sink *s)
+{
+    size_t i;
+    qo_status st = qo_modbus_tcp_pump(s->tcp, -1, NULL);
+    if (st != QO_OK) {
+        if (st == QO_E_PROTOCOL) s->st.protocol_errors++;
+        return QO_E_DISCONNECTED;
+    }
+    for (i = 0; i < s->map->n_slaves; i++) take_late(s, s->map->slaves[i].id);
+    return QO_OK;
+}
+
+/* TCP: `slave` may get a request only when its previous one is answered. Waits for it until
+ * the tick's deadline. QO_OK (free); QO_E_TIMEOUT (still outstanding: skip this slave);
+ * QO_E_DISCONNECTED (broken, or nothing received for silence_us: the caller drops it).
+ * A request outstanding for silence_us while other replies do arrive is abandoned (its
+ * joints are read back) rather than the link dropped. */
+static qo_status tcp_wait_free(qo_modbus_sink *s, unsigned slave)
+{
+    struct timespec now;
+    qo_status st;
+    if (!qo_modbus_tcp_busy(s->tcp, slave)) return QO_OK;
+    if (!s->in_tick) {
+        /* outside a tick (open, reconnection, feedback reads): one response timeout */
+        now_ts(&s->tick_deadline);
+        add_us(&s->tick_deadline, s->set.response_timeout_us);
+    }
+    st = qo_modbus_tcp_pump(s->tcp, (int)slave, &s->tick_deadline);
+    if (st == QO_OK) {
+        take_late(s, slave);
+        return QO_OK;
+    }
+    if (st != QO_E_TIMEOUT) {
+        if (st == QO_E_PROTOCOL) s->st.protocol_errors++;
+        return QO_E_DISCONNECTED;
+    }
+    now_ts(&now);
+    if (us_between(&s->tcp->slot[slave].sent, &now) < (int64_t)s->silence_us) return QO_E_TIMEOUT;
+    if (us_between(&s->tcp->slot[slave].sent, &s->tcp->last_rx) <= 0) {
+        s->st.silences++;
+        return QO_E_DISCONNECTED;
+    }
+    s->st.abandoned++;
+    qo_modbus_tcp_abandon(s->tcp, slave);
+    mark_slave_uncertain(s, slave);
+    return QO_OK;
+}
+
+/* One request to `slave`: FC16 (count registers from wregs), FC06 (wregs[0]) or FC03 (into
+ * rregs). *uncertain: the outcome is unknown (it may have been applied). On TCP a request
+ * without a reply within the response timeout stays outstanding (QO_E_TIMEOUT, *pending 1):
+ * its reply is taken later (tag >= 0: the group whose joints it carries). A slave whose
+ * previous request is still outstanding gets nothing: QO_E_TIMEOUT, *pending 1, *sent 0. */
+static qo_status xfer(qo_modbus_sink *s, unsigned slave, int fc, uint16_t addr, unsigned count,
+                      const uint16_t *wregs, uint16_t *rregs, int tag, int *uncertain,
+                      int *pending, int *sent)
+{
+    uint8_t pdu[QO_MODBUS_PDU_MAX];
+    size_t len = 0, k;
+    struct timespec dl;
+    qo_modbus_tcp_slot r;
+    qo_status st;
+    int rc, applied;
+    *uncertain = 0;
+    *pending = 0;
+    *sent = 1;
+    use_slave(s, slave);
+    if (s->tcp == NULL) {
+        if (fc == MODBUS_FC_WRITE_MULTIPLE_REGISTERS) rc = modbus_write_registers(s->ctx, addr, (int)count, wregs);
+        else if (fc == MODBUS_FC_WRITE_SINGLE_REGISTER) rc = modbus_write_register(s->ctx, addr, wregs[0]);
+        else rc = modbus_read_registers(s->ctx, addr, (int)count, rregs);
+        return after_request(s, rc, uncertain);
+    }
+    st = tcp_wait_free(s, slave);
+    if (st != QO_OK) {
+        *sent = 0;
+        *pending = st == QO_E_TIMEOUT;
+        if (st == QO_E_TIMEOUT) s->st.skipped++;
+        s->st.last_error = st;
+        return st;
+    }
+    pdu[len++] = (uint8_t)fc;
+    pdu[len++] = (uint8_t)(addr >> 8);
+    pdu[len++] = (uint8_t)(addr & 0xFF);
+    if (fc == MODBUS_FC_WRITE_SINGLE_REGISTER) {
+        pdu[len++] = (uint8_t)(wregs[0] >> 8);
+        pdu[len++] = (uint8_t)(wregs[0] & 0xFF);
+    } else {
+        pdu[len++] = (uint8_t)(count >> 8);
+        pdu[len++] = (uint8_t)(count & 0xFF);
+        if (fc == MODBUS_FC_WRITE_MULTIPLE_REGISTERS) {
+            pdu[len++] = (uint8_t)(2 * count);
+            for (k = 0; k < count; k++) {
+                pdu[len++] = (uint8_t)(wregs[k] >> 8);
+                pdu[len++] = (uint8_t)(wregs[k] & 0xFF);
+            }
+        }
+    }
+    s->st.requests++;
+    st = qo_modbus_tcp_send(s->tcp, slave, pdu, len, tag);
+    if (st == QO_OK) {
+        now_ts(&dl);
+        add_us(&dl, s->set.response_timeout_us);
+        st = qo_modbus_tcp_pump(s->tcp, (int)slave, &dl);
+    }
+    if (st == QO_E_TIMEOUT) {
+        s->st.timeouts++;
+        s->st.requests_failed++;
+        s->st.last_error = st;
+        *uncertain = 1;
+        *pending = 1;
+        return QO_E_TIMEOUT;
+    }
+    if (st != QO_OK) {
+        if (st == QO_E_PROTOCOL) s->st.protocol_errors++;
+        s->st.requests_failed++;
+        *uncertain = 1;
+        s->st.last_error = QO_E_DISCONNECTED;
+        return QO_E_DISCONNECTED;
+    }
+    (void)qo_modbus_tcp_take(s->tcp, slave, &r);
+    st = judge_reply(s, &r, count, rregs, &applied);
+    if (st != QO_OK) {
+        s->st.requests_failed++;
+        s->st.last_error = st;
+        *uncertain = applied; /* malformed: taken, but what it did is unknown */
+        if (applied) mark_slave_uncertain(s, slave);
+    }
     return st;
 }
 
@@ -266,10 +353,9 @@ static qo_status send_writes(qo_modbus_sink *s, int disable)
         size_t n = disable ? sl->n_disable : sl->n_init;
         for (k = 0; k < n; k++) {
             qo_status st;
-            int rc;
-            use_slave(s, sl->id);
-            rc = modbus_write_register(s->ctx, w[k].address, w[k].value);
-            st = after_request(s, rc, &unc);
+            int pend, sent;
+            st = xfer(s, sl->id, MODBUS_FC_WRITE_SINGLE_REGISTER, w[k].address, 1, &w[k].value,
+                      NULL, -1, &unc, &pend, &sent);
             sleep_us(sl->gap_us);
             if (st != QO_OK) return st;
         }
@@ -281,13 +367,12 @@ static qo_status read_joint_feedback(qo_modbus_sink *s, size_t i, double *raw)
 {
     const qo_regmap_joint *j = &s->map->joints[i];
     uint16_t regs[2] = { 0, 0 };
-    int rc, unc;
+    int unc, pend, sent;
     qo_status st;
     const qo_regmap_slave *sl = qo_regmap_find_slave(s->map, j->slave);
     *raw = 0.0;
-    use_slave(s, j->slave);
-    rc = modbus_read_registers(s->ctx, j->feedback, (int)qo_reg_type_width(j->fmt.type), regs);
-    st = after_request(s, rc, &unc);
+    st = xfer(s, j->slave, MODBUS_FC_READ_HOLDING_REGISTERS, j->feedback,
+              (unsigned)qo_reg_type_width(j->fmt.type), NULL, regs, -1, &unc, &pend, &sent);
     if (sl != NULL) sleep_us(sl->gap_us);
     if (st != QO_OK) return st;
     return qo_reg_unpack_raw(j->fmt.type, j->fmt.order, regs, raw);
@@ -302,8 +387,7 @@ static qo_status seed_from_feedback(qo_modbus_sink *s)
         if (s->js[i].have || !s->map->joints[i].has_feedback) continue;
         st = read_joint_feedback(s, i, &raw);
         if (st != QO_OK) return st;
-        s->js[i].have = 1;
-        s->js[i].lo = s->js[i].hi = raw;
+        qo_joint_guard_known(&s->js[i], raw);
     }
     return QO_OK;
 }
@@ -312,16 +396,12 @@ static qo_status seed_from_feedback(qo_modbus_sink *s)
 static qo_status do_connect(qo_modbus_sink *s)
 {
     qo_status st;
-    int err;
-    modbus_close(s->ctx);
-    if (modbus_connect(s->ctx) != 0) {
-        err = errno;
-        s->st.last_error = err == ETIMEDOUT ? QO_E_TIMEOUT : QO_E_DISCONNECTED;
-        return s->st.last_error;
+    s->connect_ok = 0;
+    st = qo_modbus_link_connect(s->ctx, &s->spec, s->set.rs485, s->tcp);
+    if (st != QO_OK) {
+        s->st.last_error = st;
+        return st;
     }
-    if (s->spec.transport == QO_MODBUS_RTU && s->set.rs485)
-        (void)modbus_rtu_set_serial_mode(s->ctx, MODBUS_RTU_RS485);
-    modbus_flush(s->ctx);
     s->connected = 1;
     /* What the sink remembers may be stale now (the drive may have restarted and lost its
      * target, or, on RTU, a late reply may still come): read every known joint back first. */
@@ -335,88 +415,15 @@ static qo_status do_connect(qo_modbus_sink *s)
     if (st != QO_OK) {
         modbus_close(s->ctx);
         s->connected = 0;
+        if (s->tcp != NULL) qo_modbus_tcp_reset(s->tcp, -1);
+        s->connect_ok = 1; /* the link came up; the drives' answers did not */
         return st;
     }
     s->st.common.connected = 1;
     s->st.common.consecutive_failures = 0;
     s->bus_failures = 0;
-    s->backoff_us = 0;
+    qo_modbus_backoff_reset(&s->backoff);
     s->st.backoff_us = 0;
-    return QO_OK;
-}
-
-static int cmp_cell(const void *a, const void *b)
-{
-    const unsigned *x = a, *y = b; /* {slave, address, width, kind/index} */
-    if (x[0] != y[0]) return x[0] < y[0] ? -1 : 1;
-    if (x[1] != y[1]) return x[1] < y[1] ? -1 : 1;
-    return 0;
-}
-
-/* Builds the FC16 groups: cells (joint targets and constants) sorted by slave and address,
- * merged while strictly contiguous and within the slave's max_registers. */
-static qo_status build_groups(qo_modbus_sink *s)
-{
-    const qo_regmap *m = s->map;
-    size_t nc = 0, i, k, max_cells = m->n_joints;
-    unsigned (*cells)[5];
-    for (i = 0; i < m->n_slaves; i++) max_cells += m->slaves[i].n_constant;
-    cells = calloc(max_cells, sizeof *cells);
-    s->groups = calloc(max_cells, sizeof *s->groups);
-    s->items = calloc(m->n_joints, sizeof *s->items);
-    if (cells == NULL || s->groups == NULL || s->items == NULL) {
-        free(cells);
-        return QO_E_CAPACITY;
-    }
-    for (i = 0; i < m->n_joints; i++) {
-        cells[nc][0] = m->joints[i].slave;
-        cells[nc][1] = m->joints[i].address;
-        cells[nc][2] = (unsigned)qo_reg_type_width(m->joints[i].fmt.type);
-        cells[nc][3] = 1; /* joint */
-        cells[nc][4] = (unsigned)i;
-        nc++;
-    }
-    for (i = 0; i < m->n_slaves; i++) {
-        for (k = 0; k < m->slaves[i].n_constant; k++) {
-            cells[nc][0] = m->slaves[i].id;
-            cells[nc][1] = m->slaves[i].constant[k].address;
-            cells[nc][2] = 1;
-            cells[nc][3] = 0; /* constant */
-            cells[nc][4] = m->slaves[i].constant[k].value;
-            nc++;
-        }
-    }
-    qsort(cells, nc, sizeof *cells, cmp_cell);
-    s->n_groups = 0;
-    {
-        size_t nitems = 0;
-        struct group *g = NULL;
-        for (i = 0; i < nc; i++) {
-            const qo_regmap_slave *sl = qo_regmap_find_slave(m, cells[i][0]);
-            unsigned maxr = sl != NULL ? sl->max_registers : QO_REGMAP_MAX_REGISTERS;
-            if (g == NULL || g->slave != cells[i][0] || g->start + g->count != cells[i][1] ||
-                g->count + cells[i][2] > maxr) {
-                g = &s->groups[s->n_groups++];
-                g->slave = cells[i][0];
-                g->gap_us = sl != NULL ? sl->gap_us : 0;
-                g->start = (uint16_t)cells[i][1];
-                g->count = 0;
-                g->first_item = nitems;
-                g->n_items = 0;
-            }
-            if (cells[i][3] == 1) {
-                s->items[nitems].joint = cells[i][4];
-                s->items[nitems].offset = g->count;
-                nitems++;
-                g->n_items++;
-            } else {
-                g->regs[g->count] = (uint16_t)cells[i][4];
-            }
-            g->count += cells[i][2];
-        }
-    }
-    free(cells);
-    s->st.groups = (unsigned)s->n_groups;
     return QO_OK;
 }
 
@@ -435,7 +442,7 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
         settings->fail_threshold == 0)
         return QO_E_LIMIT;
     if (settings->response_timeout_us > 10000000u || settings->byte_timeout_us > 10000000u ||
-        settings->open_timeout_us > 10000000u ||
+        settings->open_timeout_us > 10000000u || settings->silence_us > 60000000u ||
         settings->reconnect_max_us < settings->reconnect_min_us ||
         (settings->on_fail != QO_MODBUS_ON_FAIL_HOLD && settings->on_fail != QO_MODBUS_ON_FAIL_DISABLE))
         return QO_E_CONFIG;
@@ -459,19 +466,32 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
     s->map = map;
     s->set = *settings;
     s->st.last_error = QO_OK;
+    qo_modbus_backoff_init(&s->backoff, settings->reconnect_min_us, settings->reconnect_max_us);
     st = qo_modbus_parse_spec(spec, &s->spec);
     if (st == QO_OK && (s->spec.transport == QO_MODBUS_TCP && s->spec.port == 0)) st = QO_E_CONFIG;
     if (st == QO_OK) {
         s->js = calloc(map->n_joints, sizeof *s->js);
         if (s->js == NULL) st = QO_E_CAPACITY;
     }
-    if (st == QO_OK) st = build_groups(s);
     if (st == QO_OK) {
-        for (i = 0; i < map->n_joints; i++) {
-            const qo_regmap_joint *j = &map->joints[i];
-            s->js[i].step = j->max_step * fabs(j->fmt.scale);
-            (void)qo_reg_type_range(j->fmt.type, &s->js[i].tlo, &s->js[i].thi);
-        }
+        s->lay = malloc(sizeof *s->lay);
+        st = s->lay == NULL ? QO_E_CAPACITY : qo_modbus_layout_build(map, s->lay);
+        if (st == QO_OK) s->st.groups = (unsigned)s->lay->n_requests;
+    }
+    if (st == QO_OK && s->spec.transport == QO_MODBUS_TCP) {
+        s->tcp = calloc(1, sizeof *s->tcp);
+        if (s->tcp == NULL) st = QO_E_CAPACITY;
+        else qo_modbus_tcp_reset(s->tcp, -1);
+    }
+    s->silence_us = settings->silence_us;
+    if (s->silence_us == 0) {
+        /* long enough for a loaded machine's scheduling stalls (tens of ms seen on the
+         * 2-core CI box), short enough that the drives do not hold for long */
+        uint64_t a = 20u * (uint64_t)settings->response_timeout_us;
+        s->silence_us = a < 1000000u ? 1000000u : a > 60000000u ? 60000000u : (uint32_t)a;
+    }
+    if (st == QO_OK) {
+        for (i = 0; i < map->n_joints; i++) qo_joint_guard_init(&s->js[i], &map->joints[i]);
         s->ctx = qo_modbus_new_ctx(&s->spec);
         if (s->ctx == NULL) st = QO_E_CONFIG;
     }
@@ -483,7 +503,22 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
         /* The first connection may take its time (it is outside the control loop); every
          * later request, reconnections included, gets the response timeout. */
         modbus_set_response_timeout(s->ctx, o / 1000000u, o % 1000000u);
+        s->set.response_timeout_us = o;
         st = do_connect(s);
+        {
+            /* The link came up but a request failed (an exception, a lost reply): retried
+             * as during streaming, with the reconnection backoff, a few times. A link that
+             * does not come up at all fails at once. */
+            uint32_t back = settings->reconnect_min_us;
+            int tries;
+            for (tries = 0; st != QO_OK && s->connect_ok && tries < QO_MODBUS_OPEN_RETRIES; tries++) {
+                s->st.reconnect_attempts++;
+                sleep_us(back);
+                back = back > settings->reconnect_max_us / 2 ? settings->reconnect_max_us : 2 * back;
+                st = do_connect(s);
+            }
+        }
+        s->set.response_timeout_us = r;
         modbus_set_response_timeout(s->ctx, r / 1000000u, r % 1000000u);
     }
     if (st != QO_OK) {
@@ -499,61 +534,14 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
  * or rounding cannot land inside the window): the joint's slave must not be written. */
 static qo_status limit_joint(qo_modbus_sink *s, size_t i, double target, uint16_t *regs)
 {
-    const qo_regmap_joint *j = &s->map->joints[i];
-    struct jstate *q = &s->js[i];
-    double v = target, raw, packed;
-    int limited = 0;
-    qo_status st;
-    if (v < j->min) v = j->min;
-    if (v > j->max) v = j->max;
-    if (v != target) {
-        s->st.clamped++;
-        limited = 1;
-    }
-    (void)qo_reg_raw_from_value(&j->fmt, v, &raw); /* finite: checked by the caller */
-    if (raw < q->tlo || raw > q->thi) {
-        raw = raw < q->tlo ? q->tlo : q->thi;
-        s->st.saturated++;
-        limited = 1;
-    }
-    if (q->have && q->step > 0.0) {
-        double a = q->hi - q->step, b = q->lo + q->step;
-        int tries;
-        if (!(a <= b)) {
-            /* Some value the drive may hold is more than max_step from any value: send
-             * nothing rather than guess; a read-back may narrow the range next tick. */
-            q->cmd = q->lo;
-            q->uncertain = 1;
-            s->st.blocked++;
-            return QO_E_INFEASIBLE;
-        }
-        if (raw < a || raw > b) {
-            raw = raw < a ? a : b;
-            s->st.rate_limited++;
-            limited = 1;
-        }
-        st = qo_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
-        /* Rounding to the register's resolution must not push the step past max_step. */
-        for (tries = 0; tries < 4 && (packed > b || packed < a); tries++) {
-            if (j->fmt.type == QO_REG_FLOAT32)
-                raw = (double)nextafterf((float)packed, packed > b ? -INFINITY : INFINITY);
-            else
-                raw = packed > b ? floor(b) : ceil(a);
-            st = qo_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
-        }
-        if (packed > b || packed < a) {
-            q->cmd = q->lo;
-            q->uncertain = 1;
-            s->st.blocked++;
-            return QO_E_INFEASIBLE;
-        }
-    } else {
-        st = qo_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
-    }
-    (void)st;
-    q->cmd = packed;
-    if (limited) s->st.common.limited++;
-    return QO_OK;
+    unsigned changed;
+    qo_status st = qo_joint_guard_limit(&s->js[i], &s->map->joints[i], target, regs, &changed);
+    if (changed & QO_GUARD_CLAMPED) s->st.clamped++;
+    if (changed & QO_GUARD_SATURATED) s->st.saturated++;
+    if (changed & QO_GUARD_RATE_LIMITED) s->st.rate_limited++;
+    if (st != QO_OK) s->st.blocked++;
+    else if (changed) s->st.common.limited++;
+    return st;
 }
 
 /* RTU: reads and drops whatever arrives during one response timeout, then flushes, so a late
@@ -596,27 +584,26 @@ static void drain_line(qo_modbus_sink *s)
  * slave this tick; the error is returned and the joints stay uncertain. */
 static qo_status settle_slave(qo_modbus_sink *s, size_t g0)
 {
-    unsigned slave = s->groups[g0].slave;
+    unsigned slave = s->lay->req[g0].slave;
     size_t g, i;
     int any = 0;
-    for (g = g0; g < s->n_groups && s->groups[g].slave == slave; g++)
-        for (i = 0; i < s->groups[g].n_items; i++)
-            if (s->js[s->items[s->groups[g].first_item + i].joint].uncertain) any = 1;
+    for (g = g0; g < s->lay->n_requests && s->lay->req[g].slave == slave; g++)
+        for (i = 0; i < s->lay->req[g].n_items; i++)
+            if (s->js[s->lay->item[s->lay->req[g].first_item + i].joint].uncertain) any = 1;
     if (!any) return QO_OK;
     if (s->spec.transport == QO_MODBUS_RTU) drain_line(s);
-    for (g = g0; g < s->n_groups && s->groups[g].slave == slave; g++) {
-        const struct group *gr = &s->groups[g];
+    for (g = g0; g < s->lay->n_requests && s->lay->req[g].slave == slave; g++) {
+        const qo_modbus_request *gr = &s->lay->req[g];
         uint16_t regs[QO_REGMAP_MAX_REGISTERS];
         qo_status st;
-        int rc, unc, need = 0;
+        int unc, pend, sent, need = 0;
         for (i = 0; i < gr->n_items; i++)
-            if (s->js[s->items[gr->first_item + i].joint].uncertain) need = 1;
+            if (s->js[s->lay->item[gr->first_item + i].joint].uncertain) need = 1;
         if (!need) continue;
         memset(regs, 0, sizeof regs);
-        use_slave(s, slave);
-        s->st.readbacks++;
-        rc = modbus_read_registers(s->ctx, gr->start, (int)gr->count, regs);
-        st = after_request(s, rc, &unc);
+        st = xfer(s, slave, MODBUS_FC_READ_HOLDING_REGISTERS, gr->start, gr->count, NULL, regs,
+                  -1, &unc, &pend, &sent);
+        if (sent) s->st.readbacks++;
         sleep_us(gr->gap_us);
         /* Only "illegal function / address" says the targets cannot be read; any other
          * exception (busy, device failure) is transient: hold the slave, retry next tick. */
@@ -626,9 +613,9 @@ static qo_status settle_slave(qo_modbus_sink *s, size_t g0)
             return st;
         if (st != QO_OK) s->st.readback_fallbacks++;
         for (i = 0; i < gr->n_items; i++) {
-            const struct item *it = &s->items[gr->first_item + i];
+            const qo_modbus_item *it = &s->lay->item[gr->first_item + i];
             const qo_regmap_joint *j = &s->map->joints[it->joint];
-            struct jstate *q = &s->js[it->joint];
+            qo_joint_guard *q = &s->js[it->joint];
             double raw;
             if (!q->uncertain) continue;
             if (st == QO_OK) {
@@ -642,9 +629,7 @@ static qo_status settle_slave(qo_modbus_sink *s, size_t g0)
                 q->uncertain = 0; /* the link is in step; the old range stays */
                 continue;
             }
-            q->have = 1;
-            q->lo = q->hi = raw;
-            q->uncertain = 0;
+            qo_joint_guard_known(q, raw);
         }
     }
     return QO_OK;
@@ -657,8 +642,10 @@ static void fail_action(qo_modbus_sink *s)
         s->disabled = 1;
         s->st.disabled = 1;
         if (s->connected) (void)send_writes(s, 1); /* best effort: the link is failing */
+        link_down(s);
     }
-    link_down(s);
+    /* HOLD: the drives keep their last target and the link stays: closing and reopening a
+     * link that is not broken only adds a slow first reply (the reconnect spiral). */
 }
 
 /* A rejected call (bad arguments, wrong state): counted, but it says nothing about the bus. */
@@ -700,6 +687,7 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
 {
     size_t g, i;
     qo_status st = QO_OK, held = QO_OK;
+    int soft = 0; /* TCP: a slave skipped or left waiting for its reply this tick */
     (void)tick;
     if (s == NULL) return QO_E_NULL;
     s->st.common.writes++;
@@ -710,22 +698,37 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
         if (!isfinite(targets[i])) return rejected(s, QO_E_NONFINITE);
     if (!s->connected) return tick_result(s, QO_E_DISCONNECTED);
     s->drained = 0;
-    for (g = 0; g < s->n_groups && st == QO_OK; g++) {
-        struct group *gr = &s->groups[g];
-        int rc, unc;
-        if (g == 0 || gr->slave != s->groups[g - 1].slave) {
+    if (s->tcp != NULL) {
+        /* Replies that came after their tick are taken first: the drive's state is known. */
+        now_ts(&s->tick_deadline);
+        add_us(&s->tick_deadline, s->set.response_timeout_us);
+        if (tcp_collect(s) != QO_OK) return tick_result(s, QO_E_DISCONNECTED);
+    }
+    s->in_tick = 1;
+    for (g = 0; g < s->lay->n_requests && st == QO_OK; g++) {
+        qo_modbus_request *gr = &s->lay->req[g];
+        int unc, pend, sent;
+        if (g == 0 || gr->slave != s->lay->req[g - 1].slave) {
             /* First group of a slave: read back what is uncertain, then limit and pack every
              * group of the slave before sending any, so a blocked joint holds the whole
              * slave this tick. */
             size_t h;
             int blocked = 0;
             st = settle_slave(s, g);
+            if (st == QO_E_TIMEOUT && s->tcp != NULL) {
+                /* TCP: the read-back is outstanding (or still waits for an earlier reply):
+                 * this slave holds until it is answered, the others go on */
+                soft = 1;
+                st = QO_OK;
+                while (g + 1 < s->lay->n_requests && s->lay->req[g + 1].slave == gr->slave) g++;
+                continue;
+            }
             if (st != QO_OK) break;
-            for (h = g; h < s->n_groups && s->groups[h].slave == gr->slave; h++)
-                for (i = 0; i < s->groups[h].n_items; i++) {
-                    const struct item *it = &s->items[s->groups[h].first_item + i];
+            for (h = g; h < s->lay->n_requests && s->lay->req[h].slave == gr->slave; h++)
+                for (i = 0; i < s->lay->req[h].n_items; i++) {
+                    const qo_modbus_item *it = &s->lay->item[s->lay->req[h].first_item + i];
                     if (limit_joint(s, it->joint, (double)targets[it->joint],
-                                    s->groups[h].regs + it->offset) != QO_OK)
+                                    s->lay->req[h].regs + it->offset) != QO_OK)
                         blocked = 1;
                 }
             if (blocked) {
@@ -734,55 +737,68 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
                 continue;
             }
         }
-        use_slave(s, gr->slave);
-        rc = modbus_write_registers(s->ctx, gr->start, (int)gr->count, gr->regs);
-        st = after_request(s, rc, &unc);
-        for (i = 0; i < gr->n_items; i++) {
-            struct jstate *q = &s->js[s->items[gr->first_item + i].joint];
-            if (st == QO_OK) {
-                q->have = 1;
-                q->lo = q->hi = q->cmd;
-            } else if (unc && q->have) {
-                /* The drive may hold the old or the new value: keep both reachable (used
-                 * only when the read-back falls back, see settle_slave). */
-                if (q->cmd < q->lo) q->lo = q->cmd;
-                if (q->cmd > q->hi) q->hi = q->cmd;
+        if (s->tcp != NULL) {
+            /* TCP: noted before sending, so a reply taken in a later call finds them */
+            for (i = 0; i < gr->n_items; i++)
+                qo_joint_guard_sent(&s->js[s->lay->item[gr->first_item + i].joint]);
+        }
+        st = xfer(s, gr->slave, MODBUS_FC_WRITE_MULTIPLE_REGISTERS, gr->start, gr->count,
+                  gr->regs, NULL, (int)g, &unc, &pend, &sent);
+        if (s->tcp != NULL) {
+            if (!sent) {
+                for (i = 0; i < gr->n_items; i++) s->js[s->lay->item[gr->first_item + i].joint].pend = 0;
+            } else if (st == QO_OK || (st == QO_E_PROTOCOL && !unc)) {
+                group_answered(s, g, st == QO_OK);
             }
+        }
+        if (pend) {
+            /* TCP, no reply yet: the request stays outstanding; this slave's later groups
+             * wait for the next tick, the other slaves are still written. The drive may hold
+             * the old or the new value until the reply comes. */
+            for (i = 0; sent && i < gr->n_items; i++)
+                qo_joint_guard_unknown(&s->js[s->lay->item[gr->first_item + i].joint]);
+            soft = 1;
+            while (g + 1 < s->lay->n_requests && s->lay->req[g + 1].slave == gr->slave) g++;
+            st = QO_OK;
+            continue;
+        }
+        for (i = 0; i < gr->n_items; i++) {
+            qo_joint_guard *q = &s->js[s->lay->item[gr->first_item + i].joint];
+            if (s->tcp != NULL) break; /* done by group_answered */
+            /* unknown: the drive may hold the old or the new value, both stay reachable
+             * (used only when the read-back falls back, see settle_slave) */
+            if (st == QO_OK) qo_joint_guard_known(q, q->cmd);
+            else if (unc) qo_joint_guard_unknown(q);
         }
         sleep_us(gr->gap_us);
     }
+    s->in_tick = 0;
     if (st == QO_OK) st = held;
+    if (st == QO_OK && soft) {
+        /* Not every target went out, but nothing failed: a reply is late. Counted as a
+         * failed write; not towards fail_threshold (silence_us bounds the wait). */
+        s->st.common.writes_failed++;
+        s->st.common.consecutive_failures++;
+        s->st.last_error = QO_E_TIMEOUT;
+        return QO_E_TIMEOUT;
+    }
     return tick_result(s, st);
 }
 
 qo_status qo_modbus_sink_service(qo_modbus_sink *s)
 {
-    struct timespec now;
     qo_status st;
     if (s == NULL) return QO_E_NULL;
     if (s->closed) return QO_E_STATE;
     if (s->connected) return QO_OK;
-    now_ts(&now);
-    if (ts_before(&now, &s->next_attempt)) return QO_E_DISCONNECTED;
+    if (!qo_modbus_backoff_due(&s->backoff)) return QO_E_DISCONNECTED;
     s->st.reconnect_attempts++;
     st = do_connect(s);
     if (st == QO_OK) {
         s->st.common.reconnects++;
         return QO_OK;
     }
-    {
-        uint64_t b = s->backoff_us == 0 ? s->set.reconnect_min_us : (uint64_t)s->backoff_us * 2u;
-        if (b > s->set.reconnect_max_us) b = s->set.reconnect_max_us;
-        s->backoff_us = (uint32_t)b;
-        s->st.backoff_us = s->backoff_us;
-        now_ts(&s->next_attempt);
-        s->next_attempt.tv_sec += (time_t)(b / 1000000u);
-        s->next_attempt.tv_nsec += (long)(b % 1000000u) * 1000L;
-        if (s->next_attempt.tv_nsec >= 1000000000L) {
-            s->next_attempt.tv_sec++;
-            s->next_attempt.tv_nsec -= 1000000000L;
-        }
-    }
+    s->st.backoff_us = qo_modbus_backoff_failed(&s->backoff);
     return st;
 }
 
@@ -843,12 +859,146 @@ qo_status qo_modbus_sink_read_feedback(qo_modbus_sink *s, float *out, size_t n)
     return st;
 }
 
+static double goal_raw(const qo_modbus_sink *s, size_t i, double v)
+{
+    return qo_joint_guard_goal(&s->js[i], &s->map->joints[i], v);
+}
+
+static int joint_holds(const qo_modbus_sink *s, size_t i, double goal)
+{
+    return qo_joint_guard_holds(&s->js[i], goal);
+}
+
+static int args_ok(const qo_modbus_sink *s, const float *final, size_t n)
+{
+    size_t i;
+    if (s == NULL || final == NULL || n != s->map->n_joints) return 0;
+    for (i = 0; i < n; i++)
+        if (!isfinite(final[i])) return 0;
+    return 1;
+}
+
+double qo_modbus_sink_settle_time(const qo_modbus_sink *s, const float *final, size_t n,
+                                  double period_s)
+{
+    double ticks = 1.0;
+    size_t i;
+    if (!args_ok(s, final, n) || !(period_s > 0.0) || !isfinite(period_s))
+        return QO_MODBUS_SETTLE_SLACK_S;
+    for (i = 0; i < n; i++) {
+        const qo_joint_guard *q = &s->js[i];
+        double g = goal_raw(s, i, (double)final[i]), d, t;
+        if (!q->have || q->step <= 0.0) continue;
+        d = fmax(fabs(g - q->lo), fabs(g - q->hi));
+        t = ceil(d / q->step) + 1.0;
+        if (t > ticks) ticks = t;
+    }
+    return 2.0 * ticks * period_s + QO_MODBUS_SETTLE_SLACK_S;
+}
+
+static double since_s(const struct timespec *t0)
+{
+    struct timespec now;
+    now_ts(&now);
+    return (double)(now.tv_sec - t0->tv_sec) + (double)(now.tv_nsec - t0->tv_nsec) * 1e-9;
+}
+
+/* Reads every joint's target back (the read-back of a fault, forced): the value read is
+ * what the drive holds. QO_OK or the first bus error. */
+static qo_status confirm_targets(qo_modbus_sink *s)
+{
+    size_t g, i;
+    for (i = 0; i < s->map->n_joints; i++) s->js[i].uncertain = 1;
+    s->drained = 1; /* the last write was answered: nothing is late on the line */
+    now_ts(&s->tick_deadline);
+    add_us(&s->tick_deadline, s->set.response_timeout_us);
+    for (g = 0; g < s->lay->n_requests; g++) {
+        qo_status st;
+        if (g > 0 && s->lay->req[g].slave == s->lay->req[g - 1].slave) continue;
+        st = settle_slave(s, g);
+        if (st != QO_OK) return st;
+    }
+    return QO_OK;
+}
+
+static void settle_report(const qo_modbus_sink *s, const double *goal,
+                          qo_modbus_settle_report *out)
+{
+    size_t i;
+    out->reached = 1;
+    for (i = 0; i < out->n; i++) {
+        const qo_regmap_joint *j = &s->map->joints[i];
+        const qo_joint_guard *q = &s->js[i];
+        double v = NAN, gv = NAN;
+        (void)qo_reg_value_from_raw(&j->fmt, goal[i], &gv);
+        if (q->have && q->lo == q->hi) (void)qo_reg_value_from_raw(&j->fmt, q->lo, &v);
+        out->goal[i] = gv;
+        out->held[i] = v;
+        out->short_of[i] = !joint_holds(s, i, goal[i]);
+        if (out->short_of[i]) out->reached = 0;
+    }
+}
+
+qo_status qo_modbus_sink_settle(qo_modbus_sink *s, const float *final, size_t n,
+                                double period_s, double deadline_s,
+                                qo_modbus_settle_report *out)
+{
+    double goal[QO_REGMAP_MAX_JOINTS];
+    struct timespec t0, next;
+    int64_t period_ns;
+    size_t i;
+    if (out == NULL) return QO_E_NULL;
+    memset(out, 0, sizeof *out);
+    for (i = 0; i < QO_REGMAP_MAX_JOINTS; i++) out->goal[i] = out->held[i] = NAN;
+    out->deadline_s = deadline_s;
+    if (s == NULL || final == NULL) return QO_E_NULL;
+    if (n != s->map->n_joints) return QO_E_RANGE;
+    if (!args_ok(s, final, n)) return QO_E_NONFINITE;
+    if (!(period_s > 0.0) || !isfinite(period_s) || !(deadline_s >= 0.0) || !isfinite(deadline_s))
+        return QO_E_LIMIT;
+    if (s->closed || s->disabled) return QO_E_STATE;
+    out->n = n;
+    for (i = 0; i < n; i++) goal[i] = goal_raw(s, i, (double)final[i]);
+    period_ns = (int64_t)(period_s * 1e9 + 0.5);
+    if (period_ns < 1) period_ns = 1;
+    now_ts(&t0);
+    next = t0;
+    for (;;) {
+        int all = s->connected;
+        for (i = 0; i < n && all; i++) all = joint_holds(s, i, goal[i]);
+        /* Acknowledged is not yet held: confirm by reading the targets back. */
+        if (all && confirm_targets(s) == QO_OK) {
+            for (i = 0; i < n && all; i++) all = joint_holds(s, i, goal[i]);
+            if (all) break;
+        }
+        if (since_s(&t0) >= deadline_s) break;
+        if (!s->connected) (void)qo_modbus_sink_service(s);
+        if (s->connected) {
+            (void)qo_modbus_sink_write(s, final, n, out->ticks);
+            out->ticks++;
+        }
+        next.tv_nsec += (long)(period_ns % 1000000000);
+        next.tv_sec += (time_t)(period_ns / 1000000000);
+        if (next.tv_nsec >= 1000000000L) {
+            next.tv_sec++;
+            next.tv_nsec -= 1000000000L;
+        }
+        while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, NULL) == EINTR) {
+        }
+        if (s->closed || s->disabled) break;
+    }
+    out->elapsed_s = since_s(&t0);
+    settle_report(s, goal, out);
+    return out->reached ? QO_OK : QO_E_TIMEOUT;
+}
+
 qo_status qo_modbus_sink_get_stats(const qo_modbus_sink *s, qo_modbus_sink_stats *out)
 {
     if (out == NULL) return QO_E_NULL;
     memset(out, 0, sizeof *out);
     if (s == NULL) return QO_E_NULL;
     *out = s->st;
+    if (s->tcp != NULL) out->stale_replies += s->tcp->stale;
     return QO_OK;
 }
 
@@ -866,9 +1016,9 @@ void qo_modbus_sink_free(qo_modbus_sink *s)
     if (s == NULL) return;
     qo_modbus_sink_close(s);
     if (s->ctx != NULL) modbus_free(s->ctx);
-    free(s->groups);
-    free(s->items);
+    free(s->lay);
     free(s->js);
+    free(s->tcp);
     free(s);
 }
 

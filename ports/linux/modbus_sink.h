@@ -2,9 +2,15 @@
  * ports/linux/modbus_sink.h - a qo_sink that streams joint targets to drives over Modbus
  * RTU or TCP (libmodbus), using a register map (linux/regmap.h).
  *
+ * The sink orchestrates three parts, split along libmodbus's own seams:
+ *   linux/modbus_link.h    specs, contexts, connect, reconnection backoff, Modbus TCP
+ *                          framed by us (late replies matched by transaction id); the
+ *                          simulator shares its specs and contexts
+ *   linux/modbus_layout.h  map -> the FC16 requests of one tick (pure; also the wire budget's)
+ *   linux/joint_guard.h    clamp, type range and the max_step window per joint (pure)
+ *
  * Index:
- *   qo_modbus_spec, qo_modbus_parse_spec()   "tcp://HOST:PORT" / "rtu:DEVICE,BAUD,8N1"
- *   qo_modbus_new_ctx()                       a libmodbus context for a parsed spec
+ *   (specs and contexts: linux/modbus_link.h, included)
  *   qo_modbus_sink_settings, qo_modbus_sink_settings_default
  *   qo_modbus_sink_open()        connect, send the slaves' init writes, seed from feedback
  *   qo_modbus_sink_as_sink()     the generic qo_sink view
@@ -14,6 +20,8 @@
  *   qo_modbus_sink_seed()        tell the sink where the drives are (no feedback registers)
  *   qo_modbus_sink_read_feedback()  read the feedback registers (FC03)
  *   qo_modbus_sink_get_stats()   counters
+ *   qo_modbus_sink_settle_time() the default settle deadline for a final target
+ *   qo_modbus_sink_settle()      after the plan: send the final target until the drives hold it
  *   qo_modbus_sink_close()       drop the link (idempotent); qo_modbus_sink_free() frees
  *
  * What one write() does, in order:
@@ -59,17 +67,29 @@
  *      sent as one FC16 per run of strictly contiguous registers of one slave, split at the
  *      slave's max_registers (never inside a 32-bit value); runs go out in slave, then
  *      address order, each followed by the slave's gap_us of silence;
- *   5. the tick stops at the first failed request (read-back or write), modbus_flush()
- *      drops any stale reply, and the failure is counted. On TCP a reply with the wrong
- *      transaction id (the late answer to an earlier, timed-out request) is followed by one
- *      more bounded receive to consume this request's own reply, so the link is in step
- *      again at once. A tick thus costs at most two response timeouts plus the answered
- *      read-backs and the gaps (RTU: drain + one timeout).
+ *   5. RTU: the tick stops at the first failed request (read-back or write), modbus_flush()
+ *      drops any stale reply, and the failure is counted. A tick costs at most the drain
+ *      and one response timeout plus the answered read-backs and the gaps.
+ *   5. TCP: at most one request per slave is outstanding. Replies that arrived since the
+ *      last tick are taken first, matched by transaction id, and accepted: an FC16's
+ *      joints then hold what it carried (an exception: what they held before), so a late
+ *      reply is no error and needs no read-back (`late_replies`). A slave whose request is
+ *      still unanswered is waited for until one response timeout after the tick began; if
+ *      still unanswered, its tick is skipped (`skipped`; nothing is queued) and write()
+ *      returns QO_E_TIMEOUT, which does NOT count towards fail_threshold. A request
+ *      without a reply within the response timeout stays outstanding the same way (its
+ *      joints may hold the old or the new value meanwhile). A request unanswered for
+ *      silence_us drops the link (reconnect with the backoff) when nothing at all came back
+ *      since it was sent, else it is abandoned and its joints read back; a reply that
+ *      matches nothing is dropped (`stale_replies`). A broken socket or a byte stream that
+ *      is not Modbus TCP drops the link at once.
  * libmodbus's own error recovery is NONE: its LINK mode can loop for ever.
  *
- * After `fail_threshold` consecutive failed ticks (or at once when the link is lost) the
- * sink closes the link and takes its failure action: HOLD leaves the drives on their last
- * target; DISABLE first sends every slave's `disable` writes (best effort) and then refuses
+ * After `fail_threshold` consecutive failed ticks the sink takes its failure action: HOLD
+ * leaves the drives on their last target and the link as it is (closing a working link
+ * would only add a slow first reply: the reconnect spiral); a link found broken is closed
+ * at once. DISABLE closes the link after first sending every slave's `disable` writes
+ * (best effort) and then refuses
  * writes (QO_E_STATE) until qo_modbus_sink_enable(). While the link is down write() returns
  * QO_E_DISCONNECTED at once, without touching the bus; qo_modbus_sink_service() (called by
  * the streamer after its deadline work) reconnects with exponential backoff, resends the
@@ -87,33 +107,8 @@
 
 #include "qorient/sink.h"
 #include "qorient/status.h"
+#include "linux/modbus_link.h"
 #include "linux/regmap.h"
-
-typedef enum qo_modbus_transport { QO_MODBUS_TCP = 0, QO_MODBUS_RTU } qo_modbus_transport;
-
-#define QO_MODBUS_SPEC_MAX 128
-
-typedef struct qo_modbus_spec {
-    qo_modbus_transport transport;
-    char host[QO_MODBUS_SPEC_MAX];   /* TCP: address or name (IPv4 literal for the sim) */
-    int port;                        /* TCP: 0..65535 (0 = ephemeral, listen side only) */
-    char device[QO_MODBUS_SPEC_MAX]; /* RTU: serial device path */
-    int baud;                        /* RTU: > 0 */
-    char parity;                     /* RTU: 'N', 'E' or 'O' */
-    int data_bits;                   /* RTU: 5..8 */
-    int stop_bits;                   /* RTU: 1 or 2 */
-} qo_modbus_spec;
-
-/* Parses "tcp://HOST:PORT" (PORT optional, default 502; HOST may be empty: 127.0.0.1) or
- * "rtu:DEVICE[,BAUD[,FRAME]]" with FRAME = data bits, parity N/E/O, stop bits, e.g. "8N1"
- * (defaults 19200 and 8E1, the Modbus serial line default). Returns QO_OK, QO_E_NULL or
- * QO_E_CONFIG (*out zeroed on error). */
-qo_status qo_modbus_parse_spec(const char *text, qo_modbus_spec *out);
-
-/* A libmodbus context for the spec, or NULL (bad spec or libmodbus failure): modbus_new_tcp
- * for an IPv4 literal, modbus_new_tcp_pi for a host name or IPv6 address (client side only:
- * the simulator listens on IPv4 literals), modbus_new_rtu for a serial device. */
-modbus_t *qo_modbus_new_ctx(const qo_modbus_spec *spec);
 
 typedef enum qo_modbus_fail_action {
     QO_MODBUS_ON_FAIL_HOLD = 0, /* drives keep their last target; resume after reconnect */
@@ -139,10 +134,15 @@ typedef struct qo_modbus_sink_settings {
                                      and feedback reads in qo_modbus_sink_open only (outside any
                                      control loop, so it can be generous); 0 = the response
                                      timeout; at most 10000000 */
+    uint32_t silence_us;          /* TCP: a request unanswered this long makes the link count
+                                     as broken (reconnect) when nothing at all came back since
+                                     it was sent, else it is abandoned and its joints read
+                                     back; 0 = max(1 s, 20 x the response timeout); at most
+                                     60000000 */
 } qo_modbus_sink_settings;
 
 /* 20 ms response, 5 ms byte timeout, threshold 5, HOLD, backoff 50 ms .. 2 s, no RS485 ioctl,
- * seed from feedback, open timeout 0 (= the response timeout). */
+ * seed from feedback, open timeout 0 (= the response timeout), silence 0 (automatic). */
 extern const qo_modbus_sink_settings qo_modbus_sink_settings_default;
 
 typedef struct qo_modbus_sink_stats {
@@ -166,6 +166,14 @@ typedef struct qo_modbus_sink_stats {
                                     value the drive may hold (the slave held that tick) */
     uint64_t drains;             /* RTU: line drains before a read-back */
     uint64_t drained_bytes;      /* RTU: bytes dropped by the drains (late replies, noise) */
+    uint64_t skipped;            /* TCP: slave-ticks not sent because that slave's previous
+                                    request was still unanswered at the tick's deadline */
+    uint64_t late_replies;       /* TCP: replies taken after their request's call returned
+                                    (accepted: the drive's state is then known) */
+    uint64_t stale_replies;      /* TCP: replies matching no outstanding request (dropped) */
+    uint64_t abandoned;          /* TCP: requests given up after silence_us (joints read back) */
+    uint64_t silences;           /* TCP: links dropped because nothing came back for
+                                    silence_us */
     unsigned groups;             /* FC16 requests per tick */
     int disabled;                /* 1 while in the disabled state */
     qo_status last_error;        /* last failure, QO_OK if none yet */
@@ -174,8 +182,14 @@ typedef struct qo_modbus_sink_stats {
 
 typedef struct qo_modbus_sink qo_modbus_sink;
 
+/* qo_modbus_sink_open retries a connection whose link came up but whose init writes or
+ * feedback reads failed (an exception, a lost reply) this many times, with the backoff. */
+#define QO_MODBUS_OPEN_RETRIES 4
+
 /* Validates settings (NULL = defaults) and `map` (kept by pointer: it must outlive the sink),
- * connects to `spec`, sends the init writes and seeds from feedback.
+ * connects to `spec`, sends the init writes and seeds from feedback (retried up to
+ * QO_MODBUS_OPEN_RETRIES times with the reconnection backoff when the link came up but a
+ * request failed: one exception while connecting does not fail the open).
  * Returns QO_OK with *out set; on error *out is NULL and nothing stays open:
  * QO_E_NULL; QO_E_CONFIG (bad spec, empty map, bad settings); QO_E_LIMIT (a zero timeout);
  * QO_E_IO, QO_E_TIMEOUT, QO_E_DISCONNECTED, QO_E_PROTOCOL (connection or init failed). */
@@ -216,6 +230,48 @@ qo_status qo_modbus_sink_seed(qo_modbus_sink *s, const float *positions, size_t 
  * without feedback get NaN. QO_OK, QO_E_NULL, QO_E_RANGE, QO_E_STATE, QO_E_DISCONNECTED or
  * the bus error (out is all NaN then). */
 qo_status qo_modbus_sink_read_feedback(qo_modbus_sink *s, float *out, size_t n);
+
+/* What qo_modbus_sink_settle found. Joint units; NaN where nothing is known. */
+typedef struct qo_modbus_settle_report {
+    int reached;                        /* 1: every joint holds its goal (read back) */
+    uint64_t ticks;                     /* writes sent while settling */
+    double elapsed_s;                   /* time spent settling */
+    double deadline_s;                  /* the deadline it was given */
+    size_t n;                           /* joints */
+    double goal[QO_REGMAP_MAX_JOINTS];  /* the final target as the drive must hold it: clamped
+                                           to min/max and the type range, rounded to the
+                                           register's resolution */
+    double held[QO_REGMAP_MAX_JOINTS];  /* the value the drive is known to hold (acknowledged
+                                           or read back), NaN when unknown (a write of unknown
+                                           outcome) */
+    int short_of[QO_REGMAP_MAX_JOINTS]; /* 1 when held != goal (or unknown) at the end */
+} qo_modbus_settle_report;
+
+/* The default settle deadline in seconds for `final` (n joint targets, joint units) at one
+ * write per `period_s`: twice the time the max_step catch-up needs from what the drives
+ * are known to hold (ceil(distance / max_step) ticks for the slowest joint, plus one), plus
+ * QO_MODBUS_SETTLE_SLACK_S for replies and read-backs. A joint without max_step, or whose
+ * held value is unknown, needs one tick. Returns the deadline, or QO_MODBUS_SETTLE_SLACK_S
+ * when an argument is NULL, n does not match, a target is not finite or period_s <= 0. */
+#define QO_MODBUS_SETTLE_SLACK_S 0.5
+double qo_modbus_sink_settle_time(const qo_modbus_sink *s, const float *final, size_t n,
+                                  double period_s);
+
+/* "Done" means the drives hold the final target, not that the plan ended: the max_step
+ * window lets a drive lag a fast plan by many ticks. Writes `final` (joint units, n =
+ * number of joints) once per `period_s` (absolute CLOCK_MONOTONIC deadlines, reconnecting
+ * with the usual backoff when the link is down) until every joint's last acknowledged
+ * target equals its goal (see the report), then reads the targets back (FC03; on a drive
+ * whose targets are unreadable, its feedback registers, see the header comment) and stops
+ * when the values read are the goals too; or until `deadline_s` seconds have passed.
+ * *out is always written. Returns QO_OK (reached); QO_E_TIMEOUT (deadline passed: see
+ * out->short_of); QO_E_NULL; QO_E_RANGE (n); QO_E_NONFINITE; QO_E_LIMIT (period_s not > 0,
+ * deadline_s negative or not finite); QO_E_STATE (closed or disabled). Blocks the caller
+ * for up to deadline_s plus one tick's requests: call it from the thread that owns the
+ * sink, after the streamer stopped. */
+qo_status qo_modbus_sink_settle(qo_modbus_sink *s, const float *final, size_t n,
+                                double period_s, double deadline_s,
+                                qo_modbus_settle_report *out);
 
 /* Copies the counters (zeroed when s is NULL). QO_OK or QO_E_NULL. */
 qo_status qo_modbus_sink_get_stats(const qo_modbus_sink *s, qo_modbus_sink_stats *out);

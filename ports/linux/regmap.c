@@ -31,6 +31,8 @@ struct parser {
     int at_line_start;
     int cont;           /* the line being parsed is an indented continuation line */
     int too_long;       /* swallowing the rest of an over-long line */
+    int eof;            /* the input ended */
+    size_t bytes;       /* bytes read so far (bounded by QO_REGMAP_MAX_BYTES) */
     char last_key[32];  /* key of the previous key line, for continuations */
     enum sect_kind kind;
     size_t cur;         /* index of the current joint or slave */
@@ -348,37 +350,71 @@ static int handler(void *user, const char *section, const char *name, const char
     return 1;
 }
 
-/* inih calls this fgets-like reader once per line (or part of a long line). Counting lines
- * and spotting section headers here gives every message its line number. */
+/* One byte of the input, or -1 at its end. Counts what was read so that an endless input
+ * (/dev/zero, a FIFO) stops at QO_REGMAP_MAX_BYTES instead of being read for ever. */
+static int next_byte(struct parser *p)
+{
+    int c;
+    if (p->fp != NULL) {
+        c = getc(p->fp);
+        if (c == EOF) return -1;
+    } else {
+        if (*p->text == '\0') return -1;
+        c = (unsigned char)*p->text++;
+    }
+    p->bytes++;
+    return c;
+}
+
+/* inih calls this fgets-like reader once per line. It reads the bytes itself (not fgets):
+ * fgets cannot say how many bytes it stored when one is NUL, and a NUL would end the line
+ * for strlen, so what follows it (after a comment, say) would be read as a key. Counting
+ * lines and spotting section headers here gives every message its line number. Bounded:
+ * at most QO_REGMAP_MAX_BYTES bytes and QO_REGMAP_MAX_LINES lines are read. */
 static char *reader(char *str, int num, void *stream)
 {
     struct parser *p = stream;
-    char *r;
-    size_t len;
-    if (p->fp != NULL) {
-        r = fgets(str, num, p->fp);
-    } else {
-        size_t k = 0;
-        if (*p->text == '\0' || num < 2) return NULL;
-        while (k < (size_t)num - 1 && p->text[k] != '\0') {
-            str[k] = p->text[k];
-            if (p->text[k++] == '\n') break;
+    size_t len = 0;
+    int c = 0, nul = 0;
+    if (p->st != QO_OK || p->eof || num < 3) return NULL; /* first error ends the parse */
+    while (len < (size_t)num - 1) {
+        c = next_byte(p);
+        if (c < 0) {
+            p->eof = 1;
+            break;
         }
-        str[k] = '\0';
-        p->text += k;
-        r = str;
+        if (c == 0) nul = 1;
+        str[len++] = (char)c;
+        if (c == '\n') break;
     }
-    if (r == NULL) return NULL;
-    len = strlen(str);
+    str[len] = '\0';
+    if (len == 0) return NULL;
+    if (p->line == 0 && p->at_line_start && len >= 3 && (unsigned char)str[0] == 0xEF &&
+        (unsigned char)str[1] == 0xBB && (unsigned char)str[2] == 0xBF) {
+        /* A UTF-8 byte-order mark (written by some Windows editors) is not content. */
+        memmove(str, str + 3, len - 2);
+        len -= 3;
+        if (len == 0) return NULL; /* the file is the mark alone */
+    }
+    if (p->bytes > QO_REGMAP_MAX_BYTES || (p->at_line_start && p->line >= QO_REGMAP_MAX_LINES)) {
+        fail(p, QO_E_CAPACITY, p->line, "more than %d bytes or %d lines: not a register map",
+             QO_REGMAP_MAX_BYTES, QO_REGMAP_MAX_LINES);
+        return NULL;
+    }
+    if (nul) {
+        fail(p, QO_E_CONFIG, p->line + (p->at_line_start ? 1 : 0),
+             "NUL byte (not a text file?)");
+        return NULL;
+    }
     if (p->too_long) {
         /* rest of an over-long line: hand inih a blank line instead */
-        p->too_long = !(len > 0 && str[len - 1] == '\n');
+        p->too_long = !(str[len - 1] == '\n');
         p->at_line_start = !p->too_long;
         str[0] = '\n';
         str[1] = '\0';
-        return r;
+        return str;
     }
-    if (!(len > 0 && str[len - 1] == '\n') && (int)len == num - 1) {
+    if (str[len - 1] != '\n' && len == (size_t)num - 1) {
         /* inih would split the line and read its tail as a new key: report it instead */
         p->line++;
         fail(p, QO_E_CONFIG, p->line,
@@ -387,7 +423,7 @@ static char *reader(char *str, int num, void *stream)
         p->at_line_start = 0;
         str[0] = '\n';
         str[1] = '\0';
-        return r;
+        return str;
     }
     if (p->at_line_start) {
         const char *q = str;
@@ -405,8 +441,8 @@ static char *reader(char *str, int num, void *stream)
             }
         }
     }
-    p->at_line_start = len > 0 && str[len - 1] == '\n';
-    return r;
+    p->at_line_start = str[len - 1] == '\n';
+    return str;
 }
 
 static int ranges_overlap(unsigned a, unsigned na, unsigned b, unsigned nb)
@@ -502,6 +538,7 @@ static void validate(struct parser *p)
 static qo_status run(struct parser *p)
 {
     int rc = ini_parse_stream(reader, p, handler, p);
+    if (p->fp != NULL && ferror(p->fp) && p->st == QO_OK) fail(p, QO_E_IO, 0, "cannot read");
     if (rc == -1 && p->st == QO_OK) fail(p, QO_E_IO, 0, "cannot read");
     else if (rc == -2 && p->st == QO_OK) fail(p, QO_E_CAPACITY, 0, "out of memory");
     else if (rc > 0 && p->st == QO_OK)

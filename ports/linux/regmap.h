@@ -44,6 +44,11 @@
  * by our line reader (inih's handler gets no line number in Debian's build), so an empty
  * [joint.X] is reported too. Slaves used by joints but without a section get the defaults.
  *
+ * Input is text: a NUL byte anywhere is an error (never the end of a line), a UTF-8
+ * byte-order mark at the start is skipped, and reading stops with QO_E_CAPACITY after
+ * QO_REGMAP_MAX_BYTES bytes or QO_REGMAP_MAX_LINES lines (so /dev/zero or a FIFO cannot
+ * hang the reader).
+ *
  * Capacity is fixed (no heap): QO_REGMAP_MAX_JOINTS joints, QO_REGMAP_MAX_SLAVES slaves,
  * QO_REGMAP_MAX_WRITES entries per write list. A qo_regmap is about 20 KiB.
  */
@@ -61,6 +66,8 @@
 #define QO_REGMAP_MAX_WRITES 16
 #define QO_REGMAP_NAME_MAX 32      /* joint name, including the terminating NUL */
 #define QO_REGMAP_MAX_REGISTERS 123 /* MODBUS_MAX_WRITE_REGISTERS */
+#define QO_REGMAP_MAX_BYTES (1024 * 1024) /* a map file is read up to this size ... */
+#define QO_REGMAP_MAX_LINES 20000         /* ... and this many lines, then refused */
 
 typedef struct qo_reg_write {
     uint16_t address;
@@ -102,8 +109,8 @@ typedef struct qo_regmap {
 /* Parses the INI file at `path` into *map. On error writes "FILE:LINE: reason" to err
  * (err_len > 0; truncated to fit; may be NULL) and leaves *map empty (n_joints = n_slaves = 0).
  * Returns QO_OK; QO_E_NULL (path or map NULL); QO_E_IO (cannot open/read the file);
- * QO_E_CONFIG (any content error); QO_E_CAPACITY (more joints/slaves/writes than the fixed
- * capacity). err is "" on success. */
+ * QO_E_CONFIG (any content error, a NUL byte); QO_E_CAPACITY (more joints/slaves/writes
+ * than the fixed capacity, or more than QO_REGMAP_MAX_BYTES / QO_REGMAP_MAX_LINES of input). err is "" on success. */
 qo_status qo_regmap_load(const char *path, qo_regmap *map, char *err, size_t err_len);
 
 /* As qo_regmap_load, for NUL-terminated `text`; `name` (may be NULL: "<string>") is the file

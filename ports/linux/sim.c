@@ -4,6 +4,7 @@
 #include <math.h>
 #include <poll.h>
 #include <pthread.h>
+#include <sched.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/socket.h>
@@ -15,10 +16,10 @@
 
 #include <modbus.h>
 
-#include "linux/modbus_sink.h" /* qo_modbus_parse_spec, qo_modbus_new_ctx */
+#include "linux/modbus_link.h"
 
 const qo_sim_settings qo_sim_settings_default = {
-    0.05, NULL, { QO_SIM_FAULT_NONE, 0, 0.0, 0, 0 }, 1, 0
+    0.05, NULL, { QO_SIM_FAULT_NONE, 0, 0.0, 0, 0 }, 1, 0, { { 0.0, 0.0, 0.0 } }, 0, 0
 };
 
 struct sim_joint {
@@ -36,7 +37,9 @@ struct qo_sim {
     struct sim_joint *joints;
     struct timespec t0, last;
     uint64_t rng;
+    uint64_t lag_rng;    /* the reply latency's own stream */
     uint64_t fault_base; /* request count when the fault was set */
+    uint64_t fault_n;    /* faults since the fault was set */
     qo_sim_stats st;
     int stop;
     pthread_t thread;
@@ -154,6 +157,11 @@ static void apply_write(qo_sim *s, unsigned slave, const uint8_t *req, int off, 
     }
 }
 
+static double uniform01(uint64_t *state)
+{
+    return (double)(splitmix64(state) >> 11) * (1.0 / 9007199254740992.0);
+}
+
 static qo_sim_fault_kind decide(qo_sim *s, uint64_t k)
 {
     const qo_sim_fault *f = &s->set.fault;
@@ -161,13 +169,108 @@ static qo_sim_fault_kind decide(qo_sim *s, uint64_t k)
     int hit = 0;
     if (f->kind == QO_SIM_FAULT_NONE) return QO_SIM_FAULT_NONE;
     if (f->after > 0 && rel > f->after && (f->count == 0 || rel <= f->after + f->count)) hit = 1;
-    if (f->share > 0.0) {
-        double u = (double)(splitmix64(&s->rng) >> 11) * (1.0 / 9007199254740992.0);
-        if (u < f->share) hit = 1;
-    }
-    if (!hit) return QO_SIM_FAULT_NONE;
+    if (f->share > 0.0 && uniform01(&s->rng) < f->share) hit = 1;
+    if (!hit || (f->count > 0 && s->fault_n >= f->count)) return QO_SIM_FAULT_NONE;
+    s->fault_n++;
     s->st.faults++;
     return f->kind;
+}
+
+/* The reply delay of one request, microseconds (0 without a latency model). Holds mu. */
+static unsigned draw_lag_us(qo_sim *s)
+{
+    double total = 0.0, u, acc = 0.0;
+    size_t i;
+    if (s->set.n_lag == 0) return 0;
+    for (i = 0; i < s->set.n_lag; i++) total += s->set.lag[i].share;
+    u = uniform01(&s->lag_rng) * total;
+    for (i = 0; i + 1 < s->set.n_lag; i++) {
+        acc += s->set.lag[i].share;
+        if (u < acc) break;
+    }
+    {
+        const qo_sim_lag *b = &s->set.lag[i];
+        double ms = b->lo_ms + (b->hi_ms - b->lo_ms) * uniform01(&s->lag_rng);
+        return (unsigned)(ms * 1000.0 + 0.5);
+    }
+}
+
+static void sleep_us_sim(unsigned us)
+{
+    struct timespec d;
+    d.tv_sec = (time_t)(us / 1000000u);
+    d.tv_nsec = (long)(us % 1000000u) * 1000L;
+    while (nanosleep(&d, &d) != 0 && errno == EINTR) {
+    }
+}
+
+static int parse_ms(const char *p, const char *end, double *out)
+{
+    char buf[32];
+    char *e;
+    double scale = 1.0, v;
+    size_t n = (size_t)(end - p);
+    if (n >= 2 && strncmp(end - 2, "ms", 2) == 0) n -= 2;
+    else if (n >= 2 && strncmp(end - 2, "us", 2) == 0) {
+        n -= 2;
+        scale = 1e-3;
+    } else {
+        return -1;
+    }
+    if (n == 0 || n >= sizeof buf) return -1;
+    memcpy(buf, p, n);
+    buf[n] = '\0';
+    v = strtod(buf, &e);
+    if (e == buf || *e != '\0' || !(v >= 0.0) || v * scale > 60000.0) return -1;
+    *out = v * scale;
+    return 0;
+}
+
+qo_status qo_sim_parse_lag_dist(const char *text, qo_sim_settings *set)
+{
+    const char *p = text;
+    if (set == NULL) return QO_E_NULL;
+    set->n_lag = 0;
+    if (text == NULL) return QO_E_NULL;
+    while (*p != '\0') {
+        const char *end = strchr(p, ','), *colon, *dash;
+        char buf[32];
+        char *e;
+        qo_sim_lag b;
+        size_t n;
+        if (end == NULL) end = p + strlen(p);
+        colon = memchr(p, ':', (size_t)(end - p));
+        if (colon == NULL || set->n_lag >= QO_SIM_LAG_MAX) goto bad;
+        n = (size_t)(colon - p);
+        if (n == 0 || n >= sizeof buf) goto bad;
+        memcpy(buf, p, n);
+        buf[n] = '\0';
+        b.share = strtod(buf, &e);
+        if (e == buf || *e != '\0' || !(b.share > 0.0) || !(b.share <= 1e6)) goto bad;
+        dash = memchr(colon + 1, '-', (size_t)(end - colon - 1));
+        if (dash == NULL) {
+            if (parse_ms(colon + 1, end, &b.lo_ms) != 0) goto bad;
+            b.hi_ms = b.lo_ms;
+        } else {
+            /* "5-12ms": the unit follows the upper bound and applies to both */
+            char lo[40];
+            size_t ul = 2, ln = (size_t)(dash - colon - 1);
+            if (ln == 0 || ln + ul >= sizeof lo || end - dash < 3) goto bad;
+            memcpy(lo, colon + 1, ln);
+            memcpy(lo + ln, end - ul, ul);
+            lo[ln + ul] = '\0';
+            if (parse_ms(lo, lo + ln + ul, &b.lo_ms) != 0 || parse_ms(dash + 1, end, &b.hi_ms) != 0 ||
+                b.lo_ms > b.hi_ms)
+                goto bad;
+        }
+        set->lag[set->n_lag++] = b;
+        p = *end == ',' ? end + 1 : end;
+        if (*end == ',' && *p == '\0') goto bad;
+    }
+    if (set->n_lag > 0) return QO_OK;
+bad:
+    set->n_lag = 0;
+    return QO_E_CONFIG;
 }
 
 /* 1 when req is an FC03 whose range covers a joint's target register. Holds nothing. */
@@ -194,7 +297,7 @@ static void serve(qo_sim *s, const uint8_t *req, int len)
     int is_write = write_range(req, off, len, &addr, &n);
     qo_sim_fault_kind fk;
     uint64_t k;
-    unsigned delay;
+    unsigned delay, lag_us;
     pthread_mutex_lock(&s->mu);
     if (slave > 255 || s->maps[slave] == NULL) {
         pthread_mutex_unlock(&s->mu);
@@ -206,7 +309,13 @@ static void serve(qo_sim *s, const uint8_t *req, int len)
     physics(s);
     fk = decide(s, k);
     delay = s->set.fault.delay_ms;
+    lag_us = fk == QO_SIM_FAULT_NONE ? draw_lag_us(s) : 0;
     pthread_mutex_unlock(&s->mu);
+    if (lag_us > 0) {
+        /* a slow drive: it takes the request now and answers later */
+        fk = QO_SIM_FAULT_DELAY;
+        delay = 0;
+    }
 
     if (fk == QO_SIM_FAULT_NONE && s->set.targets_unreadable && reads_a_target(s, slave, req, off, len)) {
         modbus_reply_exception(s->ctx, req, MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
@@ -239,7 +348,8 @@ static void serve(qo_sim *s, const uint8_t *req, int len)
                 note_write(s, slave, addr, n, k);
             }
             pthread_mutex_unlock(&s->mu);
-            sleep_ms(delay);
+            if (lag_us > 0) sleep_us_sim(lag_us);
+            else sleep_ms(delay);
             pthread_mutex_lock(&s->mu);
             modbus_reply(s->ctx, req, len, s->maps[slave]);
             pthread_mutex_unlock(&s->mu);
@@ -426,6 +536,19 @@ static void destroy(qo_sim *s)
     free(s);
 }
 
+static int lag_ok(const qo_sim_settings *set)
+{
+    size_t i;
+    if (set->n_lag > QO_SIM_LAG_MAX) return 0;
+    for (i = 0; i < set->n_lag; i++) {
+        const qo_sim_lag *b = &set->lag[i];
+        if (!(b->share > 0.0) || !isfinite(b->share) || !(b->lo_ms >= 0.0) || !(b->lo_ms <= b->hi_ms) ||
+            !(b->hi_ms <= 60000.0))
+            return 0;
+    }
+    return 1;
+}
+
 static int fault_ok(const qo_sim_fault *f)
 {
     return f->kind <= QO_SIM_FAULT_CLOSE && f->share >= 0.0 && f->share <= 1.0 &&
@@ -444,7 +567,8 @@ qo_status qo_sim_start(const char *spec, const qo_regmap *map, const qo_sim_sett
     if (spec == NULL || map == NULL) return QO_E_NULL;
     if (settings == NULL) settings = &qo_sim_settings_default;
     if (map->n_joints == 0 || !(settings->lag_s >= 0.0) || !isfinite(settings->lag_s) ||
-        !fault_ok(&settings->fault))
+        settings->rt_priority < 0 || settings->rt_priority > 99 ||
+        !fault_ok(&settings->fault) || !lag_ok(settings))
         return QO_E_CONFIG;
     s = calloc(1, sizeof *s);
     if (s == NULL) return QO_E_CAPACITY;
@@ -457,11 +581,18 @@ qo_status qo_sim_start(const char *spec, const qo_regmap *map, const qo_sim_sett
     s->map = map;
     s->set = *settings;
     s->rng = settings->seed;
+    s->lag_rng = settings->seed ^ 0x5A5A5A5A5A5A5A5Aull;
     st = qo_modbus_parse_spec(spec, &s->spec);
     if (st != QO_OK) goto fail;
     if (s->spec.transport == QO_MODBUS_TCP) {
         struct in_addr ia;
-        if (inet_pton(AF_INET, s->spec.host, &ia) != 1) { st = QO_E_CONFIG; goto fail; }
+        struct in6_addr ia6;
+        /* "localhost" is the IPv4 loopback here: one address to bind, one to print */
+        if (strcmp(s->spec.host, "localhost") == 0) strcpy(s->spec.host, "127.0.0.1");
+        if (inet_pton(AF_INET, s->spec.host, &ia) != 1 && inet_pton(AF_INET6, s->spec.host, &ia6) != 1) {
+            st = QO_E_CONFIG;
+            goto fail;
+        }
     }
     s->joints = calloc(map->n_joints, sizeof *s->joints);
     if (s->joints == NULL) { st = QO_E_CAPACITY; goto fail; }
@@ -483,12 +614,16 @@ qo_status qo_sim_start(const char *spec, const qo_regmap *map, const qo_sim_sett
     modbus_set_indication_timeout(s->ctx, 0, 200000);
     modbus_set_byte_timeout(s->ctx, 0, 100000);
     if (s->spec.transport == QO_MODBUS_TCP) {
-        struct sockaddr_in a;
+        struct sockaddr_storage a;
         socklen_t al = sizeof a;
-        s->listen_fd = modbus_tcp_listen(s->ctx, 2);
+        struct in_addr ia;
+        /* modbus_tcp_listen takes IPv4 only; an IPv6 literal goes through the _pi API */
+        if (inet_pton(AF_INET, s->spec.host, &ia) == 1) s->listen_fd = modbus_tcp_listen(s->ctx, 2);
+        else s->listen_fd = modbus_tcp_pi_listen(s->ctx, 2);
         if (s->listen_fd < 0) { st = QO_E_IO; goto fail; }
         if (getsockname(s->listen_fd, (struct sockaddr *)&a, &al) != 0) { st = QO_E_IO; goto fail; }
-        s->port = ntohs(a.sin_port);
+        s->port = a.ss_family == AF_INET6 ? ntohs(((struct sockaddr_in6 *)&a)->sin6_port)
+                                          : ntohs(((struct sockaddr_in *)&a)->sin_port);
     } else {
         if (modbus_connect(s->ctx) != 0) { st = QO_E_IO; goto fail; }
         s->dev_fd = modbus_get_socket(s->ctx);
@@ -496,7 +631,23 @@ qo_status qo_sim_start(const char *spec, const qo_regmap *map, const qo_sim_sett
     clock_gettime(CLOCK_MONOTONIC, &s->t0);
     s->last = s->t0;
     if (s->set.log != NULL) fputs("t_s,request,slave,joint_index,joint,value\n", s->set.log);
-    if (pthread_create(&s->thread, NULL, thread_main, s) != 0) { st = QO_E_IO; goto fail; }
+    {
+        int started = 0;
+        if (settings->rt_priority > 0) {
+            pthread_attr_t at;
+            struct sched_param sp;
+            memset(&sp, 0, sizeof sp);
+            sp.sched_priority = settings->rt_priority;
+            pthread_attr_init(&at);
+            if (pthread_attr_setinheritsched(&at, PTHREAD_EXPLICIT_SCHED) == 0 &&
+                pthread_attr_setschedpolicy(&at, SCHED_FIFO) == 0 &&
+                pthread_attr_setschedparam(&at, &sp) == 0)
+                started = pthread_create(&s->thread, &at, thread_main, s) == 0;
+            pthread_attr_destroy(&at);
+        }
+        /* without the privilege (EPERM): a normal thread */
+        if (!started && pthread_create(&s->thread, NULL, thread_main, s) != 0) { st = QO_E_IO; goto fail; }
+    }
     *out = s;
     return QO_OK;
 fail:
@@ -516,6 +667,7 @@ qo_status qo_sim_set_fault(qo_sim *sim, const qo_sim_fault *fault)
     pthread_mutex_lock(&sim->mu);
     sim->set.fault = *fault;
     sim->fault_base = sim->st.requests;
+    sim->fault_n = 0;
     pthread_mutex_unlock(&sim->mu);
     return QO_OK;
 }

@@ -4,6 +4,7 @@
  * Index:
  *   qo_sim_fault_kind, qo_sim_fault    what to do to a share of the requests
  *   qo_sim_settings, qo_sim_settings_default
+ *   qo_sim_parse_lag_dist()   "0.97:0-0.2ms,0.03:5-12ms" -> the reply latency model
  *   qo_sim_start()        bind/open, start the server thread
  *   qo_sim_port()         the TCP port actually bound (useful with port 0)
  *   qo_sim_set_fault()    change the fault injection while running
@@ -24,9 +25,18 @@
  * `targets_unreadable`). Requests for a slave not in the map are answered with exception 0x0B (TCP) or ignored
  * (RTU, as on a shared bus).
  *
+ * Reply latency. With `n_lag` > 0 every reply (faults aside) is sent after a delay drawn per
+ * request: bucket i with probability share_i / sum(shares), then uniform in [lo_ms, hi_ms];
+ * the write is applied at once, as by a drive that is slow to answer. Requests are served
+ * in order (one at a time, as a drive does), so a slow reply delays the next request's too.
+ * Drawn from its own splitmix64 stream (seed ^ 0x5A5A...), so it does not change which
+ * requests are faulted.
+ *
  * Fault injection. Request number k (1-based, counting every request received) is faulted
- * when  after < k <= after + count  (after > 0, count 0 = for ever) or, independently, with
- * probability `share` from a splitmix64 PRNG seeded with `seed` (deterministic sequence).
+ * when  after < k <= after + count  (after > 0) or, independently, with probability `share`
+ * from a splitmix64 PRNG seeded with `seed` (deterministic sequence); `count` > 0 also caps
+ * the number of faults since the fault was set (so share 1, count 1 faults exactly the
+ * first request).
  *   DELAY      the reply is sent after delay_ms (the write is applied at once);
  *   DROP       the write is applied, no reply is sent (a lost reply);
  *   EXCEPTION  nothing is applied, exception 0x04 (server device failure) is sent;
@@ -64,6 +74,13 @@ typedef struct qo_sim_fault {
     uint64_t count;      /* ... and this many of them (0 = all following) */
 } qo_sim_fault;
 
+#define QO_SIM_LAG_MAX 8
+
+typedef struct qo_sim_lag {
+    double share;        /* > 0, relative weight */
+    double lo_ms, hi_ms; /* 0 <= lo_ms <= hi_ms <= 60000 */
+} qo_sim_lag;
+
 typedef struct qo_sim_settings {
     double lag_s;        /* first-order time constant, seconds, >= 0 */
     FILE *log;           /* CSV of received target writes, or NULL; not closed by the sim */
@@ -72,9 +89,22 @@ typedef struct qo_sim_settings {
     int targets_unreadable; /* 1: an FC03 covering a joint's target registers is answered
                                with exception 0x02 (illegal data address), as on drives
                                whose targets are write-only; 0: readable (default) */
+    qo_sim_lag lag[QO_SIM_LAG_MAX]; /* reply latency buckets (see above) */
+    size_t n_lag;                   /* 0 = reply at once */
+    int rt_priority;     /* > 0: run the server thread SCHED_FIFO at this priority (1..99),
+                            best effort (without the privilege it runs normally): a drive
+                            has its own CPU, so CPU-bound processes on the master's machine
+                            must not slow its replies; 0 = normal scheduling (default) */
 } qo_sim_settings;
 
-/* lag 0.05 s, no log, no fault, seed 1, targets readable. */
+/* Parses "SHARE:LO-HIms[,SHARE:LO-HIms...]" (also "SHARE:Xms" for a fixed delay; "us" for
+ * microseconds) into set->lag / set->n_lag, e.g. "0.97:0-0.2ms,0.03:5-12ms": 97% of the
+ * replies within 0.2 ms, 3% after 5 to 12 ms. Returns QO_OK; QO_E_NULL; QO_E_CONFIG
+ * (syntax, a share not > 0, lo > hi, a delay outside 0..60000 ms, more than QO_SIM_LAG_MAX
+ * buckets; set->n_lag is 0 then). */
+qo_status qo_sim_parse_lag_dist(const char *text, qo_sim_settings *set);
+
+/* lag 0.05 s, no log, no fault, seed 1, targets readable, replies at once, no RT. */
 extern const qo_sim_settings qo_sim_settings_default;
 
 typedef struct qo_sim_stats {
@@ -88,8 +118,9 @@ typedef struct qo_sim_stats {
 typedef struct qo_sim qo_sim;
 
 /* Starts a simulator for `map` (kept by pointer: it must outlive the sim) listening on
- * `spec` ("tcp://IPV4:PORT", PORT 0 = ephemeral, 0.0.0.0 = every interface; or
- * "rtu:DEVICE,BAUD,8N1").
+ * `spec` ("tcp://IPV4:PORT", "tcp://localhost:PORT" (= 127.0.0.1), "tcp://[IPV6]:PORT",
+ * PORT 0 = ephemeral, 0.0.0.0 = every IPv4 interface; or "rtu:DEVICE,BAUD,8N1"). It serves
+ * one master at a time: a new connection replaces the old one, as on most drives.
  * settings NULL = defaults. Returns QO_OK with *out set, or (with *out NULL):
  * QO_E_NULL; QO_E_CONFIG (bad spec, empty map, bad settings); QO_E_IO (cannot bind or open
  * the device, cannot start the thread); QO_E_CAPACITY (out of memory). */

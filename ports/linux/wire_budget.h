@@ -14,10 +14,10 @@
  * function, start, quantity, byte count, data, CRC), reply 8 bytes; time = (request + reply)
  * characters + 2 * t3.5 + the slave's gap_us + `turnaround_us` (the drive's own processing
  * delay before it answers, which the specification does not bound: measure your drive and
- * pass it). The runs are grouped exactly as the sink groups them: per slave, strictly
- * contiguous registers (targets and the slave's constant registers), split at max_registers
- * without cutting a 32-bit value. TCP has no such budget (the figures are still given with
- * time 0).
+ * pass it). The requests are the sink's own (linux/modbus_layout.h): per slave, strictly
+ * contiguous registers (targets and the slave's constant registers, also of a slave that
+ * has constants only), split at max_registers without cutting a 32-bit value. TCP has no
+ * such budget (the figures are still given with time 0).
  */
 #ifndef QORIENT_WIRE_BUDGET_H
 #define QORIENT_WIRE_BUDGET_H
@@ -50,9 +50,9 @@ typedef struct qo_wire_budget {
 } qo_wire_budget;
 
 /* Fills *out for `map` over `spec` with the drive's `turnaround_us` (>= 0) per request.
- * Returns QO_OK; QO_E_NULL; QO_E_CONFIG (empty map, a joint with an unknown type or slave);
- * QO_E_CAPACITY (more than QO_WIRE_MAX_REQUESTS requests); QO_E_RANGE (turnaround negative
- * or not finite). *out is zeroed on error. */
+ * Returns QO_OK; QO_E_NULL; QO_E_CONFIG (as qo_modbus_layout_build);
+ * QO_E_CAPACITY (more than QO_WIRE_MAX_REQUESTS requests, or out of memory); QO_E_RANGE
+ * (turnaround negative or not finite). *out is zeroed on error. */
 qo_status qo_wire_budget_compute(const qo_regmap *map, const qo_modbus_spec *spec,
                                  double turnaround_us, qo_wire_budget *out);
 
