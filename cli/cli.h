@@ -166,6 +166,10 @@ int qo_cli_parse_numbers(char *line, double *out, size_t max, size_t *n);
 /* Prints a float with enough significant digits (9) to read back the same float32. */
 void qo_cli_print_f32(FILE *f, float v);
 
+/* Prints a time given in ns as exact decimal seconds, no trailing zeros ("-12.5",
+ * "10000000.05", "3"): no float rounding at any magnitude. */
+void qo_cli_print_time(FILE *f, qo_traj_ns t);
+
 /* Reads one line of any length into *buf (grown with realloc). Returns the length or -1 at
  * end of input (or a read error: check ferror). The trailing newline (and CR) is removed. A
  * line with a NUL byte has strlen(*buf) < the length returned: callers refuse it. */

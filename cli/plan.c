@@ -56,7 +56,7 @@ static const char *const plan_usage[] = {
     "  --degrees        positions are degrees: the wrap period is 360\n",
     "  --fixed          sample with the fixed-point (Q16.16) core instead of float32: times\n"
     "                   after the first line and values must fit in +-32768; the values are\n"
-    "                   printed exactly (%.10g of the Q16.16 value)\n"
+    "                   printed exactly (the Q16.16 value's full decimal)\n"
     "Keyframe profiles only:\n"
     "  --end rest|natural\n"
     "                   ends of catmull/spline/quintic: rest = zero velocity (and for quintic\n"
@@ -93,25 +93,10 @@ static void usage(FILE *f)
     for (i = 0; plan_usage[i]; i++) fputs(plan_usage[i], f);
 }
 
-/* Time from exact ns: "-12.5", "10000000.05", "0.01" (no float rounding at any size). */
-static void print_time(qo_traj_ns t)
-{
-    unsigned long long a = (unsigned long long)(t < 0 ? -t : t);
-    unsigned long long s = a / 1000000000ULL, f = a % 1000000000ULL;
-    char frac[16];
-    int k = 9;
-    if (t < 0) putchar('-');
-    printf("%llu", s);
-    if (f == 0) return;
-    snprintf(frac, sizeof frac, "%09llu", f);
-    while (k > 0 && frac[k - 1] == '0') frac[--k] = '\0';
-    printf(".%s", frac);
-}
-
 static void print_row(qo_traj_ns t, size_t n, const float *pva)
 {
     size_t j;
-    print_time(t);
+    qo_cli_print_time(stdout, t);
     for (j = 0; j < 3 * n; j++) {
         putchar(',');
         qo_cli_print_f32(stdout, pva[j]);
@@ -119,11 +104,29 @@ static void print_row(qo_traj_ns t, size_t n, const float *pva)
     putchar('\n');
 }
 
+/* A Q16.16 value as its exact decimal (at most 16 fraction digits: 2^-16 = 5^16 / 10^16),
+ * trailing zeros dropped: the same text for keyframes and targets. */
+static void print_q16(qo_q16 x)
+{
+    unsigned long a = x < 0 ? 0UL - (unsigned long)(long)x : (unsigned long)x;
+    unsigned long long frac = (unsigned long long)(a & 0xffffUL) * 152587890625ULL;
+    char digits[24];
+    int k = 16;
+    printf("%s%lu", x < 0 ? "-" : "", a >> 16);
+    if (frac == 0) return;
+    snprintf(digits, sizeof digits, "%016llu", frac);
+    while (k > 0 && digits[k - 1] == '0') digits[--k] = '\0';
+    printf(".%s", digits);
+}
+
 static void print_row_q16(qo_traj_ns t, size_t n, const qo_q16 *pva)
 {
     size_t j;
-    print_time(t);
-    for (j = 0; j < 3 * n; j++) printf(",%.10g", (double)pva[j] / 65536.0);
+    qo_cli_print_time(stdout, t);
+    for (j = 0; j < 3 * n; j++) {
+        putchar(',');
+        print_q16(pva[j]);
+    }
     putchar('\n');
 }
 

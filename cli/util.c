@@ -148,3 +148,16 @@ int qo_cli_joint_set(const char *who, const char *opt, const char *arg, size_t n
     }
     return 0;
 }
+
+void qo_cli_print_time(FILE *f, qo_traj_ns t)
+{
+    unsigned long long a = t < 0 ? 0ULL - (unsigned long long)t : (unsigned long long)t;
+    unsigned long long sec = a / 1000000000ULL, frac = a % 1000000000ULL;
+    char digits[16];
+    int k = 9;
+    fprintf(f, "%s%llu", t < 0 ? "-" : "", sec);
+    if (frac == 0) return;
+    snprintf(digits, sizeof digits, "%09llu", frac);
+    while (k > 0 && digits[k - 1] == '0') digits[--k] = '\0';
+    fprintf(f, ".%s", digits);
+}
