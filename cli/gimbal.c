@@ -102,15 +102,9 @@ int qo_cli_gimbal(int argc, char **argv)
                 return 2;
             }
             break;
-        case 'b': {
-            char *end;
-            band_deg = strtod(optarg, &end);
-            if (end == optarg || *end != '\0' || !(band_deg >= 0.0 && band_deg <= 90.0)) {
-                fprintf(stderr, "qorient gimbal: --band: '%s' is not an angle in [0, 90] degrees\n", optarg);
-                return 2;
-            }
+        case 'b':
+            if (qo_cli_number("gimbal", "--band", optarg, 0.0, 90.0, "degrees", &band_deg)) return 2;
             break;
-        }
         case 'v':
             if (!parse_positive(optarg, &v)) {
                 fprintf(stderr, "qorient gimbal: --vmax: '%s' is not a positive number\n", optarg);
