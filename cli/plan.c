@@ -286,7 +286,9 @@ int qo_cli_plan(int argc, char **argv)
         rc = targets_rows(&o, &r, name, &rows);
         if (rc) goto done;
     } else {
-        rows = floor((double)(tl - t0) * 1e-9 * o.rate + 1e-9) + 2.0;
+        /* grid points up to the last key, plus the last key when the grid misses it */
+        rows = floor((double)(tl - t0) * 1e-9 * o.rate + 1e-9);
+        rows += rows <= 1e12 && grid(t0, o.rate, rows) >= tl ? 1.0 : 2.0;
     }
     if (rows > o.max_samples) {
         fprintf(stderr, "qorient plan: the plan is %.0f samples at %g Hz, more than --max-samples %.0f: "

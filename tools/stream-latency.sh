@@ -11,7 +11,7 @@
 # Modbus request the streaming thread sends (its first tick). That span holds reading the
 # input, planning, connecting to the drives (the same in every build) and, in a build that
 # samples the whole plan up front (the command before qorient/traj.h), that sampling and its
-# re-parsing. The run is then stopped with SIGINT (a clean stop). Prints one line per run and
+# re-parsing. The command is then stopped with SIGINT (a clean stop). Prints one line per run and
 # the median. Needs strace. Not a test: a loaded machine moves the figures, not a verdict.
 set -u
 cd "$(dirname "$0")/.."
@@ -25,7 +25,8 @@ command -v strace >/dev/null || { echo "stream-latency: strace not installed" >&
 T=$(mktemp -d)
 SIMPID=""
 cleanup() { [ -n "$SIMPID" ] && kill "$SIMPID" 2>/dev/null; wait 2>/dev/null; rm -rf "$T"; }
-trap cleanup EXIT INT TERM
+trap cleanup EXIT
+trap 'echo "stream-latency: interrupted" >&2; exit 1' INT TERM
 
 # the simulator: always this checkout's command, so only the streaming side differs
 build/qorient sim --map $MAP --listen tcp://127.0.0.1:0 --lag 0 --duration 600 > "$T/sim.out" 2>&1 &
@@ -60,7 +61,9 @@ while [ $r -le "$RUNS" ]; do
         sleep 0.05
         i=$((i + 1))
     done
-    kill -INT $SPID 2>/dev/null
+    # stop the command itself (its pid is strace's first field), not strace: strace then ends
+    qpid=$(awk '$3 ~ /^execve\(/ { print $1; exit }' "$T/trace")
+    [ -n "$qpid" ] && kill -INT "$qpid" 2>/dev/null
     wait $SPID 2>/dev/null
     if [ -z "$ms" ]; then echo "run $r: no request seen: $(tail -3 "$T/out")"; exit 1; fi
     echo "run $r: first sample sent $ms ms after start"

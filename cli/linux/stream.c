@@ -139,7 +139,7 @@ static long read_live_line(char *buf, size_t cap, FILE *f)
 static void live_line(struct stream_ctx *c, char *buf, long len)
 {
     size_t keep = c->rows.rows;
-    qo_status s = QO_E_CAPACITY;
+    qo_status s = QO_OK;
     c->lineno++;
     if (len == -2) {
         fprintf(stderr, "qorient stream: -: line %ld: longer than %d characters\n", c->lineno, STREAM_LINE_MAX - 1);
@@ -151,14 +151,15 @@ static void live_line(struct stream_ctx *c, char *buf, long len)
         return;
     }
     if (c->rows.rows == keep) return; /* blank or comment */
-    while (s == QO_E_CAPACITY) {
+    /* A full queue empties at the next tick: wait for room rather than drop a target. */
+    for (;;) {
+        int room;
         pthread_mutex_lock(&c->lock);
-        if (c->rows.rows > 1) {
-            int rc = qo_cli_plan_push("stream", "-", c->plan, c->last, c->rows.v + c->rows.width, c->lineno);
-            s = rc == 0 ? QO_OK : c->plan->tr.count >= c->plan->tr.cap ? QO_E_CAPACITY : QO_E_ARG;
-        }
+        room = c->plan->tr.count < c->plan->tr.cap;
+        if (room) s = qo_cli_plan_push("stream", "-", c->plan, c->last, c->rows.v + c->rows.width, c->lineno) ? QO_E_ARG : QO_OK;
         pthread_mutex_unlock(&c->lock);
-        if (s == QO_E_CAPACITY) {
+        if (room) break;
+        {
             struct timespec ts = { 0, 1000000 };
             nanosleep(&ts, NULL);
         }
