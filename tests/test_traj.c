@@ -486,6 +486,9 @@ static void test_targets_edges(void **state)
     /* sampling before the last re-plan: its state, QO_E_ORDER */
     assert_int_equal(qo_traj_sample(&f.tr, BIG + 10 * S, o, v, a, NULL), QO_E_ORDER);
     assert_memory_equal(o, p, sizeof p);
+    /* before the start, after re-plans: the state at the last re-plan, QO_E_ORDER */
+    assert_int_equal(qo_traj_sample(&f.tr, BIG - S, o, v, a, NULL), QO_E_ORDER);
+    assert_memory_equal(o, p, sizeof p);
     /* out of the time range */
     assert_int_equal(qo_traj_sample(&f.tr, QO_TRAJ_TIME_MAX + 1, o, v, a, NULL), QO_E_RANGE);
     assert_memory_equal(o, p, sizeof p);

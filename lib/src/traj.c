@@ -294,9 +294,9 @@ static qo_status sample_targets(qo_traj *tr, qo_traj_ns t, float *pos, float *ve
         (void)qo_motion_sample_f32(&tr->planner, tr->planner.t0, pos, vel, acc);
         return QO_E_RANGE;
     }
-    if (t < tr->start_ns) {
-        /* Before the start: at rest where it starts (only possible before any re-plan,
-         * since every re-plan is at or after the start). */
+    if (t < tr->start_ns && tr->replans == 0) {
+        /* Before the start, nothing re-planned yet: at rest where it starts. (After a
+         * re-plan the start state is gone: the QO_E_ORDER case below.) */
         st = qo_motion_sample_f32(&tr->planner, tr->planner.t0, pos, vel, acc);
         return st;
     }
