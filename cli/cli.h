@@ -11,7 +11,10 @@
 #include <stdio.h>
 
 #include "qorient/euler.h"
+#include "qorient/motion.h"
+#include "qorient/spline.h"
 #include "qorient/status.h"
+#include "qorient/traj.h"
 
 /* Subcommands: argv[0] is the subcommand name. Return the process exit status. */
 int qo_cli_version(int argc, char **argv);
@@ -19,12 +22,124 @@ int qo_cli_convert(int argc, char **argv);
 int qo_cli_slerp(int argc, char **argv);
 int qo_cli_gimbal(int argc, char **argv);
 int qo_cli_sim(int argc, char **argv);
-int qo_cli_plan_keys(int argc, char **argv);
-/* `qorient plan --profile trapezoid|scurve` (plan_moves.c). */
-int qo_cli_plan_moves(int argc, char **argv);
-/* `qorient plan`: --profile trapezoid|scurve go to plan_moves, the rest to plan_keys. */
+/* `qorient plan`: keyframes (spline profiles) or targets (trapezoid|scurve), plan.c. */
 int qo_cli_plan(int argc, char **argv);
 int qo_cli_stream(int argc, char **argv);
+
+/* ---- one number parser for option values (util.c) ---- */
+
+/* A scalar option value: the whole of arg a finite number in [lo, hi]. Returns 0, or 2 after a
+ * message naming the option, the value, the range and its unit. */
+int qo_cli_number(const char *who, const char *opt, const char *arg, double lo, double hi,
+                  const char *unit, double *out);
+/* A list option value for n joints: one number (every joint) or n, each finite and in
+ * [lo, hi], spread to n values in out. arg NULL: nothing to do, 0. Returns 0, or 2 after a
+ * message naming the rule broken. */
+int qo_cli_list(const char *who, const char *opt, const char *arg, size_t n, double lo, double hi,
+                double *out);
+/* A list of 1-based joint numbers (1..n) into n flags. arg NULL: all 0. Returns 0 or 2. */
+int qo_cli_joint_set(const char *who, const char *opt, const char *arg, size_t n, unsigned char *flags);
+
+/* ---- planning shared by plan and stream (planopt.c) ---- */
+
+/* Columns of one input line after the time: a CLI limit only (the library has none). */
+#define QO_CLI_MAX_FIELDS 3072
+/* Sample rate bounds of plan and stream's planning (Hz): the grid is whole ns, so 1 MHz keeps
+ * it within 0.1 %; below 1 mHz a plan of any length is a handful of rows. */
+#define QO_CLI_RATE_MIN 1e-3
+#define QO_CLI_RATE_MAX 1e6
+/* Samples one `plan` may print unless --max-samples says more (at 100 Hz: 2.8 hours), and the
+ * most --max-samples accepts. */
+#define QO_CLI_MAX_SAMPLES_DEFAULT 1000000.0
+#define QO_CLI_MAX_SAMPLES_LIMIT 1e10
+
+enum qo_cli_plan_optid {
+    QO_CLI_OPT_PROFILE = 256, QO_CLI_OPT_RATE, QO_CLI_OPT_END, QO_CLI_OPT_COLUMNS, QO_CLI_OPT_DERIVS,
+    QO_CLI_OPT_MIN, QO_CLI_OPT_MAX, QO_CLI_OPT_WRAP, QO_CLI_OPT_UNWRAPPED, QO_CLI_OPT_DEGREES,
+    QO_CLI_OPT_FIXED, QO_CLI_OPT_VMAX, QO_CLI_OPT_AMAX, QO_CLI_OPT_JMAX, QO_CLI_OPT_SYNC,
+    QO_CLI_OPT_MAX_SAMPLES, QO_CLI_OPT_LAST_
+};
+/* The getopt_long entries of the planning options (one table for plan and stream). */
+#define QO_CLI_PLAN_OPTIONS                                                                       \
+    { "profile", required_argument, NULL, QO_CLI_OPT_PROFILE },                                   \
+    { "rate", required_argument, NULL, QO_CLI_OPT_RATE },                                         \
+    { "end", required_argument, NULL, QO_CLI_OPT_END },                                           \
+    { "columns", required_argument, NULL, QO_CLI_OPT_COLUMNS },                                   \
+    { "derivs", required_argument, NULL, QO_CLI_OPT_DERIVS },                                     \
+    { "min", required_argument, NULL, QO_CLI_OPT_MIN },                                           \
+    { "max", required_argument, NULL, QO_CLI_OPT_MAX },                                           \
+    { "wrap", required_argument, NULL, QO_CLI_OPT_WRAP },                                         \
+    { "unwrapped", no_argument, NULL, QO_CLI_OPT_UNWRAPPED },                                     \
+    { "degrees", no_argument, NULL, QO_CLI_OPT_DEGREES },                                         \
+    { "fixed", no_argument, NULL, QO_CLI_OPT_FIXED },                                             \
+    { "vmax", required_argument, NULL, QO_CLI_OPT_VMAX },                                         \
+    { "amax", required_argument, NULL, QO_CLI_OPT_AMAX },                                         \
+    { "jmax", required_argument, NULL, QO_CLI_OPT_JMAX },                                         \
+    { "sync", required_argument, NULL, QO_CLI_OPT_SYNC },                                         \
+    { "max-samples", required_argument, NULL, QO_CLI_OPT_MAX_SAMPLES }
+
+/* The planning options as given. Lists stay text until the joint count is known. */
+struct qo_cli_plan_opts {
+    int motion;                 /* 1: trapezoid|scurve targets, 0: keyframes */
+    qo_spline_profile sprofile;
+    qo_spline_end end;
+    qo_spline_derivs derivs;
+    int columns;                /* 1 p, 2 pv, 3 pva (0 until checked) */
+    qo_motion_profile mprofile;
+    qo_motion_sync sync;
+    const char *vmax, *amax, *jmax, *min, *max, *wrap;
+    double rate, max_samples;
+    int degrees, unwrapped, fixed;
+    const char *key_opt, *motion_opt; /* an option of the other mode, to refuse by name */
+};
+void qo_cli_plan_opts_default(struct qo_cli_plan_opts *o);
+/* Takes one getopt_long result of QO_CLI_PLAN_OPTIONS. Returns 0 or 2 (message printed). */
+int qo_cli_plan_opt(const char *who, struct qo_cli_plan_opts *o, int opt, const char *arg);
+/* After the options: the combination makes sense. Returns 0 or 2 (message printed). */
+int qo_cli_plan_opts_check(const char *who, struct qo_cli_plan_opts *o);
+
+/* Input lines as read: rows of `width` numbers after the time. */
+struct qo_cli_rows {
+    size_t rows, cap, width;
+    double *v;
+    qo_traj_ns *t;
+    long *line, first_line;
+};
+/* One input line (len from qo_cli_getline, or -1 for a C string): blank and '#' lines are
+ * skipped; any error (NUL byte, not a number, not finite in float32, column count, time out of
+ * range or out of order) prints a message naming the line and returns 1; nothing is added. */
+int qo_cli_rows_add(const char *who, const char *name, const struct qo_cli_plan_opts *o, int has_time,
+                    long lineno, char *text, long len, struct qo_cli_rows *r);
+/* Every line of path (NULL or "-": standard input); a read error (a directory) is an I/O
+ * error. Needs 2 keyframes or 1 start line. Returns 0 or 1 (message printed). */
+int qo_cli_rows_read(const char *who, const struct qo_cli_plan_opts *o, const char *path,
+                     struct qo_cli_rows *r);
+void qo_cli_rows_free(struct qo_cli_rows *r);
+
+/* A trajectory with its storage (heap: the command's, not the library's). */
+struct qo_cli_plan {
+    qo_traj tr;
+    size_t n;
+    double period;              /* of continuous joints */
+    qo_traj_ns *t;
+    float *store, *lo, *hi;
+    unsigned char *wrap;
+    qo_spline_settings_f32 sset;
+    qo_motion_joint_f32 joints[QO_MOTION_MAX_JOINTS];
+    qo_motion_limits_f32 lim[QO_MOTION_MAX_JOINTS];
+};
+/* Sets up p for n joints and cap keys / queued targets from the options (lists spread and
+ * checked now). Returns 0, 1 (runtime) or 2 (usage), message printed. */
+int qo_cli_plan_build(const char *who, const struct qo_cli_plan_opts *o, size_t n, size_t cap,
+                      struct qo_cli_plan *p);
+/* Pushes one row (n x columns numbers; continuous joints reduced in double first). Returns 0
+ * or 1, message naming the line. */
+int qo_cli_plan_push(const char *who, const char *name, struct qo_cli_plan *p, qo_traj_ns t,
+                     const double *row, long lineno);
+/* build + push every row (+ plan the keyframes). Returns 0, 1 or 2. */
+int qo_cli_plan_from_rows(const char *who, const char *name, const struct qo_cli_plan_opts *o,
+                          const struct qo_cli_rows *r, struct qo_cli_plan *p);
+void qo_cli_plan_free(struct qo_cli_plan *p);
 
 /* Rotation representations of `qorient convert`. */
 enum rep { REP_QUAT, REP_MATRIX, REP_ROTVEC, REP_AXISANGLE, REP_EULER };
@@ -51,8 +166,13 @@ int qo_cli_parse_numbers(char *line, double *out, size_t max, size_t *n);
 /* Prints a float with enough significant digits (9) to read back the same float32. */
 void qo_cli_print_f32(FILE *f, float v);
 
+/* Prints a time given in ns as exact decimal seconds, no trailing zeros ("-12.5",
+ * "10000000.05", "3"): no float rounding at any magnitude. */
+void qo_cli_print_time(FILE *f, qo_traj_ns t);
+
 /* Reads one line of any length into *buf (grown with realloc). Returns the length or -1 at
- * end of input. The trailing newline (and CR) is removed. */
+ * end of input (or a read error: check ferror). The trailing newline (and CR) is removed. A
+ * line with a NUL byte has strlen(*buf) < the length returned: callers refuse it. */
 long qo_cli_getline(char **buf, size_t *cap, FILE *f);
 
 /* getopt_long's optind is global state: each subcommand resets it through this. */

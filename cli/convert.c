@@ -158,11 +158,18 @@ static int for_each_record(const char *cmd, size_t want, record_fn fn, void *ctx
     int failed = 0;
     double v[16];
     char msg[96];
-    while (qo_cli_getline(&buf, &cap, stdin) >= 0) {
+    long len;
+    while ((len = qo_cli_getline(&buf, &cap, stdin)) >= 0) {
         size_t n;
         int rc;
         const char *p = buf;
         lineno++;
+        if (strlen(buf) != (size_t)len) {
+            /* a NUL would end the record early: "1 0 0 0\0 2 3" is not the quaternion 1 0 0 0 */
+            line_error(cmd, lineno, "contains a NUL byte");
+            failed = 1;
+            continue;
+        }
         while (*p == ' ' || *p == '\t') p++;
         if (*p == '\0' || *p == '#') {
             puts(buf); /* keep line N of output answering line N of input */
@@ -192,6 +199,18 @@ static int for_each_record(const char *cmd, size_t want, record_fn fn, void *ctx
     return failed;
 }
 
+/* The --fixed paths take the inputs the float32 core sees (rounded to float32), so both
+ * refuse and accept the same records. Returns 0 if a value is not finite in float32. */
+static int as_float32(const double *v, size_t m, double *w)
+{
+    size_t i;
+    for (i = 0; i < m; i++) {
+        w[i] = (double)(float)v[i];
+        if (!isfinite(w[i])) return 0;
+    }
+    return 1;
+}
+
 struct convert_ctx {
     struct rep_spec from, to;
     int degrees, fixed;
@@ -204,7 +223,12 @@ static const char *convert_one(const double *v, void *vctx)
     size_t n;
     qo_status st;
     if (c->fixed) {
-        st = qo_cli_convert_fixed(&c->from, &c->to, v, c->degrees, o, &n);
+        /* The same inputs as the float32 core sees: what float32 cannot hold (1e39) is refused
+         * the same way, and what rounds to zero in float32 (1e-320) is zero here too. */
+        double w[16];
+        size_t m = c->from.kind == REP_MATRIX ? 9 : c->from.kind == REP_QUAT || c->from.kind == REP_AXISANGLE ? 4 : 3;
+        if (!as_float32(v, m, w)) return qo_status_str(QO_E_NONFINITE);
+        st = qo_cli_convert_fixed(&c->from, &c->to, w, c->degrees, o, &n);
     } else {
         qo_quat_f32 q;
         st = to_quat_f32(&c->from, v, c->degrees, &q);
@@ -285,7 +309,9 @@ static const char *slerp_one(const double *v, void *vctx)
     double o[4];
     qo_status st;
     if (*fixed) {
-        st = qo_cli_slerp_fixed(v, o);
+        double w[9];
+        if (!as_float32(v, 9, w)) return qo_status_str(QO_E_NONFINITE);
+        st = qo_cli_slerp_fixed(w, o);
     } else {
         qo_quat_f32 a = { (float)v[0], (float)v[1], (float)v[2], (float)v[3] };
         qo_quat_f32 b = { (float)v[4], (float)v[5], (float)v[6], (float)v[7] };

@@ -5,6 +5,7 @@
  */
 #include "cli.h"
 
+#include <errno.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
@@ -69,10 +70,13 @@ int qo_cli_gimbal(int argc, char **argv)
     qo_path_interp interp = QO_PATH_SLERP;
     double rate = 100.0, band_deg = 1.0, vmax = INFINITY, v;
     int degrees = 0, ch, rc = 1;
+    unsigned caught_up_not = 0;
     FILE *in = stdin;
     float *t = NULL;
     qo_quat_f32 *keys = NULL, *ks = NULL, *a = NULL, *b = NULL;
     size_t n = 0, cap = 0, lcap = 0;
+    long len;
+    qo_traj_ns t0n = 0;
     char *line = NULL;
     unsigned long lineno = 0;
     qo_orient_path_f32 path;
@@ -88,10 +92,7 @@ int qo_cli_gimbal(int argc, char **argv)
             }
             break;
         case 'r':
-            if (!parse_positive(optarg, &rate)) {
-                fprintf(stderr, "qorient gimbal: --rate: '%s' is not a positive number\n", optarg);
-                return 2;
-            }
+            if (qo_cli_number("gimbal", "--rate", optarg, QO_CLI_RATE_MIN, QO_CLI_RATE_MAX, "Hz", &rate)) return 2;
             break;
         case 'i':
             if (strcmp(optarg, "slerp") == 0) interp = QO_PATH_SLERP;
@@ -101,15 +102,9 @@ int qo_cli_gimbal(int argc, char **argv)
                 return 2;
             }
             break;
-        case 'b': {
-            char *end;
-            band_deg = strtod(optarg, &end);
-            if (end == optarg || *end != '\0' || !(band_deg >= 0.0 && band_deg <= 90.0)) {
-                fprintf(stderr, "qorient gimbal: --band: '%s' is not an angle in [0, 90] degrees\n", optarg);
-                return 2;
-            }
+        case 'b':
+            if (qo_cli_number("gimbal", "--band", optarg, 0.0, 90.0, "degrees", &band_deg)) return 2;
             break;
-        }
         case 'v':
             if (!parse_positive(optarg, &v)) {
                 fprintf(stderr, "qorient gimbal: --vmax: '%s' is not a positive number\n", optarg);
@@ -136,11 +131,17 @@ int qo_cli_gimbal(int argc, char **argv)
     gs.band = (float)(band_deg * deg);
     gs.vmax = (float)(degrees && isfinite(vmax) ? vmax * deg : vmax);
 
-    while (qo_cli_getline(&line, &lcap, in) >= 0) {
+    while ((len = qo_cli_getline(&line, &lcap, in)) >= 0) {
         double f[6];
         size_t m;
         int prc;
+        qo_traj_ns tn;
+        float rel;
         lineno++;
+        if (strlen(line) != (size_t)len) {
+            fprintf(stderr, "qorient gimbal: line %lu: contains a NUL byte\n", lineno);
+            goto out;
+        }
         prc = qo_cli_parse_numbers(line, f, 6, &m);
         if (prc == 0 && m == 0) continue;
         if (prc == -1) {
@@ -160,8 +161,17 @@ int qo_cli_gimbal(int argc, char **argv)
             fprintf(stderr, "qorient gimbal: line %lu: %s\n", lineno, qo_status_str(QO_E_DEGENERATE));
             goto out;
         }
-        if (n > 0 && !((float)f[0] > t[n - 1])) {
-            fprintf(stderr, "qorient gimbal: line %lu: time %g is not after the previous key's\n", lineno, f[0]);
+        /* Key times in ns, handed to the float32 core as offsets from the first key: a path at
+         * t = 1e7 s is sampled as finely as one at t = 0. */
+        if (qo_traj_ns_from_s(f[0], &tn) != QO_OK) {
+            fprintf(stderr, "qorient gimbal: line %lu: time %g s is beyond the +-4.6e9 s supported\n", lineno, f[0]);
+            goto out;
+        }
+        if (n == 0) t0n = tn;
+        rel = (float)((double)(tn - t0n) * 1e-9);
+        if (n > 0 && !(rel > t[n - 1])) {
+            fprintf(stderr, "qorient gimbal: line %lu: time %.9g is not after the previous key's (as a float32 "
+                    "offset from the first key)\n", lineno, f[0]);
             goto out;
         }
         if (n == cap) {
@@ -175,9 +185,13 @@ int qo_cli_gimbal(int argc, char **argv)
             keys = nk;
             cap = nc;
         }
-        t[n] = (float)f[0];
+        t[n] = rel;
         keys[n].w = (float)f[1]; keys[n].x = (float)f[2]; keys[n].y = (float)f[3]; keys[n].z = (float)f[4];
         n++;
+    }
+    if (ferror(in)) {
+        fprintf(stderr, "qorient gimbal: %s: read error: %s\n", in == stdin ? "-" : argv[optind], strerror(errno));
+        goto out;
     }
     if (n < 2) {
         fprintf(stderr, "qorient gimbal: need at least 2 keyframes, got %zu\n", n);
@@ -196,7 +210,7 @@ int qo_cli_gimbal(int argc, char **argv)
     {
         /* Sample times t0 + k/rate computed from k (no accumulated rounding), then the last key
          * time itself if the grid does not land on it. */
-        double t0 = t[0], t1 = t[n - 1], s = degrees ? 1.0 / deg : 1.0;
+        double t0 = t[0], t1 = t[n - 1], s = degrees ? 1.0 / deg : 1.0; /* offsets: t0 == 0 */
         double span_n = floor((t1 - t0) * rate + 1e-9);
         unsigned long k, kmax;
         int extra;
@@ -224,15 +238,21 @@ int qo_cli_gimbal(int argc, char **argv)
                 fprintf(stderr, "qorient gimbal: t=%g: %s\n", tt, qo_status_str(st));
                 goto out;
             }
-            qo_cli_print_f32(stdout, (float)tt); putchar(',');
+            qo_cli_print_time(stdout, t0n + (qo_traj_ns)llround(tt * 1e9)); putchar(',');
             qo_cli_print_f32(stdout, (float)(o.angles.a1 * s)); putchar(',');
             qo_cli_print_f32(stdout, (float)(o.angles.a2 * s)); putchar(',');
             qo_cli_print_f32(stdout, (float)(o.angles.a3 * s)); putchar(',');
             qo_cli_print_f32(stdout, (float)(o.margin * s));
             printf(",%d,%u\n", o.locked, o.clipped);
         }
+        caught_up_not = o.clipped;
     }
     rc = 0;
+    if (caught_up_not) {
+        fprintf(stderr, "qorient gimbal: after one hour of catch-up --vmax still holds joints back (clipped=%u): "
+                "the last row is far from the path's end\n", caught_up_not);
+        rc = 1;
+    }
     goto out;
 oom:
     fprintf(stderr, "qorient gimbal: out of memory\n");

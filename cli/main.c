@@ -29,27 +29,47 @@ static void usage(FILE *f)
           "Numbers in, one record per line; errors name the line.\n\ncommands:\n", f);
     for (i = 0; i < sizeof cmds / sizeof cmds[0]; i++)
         fprintf(f, "  %-9s %s\n", cmds[i].name, cmds[i].summary);
-    fputs("\n'qorient COMMAND --help' describes each command.\n", f);
+    fputs("\n'qorient COMMAND --help' (or 'qorient help COMMAND') describes each command;\n"
+          "'qorient --version' prints the version.\n", f);
 }
 
 int main(int argc, char **argv)
 {
+    static char *hargv[3]; /* argv of `help CMD`: alive as long as argv */
     size_t i;
     if (argc < 2) {
         usage(stderr);
         return 2;
     }
-    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "help") == 0) {
+    if (strcmp(argv[1], "--version") == 0 || strcmp(argv[1], "-V") == 0)
+        return qo_cli_version(1, argv + 1);
+    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
+        (strcmp(argv[1], "help") == 0 && argc == 2)) {
         usage(stdout);
         return 0;
     }
+    if (strcmp(argv[1], "help") == 0) {
+        /* `qorient help CMD` is exactly `qorient CMD --help`: the same entry point runs. */
+        if (argc > 3) {
+            fputs("qorient help: one command at a time\n", stderr);
+            return 2;
+        }
+        hargv[0] = argv[2];
+        hargv[1] = (char *)"--help";
+        hargv[2] = NULL;
+        argv = hargv;
+        argc = 2;
+    } else {
+        argv++;
+        argc--;
+    }
     for (i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
-        if (strcmp(argv[1], cmds[i].name) == 0) {
+        if (strcmp(argv[0], cmds[i].name) == 0) {
             qo_cli_reset_getopt();
-            return cmds[i].fn(argc - 1, argv + 1);
+            return cmds[i].fn(argc, argv);
         }
     }
-    fprintf(stderr, "qorient: unknown command '%s'\n", argv[1]);
+    fprintf(stderr, "qorient: unknown command '%s'\n", argv[0]);
     usage(stderr);
     return 2;
 }

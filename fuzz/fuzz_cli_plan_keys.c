@@ -1,5 +1,5 @@
 /*
- * fuzz/fuzz_cli_plan_keys.c - `qorient plan` over keyframes (cli/plan_keys.c,
+ * fuzz/fuzz_cli_plan_keys.c - `qorient plan` over keyframes (cli/plan.c, cli/planopt.c,
  * qorient/spline.h underneath) end to end: the first two bytes pick the profile, columns,
  * end condition, derivative rule, rate, limits, wrap and --fixed; the rest is the keyframe
  * CSV given as FILE. Properties: exit status 0 or 1 (valid options; 2 only with no output);
@@ -65,7 +65,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     (void)qo_fz_cli_prescan(data, size, &t_lo, &t_hi);
     if (t_hi > t_lo && (t_hi - t_lo) * rate > FUZZ_PK_MAX_ROWS) return 0;
 
-    rc = qo_fz_cli_run(QO_FZ_CLI_FN(qo_cli_plan_keys), argc, argv, 0, data, size, &out, &out_len);
+    rc = qo_fz_cli_run(QO_FZ_CLI_FN(qo_cli_plan), argc, argv, 0, data, size, &out, &out_len);
     /* 2: a usage error found once the keys are read (e.g. limits against the joint count):
      * then nothing may have been written */
     QO_FUZZ_CHECK(rc == 0 || rc == 1 || (rc == 2 && out_len == 0), "plan: exit status %d (%zu bytes out)", rc, out_len);

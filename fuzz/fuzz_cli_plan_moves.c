@@ -1,6 +1,6 @@
 /*
  * fuzz/fuzz_cli_plan_moves.c - `qorient plan --profile trapezoid|scurve` (the limited moves of
- * cli/plan_moves.c over qorient/motion.h) end to end: the first two bytes pick
+ * cli/plan.c over qorient/motion.h) end to end: the first two bytes pick
  * the profile, the limits (from a small table, one value or one per joint), rate, sync, joint
  * limits, wrap, --degrees and --fixed; the rest is the target CSV given as FILE.
  * Properties: exit status 0 or 1 (the options are valid); every output row is a list of
@@ -61,7 +61,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     big = qo_fz_cli_prescan(data, size, &t_lo, &t_hi);
     if (big > 100.0 || (t_hi > t_lo && t_hi - t_lo > 40.0)) return 0;
 
-    rc = qo_fz_cli_run(QO_FZ_CLI_FN(qo_cli_plan_moves), argc, argv, 0, data, size, &out, &out_len);
+    rc = qo_fz_cli_run(QO_FZ_CLI_FN(qo_cli_plan), argc, argv, 0, data, size, &out, &out_len);
     QO_FUZZ_CHECK(rc == 0 || rc == 1, "plan (moves): exit status %d", rc);
     qo_fz_cli_check_output(out, "plan (moves)");
     free(out);

@@ -14,20 +14,28 @@ trap cleanup EXIT INT TERM
 ok()  { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 
-# A simulator on an ephemeral port (LOG, then more sim options); waits (bounded) for its
-# 'listening' line and sets PORT and HOST.
+# A simulator on an ephemeral port: start_sim [LOG [SIM OPTIONS]] (default LOG $T/log.csv,
+# listening on tcp://127.0.0.1:0); waits (bounded) for its 'listening' line, sets PORT and HOST.
 start_sim() {
-    log=$1; shift
+    log=${1:-$T/log.csv}
+    [ $# -gt 0 ] && shift
+    [ $# -eq 0 ] && set -- --listen tcp://127.0.0.1:0
+    rm -f "$log" "$T/sim.out"
     $Q sim --map $MAP --lag 0 --log "$log" --duration 60 "$@" > "$T/sim.out" 2>&1 &
     SIMPID=$!
     i=0
     while ! grep -q '^listening' "$T/sim.out" 2>/dev/null && [ $i -lt 100 ]; do sleep 0.05; i=$((i + 1)); done
     PORT=$(sed -n 's/^listening tcp:\/\/.*:\([0-9]*\)$/\1/p' "$T/sim.out")
     HOST=$(sed -n 's/^listening tcp:\/\/\(.*\):[0-9]*$/\1/p' "$T/sim.out")
+    [ -n "$PORT" ] && ok || bad "simulator did not start: $(cat "$T/sim.out")"
 }
 stop_sim() { kill "$SIMPID" 2>/dev/null; wait "$SIMPID" 2>/dev/null; SIMPID=""; }
-start_sim "$T/log.csv" --listen tcp://127.0.0.1:0
-[ -n "$PORT" ] && ok || bad "simulator did not start: $(cat "$T/sim.out")"
+# target writes in the simulator's log, the largest step and the last value per joint
+log_summary() {
+    awk -F, 'NR > 1 && NF == 6 && $5 ~ /^j/ { j = $5; if (j in last) { d = $6 - last[j]; if (d < 0) d = -d; if (d > m) m = d } last[j] = $6; n++ }
+             END { printf "%d %.6f %s %s %s %s %s %s", n, m, last["j1"], last["j2"], last["j3"], last["j4"], last["j5"], last["j6"] }' "$T/log.csv"
+}
+start_sim
 
 # 1. A jerk-limited move of six joints, re-planned mid-motion, streamed at 100 Hz.
 printf '0,0,0,0,0,0,0\n0,1,-1,0.5,0.2,0,0.3\n0.6,0.4,0.2,-0.3,0,0.1,-0.2\n' > "$T/targets"
@@ -43,10 +51,9 @@ for f in $(sed -n 's/^summary: //p' "$T/out" | awk '{ for (i = 1; i <= NF; i += 
 done
 # Stop the simulator (SIGTERM: it finishes its log) before reading the log: a log read while
 # it is being written can end in half a line.
-kill "$SIMPID" 2>/dev/null; wait "$SIMPID" 2>/dev/null; SIMPID=""
+stop_sim
 # the simulator's log: value per joint, in joint units; steps and final values checked by awk
-r=$(awk -F, 'NR > 1 && NF == 6 && $5 ~ /^j/ { j = $5; if (j in last) { d = $6 - last[j]; if (d < 0) d = -d; if (d > m) m = d } last[j] = $6; n++ }
-            END { printf "%d %.6f %s %s %s %s %s %s", n, m, last["j1"], last["j2"], last["j3"], last["j4"], last["j5"], last["j6"] }' "$T/log.csv")
+r=$(log_summary)
 set -- $r
 [ "$1" -gt 600 ] && ok || bad "only $1 target writes logged"
 awk -v m="$2" 'BEGIN { exit !(m <= 0.05 + 1e-9) }' && ok || bad "a step of $2 above max_step 0.05 reached a drive"
@@ -54,6 +61,40 @@ shift 2
 [ "$*" = "0.4 0.2 -0.3 0 0.1 -0.2" ] && ok || bad "final targets '$*' != '0.4 0.2 -0.3 0 0.1 -0.2'"
 
 printf '0,0,0,0,0,0,0\n1,0.5,-0.5,1,0.2,0,0.3\n2,0,0,0,0,0,0\n' > "$T/keys"
+
+# 1b. A plan of 2 joints for the 6 of the map is refused, naming both counts, before anything
+#     is written (the simulator logs no write at all).
+start_sim
+printf '0,0,0\n0,1,-1\n' | $Q stream --map $MAP --modbus "tcp://127.0.0.1:$PORT" --rate 100 --no-rt --quiet \
+    --profile scurve --vmax 2 --amax 4 --jmax 20 > "$T/out" 2> "$T/err"; rc=$?
+[ "$rc" = 1 ] && ok || bad "joint count mismatch: exit $rc"
+grep -q "the plan has 2 joint(s) but the map has 6: nothing sent" "$T/err" && ok || bad "mismatch message: $(cat "$T/err")"
+[ ! -s "$T/out" ] && ok || bad "mismatch: output $(cat "$T/out")"
+# 1c. --live: targets piped in while streaming; each applied when it arrives, re-planned from
+#     the current state; a bad line is named and skipped (exit 1); at end of input the motion
+#     finishes and the drives hold the last target.
+{ printf '0,0,0,0,0,0\n'; sleep 0.3; printf '1,-1,0.5,0.2,0,0.3\n'; sleep 0.4;
+  printf '0.4,0.2,-0.3,0,0.1,-0.2\n'; sleep 0.2; printf '1,2\n'; } |
+    $Q stream --map $MAP --modbus "tcp://127.0.0.1:$PORT" --rate 100 --timeout-ms 50 --no-rt --quiet --live \
+        --profile scurve --vmax 2 --amax 4 --jmax 20 > "$T/out" 2> "$T/err"; rc=$?
+[ "$rc" = 1 ] && ok || bad "live with a bad line: exit $rc: $(cat "$T/err")"
+grep -q "^qorient stream: -: line 4: 2 columns, expected 6 as on line 1" "$T/err" && ok || bad "live bad line message: $(cat "$T/err")"
+grep -q 'final ok$' "$T/out" && ok || bad "live summary: $(cat "$T/out")"
+stop_sim
+# joint 2 went toward the first target (-1) before the second (+0.2): both were applied
+awk -F, 'NR > 1 && NF == 6 && $5 == "j2" && $6 < m { m = $6 } END { exit !(m < -0.1) }' "$T/log.csv" && ok ||
+    bad "live: joint 2 never moved toward the first live target"
+r=$(log_summary)
+set -- $r
+# the second target arrived 0.7 s in, while the first move (1 s at these limits) was running
+awk -v m="$2" 'BEGIN { exit !(m <= 0.05 + 1e-9) }' && ok || bad "live: a step of $2 above max_step 0.05"
+shift 2
+[ "$*" = "0.4 0.2 -0.3 0 0.1 -0.2" ] && ok || bad "live final targets '$*' != '0.4 0.2 -0.3 0 0.1 -0.2'"
+# without a start line --live says what it needs
+: | $Q stream --map $MAP --modbus "tcp://127.0.0.1:1" --live --profile trapezoid --vmax 1 --amax 1 > /dev/null 2> "$T/err"; rc=$?
+[ "$rc" = 1 ] && grep -q "needs a start line" "$T/err" && ok || bad "live without input: rc=$rc $(cat "$T/err")"
+# --live takes targets only, and standard input only
+$Q stream --map $MAP --modbus "tcp://127.0.0.1:1" --live --profile spline "$T/keys" > /dev/null 2>&1; [ $? = 2 ] && ok || bad "--live with keyframes accepted"
 
 # 2. --dry-run: the RTU wire budget for 6 int32 joints at 115200 8N1 (one FC16 of 12
 #    registers: 33 + 8 bytes at 86.8 us per char, plus 2 x 1.75 ms of t3.5 = 7059 us)

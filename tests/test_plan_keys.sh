@@ -153,14 +153,14 @@ expect_err "too few keys" 1 "# only one\n0 0\n" "at least 2 keyframes, got 1"
 expect_err "empty input" 1 "" "at least 2 keyframes, got 0"
 expect_err "pv columns odd" 1 "0 1 2 3\n" "line 1: 4 columns: expected t and 2" --profile cubic
 expect_err "min > max" 2 "0 0 0\n1 1 1\n" "joint 2: min 3 > max 2" --min 0,3 --max 5,2
-expect_err "limit count" 2 "0 0 0\n1 1 1\n" "3 values for 2 joints" --min 0,1,2
+expect_err "limit count" 2 "0 0 0\n1 1 1\n" "--min has 3 values for 2 joint" --min 0,1,2
 expect_err "bad limit" 2 "0 0\n1 1\n" "--min.*not a list" --min x
-expect_err "wrap index" 2 "0 0\n1 1\n" "joint 2 is not in 1..1" --wrap 2
+expect_err "wrap index" 2 "0 0\n1 1\n" "--wrap: .2. is not a joint number 1..1" --wrap 2
 expect_err "vmax with keyframes" 2 "0 0\n1 1\n" "--vmax applies to --profile trapezoid[|]scurve only" --vmax 1
 expect_err "sync with keyframes" 2 "0 0\n1 1\n" "--sync applies to --profile trapezoid" --profile quintic --sync time
 # --profile trapezoid|scurve are routed to the motion planner by plan.c (tests/test_plan_moves.sh)
-expect_err "unknown profile" 2 "0 0\n1 1\n" "unknown profile 'bogus'" --profile bogus
-expect_err "bad rate" 2 "0 0\n1 1\n" "--rate: '0' is not a positive" --rate 0
+expect_err "unknown profile" 2 "0 0\n1 1\n" "--profile: 'bogus' is not linear, cubic" --profile bogus
+expect_err "bad rate" 2 "0 0\n1 1\n" "--rate: .0. is not a number in .0.001, 1e.06. Hz" --rate 0
 expect_err "cubic needs pv" 2 "0 0\n1 1\n" "cubic needs key velocities" --profile cubic --columns p
 expect_err "pv only cubic/quintic" 2 "0 0 0\n1 1 1\n" "only with --profile cubic or quintic" --profile spline --columns pv
 expect_err "missing file" 1 "" "nonexistent.*No such file" "$tmp/nonexistent"

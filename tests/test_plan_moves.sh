@@ -82,11 +82,11 @@ printf '0,0.5,-1\n0,2,1\n0.4,-1,3\n' | P --profile scurve --vmax 2 --amax 4 --jm
 check "fixed same rows" [ "$(wc -l <"$tmp.f")" -eq "$(wc -l <"$tmp.x")" ]
 check "fixed close to float" sh -c "paste -d, '$tmp.f' '$tmp.x' | awk -F, '{ for (i = 2; i <= 3; i++) { d = \$i - \$(i + 7); if (d > 1e-4 || d < -1e-4) exit 1 } }'"
 
-# input errors: line named on stderr, exit 1, the rest still planned
+# input errors: line named on stderr, exit 1, nothing printed (as for keyframes)
 printf '0,0\n1,1\n0.5,2\n' | P --profile trapezoid --vmax 1 --amax 1 >"$tmp.o" 2>"$tmp.e"; rc=$?
 check "non-monotonic exit 1" [ $rc -eq 1 ]
-check "non-monotonic names line 3" grep -q "line 3" "$tmp.e"
-check "non-monotonic keeps earlier target" awk -F, 'END { if ($2 != 1) exit 1 }' "$tmp.o"
+check "non-monotonic names line 3" grep -q "line 3: time 0.5 is before the previous line's (line 2)" "$tmp.e"
+check "non-monotonic prints nothing" [ ! -s "$tmp.o" ]
 printf '0,0,0\n1,1\n' | P --profile trapezoid --vmax 1 --amax 1 >"$tmp.o" 2>"$tmp.e"; rc=$?
 check "column count exit 1" [ $rc -eq 1 ]
 check "column count names line 2" grep -q "line 2" "$tmp.e"
@@ -113,7 +113,8 @@ for args in "--vmax 1 --amax 1" "--profile trapezoid --amax 1" "--profile trapez
     check "usage error message: $args" [ -s "$tmp.e" ]
 done
 P --profile trapezoid --vmax 1 --amax 1 /nonexistent/file >"$tmp.o" 2>"$tmp.e"; rc=$?
-check "missing file exit 2" [ $rc -eq 2 ]
+check "missing file exit 1" [ $rc -eq 1 ]
+check "missing file named" grep -q "/nonexistent/file: No such file" "$tmp.e"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -1,16 +1,21 @@
 /*
- * qorient stream --map FILE (--modbus SPEC | --gpio CHIP --lines ...) [plan options] [FILE|-]
+ * qorient stream --map FILE (--modbus SPEC | --gpio CHIP --lines ...) [plan options] [--live] [FILE|-]
  *
- * Plans the motion exactly as `qorient plan` does (same options, same input; the plan is run
- * once up front at the stream rate), then streams it to the drives with the periodic streamer:
- * each tick samples the plan at the ACTUAL wake time (cubic Hermite between plan rows, using
- * their velocities) and hands the targets to the sink. Progress on a terminal, a summary at
- * the end, a clean stop on SIGINT/SIGTERM leaving the drives on the last sampled target.
+ * Reads keyframes or targets with the planning options of `qorient plan` (cli/planopt.c: the
+ * same reader, options and qorient/traj.h trajectory, nothing printed and read back), refuses a
+ * plan whose joint count differs from the drives' before anything is written, then streams it
+ * with the periodic streamer: each tick samples the trajectory at the ACTUAL wake time and
+ * hands the targets to the sink. With --live, targets are read from standard input WHILE
+ * streaming (a reader thread) and pushed into the same trajectory, re-planned from the current
+ * state. Progress on a terminal, a summary at the end, a clean stop on SIGINT/SIGTERM leaving
+ * the drives on the last sampled target.
  */
 #include "../cli.h"
 
 #include <errno.h>
+#include <getopt.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -25,34 +30,48 @@
 static const char stream_usage[] =
     "usage: qorient stream --map FILE --modbus SPEC [OPTIONS] [PLAN OPTIONS] [FILE|-]\n"
     "       qorient stream --gpio CHIP --lines STEP:DIR[,STEP:DIR...] [OPTIONS] [PLAN OPTIONS] [FILE|-]\n"
+    "       qorient stream ... --profile trapezoid|scurve --vmax V --amax A [--jmax J] --live\n"
     "\n"
     "Reads keyframes or targets exactly as 'qorient plan' does (same input, same options:\n"
-    "--profile, --vmax, --amax, --jmax, --sync, --min, --max, --wrap, --degrees, --fixed, ...),\n"
+    "--profile, --vmax, --amax, --jmax, --sync, --min, --max, --wrap, --degrees, ...),\n"
     "plans the motion and streams it to servo drives at --rate HZ (default 100): each tick\n"
-    "samples the plan at the actual wake time and sends every joint's target.\n"
+    "samples the trajectory at the actual wake time and sends every joint's target. A plan\n"
+    "whose joint count differs from the map's (or the --lines list's) is refused, naming both,\n"
+    "before anything is sent.\n"
+    "\n"
+    "Live targets (--live, with --profile trapezoid|scurve): standard input gives lines\n"
+    "'p1,...,pN' (no time column; at most 65535 characters). The first line is the start (the\n"
+    "joints at rest there; read before streaming begins); every later line is a new target,\n"
+    "applied when it arrives and re-planned from the current position, velocity and\n"
+    "acceleration. A bad line is reported (naming it) and skipped; the exit status is then 1.\n"
+    "At end of input the motion finishes, the hold runs and the command exits.\n"
     "\n"
     "Modbus (the register map gives slaves, registers, types, scale, limits, max_step):\n"
     "  --map FILE          register map (INI, see examples/maps); its joints, in file order,\n"
     "                      are the plan's columns p1..pN\n"
     "  --modbus SPEC       tcp://HOST:PORT or rtu:DEVICE,BAUD,8N1 (parity N, E or O)\n"
-    "  --timeout-ms MS     response timeout (default 0.8 x the period, within 2..20 ms);\n"
-    "                      on TCP a later reply is still accepted at the next tick, and a\n"
-    "                      link silent for 20 x this (at least 1 s) is reconnected\n"
+    "  --timeout-ms MS     response timeout, in [0.1, 60000] (default 0.8 x the period,\n"
+    "                      within 2..20 ms); on TCP a later reply is still accepted at the\n"
+    "                      next tick, and a link silent for 20 x this (at least 1 s) is\n"
+    "                      reconnected\n"
     "  --on-fail hold|disable  after repeated failures: hold the last target (default) or\n"
     "                      send the map's disable writes\n"
-    "  --turnaround-us US  the drives' reply delay, for the RTU wire budget (default 0)\n"
+    "  --turnaround-us US  the drives' reply delay, for the RTU wire budget, in [0, 1e6]\n"
+    "                      (default 0)\n"
     "GPIO step/dir (libgpiod):\n"
     "  --gpio CHIP         chip name, path or label (e.g. gpiochip0, pinctrl-rp1)\n"
     "  --lines S:D,...     step and dir line offsets per joint\n"
     "  --steps-per-unit K[,K...]  steps per joint unit (default 200)\n"
     "  --step-rate HZ[,HZ...]     maximum step rate (default 1000)\n"
     "Streaming:\n"
-    "  --rate HZ           tick rate (default 100); also the rate the plan is sampled at\n"
-    "  --hold S            keep streaming the final target for S seconds (default 0.2)\n"
+    "  --rate HZ           tick rate, in [0.001, 100000] (default 100)\n"
+    "  --hold S            keep streaming the final target for S seconds, in [0, 86400]\n"
+    "                      (default 0.2)\n"
     "  --settle S          Modbus: after the plan (and --hold), keep sending the final target\n"
     "                      until every drive holds it (acknowledged, then read back) or S\n"
-    "                      seconds pass; default: twice the max_step catch-up time from\n"
-    "                      what the drives hold, plus 0.5 s\n"
+    "                      seconds pass, in [0, 86400]; default: twice the max_step catch-up\n"
+    "                      time from what the drives hold, plus 0.5 s\n"
+    "  --live              targets from standard input while streaming (see above)\n"
     "  --dry-run           check the map and the plan, print the per-tick wire budget (and\n"
     "                      for RTU the highest rate the line allows), send nothing\n"
     "  --no-rt             do not ask for SCHED_FIFO / mlockall\n"
@@ -78,7 +97,8 @@ static const char stream_fields[] =
     "  skipped       TCP: slave-ticks not sent because that slave's previous request was\n"
     "                still unanswered (one outstanding request per slave, never queued)\n"
     "  readbacks     target registers read back to learn what a drive holds (after an\n"
-    "                unknown outcome or a reconnection; 0 in a fault-free run)\n"    "  exceptions    exception replies (the drive refused a request: nothing applied)\n"
+    "                unknown outcome or a reconnection; 0 in a fault-free run)\n"
+    "  exceptions    exception replies (the drive refused a request: nothing applied)\n"
     "  reconnects    links re-established after a broken or silent connection\n"
     "  rate_limited  joint values held back by the map's max_step\n"
     "  clamped       joint values changed by the map's min/max\n"
@@ -89,130 +109,144 @@ static const char stream_fields[] =
     "                last write (GPIO, or stopped by a signal)\n"
     "\n"
     "Exit status 0 when the plan ran to its end and (Modbus) every drive holds the final\n"
-    "target; 1 on a runtime error (map, device, unreachable drive, failed plan, a drive short\n"
-    "of its final target after --settle: each such joint is named with how far it is short);\n"
-    "2 on a usage error. Stopped by a signal: 0 when the last sampled target was written.\n";
+    "target; 1 on a runtime error (map, device, unreachable drive, bad or failed plan, joint\n"
+    "count mismatch, a bad --live line, a drive short of its final target after --settle:\n"
+    "each such joint is named with how far it is short); 2 on a usage error. Stopped by a\n"
+    "signal: 0 when the last sampled target was written.\n";
 
-struct plan_table {
-    size_t rows, cols, n;   /* cols = 1 + k*n, k = 1 (p), 2 (p,v) or 3 (p,v,a) */
-    double *v;              /* rows x cols */
-    double t0, dt;
-};
+/* Live input lines longer than this are refused (bounded memory for a pipe from anywhere). */
+#define STREAM_LINE_MAX 65536
+/* Targets that may arrive within one tick before the reader waits for the sampler. */
+#define STREAM_LIVE_QUEUE 64
 
 struct stream_ctx {
-    const struct plan_table *plan;
-    double hold;
+    struct qo_cli_plan *plan;
+    qo_traj_ns t0;              /* trajectory time of streaming time 0 */
+    qo_traj_ns hold;
     qo_streamer *st;
     volatile sig_atomic_t ended; /* the plan ran to its end (not stopped by a signal) */
+    /* --live: the reader thread pushes, the streamer thread samples, under `lock` */
+    int live;
+    pthread_mutex_t lock;
+    qo_traj_ns last;            /* latest trajectory time sampled */
+    volatile int eof;           /* the reader reached the end of input */
+    int bad_lines;
+    const struct qo_cli_plan_opts *opts;
+    struct qo_cli_rows rows;    /* the start line (row 0) and a scratch row 1 */
+    long lineno;
 };
 
-/* Runs `qorient plan` with args into a temporary file and reads the table back. */
-static int run_plan(int argc, char **argv, const char *rate, struct plan_table *pt)
-{
-    char **pargv = calloc((size_t)argc + 4, sizeof *pargv);
-    FILE *tmp = tmpfile();
-    int saved, rc, i, pargc = 0;
-    char *line = NULL;
-    size_t cap = 0, rcap = 0;
-    if (pargv == NULL || tmp == NULL) {
-        fprintf(stderr, "qorient stream: cannot create a temporary file for the plan\n");
-        free(pargv);
-        if (tmp) fclose(tmp);
-        return 1;
-    }
-    pargv[pargc++] = "plan";
-    pargv[pargc++] = "--rate";
-    pargv[pargc++] = (char *)rate;
-    for (i = 0; i < argc; i++) pargv[pargc++] = argv[i];
-    fflush(stdout);
-    saved = dup(1);
-    dup2(fileno(tmp), 1);
-    qo_cli_reset_getopt();
-    rc = qo_cli_plan(pargc, pargv);
-    fflush(stdout);
-    dup2(saved, 1);
-    close(saved);
-    free(pargv);
-    if (rc != 0) {
-        fclose(tmp);
-        fprintf(stderr, "qorient stream: planning failed (see above)\n");
-        return 1;
-    }
-    rewind(tmp);
-    memset(pt, 0, sizeof *pt);
-    while (qo_cli_getline(&line, &cap, tmp) >= 0) {
-        double f[1 + 3 * QO_REGMAP_MAX_JOINTS];
-        size_t m;
-        if (qo_cli_parse_numbers(line, f, sizeof f / sizeof f[0], &m) != 0 || m == 0) continue;
-        if (pt->cols == 0) pt->cols = m;
-        if (m != pt->cols) continue;
-        if (pt->rows == rcap) {
-            size_t nc = rcap ? 2 * rcap : 1024;
-            double *nv = realloc(pt->v, nc * pt->cols * sizeof *nv);
-            if (nv == NULL) { free(line); fclose(tmp); return 1; }
-            pt->v = nv;
-            rcap = nc;
-        }
-        memcpy(pt->v + pt->rows * pt->cols, f, pt->cols * sizeof f[0]);
-        pt->rows++;
-    }
-    free(line);
-    fclose(tmp);
-    if (pt->rows < 1) {
-        fprintf(stderr, "qorient stream: the plan produced no samples\n");
-        return 1;
-    }
-    pt->t0 = pt->v[0];
-    pt->dt = pt->rows > 1 ? pt->v[pt->cols] - pt->v[0] : 1.0;
-    return 0;
-}
-
-/* Position of joint j at plan time t: cubic Hermite between rows with velocities, linear
- * without. Before the first row / after the last: held. */
-static double plan_at(const struct plan_table *pt, double t, size_t j)
-{
-    const size_t c = pt->cols, n = pt->n;
-    double x, u, h;
-    size_t i;
-    const double *r0, *r1;
-    if (t <= pt->t0 || pt->rows == 1) return pt->v[1 + j];
-    x = (t - pt->t0) / pt->dt;
-    i = (size_t)x;
-    if (i + 1 >= pt->rows) return pt->v[(pt->rows - 1) * c + 1 + j];
-    r0 = pt->v + i * c;
-    r1 = r0 + c;
-    h = r1[0] - r0[0];
-    u = (t - r0[0]) / h;
-    if (u < 0) u = 0;
-    if (u > 1) u = 1;
-    if (c >= 1 + 2 * n) {
-        double p0 = r0[1 + j], p1 = r1[1 + j], v0 = r0[1 + n + j] * h, v1 = r1[1 + n + j] * h;
-        double u2 = u * u, u3 = u2 * u;
-        return (2 * u3 - 3 * u2 + 1) * p0 + (u3 - 2 * u2 + u) * v0 + (-2 * u3 + 3 * u2) * p1 + (u3 - u2) * v1;
-    }
-    return r0[1 + j] + u * (r1[1 + j] - r0[1 + j]);
-}
-
-static qo_status sample_plan(void *vctx, double t, float *targets, size_t n)
+static qo_status sample_traj(void *vctx, double t, float *targets, size_t n)
 {
     struct stream_ctx *c = vctx;
-    const struct plan_table *pt = c->plan;
-    double tp = pt->t0 + t, tend = pt->v[(pt->rows - 1) * pt->cols];
-    size_t j;
-    for (j = 0; j < n; j++) targets[j] = (float)plan_at(pt, tp, j);
-    if (tp >= tend + c->hold) {
+    qo_traj_ns tn = c->t0 + (qo_traj_ns)llround(t * 1e9), end = 0;
+    qo_status s;
+    int finished;
+    (void)n;
+    if (c->live) pthread_mutex_lock(&c->lock);
+    s = qo_traj_sample(&c->plan->tr, tn, targets, NULL, NULL, NULL);
+    if (tn > c->last) c->last = tn;
+    (void)qo_traj_end_time(&c->plan->tr, &end);
+    finished = (!c->live || c->eof) && qo_traj_done(&c->plan->tr, tn) && tn >= end + c->hold;
+    if (c->live) pthread_mutex_unlock(&c->lock);
+    if (finished) {
         c->ended = 1;
         qo_streamer_request_stop(c->st);
     }
-    return QO_OK;
+    /* A target the planner refused makes it brake (a defined motion): keep streaming it. */
+    return s == QO_E_NONFINITE || s == QO_E_RANGE || s == QO_E_LIMIT ? QO_OK : s;
 }
 
-static int parse_list(const char *s, double *out, size_t max, size_t *n)
+/* Reads one live line into buf (NUL bytes kept: the parser refuses them); returns its length,
+ * -1 at end of input, -2 when the line is longer than the buffer (its rest is discarded). */
+static long read_live_line(char *buf, size_t cap, FILE *f)
 {
-    char buf[1024];
-    if (strlen(s) >= sizeof buf) return -1;
-    strcpy(buf, s);
-    return qo_cli_parse_numbers(buf, out, max, n);
+    size_t len = 0;
+    int ch, over = 0;
+    while ((ch = getc(f)) != EOF && ch != '\n') {
+        if (len + 1 < cap) buf[len++] = (char)ch;
+        else over = 1;
+    }
+    if (ch == EOF && len == 0 && !over) return -1;
+    if (over) return -2;
+    buf[len] = '\0';
+    if (len > 0 && buf[len - 1] == '\r') buf[--len] = '\0';
+    return (long)len;
+}
+
+/* One live line: parsed like a plan line without the time column, pushed at the latest time
+ * sampled (so it is applied from the state the drives were just sent). */
+static void live_line(struct stream_ctx *c, char *buf, long len)
+{
+    size_t keep = c->rows.rows;
+    qo_status s = QO_OK;
+    c->lineno++;
+    if (len == -2) {
+        fprintf(stderr, "qorient stream: -: line %ld: longer than %d characters\n", c->lineno, STREAM_LINE_MAX - 1);
+        c->bad_lines++;
+        return;
+    }
+    if (qo_cli_rows_add("stream", "-", c->opts, 0, c->lineno, buf, len, &c->rows) != 0) {
+        c->bad_lines++;
+        return;
+    }
+    if (c->rows.rows == keep) return; /* blank or comment */
+    /* A full queue empties at the next tick: wait for room rather than drop a target. */
+    for (;;) {
+        int room;
+        pthread_mutex_lock(&c->lock);
+        room = c->plan->tr.count < c->plan->tr.cap;
+        if (room) s = qo_cli_plan_push("stream", "-", c->plan, c->last, c->rows.v + c->rows.width, c->lineno) ? QO_E_ARG : QO_OK;
+        pthread_mutex_unlock(&c->lock);
+        if (room) break;
+        {
+            struct timespec ts = { 0, 1000000 };
+            nanosleep(&ts, NULL);
+        }
+    }
+    if (s != QO_OK) c->bad_lines++;
+    c->rows.rows = 1; /* keep the start line only: memory stays bounded */
+}
+
+static void *live_reader(void *vctx)
+{
+    struct stream_ctx *c = vctx;
+    char *buf = malloc(STREAM_LINE_MAX);
+    long len;
+    while (buf != NULL && (len = read_live_line(buf, STREAM_LINE_MAX, stdin)) != -1) live_line(c, buf, len);
+    if (buf == NULL || ferror(stdin)) {
+        fprintf(stderr, "qorient stream: standard input: read error\n");
+        c->bad_lines++;
+    }
+    free(buf);
+    pthread_mutex_lock(&c->lock);
+    c->eof = 1;
+    pthread_mutex_unlock(&c->lock);
+    return NULL;
+}
+
+/* --live: the start line, read before streaming. Returns 0 or 1 (message printed). */
+static int live_start(struct stream_ctx *c)
+{
+    char *buf = malloc(STREAM_LINE_MAX);
+    long len = -1;
+    int rc = 1;
+    while (buf != NULL && (len = read_live_line(buf, STREAM_LINE_MAX, stdin)) != -1) {
+        c->lineno++;
+        if (len == -2) {
+            fprintf(stderr, "qorient stream: -: line %ld: longer than %d characters\n", c->lineno, STREAM_LINE_MAX - 1);
+            break;
+        }
+        if (qo_cli_rows_add("stream", "-", c->opts, 0, c->lineno, buf, len, &c->rows) != 0) break;
+        if (c->rows.rows == 1) {
+            rc = 0;
+            break;
+        }
+    }
+    if (rc && c->rows.rows == 0 && buf != NULL && len == -1)
+        fprintf(stderr, "qorient stream: -: --live needs a start line p1,...,pN on standard input\n");
+    free(buf);
+    return rc;
 }
 
 static void print_budget(const qo_wire_budget *b, const qo_modbus_spec *spec, double rate)
@@ -236,16 +270,24 @@ static void print_budget(const qo_wire_budget *b, const qo_modbus_spec *spec, do
     }
 }
 
-/* After the plan: the drives must hold its last row (see qo_modbus_sink_settle). Names every
- * joint that is short on stderr. 0 when reached, else 1; *elapsed = time spent settling. */
-static int stream_settle(qo_modbus_sink *ms, const qo_regmap *map, const struct plan_table *pt,
-                         size_t n, double rate, double settle, double *elapsed)
+/* After the plan: the drives must hold its final position, the trajectory's value at its end
+ * (see qo_modbus_sink_settle). Names every joint that is short on stderr. 0 when reached,
+ * else 1; *elapsed = time spent settling. */
+static int stream_settle(qo_modbus_sink *ms, const qo_regmap *map, qo_traj *tr, size_t n, double rate,
+                         double settle, double *elapsed)
 {
     float final[QO_REGMAP_MAX_JOINTS];
     qo_modbus_settle_report rep;
+    qo_traj_ns end = 0;
     qo_status s;
     size_t j;
-    for (j = 0; j < n; j++) final[j] = (float)pt->v[(pt->rows - 1) * pt->cols + 1 + j];
+    *elapsed = 0.0;
+    (void)qo_traj_end_time(tr, &end);
+    s = qo_traj_sample(tr, end, final, NULL, NULL, NULL);
+    if (s != QO_OK && s != QO_E_NONFINITE && s != QO_E_RANGE && s != QO_E_LIMIT) {
+        fprintf(stderr, "qorient stream: cannot sample the final target: %s\n", qo_status_str(s));
+        return 1;
+    }
     if (settle < 0) settle = qo_modbus_sink_settle_time(ms, final, n, 1.0 / rate);
     s = qo_modbus_sink_settle(ms, final, n, 1.0 / rate, settle, &rep);
     *elapsed = rep.elapsed_s;
@@ -260,69 +302,92 @@ static int stream_settle(qo_modbus_sink *ms, const qo_regmap *map, const struct 
     return 1;
 }
 
+enum { SO_MAP = QO_CLI_OPT_LAST_, SO_MODBUS, SO_GPIO, SO_LINES, SO_SPU, SO_STEP_RATE, SO_ON_FAIL, SO_HOLD,
+       SO_TIMEOUT, SO_TURNAROUND, SO_DRY, SO_NO_RT, SO_QUIET, SO_LIVE, SO_SETTLE };
+
 int qo_cli_stream(int argc, char **argv)
 {
-    const char *map_path = NULL, *modbus = NULL, *gpio = NULL, *lines = NULL, *rate_s = "100";
+    static const struct option opts[] = {
+        QO_CLI_PLAN_OPTIONS,
+        { "map", required_argument, NULL, SO_MAP }, { "modbus", required_argument, NULL, SO_MODBUS },
+        { "gpio", required_argument, NULL, SO_GPIO }, { "lines", required_argument, NULL, SO_LINES },
+        { "steps-per-unit", required_argument, NULL, SO_SPU },
+        { "step-rate", required_argument, NULL, SO_STEP_RATE },
+        { "on-fail", required_argument, NULL, SO_ON_FAIL }, { "hold", required_argument, NULL, SO_HOLD },
+        { "timeout-ms", required_argument, NULL, SO_TIMEOUT },
+        { "turnaround-us", required_argument, NULL, SO_TURNAROUND },
+        { "dry-run", no_argument, NULL, SO_DRY }, { "no-rt", no_argument, NULL, SO_NO_RT },
+        { "quiet", no_argument, NULL, SO_QUIET }, { "live", no_argument, NULL, SO_LIVE },
+        { "settle", required_argument, NULL, SO_SETTLE },
+        { "help", no_argument, NULL, 'h' }, { NULL, 0, NULL, 0 }
+    };
+    const char *map_path = NULL, *modbus = NULL, *gpio = NULL, *lines = NULL, *in_path = "-";
     const char *spu_s = NULL, *step_rate_s = NULL, *on_fail = "hold";
     double rate = 100.0, hold = 0.2, timeout_ms = -1, turnaround = 0, settle = -1;
-    int dry = 0, no_rt = 0, quiet = 0, i, pargc = 0, rc = 1;
-    char **pargv = calloc((size_t)argc + 1, sizeof *pargv);
+    int dry = 0, no_rt = 0, quiet = 0, live = 0, c, rc = 1, reader = 0;
     static qo_regmap map; /* 20 KiB: not on the stack */
-    struct plan_table pt;
-    struct stream_ctx sc;
+    struct qo_cli_plan_opts po;
+    struct qo_cli_rows rows;
+    static struct qo_cli_plan plan;
+    static struct stream_ctx sc;
+    pthread_t reader_thread;
     qo_streamer st;
     qo_streamer_config cfg;
     qo_modbus_sink *ms = NULL;
     qo_gpio_sink gs;
     int gpio_open = 0;
-    size_t n_joints = 0;
+    size_t n_joints = 0, plan_joints;
     char err[256];
     qo_status s;
 
-    memset(&pt, 0, sizeof pt);
-    if (pargv == NULL) return 1;
-    /* Our own options are taken out; everything else goes to the planner unchanged. */
-    for (i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *val = (i + 1 < argc) ? argv[i + 1] : NULL;
-#define TAKE(opt, var) if (strcmp(a, opt) == 0) { if (!val) { fprintf(stderr, "qorient stream: %s needs a value\n", opt); goto usage; } var = val; i++; continue; }
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) { fputs(stream_usage, stdout); fputs(stream_fields, stdout); free(pargv); return 0; }
-        TAKE("--map", map_path)
-        TAKE("--modbus", modbus)
-        TAKE("--gpio", gpio)
-        TAKE("--lines", lines)
-        TAKE("--steps-per-unit", spu_s)
-        TAKE("--step-rate", step_rate_s)
-        TAKE("--on-fail", on_fail)
-        TAKE("--rate", rate_s)
-        if (strcmp(a, "--hold") == 0 || strcmp(a, "--timeout-ms") == 0 || strcmp(a, "--turnaround-us") == 0 ||
-            strcmp(a, "--settle") == 0) {
-            char *end;
-            double v;
-            if (!val) { fprintf(stderr, "qorient stream: %s needs a value\n", a); goto usage; }
-            v = strtod(val, &end);
-            if (end == val || *end || !isfinite(v) || v < 0) {
-                fprintf(stderr, "qorient stream: %s: '%s' is not a non-negative number\n", a, val);
-                goto usage;
-            }
-            if (a[2] == 'h') hold = v; else if (a[2] == 's') settle = v;
-            else if (a[2] == 't' && a[3] == 'i') timeout_ms = v; else turnaround = v;
-            i++;
-            continue;
+    memset(&rows, 0, sizeof rows);
+    memset(&plan, 0, sizeof plan);
+    memset(&sc, 0, sizeof sc);
+    qo_cli_plan_opts_default(&po);
+    while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+        int bad = 0;
+        switch (c) {
+        case 'h': fputs(stream_usage, stdout); fputs(stream_fields, stdout); return 0;
+        case SO_MAP: map_path = optarg; break;
+        case SO_MODBUS: modbus = optarg; break;
+        case SO_GPIO: gpio = optarg; break;
+        case SO_LINES: lines = optarg; break;
+        case SO_SPU: spu_s = optarg; break;
+        case SO_STEP_RATE: step_rate_s = optarg; break;
+        case SO_ON_FAIL: on_fail = optarg; break;
+        /* the streamer's rate bound, not plan's */
+        case QO_CLI_OPT_RATE: bad = qo_cli_number("stream", "--rate", optarg, QO_CLI_RATE_MIN, 100000.0, "Hz", &rate); break;
+        case SO_HOLD: bad = qo_cli_number("stream", "--hold", optarg, 0.0, 86400.0, "s", &hold); break;
+        case SO_TIMEOUT: bad = qo_cli_number("stream", "--timeout-ms", optarg, 0.1, 60000.0, "ms", &timeout_ms); break;
+        case SO_TURNAROUND: bad = qo_cli_number("stream", "--turnaround-us", optarg, 0.0, 1e6, "us", &turnaround); break;
+        case SO_SETTLE: bad = qo_cli_number("stream", "--settle", optarg, 0.0, 86400.0, "s", &settle); break;
+        case SO_DRY: dry = 1; break;
+        case SO_NO_RT: no_rt = 1; break;
+        case SO_QUIET: quiet = 1; break;
+        case SO_LIVE: live = 1; break;
+        case '?': bad = 2; break;
+        default: bad = qo_cli_plan_opt("stream", &po, c, optarg); break;
         }
-        if (strcmp(a, "--dry-run") == 0) { dry = 1; continue; }
-        if (strcmp(a, "--no-rt") == 0) { no_rt = 1; continue; }
-        if (strcmp(a, "--quiet") == 0) { quiet = 1; continue; }
-#undef TAKE
-        pargv[pargc++] = argv[i];
+        if (bad) goto usage;
     }
-    {
-        char *end;
-        rate = strtod(rate_s, &end);
-        if (end == rate_s || *end || !isfinite(rate) || rate <= 0 || rate > 100000) {
-            fprintf(stderr, "qorient stream: --rate: '%s' is not a rate in (0, 100000] Hz\n", rate_s);
-            goto usage;
-        }
+    if (qo_cli_plan_opts_check("stream", &po) != 0) goto usage;
+    if (po.fixed) {
+        fprintf(stderr, "qorient stream: --fixed: the stream samples with float32 (use plan --fixed to see the "
+                "fixed-point samples)\n");
+        goto usage;
+    }
+    if (live && !po.motion) {
+        fprintf(stderr, "qorient stream: --live takes targets: give --profile trapezoid|scurve\n");
+        goto usage;
+    }
+    if (optind + 1 < argc) {
+        fprintf(stderr, "qorient stream: at most one input file\n");
+        goto usage;
+    }
+    if (optind < argc) in_path = argv[optind];
+    if (live && strcmp(in_path, "-") != 0) {
+        fprintf(stderr, "qorient stream: --live reads standard input, not '%s'\n", in_path);
+        goto usage;
     }
     if ((modbus != NULL) == (gpio != NULL)) {
         fprintf(stderr, "qorient stream: give exactly one of --modbus SPEC or --gpio CHIP\n");
@@ -386,16 +451,41 @@ int qo_cli_stream(int argc, char **argv)
         n_joints = n / 2;
     }
 
-    pt.n = n_joints;
-    if (run_plan(pargc, pargv, rate_s, &pt) != 0) goto out;
-    if ((pt.cols - 1) % n_joints != 0 || (pt.cols - 1) / n_joints < 1 || (pt.cols - 1) / n_joints > 3) {
-        fprintf(stderr, "qorient stream: the plan has %zu joint column(s) but the %s has %zu joint(s)\n",
-                (pt.cols - 1) / 3, modbus ? "map" : "--lines list", n_joints);
+    /* The plan, checked against the drives before anything is opened or written. */
+    sc.opts = &po;
+    if (live) {
+        if (live_start(&sc) != 0) goto out;
+        plan_joints = sc.rows.width;
+    } else {
+        if (qo_cli_rows_read("stream", &po, in_path, &rows) != 0) goto out;
+        plan_joints = rows.width / (size_t)po.columns;
+    }
+    if (plan_joints != n_joints) {
+        fprintf(stderr, "qorient stream: the plan has %zu joint(s) but the %s has %zu: nothing sent\n",
+                plan_joints, modbus ? "map" : "--lines list", n_joints);
         goto out;
     }
+    if (live) {
+        rc = qo_cli_plan_build("stream", &po, n_joints, STREAM_LIVE_QUEUE, &plan);
+        if (rc == 0) rc = qo_cli_plan_push("stream", "-", &plan, 0, sc.rows.v, sc.rows.line[0]);
+        sc.t0 = 0;
+    } else {
+        rc = qo_cli_plan_from_rows("stream", in_path, &po, &rows, &plan);
+        sc.t0 = rows.t[0];
+    }
+    if (rc != 0) {
+        if (rc == 2) goto usage;
+        rc = 1;
+        goto out;
+    }
+    rc = 1;
     if (dry) {
-        printf("dry-run: plan of %zu samples over %.3f s for %zu joint(s); nothing sent\n", pt.rows,
-               pt.v[(pt.rows - 1) * pt.cols] - pt.t0, n_joints);
+        qo_traj_ns end = 0;
+        float tmp[QO_CLI_MAX_FIELDS];
+        if (!live) (void)qo_traj_sample(&plan.tr, rows.t[rows.rows - 1], tmp, NULL, NULL, NULL);
+        (void)qo_traj_end_time(&plan.tr, &end);
+        printf("dry-run: plan over %.3f s for %zu joint(s); nothing sent\n", (double)(end - sc.t0) * 1e-9,
+               n_joints);
         rc = 0;
         goto out;
     }
@@ -403,7 +493,7 @@ int qo_cli_stream(int argc, char **argv)
     qo_streamer_config_default(&cfg);
     cfg.rate_hz = rate;
     cfg.n_joints = n_joints;
-    cfg.sample = sample_plan;
+    cfg.sample = sample_traj;
     cfg.sample_ctx = &sc;
     if (no_rt) { cfg.rt_priority = 0; cfg.lock_memory = 0; }
     if (modbus) {
@@ -434,11 +524,11 @@ int qo_cli_stream(int argc, char **argv)
         strcpy(buf, lines);
         for (p = buf; *p; p++) if (*p == ':') *p = ',';
         qo_cli_parse_numbers(buf, sp, QO_GPIO_MAX_LINES, &n);
-        if ((spu_s && (parse_list(spu_s, spu, QO_GPIO_MAX_JOINTS, &nspu) != 0 || (nspu != 1 && nspu != n_joints))) ||
-            (step_rate_s && (parse_list(step_rate_s, sr, QO_GPIO_MAX_JOINTS, &nsr) != 0 || (nsr != 1 && nsr != n_joints)))) {
-            fprintf(stderr, "qorient stream: --steps-per-unit / --step-rate take one value or one per joint\n");
+        if (qo_cli_list("stream", "--steps-per-unit", spu_s, n_joints, 1e-6, 1e9, spu) ||
+            qo_cli_list("stream", "--step-rate", step_rate_s, n_joints, 1e-3, 1e7, sr))
             goto usage;
-        }
+        nspu = spu_s ? n_joints : 0;
+        nsr = step_rate_s ? n_joints : 0;
         qo_gpio_sink_config_default(&gc, &jd);
         gc.period_s = 1.0 / rate;
         gc.n_joints = n_joints;
@@ -461,10 +551,15 @@ int qo_cli_stream(int argc, char **argv)
         cfg.sink = qo_gpio_sink_as_sink(&gs);
     }
 
-    sc.plan = &pt;
-    sc.hold = hold;
+    sc.plan = &plan;
+    sc.hold = (qo_traj_ns)llround(hold * 1e9);
     sc.st = &st;
     sc.ended = 0;
+    sc.live = live;
+    if (live && pthread_mutex_init(&sc.lock, NULL) != 0) {
+        fprintf(stderr, "qorient stream: cannot create a mutex\n");
+        goto out;
+    }
     s = qo_streamer_init(&st, &cfg);
     if (s != QO_OK) {
         fprintf(stderr, "qorient stream: %s\n", qo_status_str(s));
@@ -475,6 +570,15 @@ int qo_cli_stream(int argc, char **argv)
     if (s != QO_OK) {
         fprintf(stderr, "qorient stream: cannot start the streaming thread: %s\n", qo_status_str(s));
         goto out;
+    }
+    if (live) {
+        if (pthread_create(&reader_thread, NULL, live_reader, &sc) != 0) {
+            fprintf(stderr, "qorient stream: cannot start the input reader thread\n");
+            qo_streamer_request_stop(&st);
+            (void)qo_streamer_join(&st);
+            goto out;
+        }
+        reader = 1;
     }
     {
         /* Live progress from this thread while the streamer runs in its own. */
@@ -499,7 +603,7 @@ int qo_cli_stream(int argc, char **argv)
         fin = qo_streamer_join(&st);
         if (tty) fputc('\n', stderr);
         /* The plan ended: success is the drives holding its last row, not the last write. */
-        if (ms && sc.ended) settled = stream_settle(ms, &map, &pt, n_joints, rate, settle, &settle_s);
+        if (ms && sc.ended) settled = stream_settle(ms, &map, &plan.tr, n_joints, rate, settle, &settle_s);
         qo_streamer_stats_read(&st, &ss);
         {
             const char *warn = NULL;
@@ -537,7 +641,17 @@ usage:
 out:
     if (ms) qo_modbus_sink_free(ms);
     if (gpio_open) qo_gpio_sink_close(&gs);
-    free(pt.v);
-    free(pargv);
+    if (reader) {
+        /* At end of input the reader has ended; after SIGINT it may still wait on a read:
+         * detach it, the process ends with this return. */
+        if (sc.eof) pthread_join(reader_thread, NULL);
+        else pthread_detach(reader_thread);
+    }
+    if (rc == 0 && sc.bad_lines) rc = 1;
+    if (!reader || sc.eof) {
+        qo_cli_plan_free(&plan);
+        qo_cli_rows_free(&sc.rows);
+    }
+    qo_cli_rows_free(&rows);
     return rc;
 }

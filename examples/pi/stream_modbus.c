@@ -18,9 +18,11 @@
  *      registers (linux/modbus_sink.h);
  *   2. qo_modbus_sink_read_feedback gives the joints' actual positions (0 where the map has no
  *      feedback register): the motion starts where the drives are, not where we think they are;
- *   3. a jerk-limited, time-synchronised move of all joints (qorient/motion.h, S-curve: every
- *      joint arrives together, position, velocity and acceleration continuous), re-planned
- *      from the current state when a new target comes (the demo's second target);
+ *   3. a jerk-limited, time-synchronised move of all joints in a trajectory object
+ *      (qorient/traj.h over qorient/motion.h, S-curve: every joint arrives together, position,
+ *      velocity and acceleration continuous): the start and the targets are pushed with their
+ *      times (integer ns), and each target is re-planned from the current state when it
+ *      becomes due (the demo's second target);
  *   4. the periodic streamer (linux/streamer.h) samples the move at 100 Hz on an absolute
  *      CLOCK_MONOTONIC schedule (SCHED_FIFO and mlockall when allowed) and hands every tick's
  *      targets to the Modbus sink, which clamps, rate-limits (max_step), packs and sends one
@@ -43,7 +45,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "qorient/motion.h"
+#include "qorient/traj.h"
 #include "linux/modbus_sink.h"
 #include "linux/regmap.h"
 #include "linux/streamer.h"
@@ -51,7 +53,8 @@
 
 #define EX_RATE_HZ 100.0         /* streaming rate */
 #define EX_HOLD_S 0.2            /* keep sending the final target this long after arriving */
-#define EX_REPLAN_S 0.5f         /* demo: when the second target is issued */
+#define EX_REPLAN_NS 500000000LL /* demo: when the second target is issued (0.5 s) */
+#define EX_QUEUE 4               /* targets the trajectory can hold before they are due */
 
 /* Per-joint limits of the demo move, in joint units (rad for the example maps). Keep vmax
  * below the map's max_step * rate, or the sink's rate limit will hold joints back. */
@@ -60,31 +63,26 @@
 #define EX_JMAX 30.0f
 
 struct move {
-    qo_motion_planner_f32 pl;
+    qo_traj tr;
     qo_motion_joint_f32 joints[QO_REGMAP_MAX_JOINTS];
+    qo_traj_ns t[EX_QUEUE];
+    float store[EX_QUEUE * QO_REGMAP_MAX_JOINTS];
+    qo_motion_limits_f32 lim[QO_REGMAP_MAX_JOINTS];
     float final[QO_REGMAP_MAX_JOINTS];
-    int replan_pending;          /* demo: final[] not issued yet */
     qo_streamer *st;
 };
 
-/* The streamer's producer: runs in the streaming thread, so re-planning here needs no lock
- * (the same thread samples). t is seconds since the streaming started. */
+/* The streamer's producer: runs in the streaming thread; every push happened before the
+ * streaming started, so no lock is needed. t is seconds since the streaming started, which
+ * is trajectory time 0. */
 static qo_status sample_move(void *ctx, double t, float *targets, size_t n)
 {
     struct move *m = ctx;
-    float tf = (float)t;
-    qo_status st;
-
-    if (m->replan_pending && tf >= EX_REPLAN_S) {
-        m->replan_pending = 0;
-        st = qo_motion_set_target_f32(&m->pl, tf, m->final, NULL);
-        if (st != QO_OK) return st; /* the planner brakes to rest; the streamer holds */
-    }
-    st = qo_motion_sample_f32(&m->pl, tf, targets, NULL, NULL);
-    if (st != QO_OK) return st;
+    qo_traj_ns tn = (qo_traj_ns)llround(t * 1e9);
+    qo_status st = qo_traj_sample(&m->tr, tn, targets, NULL, NULL, NULL);
     (void)n;
-    if (!m->replan_pending && tf >= qo_motion_end_time_f32(&m->pl) + (float)EX_HOLD_S)
-        qo_streamer_request_stop(m->st);
+    if (st != QO_OK) return st; /* a refused target: the planner brakes; the streamer holds */
+    if (qo_traj_done(&m->tr, tn - (qo_traj_ns)(EX_HOLD_S * 1e9))) qo_streamer_request_stop(m->st);
     return QO_OK;
 }
 
@@ -105,7 +103,6 @@ int main(int argc, char **argv)
     static qo_wire_budget wb;    /* ~10 KiB */
     qo_modbus_spec spec;
     double longest_us = 0.0;
-    qo_motion_limits_f32 lim[QO_REGMAP_MAX_JOINTS];
     float start[QO_REGMAP_MAX_JOINTS], first[QO_REGMAP_MAX_JOINTS];
     qo_modbus_sink_settings ss = qo_modbus_sink_settings_default;
     qo_modbus_sink *sink = NULL;
@@ -143,12 +140,12 @@ int main(int argc, char **argv)
             mv.final[j] = (float)(0.1 * (double)(j + 1) * sign);
         }
         first[j] = argc > 3 ? mv.final[j] : -2.0f * mv.final[j];
-        lim[j] = qo_motion_limits_default;
-        lim[j].vmax = EX_VMAX;
-        lim[j].amax = EX_AMAX;
-        lim[j].jmax = EX_JMAX;
-        lim[j].pmin = (float)map.joints[j].min; /* -INFINITY / INFINITY when the map has none */
-        lim[j].pmax = (float)map.joints[j].max;
+        mv.lim[j] = qo_motion_limits_default;
+        mv.lim[j].vmax = EX_VMAX;
+        mv.lim[j].amax = EX_AMAX;
+        mv.lim[j].jmax = EX_JMAX;
+        mv.lim[j].pmin = (float)map.joints[j].min; /* -INFINITY / INFINITY when the map has none */
+        mv.lim[j].pmax = (float)map.joints[j].max;
     }
 
     /* What one tick costs on a serial line (TCP has no such bound). */
@@ -189,17 +186,22 @@ int main(int argc, char **argv)
         if (s != QO_OK || !isfinite(start[j])) start[j] = 0.0f;
     if (s == QO_OK) (void)qo_modbus_sink_seed(sink, start, n);
 
-    if (qo_motion_init_f32(&mv.pl, mv.joints, n, lim, start, 0.0f, NULL) != QO_OK ||
-        qo_motion_set_target_f32(&mv.pl, 0.0f, first, NULL) != QO_OK) {
+    /* The start (at rest where the drives are), the first target at once, and for the demo
+     * the final target 0.5 s later, re-planned mid-move from wherever the joints are then. */
+    if (qo_traj_init_targets(&mv.tr, n, mv.lim, NULL, mv.joints, mv.t, EX_QUEUE, mv.store,
+                             sizeof mv.store / sizeof mv.store[0]) != QO_OK ||
+        qo_traj_push(&mv.tr, 0, start, NULL, NULL) != QO_OK ||
+        qo_traj_push(&mv.tr, 0, first, NULL, NULL) != QO_OK ||
+        (argc == 3 && qo_traj_push(&mv.tr, EX_REPLAN_NS, mv.final, NULL, NULL) != QO_OK) ||
+        qo_traj_sample(&mv.tr, 0, start, NULL, NULL, NULL) != QO_OK) {
         fprintf(stderr, "stream_modbus: the move cannot be planned (limits or targets)\n");
         goto out;
     }
-    mv.replan_pending = argc == 3;
     mv.st = &st;
     printf("stream_modbus: %zu joint(s) from %s, %.3f s to the %s target at %.0f Hz\n", n,
            s == QO_OK ? "their feedback" : "0 (no feedback)",
-           (double)qo_motion_duration_f32(&mv.pl),
-           mv.replan_pending ? "first" : "final", EX_RATE_HZ);
+           (double)qo_motion_duration_f32(&mv.tr.planner), argc == 3 ? "first" : "final",
+           EX_RATE_HZ);
 
     qo_streamer_config_default(&cfg);
     cfg.rate_hz = EX_RATE_HZ;

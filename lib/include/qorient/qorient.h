@@ -12,6 +12,7 @@
  *   gimbal.h    orientation paths and gimbal joint angles (hold band, rate limits), float32
  *   spline.h    multi-joint trajectories through keyframes, float32 planning and sampling
  *   motion.h    velocity/acceleration/jerk-limited multi-joint moves, re-planned online
+ *   traj.h      one trajectory over N joints: keyframes or a queue of timed targets
  *   sink.h      the sink interface ports implement (N joint targets per tick)
  *   fxmath.h    fixed-point primitives (mul, div, sqrt, sincos, atan2, asin, acos)
  *   fxconv.h    float <-> fixed boundary conversions (static inline; FPU-less code need not use)
@@ -32,6 +33,7 @@
 #include "qorient/gimbal.h"
 #include "qorient/spline.h"
 #include "qorient/motion.h"
+#include "qorient/traj.h"
 #include "qorient/sink.h"
 #include "qorient/fxmath.h"
 #include "qorient/fxconv.h"
