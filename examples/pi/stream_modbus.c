@@ -70,6 +70,7 @@ struct move {
     qo_motion_limits_f32 lim[QO_REGMAP_MAX_JOINTS];
     float final[QO_REGMAP_MAX_JOINTS];
     qo_streamer *st;
+    volatile int ended; /* the move ran to its end (not stopped by Ctrl-C) */
 };
 
 /* The streamer's producer: runs in the streaming thread; every push happened before the
@@ -82,7 +83,10 @@ static qo_status sample_move(void *ctx, double t, float *targets, size_t n)
     qo_status st = qo_traj_sample(&m->tr, tn, targets, NULL, NULL, NULL);
     (void)n;
     if (st != QO_OK) return st; /* a refused target: the planner brakes; the streamer holds */
-    if (qo_traj_done(&m->tr, tn - (qo_traj_ns)(EX_HOLD_S * 1e9))) qo_streamer_request_stop(m->st);
+    if (qo_traj_done(&m->tr, tn - (qo_traj_ns)(EX_HOLD_S * 1e9))) {
+        m->ended = 1;
+        qo_streamer_request_stop(m->st);
+    }
     return QO_OK;
 }
 
@@ -217,12 +221,26 @@ int main(int argc, char **argv)
     qo_streamer_install_stop_signals(&st);
     s = qo_streamer_run(&st); /* until the move is done (or Ctrl-C); then the final write */
 
+    /* Done means the drives hold the final target, not that the plan ended: the max_step
+     * catch-up may still be on its way (a drive that missed ticks, a map with a small step). */
+    if (s == QO_OK && mv.ended) {
+        qo_traj_ns end = 0;
+        float goal[QO_REGMAP_MAX_JOINTS];
+        qo_modbus_settle_report rep;
+        (void)qo_traj_end_time(&mv.tr, &end);
+        s = qo_traj_sample(&mv.tr, end, goal, NULL, NULL, NULL);
+        if (s == QO_OK)
+            s = qo_modbus_sink_settle(sink, goal, n, 1.0 / EX_RATE_HZ,
+                                      qo_modbus_sink_settle_time(sink, goal, n, 1.0 / EX_RATE_HZ), &rep);
+        if (s != QO_OK) fprintf(stderr, "stream_modbus: the drives do not hold the final target: %s\n",
+                                qo_status_str(s));
+    }
     (void)qo_streamer_rt_report(&st, &warn);
     if (warn != NULL && *warn != '\0') printf("stream_modbus: note: %s\n", warn);
     qo_streamer_stats_read(&st, &sst);
     qo_modbus_sink_get_stats(sink, &ms);
     printf("stream_modbus: ticks %llu overruns %llu jitter p99 %.1f us max %.1f us; "
-           "requests %llu timeouts %llu reconnects %llu rate-limited %llu; final write: %s\n",
+           "requests %llu timeouts %llu reconnects %llu rate-limited %llu; final: %s\n",
            (unsigned long long)sst.ticks, (unsigned long long)sst.overruns, sst.lat_p99_ns / 1e3,
            sst.lat_max_ns / 1e3, (unsigned long long)ms.requests, (unsigned long long)ms.timeouts,
            (unsigned long long)ms.common.reconnects, (unsigned long long)ms.rate_limited,
