@@ -64,46 +64,50 @@ $Q stream --map examples/maps/gimbal3.ini --modbus "tcp://127.0.0.1:$GIM_PORT" -
 
 cleanup; PIDS=""
 
-# What the drives received: per joint, value and finite-difference velocity over time.
+# What was planned (qorient plan with the stream's own options: exact positions and
+# velocities at the 200 Hz tick times) and what the drives received (the simulators' logs, one
+# point per write, from the first write on). Velocities are the planner's, not differences of
+# receive times: a loaded machine's receive jitter is not motion.
+$Q plan --rate 200 --profile scurve --vmax 2 --amax 6 --jmax 40 --sync time "$D/arm-targets.csv" \
+    | tr ',' ' ' > "$D/arm-plan.dat"
+$Q plan --rate 200 --profile linear "$D/gimbal-joint-keys.csv" | tr ',' ' ' > "$D/gimbal-plan.dat"
 for which in arm gimbal; do
-    # Time from the first write on; velocity as a centred difference over +-2 ticks (20 ms):
-    # a one-tick difference would show the 1 mrad register resolution and the receive-time
-    # jitter of a loaded machine rather than the motion.
-    awk -F, 'NR > 1 && $5 != "" { if (t0 == "") t0 = $1; j = $4; n[j]++; T[j, n[j]] = $1 - t0; V[j, n[j]] = $6 }
-        END { for (j in n) { f = OUT "-" j ".dat";
-                for (i = 1; i <= n[j]; i++) { a = (i > 2) ? i - 2 : 1; b = (i + 2 <= n[j]) ? i + 2 : n[j];
-                    vel = (T[j, b] > T[j, a]) ? (V[j, b] - V[j, a]) / (T[j, b] - T[j, a]) : 0;
-                    print T[j, i], j, V[j, i], vel > f } } }' OUT="$D/$which" "$D/$which-log.csv"
+    awk -F, 'NR > 1 && $5 != "" { if (t0 == "") t0 = $1; print $1 - t0, $6 > (OUT "-" $4 ".dat") }' \
+        OUT="$D/$which-rx" "$D/$which-log.csv"
 done
 awk -F, '{ print $1, $5 * 180 / atan2(0, -1), $6 }' "$D/gimbal-angles.csv" > "$D/gimbal-margin.dat"
 
 gnuplot <<G
 set terminal pngcairo size 1400,1000 font ",10"
 set output "$D/demo.png"
-set multiplot layout 3,2 title "qorient demo: what the simulated drives received (loopback Modbus TCP, 200 Hz)"
+set multiplot layout 3,2 title "qorient demo: planned (lines) and received by the simulated drives (dots), loopback Modbus TCP, 200 Hz"
 set grid
 set key outside right
 set xlabel "t (s)"
+r2d = 180 / pi
 set ylabel "position (rad)"
 set title "arm: jerk-limited, time-synchronised move, new target at 0.8 s"
-plot for [j=0:5] "$D/arm-".j.".dat" using 1:3 with lines lw 2 title "j".(j+1)
+plot for [j=0:5] "$D/arm-plan.dat" using 1:(column(j+2)) with lines lw 2 lc j+1 title "j".(j+1), \
+     for [j=0:5] "$D/arm-rx-".j.".dat" using 1:2 every 4 with points pt 7 ps 0.3 lc j+1 notitle
 set ylabel "velocity (rad/s)"
-set title "arm: velocities (no jump at the re-plan)"
-plot for [j=0:5] "$D/arm-".j.".dat" using 1:4 with lines lw 1.5 title "j".(j+1)
-set ylabel "angle (rad)"
+set title "arm: planned velocities at the tick times (no jump at the re-plan)"
+plot for [j=0:5] "$D/arm-plan.dat" using 1:(column(j+8)) with lines lw 1.5 lc j+1 title "j".(j+1)
+set ylabel "angle (deg)"
 set title "gimbal ZYX joints: pitch carries on through 90 deg to 150, no flip"
-plot "$D/gimbal-0.dat" using 1:3 with lines lw 2 title "yaw", "$D/gimbal-1.dat" using 1:3 with lines lw 2 title "pitch", "$D/gimbal-2.dat" using 1:3 with lines lw 2 title "roll"
-set ylabel "rate (rad/s)"
-set title "gimbal joint rates (limit 3 rad/s)"
-plot "$D/gimbal-0.dat" using 1:4 with lines title "yaw", "$D/gimbal-1.dat" using 1:4 with lines title "pitch", "$D/gimbal-2.dat" using 1:4 with lines title "roll"
+plot for [j=0:2] "$D/gimbal-plan.dat" using 1:(column(j+2)*r2d) with lines lw 2 lc j+1 title word("yaw pitch roll", j+1), \
+     for [j=0:2] "$D/gimbal-rx-".j.".dat" using 1:(\$2*r2d) every 4 with points pt 7 ps 0.3 lc j+1 notitle
+set ylabel "rate (deg/s)"
+set title "gimbal joint rates (limit 3 rad/s = 172 deg/s)"
+plot for [j=0:2] "$D/gimbal-plan.dat" using 1:(column(j+5)*r2d) with lines lw 1.5 lc j+1 title word("yaw pitch roll", j+1)
 set ylabel "margin (deg)"
 set title "gimbal: lock margin (distance from the singular configuration); band 2 deg"
 set yrange [0:*]
 plot "$D/gimbal-margin.dat" using 1:2 with lines lw 2 title "margin", 2 with lines dt 2 title "hold band"
 unset yrange
-set ylabel "locked"
+set ylabel "in the hold band"
 set title "gimbal: samples inside the hold band (free angle held)"
 set yrange [-0.1:1.1]
+set ytics ("no" 0, "yes" 1)
 plot "$D/gimbal-margin.dat" using 1:3 with steps lw 2 title "lock"
 unset multiplot
 G
