@@ -7,8 +7,9 @@
  * path. */
 #include "qorient/quat_fx.h"
 
-#include "qorient/convert_fx.h"
 #include "qorient/fxmath.h"
+
+#include "fx_internal.h"
 
 qo_quat_q30 qo_quat_identity_q30(void)
 {
@@ -38,9 +39,6 @@ static int fast_quat(qo_quat_q30 q)
     return (uint32_t)q.w + FAST_LIM <= 2u * FAST_LIM && (uint32_t)q.x + FAST_LIM <= 2u * FAST_LIM &&
            (uint32_t)q.y + FAST_LIM <= 2u * FAST_LIM && (uint32_t)q.z + FAST_LIM <= 2u * FAST_LIM;
 }
-
-/* round(s / 2^30) for an exact int64 sum s (ties toward +inf); |s| < 2^63 - 2^29. */
-#define RND30(s) (((s) + ((int64_t)1 << 29)) >> 30)
 
 /*
  * The exact sum of a_i b_i, i < n, as three int32 columns, for |a_i| <= 1.25 * 2^30 and
@@ -188,44 +186,8 @@ qo_q30 qo_quat_norm_q30(qo_quat_q30 q)
     return qo_fx_norm4_q30(q.w, q.x, q.y, q.z);
 }
 
-static uint64_t mag(int64_t v) { return (uint64_t)(v < 0 ? -v : v); }
-
-/* round(num / den) to nearest, ties away from zero; den > 0, |num| < 2^63. */
-static int64_t div_round(int64_t num, uint64_t den)
-{
-    uint64_t q = (mag(num) + den / 2u) / den;
-    return num < 0 ? -(int64_t)q : (int64_t)q;
-}
-
-/* 2^62 / d at the midpoint of each of 32 intervals of d in [2^31, 2^32) (index d >> 26),
- * rounded: relative error <= 2^-6, the seed of the Newton reciprocal below. */
-static const uint32_t recip_seed[32] = {
-    2114445438u, 2051327664u, 1991868891u, 1935759908u, 1882725390u, 1832519380u, 1784921474u, 1739733588u,
-    1696777203u, 1655891006u, 1616928864u, 1579758086u, 1544257904u, 1510318170u, 1477838209u, 1446725826u,
-    1416896428u, 1388272257u, 1360781718u, 1334358772u, 1308942414u, 1284476201u, 1260907830u, 1238188770u,
-    1216273925u, 1195121335u, 1174691910u, 1154949189u, 1135859120u, 1117389866u, 1099511628u, 1082196484u,
-};
-
-/* About 2^62 / d for d in [2^31, 2^32): three Newton steps r += r (2^62 - d r) / 2^62 from
- * the seed (2^-6 -> ~2^-12 -> 2^-24 -> ~2^-31 relative with the truncations; with two,
- * div30's correction loop ran ~12 times per component). Only an estimate: div30 makes it
- * exact. */
-static uint32_t recip62(uint32_t d)
-{
-    uint32_t r = recip_seed[(d >> 26) - 32u];
-    /* First step in 16x16 products (d r / 2^32 from the high halves, truncation < 2^-14). */
-    int32_t e32 = (int32_t)((uint32_t)1 << 30) - (int32_t)((d >> 16) * (r >> 16));   /* < 2^25 */
-    int i;
-    r = (uint32_t)((int64_t)r + ((int32_t)(r >> 16) * (e32 / 512)) / 32);   /* may reach 2^31 */
-    for (i = 0; i < 2; i++) {
-        int64_t e = ((int64_t)1 << 62) - (int64_t)qo_fx_umul32_u64(d, r);   /* |e| <= 2^50 */
-        r = (uint32_t)((int64_t)r + (qo_fx_mul32_i64((int32_t)(r >> 1), (int32_t)(e >> 31)) >> 30));
-    }
-    return r;
-}
-
 /* floor((a 2^30 + floor(n / 2)) / n), i.e. round(a 2^30 / n) with ties away from zero, for
- * a <= 2^31, 2^30 <= n < 2^32, given r = recip62(n << sh) (sh = 1 if n < 2^31, else 0):
+ * a <= 2^31, 2^30 <= n < 2^32, given r ~ 2^62 / (n << sh) (sh = 1 if n < 2^31, else 0):
  * an estimate from the reciprocal, then made exact against the remainder (a few steps at
  * most; the result does not depend on the estimate's error). */
 static uint32_t div30(uint32_t a, uint32_t n, uint32_t r, unsigned sh)
@@ -287,7 +249,8 @@ qo_status qo_quat_normalize_q30(qo_quat_q30 q, qo_quat_q30 *out)
      * each made exact against its remainder. */
     nn = (uint32_t)n;
     sh = nn < ((uint32_t)1 << 31) ? 1u : 0u;
-    r = recip62(nn << sh);
+    /* Two 64-bit Newton steps (~2^-31): div30's correction then takes 0 or 1 step. */
+    r = qo_fx_recip62_step(nn << sh, qo_fx_recip62_u32(nn << sh));
     {
         int32_t o[4];
         for (i = 0; i < 4; i++) {
@@ -377,17 +340,17 @@ qo_vec3_q30 qo_quat_rotate_q30(qo_quat_q30 q, qo_vec3_q30 v)
  * scaled down together until the vector norm and w fit int32. */
 static qo_q28 half_angle(int64_t w, int64_t x, int64_t y, int64_t z)
 {
-    uint64_t m = mag(x);
+    uint64_t m = qo_fx_abs_u64(x);
     uint64_t n;
-    if (mag(y) > m) m = mag(y);
-    if (mag(z) > m) m = mag(z);
-    if (mag(w) > m) m = mag(w);
+    if (qo_fx_abs_u64(y) > m) m = qo_fx_abs_u64(y);
+    if (qo_fx_abs_u64(z) > m) m = qo_fx_abs_u64(z);
+    if (qo_fx_abs_u64(w) > m) m = qo_fx_abs_u64(w);
     /* Components below 2^30 keep |v| < 2^31 (sqrt 3 * 2^30 < 2^31). */
     while (m >= ((uint64_t)1 << 30)) {
         m >>= 1;
         w /= 2; x /= 2; y /= 2; z /= 2;
     }
-    n = qo_fx_sqrt_u64(mag(x) * mag(x) + mag(y) * mag(y) + mag(z) * mag(z));
+    n = qo_fx_sqrt_u64(qo_fx_abs_u64(x) * qo_fx_abs_u64(x) + qo_fx_abs_u64(y) * qo_fx_abs_u64(y) + qo_fx_abs_u64(z) * qo_fx_abs_u64(z));
     return qo_fx_atan2_q28((int32_t)n, (int32_t)w);
 }
 
@@ -397,6 +360,26 @@ qo_q28 qo_quat_angle_between_q30(qo_quat_q30 a, qo_quat_q30 b)
     mul_wide(qo_quat_conj_q30(a), b, r);
     /* Precision: for unit inputs the components are < 2^31 and nothing is shifted. */
     return (qo_q28)(2 * half_angle(r[0] < 0 ? -r[0] : r[0], r[1], r[2], r[3]));
+}
+
+qo_status qo_fx_quat_from_rotvec(qo_vec3_q28 rv, qo_quat_q30 *out)
+{
+    uint64_t n;
+    qo_q30 s, c;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_q30();
+    /* Three squares of at most 2^62 sum below 2^64; the norm is below 2^32 (|rv| < 16). */
+    n = qo_fx_sqrt_u64(qo_fx_abs_u64(rv.x) * qo_fx_abs_u64(rv.x) +
+                       qo_fx_abs_u64(rv.y) * qo_fx_abs_u64(rv.y) +
+                       qo_fx_abs_u64(rv.z) * qo_fx_abs_u64(rv.z));
+    if (n == 0) return QO_OK;
+    /* Half of |rv| in Q3.60 without rounding: n * 2^31 < 2^63. */
+    (void)qo_fx_sincos_q60((int64_t)n * ((int64_t)1 << 31), &s, &c);
+    out->w = c;
+    out->x = (qo_q30)qo_fx_div_round_away(P(rv.x, s), n);
+    out->y = (qo_q30)qo_fx_div_round_away(P(rv.y, s), n);
+    out->z = (qo_q30)qo_fx_div_round_away(P(rv.z, s), n);
+    return QO_OK;
 }
 
 qo_status qo_quat_exp_q30(qo_vec3_q28 v, qo_quat_q30 *out)
@@ -410,7 +393,7 @@ qo_status qo_quat_exp_q30(qo_vec3_q28 v, qo_quat_q30 *out)
     }
     /* exp((0, v)) is the rotation by the rotation vector 2v; doubling is exact here. */
     rv.x = 2 * v.x; rv.y = 2 * v.y; rv.z = 2 * v.z;
-    return qo_quat_from_rotvec_q30(rv, out);
+    return qo_fx_quat_from_rotvec(rv, out);
 }
 
 qo_status qo_quat_log_q30(qo_quat_q30 q, qo_vec3_q28 *out)
@@ -430,17 +413,17 @@ qo_status qo_quat_log_q30(qo_quat_q30 q, qo_vec3_q28 *out)
      * [2^30, 2^31]: then the rounded |u| is good to 2^-31 relative even for a short u (a
      * rotation near 2pi), and phi * c_i <= 2^61. */
     c[0] = q.x; c[1] = q.y; c[2] = q.z;
-    m = mag(c[0]);
-    if (mag(c[1]) > m) m = mag(c[1]);
-    if (mag(c[2]) > m) m = mag(c[2]);
+    m = qo_fx_abs_u64(c[0]);
+    if (qo_fx_abs_u64(c[1]) > m) m = qo_fx_abs_u64(c[1]);
+    if (qo_fx_abs_u64(c[2]) > m) m = qo_fx_abs_u64(c[2]);
     while (m < ((uint64_t)1 << 30)) {
         m <<= 1;
         c[0] *= 2; c[1] *= 2; c[2] *= 2;
     }
-    n = qo_fx_sqrt_u64(mag(c[0]) * mag(c[0]) + mag(c[1]) * mag(c[1]) + mag(c[2]) * mag(c[2]));
-    out->x = (qo_q28)div_round(phi * c[0], n);
-    out->y = (qo_q28)div_round(phi * c[1], n);
-    out->z = (qo_q28)div_round(phi * c[2], n);
+    n = qo_fx_sqrt_u64(qo_fx_abs_u64(c[0]) * qo_fx_abs_u64(c[0]) + qo_fx_abs_u64(c[1]) * qo_fx_abs_u64(c[1]) + qo_fx_abs_u64(c[2]) * qo_fx_abs_u64(c[2]));
+    out->x = (qo_q28)qo_fx_div_round_away(phi * c[0], n);
+    out->y = (qo_q28)qo_fx_div_round_away(phi * c[1], n);
+    out->z = (qo_q28)qo_fx_div_round_away(phi * c[2], n);
     return QO_OK;
 }
 
@@ -451,6 +434,6 @@ qo_status qo_quat_integrate_q30(qo_quat_q30 q, qo_vec3_q28 dtheta, qo_quat_q30 *
     if (out == NULL) return QO_E_NULL;
     st = qo_quat_normalize_q30(q, &qn);
     if (st != QO_OK) { *out = qn; return st; }
-    (void)qo_quat_from_rotvec_q30(dtheta, &dq);
+    (void)qo_fx_quat_from_rotvec(dtheta, &dq);
     return qo_quat_normalize_q30(qo_quat_mul_q30(qn, dq), out);
 }
