@@ -21,6 +21,18 @@
 
 #include "qorient/fxmath.h"
 
+/* 1 where the fast paths take the ARMv6-M (Cortex-M0/M0+) form: no 32x32 -> 64 multiply
+ * there, so exact sums of products are built from 16-bit partial products in 32-bit words.
+ * Everywhere else (x86-64, aarch64, ARMv7-M SMULL, RV32M mulh) a widening multiply is one or
+ * two instructions and plain int64 sums are shorter. Both forms are exact and round once, so
+ * results are bit-identical; QO_FX_MUL_PARTS forces the ARMv6-M form on any target (the
+ * tests build it on the host and compare). */
+#if defined(__ARM_ARCH_6M__) || defined(QO_FX_MUL_PARTS)
+#define QO_FX_NARROW_MUL 1
+#else
+#define QO_FX_NARROW_MUL 0
+#endif
+
 typedef char qo_fx_arith_shift_check[((-1) >> 1) == -1 && (((int64_t)-1) >> 1) == -1 ? 1 : -1];
 
 /* |v| as an unsigned 64-bit value; exact for every int64 including INT64_MIN (2^63). */

@@ -1,10 +1,13 @@
 /* Quaternion algebra in fixed point (Q1.30). See qorient/quat_fx.h for the contracts.
  * Integer arithmetic only: products in int64, sums rounded once with qo_fx_sum_round_i64.
  * mul, rotate and normalize have a fast path for components within +-1.25 (every normalised
- * quaternion) written for Cortex-M0 (no 64-bit multiply, no divider): 16-bit column sums and
- * one Newton reciprocal instead of libgcc's 64-bit multiply and division. It gives the
- * identical result (same exact sum, same single rounding); other inputs take the general
- * path. */
+ * quaternion). mul and rotate take it in two forms chosen per architecture (QO_FX_NARROW_MUL,
+ * fx_internal.h): 16-bit column sums on Cortex-M0/M0+ (no 64-bit multiply), plain int64 sums
+ * where a widening multiply exists (x86-64, aarch64, ARMv7-M). normalize uses one Newton
+ * reciprocal instead of four 64-bit divisions (no divider on Cortex-M0). Every form gives the
+ * identical result (same exact sum, same single rounding; tests/test_parts_fx.c compares
+ * them); other inputs take the general path. This file is the kernel of the fixed core: it
+ * depends on fxmath only (convert_fx.c, interp_fx.c build on it, not the other way). */
 #include "qorient/quat_fx.h"
 
 #include "qorient/fxmath.h"
@@ -40,6 +43,7 @@ static int fast_quat(qo_quat_q30 q)
            (uint32_t)q.y + FAST_LIM <= 2u * FAST_LIM && (uint32_t)q.z + FAST_LIM <= 2u * FAST_LIM;
 }
 
+#if QO_FX_NARROW_MUL
 /*
  * The exact sum of a_i b_i, i < n, as three int32 columns, for |a_i| <= 1.25 * 2^30 and
  * either n <= 3 or also |b_i| <= 1.25 * 2^30 (the fast paths below). Cortex-M0 has only a
@@ -55,11 +59,11 @@ static int fast_quat(qo_quat_q30 q)
  * bounded too), so |H| < 2^31 for the n used; |M| < n 2^17, L < n 2^16.
  * (int16_t) of an int32 is modular on every two's-complement compiler (see fxmath.h).
  */
-typedef struct cols { int32_t h, m; uint32_t l; } cols;
+typedef struct dsum { int32_t h, m; uint32_t l; } dsum;
 
-static cols dot_cols(const int32_t *a, const int32_t *b, int n)
+static dsum dot_exact(const int32_t *a, const int32_t *b, int n)
 {
-    cols c = { 0, 0, 0 };
+    dsum c = { 0, 0, 0 };
     int i;
     for (i = 0; i < n; i++) {
         int32_t al = (int16_t)a[i], bl = (int16_t)b[i];
@@ -74,13 +78,13 @@ static cols dot_cols(const int32_t *a, const int32_t *b, int n)
 
 /* sum / 2^sh = h 2^(32-sh) + (m >> (sh-16)) + (l + (m mod 2^(sh-16)) 2^16) / 2^sh: only the
  * last term has a fraction (its numerator < 2^sh + 2^20 < 2^32), so it alone is rounded. */
-static int64_t rnd30(cols c)
+static int64_t rnd30(dsum c)
 {
     uint32_t f = c.l + (((uint32_t)c.m & 0x3FFFu) << 16) + ((uint32_t)1 << 29);
     return (int64_t)c.h * 4 + ((c.m >> 14) + (int32_t)(f >> 30));
 }
 
-static int64_t rnd29(cols c)
+static int64_t rnd29(dsum c)
 {
     uint32_t f = c.l + (((uint32_t)c.m & 0x1FFFu) << 16) + ((uint32_t)1 << 28);
     return (int64_t)c.h * 8 + ((c.m >> 13) + (int32_t)(f >> 29));
@@ -88,7 +92,7 @@ static int64_t rnd29(cols c)
 
 /* rnd30 saturated to int32 (over set on saturation), in 32-bit arithmetic unless H is near
  * the int32 range of the result (then through rnd30's int64 value). */
-static int32_t rnd30_sat(cols c, int *over)
+static int32_t rnd30_sat(dsum c, int *over)
 {
     if (c.h > -(1 << 28) && c.h < (1 << 28)) {
         uint32_t f = c.l + (((uint32_t)c.m & 0x3FFFu) << 16) + ((uint32_t)1 << 29);
@@ -101,6 +105,31 @@ static int32_t rnd30_sat(cols c, int *over)
     }
 }
 
+#else
+/* With a widening multiply the same exact sum is a plain int64 sum: for the operands of the
+ * fast paths (bounds as above) every partial sum stays below 2^63. */
+typedef int64_t dsum;
+
+static dsum dot_exact(const int32_t *a, const int32_t *b, int n)
+{
+    dsum s = 0;
+    int i;
+    for (i = 0; i < n; i++) s += (int64_t)a[i] * b[i];
+    return s;
+}
+
+static int64_t rnd30(dsum s) { return qo_fx_rshift_round_up(s, 30); }
+static int64_t rnd29(dsum s) { return qo_fx_rshift_round_up(s, 29); }
+
+static int32_t rnd30_sat(dsum s, int *over)
+{
+    int64_t v = rnd30(s);
+    int32_t r = qo_fx_sat_i32(v);
+    if ((int64_t)r != v) *over = 1;
+    return r;
+}
+#endif
+
 /* a*b for the fast range (fast_quat of both): exact, rounded once, saturated; returns 1 if a
  * component saturated. */
 static int mul_fast(qo_quat_q30 a, qo_quat_q30 b, qo_quat_q30 *out)
@@ -111,10 +140,10 @@ static int mul_fast(qo_quat_q30 a, qo_quat_q30 b, qo_quat_q30 *out)
     const int32_t bv[16] = { b.w, -b.x, -b.y, -b.z,   b.x, b.w, b.z, -b.y,
                              b.y, -b.z, b.w, b.x,     b.z, b.y, -b.x, b.w };
     int over = 0;
-    out->w = rnd30_sat(dot_cols(bv, av, 4), &over);
-    out->x = rnd30_sat(dot_cols(bv + 4, av, 4), &over);
-    out->y = rnd30_sat(dot_cols(bv + 8, av, 4), &over);
-    out->z = rnd30_sat(dot_cols(bv + 12, av, 4), &over);
+    out->w = rnd30_sat(dot_exact(bv, av, 4), &over);
+    out->x = rnd30_sat(dot_exact(bv + 4, av, 4), &over);
+    out->y = rnd30_sat(dot_exact(bv + 8, av, 4), &over);
+    out->z = rnd30_sat(dot_exact(bv + 12, av, 4), &over);
     return over;
 }
 
@@ -300,17 +329,17 @@ qo_vec3_q30 qo_quat_rotate_q30(qo_quat_q30 q, qo_vec3_q30 v)
                                  q.w, q.y, -q.z, q.w, q.z, -q.x, q.w, q.x, -q.y };
         int32_t vb[3], tb[3];
         vb[0] = v.z; vb[1] = v.y;
-        tx = qo_fx_sat_i32(rnd30(dot_cols(qa, vb, 2)));
+        tx = qo_fx_sat_i32(rnd30(dot_exact(qa, vb, 2)));
         vb[0] = v.x; vb[1] = v.z;
-        ty = qo_fx_sat_i32(rnd30(dot_cols(qa + 2, vb, 2)));
+        ty = qo_fx_sat_i32(rnd30(dot_exact(qa + 2, vb, 2)));
         vb[0] = v.y; vb[1] = v.x;
-        tz = qo_fx_sat_i32(rnd30(dot_cols(qa + 4, vb, 2)));
+        tz = qo_fx_sat_i32(rnd30(dot_exact(qa + 4, vb, 2)));
         tb[0] = tx; tb[1] = tz; tb[2] = ty;
-        r.x = rot_out(v.x, rnd29(dot_cols(qa + 6, tb, 3)));
+        r.x = rot_out(v.x, rnd29(dot_exact(qa + 6, tb, 3)));
         tb[0] = ty; tb[1] = tx; tb[2] = tz;
-        r.y = rot_out(v.y, rnd29(dot_cols(qa + 9, tb, 3)));
+        r.y = rot_out(v.y, rnd29(dot_exact(qa + 9, tb, 3)));
         tb[0] = tz; tb[1] = ty; tb[2] = tx;
-        r.z = rot_out(v.z, rnd29(dot_cols(qa + 12, tb, 3)));
+        r.z = rot_out(v.z, rnd29(dot_exact(qa + 12, tb, 3)));
         return r;
     }
     /* t = u x v, rounded once and saturated so every later product stays <= 2^62. */
