@@ -675,22 +675,42 @@ static void check_recip(uint32_t d)
                  (unsigned long)r2, (unsigned long)ref);
 }
 
-static void test_internal_recip62(void **state)
+/* The reciprocal square root of the fast normalisation against double (53 bits): within
+ * 2^-26 relative over the whole domain (every top-20-bit value, both ends, random). */
+static void check_rsqrt32(uint32_t x)
+{
+    double want = 1073741824.0 / sqrt((double)x / 4294967296.0);
+    uint32_t got = qo_fx_rsqrt32_q30(x);
+    if (fabs((double)got - want) > want * ldexp(1.0, -26))
+        fail_msg("rsqrt32(%lu) = %lu, want %.1f", (unsigned long)x, (unsigned long)got, want);
+}
+
+/* Both Newton estimates over their whole domains: both ends, every value of the top 20 bits
+ * (with random low bits), random values, and both sides of every recip62 seed boundary. */
+static void test_internal_newton(void **state)
 {
     uint32_t k, i;
     (void)state;
     rng_state = 0x5EED0016u;
     check_recip(0x80000000u);
     check_recip(0xFFFFFFFFu);
-    /* both sides of every seed-table boundary (64 intervals of 2^25) */
-    for (k = 64; k < 128; k++) {
+    check_rsqrt32(0x40000000u);
+    check_rsqrt32(0xFFFFFFFFu);
+    for (k = 64; k < 128; k++) {   /* 64 intervals of 2^25 */
         check_recip(k << 25);
         check_recip((k << 25) + 1u);
         if (k > 64) check_recip((k << 25) - 1u);
     }
-    /* every value of the top 20 bits, with random low bits */
-    for (k = 1u << 19; k < (1u << 20); k++) check_recip((k << 12) | (uint32_t)(rnd() & 0xFFFu));
-    for (i = 0; i < 200000; i++) check_recip((uint32_t)rnd() | 0x80000000u);
+    for (k = 1u << 18; k < (1u << 20); k++) {
+        uint32_t x = (k << 12) | (uint32_t)(rnd() & 0xFFFu);   /* [2^30, 2^32) */
+        check_rsqrt32(x);
+        if (x >= 0x80000000u) check_recip(x);
+    }
+    for (i = 0; i < 200000; i++) {
+        uint32_t x = (uint32_t)rnd();
+        check_recip(x | 0x80000000u);
+        check_rsqrt32(x < 0x40000000u ? x + 0x40000000u : x);
+    }
 }
 
 int main(void)
@@ -711,7 +731,7 @@ int main(void)
         cmocka_unit_test(test_fxconv_boundary),
         cmocka_unit_test(test_internal_rshift_abs),
         cmocka_unit_test(test_internal_div_round_away),
-        cmocka_unit_test(test_internal_recip62),
+        cmocka_unit_test(test_internal_newton),
     };
     return cmocka_run_group_tests_name("fxmath", tests, NULL, NULL);
 }

@@ -2,7 +2,8 @@
  * ARMv6-M form (16-bit partial products, no 64-bit multiply; QO_FX_NARROW_MUL) only when built
  * for Cortex-M0/M0+ and plain int64 sums elsewhere. Here it is compiled a second time with
  * QO_FX_MUL_PARTS (the ARMv6-M form on this host), its public names renamed to parts_*, and
- * both copies are run on the same inputs: random unit and non-unit quaternions, every
+ * both copies are run on the same inputs (mul, mul_checked, rotate, normalize and
+ * normalize_fast): random unit and non-unit quaternions, every
  * component at the fast-range limit (+-1.25) and its neighbours, and the int32 extremes (the
  * general path). Any difference is a bug in one form. */
 #include <setjmp.h>
@@ -22,6 +23,7 @@
 #define qo_quat_dot_q30 parts_quat_dot_q30
 #define qo_quat_norm_q30 parts_quat_norm_q30
 #define qo_quat_normalize_q30 parts_quat_normalize_q30
+#define qo_quat_normalize_fast_q30 parts_quat_normalize_fast_q30
 #define qo_quat_canonical_q30 parts_quat_canonical_q30
 #define qo_quat_rotate_q30 parts_quat_rotate_q30
 #define qo_quat_angle_between_q30 parts_quat_angle_between_q30
@@ -33,12 +35,14 @@
 #undef qo_quat_mul_q30
 #undef qo_quat_mul_q30_checked
 #undef qo_quat_normalize_q30
+#undef qo_quat_normalize_fast_q30
 #undef qo_quat_rotate_q30
 
 /* The library's own (native) definitions; quat_fx.h was read above under the parts_ names. */
 qo_quat_q30 qo_quat_mul_q30(qo_quat_q30 a, qo_quat_q30 b);
 qo_status qo_quat_mul_q30_checked(qo_quat_q30 a, qo_quat_q30 b, qo_quat_q30 *out);
 qo_status qo_quat_normalize_q30(qo_quat_q30 q, qo_quat_q30 *out);
+qo_status qo_quat_normalize_fast_q30(qo_quat_q30 q, qo_quat_q30 *out);
 qo_vec3_q30 qo_quat_rotate_q30(qo_quat_q30 q, qo_vec3_q30 v);
 
 static ref_rng rng;
@@ -97,6 +101,9 @@ static void test_parts_equal_native(void **state)
         s1 = qo_quat_normalize_q30(a, &r1);
         s2 = parts_quat_normalize_q30(a, &r2);
         if (s1 != s2 || !same_q(r1, r2)) fail_msg("normalize differs at case %ld", i);
+        s1 = qo_quat_normalize_fast_q30(a, &r1);
+        s2 = parts_quat_normalize_fast_q30(a, &r2);
+        if (s1 != s2 || !same_q(r1, r2)) fail_msg("normalize_fast differs at case %ld", i);
     }
 }
 

@@ -9,6 +9,7 @@
  *   qo_fx_div_round_away       round(num / den), ties away from zero (64-bit division)
  *   qo_fx_recip62_u32          about 2^62 / d for d in [2^31, 2^32) (Newton, no division)
  *   qo_fx_recip62_step         one more Newton step of that reciprocal
+ *   qo_fx_rsqrt32_q30          about 2^30 / sqrt(x / 2^32) for x in [2^30, 2^32) (Newton)
  *
  * The rounding shifts rely on >> of a negative int64 being an arithmetic shift (implementation-
  * defined in C99, arithmetic on gcc and clang for every target): checked here, once, for every
@@ -78,6 +79,11 @@ static inline uint32_t qo_fx_recip62_step(uint32_t d, uint32_t r)
  * An estimate only: callers that need an exact quotient correct it against the remainder.
  * Defined in fxmath_fx.c (its seed table lives in flash once). */
 uint32_t qo_fx_recip62_u32(uint32_t d);
+
+/* About 2^30 / sqrt(x / 2^32) (Q2.30, in (2^30, 2^31)) for x in [2^30, 2^32): the 96-entry
+ * seed of qo_fx_sqrt_u64, a 16-bit Newton step and one in 32x32 -> 64 products, within ~2^-28
+ * relative (measured bound in tests/test_fxmath.c). Multiplications only. In fxmath_fx.c. */
+uint32_t qo_fx_rsqrt32_q30(uint32_t x);
 
 /* The unit quaternion of a rotation vector rv (Q3.28 radians, |rv| < 16): the kernel of
  * qo_quat_exp_q30 (quat_fx.c) and of qo_quat_from_rotvec_q30 (convert_fx.c), which calls it, so

@@ -134,6 +134,19 @@ uint64_t qo_fx_sqrt_u64(uint64_t v)
     return ((uint64_t)s + ((uint64_t)1 << (k - 1u))) >> k;
 }
 
+uint32_t qo_fx_rsqrt32_q30(uint32_t x)
+{
+    /* Two Newton steps y (3 - h y^2) / 2, h = x / 2^32, from the table seed (2^-7.8), in
+     * 32x32 -> 64 products (truncations <= 2^-30): 2^-7.8 -> ~2^-15 -> ~2^-29. */
+    uint32_t y = rsqrt_seed[(x >> 25) - 32u], y2, e;          /* Q1.15 */
+    e = 3u * ((uint32_t)1 << 30) - (uint32_t)(qo_fx_umul32_u64(x, y * y) >> 32);   /* Q2.30 */
+    y = (uint32_t)(qo_fx_umul32_u64(y, e) >> 16);             /* Q2.30, ~2^-15 */
+    if (y > 0x7FFFFFFFu) y = 0x7FFFFFFFu;                     /* 1/sqrt(h) <= 2: y^2 < 2^62 */
+    y2 = (uint32_t)(qo_fx_umul32_u64(y, y) >> 30);            /* y^2, Q2.30 (< 4) */
+    e = 3u * ((uint32_t)1 << 30) - (uint32_t)(qo_fx_umul32_u64(x, y2) >> 32);
+    return (uint32_t)(qo_fx_umul32_u64(y, e) >> 31);          /* y e / 2, Q2.30 */
+}
+
 qo_status qo_fx_sqrt_q30(qo_q30 x, qo_q30 *out)
 {
     if (out == NULL) return QO_E_NULL;

@@ -291,6 +291,79 @@ qo_status qo_quat_normalize_q30(qo_quat_q30 q, qo_quat_q30 *out)
     return QO_OK;
 }
 
+/* |v| of an int32 as uint32 (2^31 for INT32_MIN). */
+static uint32_t mag32(int32_t v) { return v < 0 ? 0u - (uint32_t)v : (uint32_t)v; }
+
+/* One output of normalize_fast: sign(c) min(round(a y / 2^s), 2^30) for a <= 2^30, y < 2^31,
+ * s = 30 or 31, in 16-bit partial products and 32-bit words (no 64-bit arithmetic on
+ * Cortex-M0): a y = ah yh 2^32 + (ah yl + al yh) 2^16 + al yl, the cross sum < 2^31; only the
+ * low 16 bits of al yl are dropped before the rounding (< 2^-14 LSB). */
+static int32_t nf_out(int32_t c, uint32_t a, uint32_t y, unsigned s)
+{
+    uint32_t ah = a >> 16, al = a & 0xFFFFu, yh = y >> 16, yl = y & 0xFFFFu;
+    uint32_t mid = ah * yl + al * yh + ((al * yl) >> 16) + ((uint32_t)1 << (s - 17u));
+    uint32_t v = ((ah * yh) << (32u - s)) + (mid >> (s - 16u));
+    if (v > (uint32_t)QO_Q30_ONE) v = (uint32_t)QO_Q30_ONE;
+    return c < 0 ? -(int32_t)v : (int32_t)v;
+}
+
+/* Columns of a^2 for a < 2^30 (a = ah 2^16 + al): ah^2 into *hh, ah al into *hl (the cross
+ * term halved), al^2 / 2^16 into *ll; for four components none of the sums overflows. */
+static void nf_sq(uint32_t a, uint32_t *hh, uint32_t *hl, uint32_t *ll)
+{
+    uint32_t ah = a >> 16, al = a & 0xFFFFu;
+    *hh += ah * ah;
+    *hl += ah * al;
+    *ll += (al * al) >> 16;
+}
+
+qo_status qo_quat_normalize_fast_q30(qo_quat_q30 q, qo_quat_q30 *out)
+{
+    uint32_t aw = mag32(q.w), ax = mag32(q.x), ay = mag32(q.y), az = mag32(q.z);
+    uint32_t m = aw | ax | ay | az, x, y, hh = 0, hl = 0, ll = 0;
+    unsigned sh = 0, s = 31;
+    if (out == NULL) return QO_E_NULL;
+    if (m == 0) {
+        *out = qo_quat_identity_q30();
+        return QO_E_DEGENERATE;
+    }
+    /* Exact power-of-two scaling so the largest magnitude is in [2^29, 2^30] (the OR of the
+     * magnitudes has the top bit of the largest; a unit quaternion is there already): the
+     * squares then sum to at most 2^62 and short inputs keep 30 significant bits. */
+    if (m >= ((uint32_t)1 << 30)) {
+        aw = (aw + 1u) >> 1; ax = (ax + 1u) >> 1; ay = (ay + 1u) >> 1; az = (az + 1u) >> 1;
+    } else if (m < ((uint32_t)1 << 29)) {
+        if ((m >> 14) == 0) { m <<= 16; sh = 16; }
+        if ((m >> 22) == 0) { m <<= 8; sh += 8; }
+        if ((m >> 26) == 0) { m <<= 4; sh += 4; }
+        if ((m >> 28) == 0) { m <<= 2; sh += 2; }
+        if ((m >> 29) == 0) sh += 1;
+        aw <<= sh; ax <<= sh; ay <<= sh; az <<= sh;
+    }
+    /* |a|^2 = hh 2^32 + hl 2^17 + ll 2^16 (+ < 2^18 dropped) in [2^58, 2^62]: hh < 2^30,
+     * hl < 2^32, ll < 2^18. x = |a|^2 / 2^30 in [2^28, 2^32], or / 2^28 when that is below
+     * 2^30 (an even shift keeps the square root a power of two), so x is in [2^30, 2^32) and
+     * 1/|a| = 2^(46 - s) / sqrt(x) with s = 31 (30 for the second case): y = 2^46 / sqrt(x)
+     * and a_i 2^30 / |a| = a_i y / 2^s. Truncation: a few units of x (2^-28 relative). */
+    nf_sq(aw, &hh, &hl, &ll); nf_sq(ax, &hh, &hl, &ll);
+    nf_sq(ay, &hh, &hl, &ll); nf_sq(az, &hh, &hl, &ll);
+    if (hh >= ((uint32_t)1 << 30)) {
+        x = 0xFFFFFFFFu;                            /* |a|^2 = 2^62 exactly: 2^-32 off */
+    } else {
+        x = (hh << 2) + (hl >> 13) + (ll >> 14);
+        if (x < ((uint32_t)1 << 30)) {
+            x = (hh << 4) + (hl >> 11) + (ll >> 12);   /* < 2^32: x was < 2^30 */
+            s = 30;
+        }
+    }
+    y = qo_fx_rsqrt32_q30(x);
+    out->w = nf_out(q.w, aw, y, s);
+    out->x = nf_out(q.x, ax, y, s);
+    out->y = nf_out(q.y, ay, y, s);
+    out->z = nf_out(q.z, az, y, s);
+    return QO_OK;
+}
+
 qo_quat_q30 qo_quat_canonical_q30(qo_quat_q30 q)
 {
     int neg;
