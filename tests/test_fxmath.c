@@ -713,6 +713,33 @@ static void test_internal_newton(void **state)
     }
 }
 
+/* sin and cos of 2y (the fast slerp's) against double libm over all of y in [0, pi/4]:
+ * a strided sweep (every 997th value), both ends and random values; within 8 LSB. */
+static void check_sincos_2y(uint32_t y)
+{
+    qo_q30 s, c;
+    double a = 2.0 * (double)y / 2147483648.0, es, ec;
+    qo_fx_sincos_2y_q30(y, &s, &c);
+    es = fabs((double)s - sin(a) * TWO30);
+    ec = fabs((double)c - cos(a) * TWO30);
+    if (es > 8.0 || ec > 8.0)
+        fail_msg("sincos_2y(%lu): sin %ld (%.2f LSB), cos %ld (%.2f LSB)", (unsigned long)y,
+                 (long)s, es, (long)c, ec);
+}
+
+static void test_internal_sincos_2y(void **state)
+{
+    const uint32_t top = 1686629713u;   /* pi/4 in Q1.31, rounded up */
+    uint32_t y;
+    int i;
+    (void)state;
+    rng_state = 0x5EED0019u;
+    check_sincos_2y(0);
+    check_sincos_2y(top);
+    for (y = 1; y < top - 997u; y += 997u) check_sincos_2y(y);
+    for (i = 0; i < 100000; i++) check_sincos_2y((uint32_t)(rnd() % top));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -732,6 +759,7 @@ int main(void)
         cmocka_unit_test(test_internal_rshift_abs),
         cmocka_unit_test(test_internal_div_round_away),
         cmocka_unit_test(test_internal_newton),
+        cmocka_unit_test(test_internal_sincos_2y),
     };
     return cmocka_run_group_tests_name("fxmath", tests, NULL, NULL);
 }

@@ -185,6 +185,8 @@ static void test_normalize(void **state)
         { INT32_MIN, 0, 0, 0 }, { INT32_MAX, INT32_MIN, 1, -1 }, { QO_Q30_ONE, 0, 0, 0 },
         { 3, 4, 0, 0 }, { 1 << 29, 1 << 29, 1 << 29, 1 << 29 }, { (1 << 29) - 1, 0, 0, 0 },
         { 0x3FFFFFFF, 0x3FFFFFFF, 0x3FFFFFFF, 0x3FFFFFFF }, { 0, 1 << 30, 0, 1 << 30 },
+        /* |q|^2 just below 2^60 (normalize_fast's 2^30 boundary of its scaled square) */
+        { 717548339, 401245721, 510734886, 464970573 }, { 1 << 29, 1, 1, 1 },
     };
     size_t i, f;
     int k;

@@ -263,6 +263,44 @@ qo_status qo_fx_sincos_q60(int64_t angle_q60, qo_q30 *s, qo_q30 *c)
     return (s == NULL || c == NULL) ? QO_E_NULL : QO_OK;
 }
 
+/* round(a * b / 2^31) for |a|, |b| < 2^31 through the 32x32 product (no libgcc call). */
+static int64_t mul31s(int64_t a, int64_t b)
+{
+    return qo_fx_rshift_round_up(qo_fx_mul32_i64((int32_t)a, (int32_t)b), 31);
+}
+
+/* About a b / 2^31 for int32 a, b with |a b| < 2^62, from three 16x16 products (the low x
+ * low one dropped) in 32-bit words: within 2 units of 2^-31 of the exact value. */
+static int32_t mulq31_fast(int32_t a, int32_t b)
+{
+    int32_t ah = a >> 16, bh = b >> 16;
+    int32_t al = (int32_t)((uint32_t)a & 0xFFFFu), bl = (int32_t)((uint32_t)b & 0xFFFFu);
+    return 2 * ah * bh + (((ah * bl) >> 1) + ((al * bh) >> 1)) / 16384;
+}
+
+/* Taylor coefficients on |y| <= pi/4 in Q1.31: sin to y^9 (truncation < 2e-9), cos to y^10
+ * (< 2e-10). */
+static const int32_t sin2y_c[4] = { -357913941, 17895697, -426088, 5918 };
+static const int32_t cos2y_c[5] = { -1073741824, 89478485, -2982616, 53261, -592 };
+
+void qo_fx_sincos_2y_q30(uint32_t y, qo_q30 *s, qo_q30 *c)
+{
+    /* sin y = y (1 + u ws), cos y = 1 + u wc, u = y^2, Horner in 32-bit words; then the
+     * angle doubling: sin 2y = 2 sin y cos y, cos 2y = (cos y - sin y)(cos y + sin y). */
+    int32_t u = mulq31_fast((int32_t)y, (int32_t)y);   /* Q1.31, <= 0.62 */
+    int32_t ws = sin2y_c[3], wc = cos2y_c[4];
+    uint32_t sy, cy;
+    int k;
+    for (k = 2; k >= 0; k--) ws = sin2y_c[k] + mulq31_fast(u, ws);
+    for (k = 3; k >= 0; k--) wc = cos2y_c[k] + mulq31_fast(u, wc);
+    /* Q1.31, both < 2^31 for y <= pi/4 (the factor 1 + u ws is <= 2^31: unsigned) */
+    sy = (uint32_t)(qo_fx_umul32_u64(y, (uint32_t)(((int32_t)1 << 30) + (mulq31_fast(u, ws) >> 1)) * 2u) >> 31);
+    cy = (uint32_t)((int64_t)((uint32_t)1 << 31) + mulq31_fast(u, wc));
+    *s = (qo_q30)(qo_fx_umul32_u64(sy, cy) >> 31);
+    /* cos y - sin y >= 0 but for rounding at y = pi/4 itself */
+    *c = (qo_q30)(qo_fx_umul32_u64(cy > sy ? cy - sy : 0u, cy + sy) >> 32);
+}
+
 qo_status qo_fx_sincos_q28(qo_q28 angle_rad, qo_q30 *s, qo_q30 *c)
 {
     /* angle * 2^32 is in [-2^63, 2^63): exact in int64 (multiplication, not a shift of a
@@ -287,12 +325,6 @@ qo_q30 qo_fx_cos_q28(qo_q28 angle_rad)
     qo_q30 s, c;
     (void)qo_fx_sincos_q28(angle_rad, &s, &c);
     return c;
-}
-
-/* round(a * b / 2^31) for |a|, |b| < 2^31 through the 32x32 product (no libgcc call). */
-static int64_t mul31s(int64_t a, int64_t b)
-{
-    return qo_fx_rshift_round_up(qo_fx_mul32_i64((int32_t)a, (int32_t)b), 31);
 }
 
 /* 2^62 / d at the midpoint of each of 64 intervals of d in [2^31, 2^32) (index d >> 25),

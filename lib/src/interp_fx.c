@@ -287,6 +287,70 @@ qo_status qo_quat_slerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 
     return QO_OK;
 }
 
+/* round(p / 2^30) of an exact product sum (ties up). */
+static int32_t rnd30_i32(int64_t p) { return (int32_t)qo_fx_rshift_round_up(p, 30); }
+
+qo_status qo_quat_slerp_fast_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out)
+{
+    qo_quat_q30 ua, ub, v, e;
+    qo_status sa, sb;
+    int64_t d;
+    int32_t c, vn;
+    qo_q30 sn, cs;
+    qo_q28 th;
+    if (out == NULL) return QO_E_NULL;
+    sa = qo_quat_normalize_fast_q30(a, &ua);
+    sb = qo_quat_normalize_fast_q30(b, &ub);
+    if (sa != QO_OK || sb != QO_OK) {
+        *out = identity_q();
+        return sa != QO_OK ? sa : sb;
+    }
+    *out = ua;
+    if (check_t(t) != QO_OK) return QO_E_RANGE;
+    /* Products through qo_fx_mul32_i64: no libgcc 64-bit multiply on Cortex-M0. |ua|, |ub|
+     * <= 1 (normalize_fast never exceeds 1), so every sum below stays far inside int64. */
+    d = qo_fx_mul32_i64(ua.w, ub.w) + qo_fx_mul32_i64(ua.x, ub.x) + qo_fx_mul32_i64(ua.y, ub.y) +
+        qo_fx_mul32_i64(ua.z, ub.z);
+    if (d < 0) {
+        ub = neg_q(ub);
+        d = -d;
+    }
+    if (t == 0) return QO_OK;
+    if (t == QO_Q30_ONE) {
+        *out = ub;
+        return QO_OK;
+    }
+    if (ua.w == ub.w && ua.x == ub.x && ua.y == ub.y && ua.z == ub.z) return QO_OK;   /* one point */
+    c = rnd30_i32(d);
+    if (c > QO_Q30_ONE) c = QO_Q30_ONE;
+    /* The unit direction e of b' orthogonal to a, from v = b' - cos(th) a: short for a small
+     * th, but its rounding error (<= 1 LSB) becomes an error of e of ~1 LSB / sin(th), which
+     * the result carries times sin(t th): at most ~t LSB. */
+    v.w = ub.w - rnd30_i32(qo_fx_mul32_i64(c, ua.w));
+    v.x = ub.x - rnd30_i32(qo_fx_mul32_i64(c, ua.x));
+    v.y = ub.y - rnd30_i32(qo_fx_mul32_i64(c, ua.y));
+    v.z = ub.z - rnd30_i32(qo_fx_mul32_i64(c, ua.z));
+    if (qo_quat_normalize_fast_q30(v, &e) != QO_OK) return QO_OK;   /* b' == a: a itself */
+    /* th = atan2(|v|, cos th) in [0, pi/2], |v| = v . e */
+    vn = rnd30_i32(qo_fx_mul32_i64(v.w, e.w) + qo_fx_mul32_i64(v.x, e.x) +
+                   qo_fx_mul32_i64(v.y, e.y) + qo_fx_mul32_i64(v.z, e.z));
+    th = qo_fx_atan2_q28(vn, c);
+    /* y = t th / 2 in Q1.31 = (t th, Q4.58) / 2^28, in [0, pi/4] */
+    qo_fx_sincos_2y_q30((uint32_t)qo_fx_rshift_round_up(qo_fx_mul32_i64(t, th), 28), &sn, &cs);
+    /* cos(t th) a + sin(t th) e: unit to the accuracy of a and e; clamped to +-1. */
+    {
+        int32_t o[4];
+        const int32_t av[4] = { ua.w, ua.x, ua.y, ua.z }, ev[4] = { e.w, e.x, e.y, e.z };
+        int i;
+        for (i = 0; i < 4; i++) {
+            int32_t r = rnd30_i32(qo_fx_mul32_i64(cs, av[i]) + qo_fx_mul32_i64(sn, ev[i]));
+            o[i] = r > QO_Q30_ONE ? QO_Q30_ONE : r < -QO_Q30_ONE ? -QO_Q30_ONE : r;
+        }
+        out->w = o[0]; out->x = o[1]; out->y = o[2]; out->z = o[3];
+    }
+    return QO_OK;
+}
+
 /* Checks that every key is non-zero. */
 static qo_status check_keys(const qo_quat_q30 *keys, size_t n)
 {

@@ -294,15 +294,15 @@ qo_status qo_quat_normalize_q30(qo_quat_q30 q, qo_quat_q30 *out)
 /* |v| of an int32 as uint32 (2^31 for INT32_MIN). */
 static uint32_t mag32(int32_t v) { return v < 0 ? 0u - (uint32_t)v : (uint32_t)v; }
 
-/* One output of normalize_fast: sign(c) min(round(a y / 2^s), 2^30) for a <= 2^30, y < 2^31,
- * s = 30 or 31, in 16-bit partial products and 32-bit words (no 64-bit arithmetic on
- * Cortex-M0): a y = ah yh 2^32 + (ah yl + al yh) 2^16 + al yl, the cross sum < 2^31; only the
- * low 16 bits of al yl are dropped before the rounding (< 2^-14 LSB). */
-static int32_t nf_out(int32_t c, uint32_t a, uint32_t y, unsigned s)
+/* One output of normalize_fast: sign(c) min(round(a y / 2^31), 2^30) for a <= 2^31 (a < 2^31
+ * unless a mod 2^16 == 0) and y < 2^31, in 16-bit partial products and 32-bit words (no 64-bit
+ * arithmetic on Cortex-M0): a y = ah yh 2^32 + (ah yl + al yh) 2^16 + al yl, the cross sum
+ * below 2^32 - 2^17; only the low 16 bits of al yl are dropped before the rounding. */
+static int32_t nf_out(int32_t c, uint32_t a, uint32_t y)
 {
     uint32_t ah = a >> 16, al = a & 0xFFFFu, yh = y >> 16, yl = y & 0xFFFFu;
-    uint32_t mid = ah * yl + al * yh + ((al * yl) >> 16) + ((uint32_t)1 << (s - 17u));
-    uint32_t v = ((ah * yh) << (32u - s)) + (mid >> (s - 16u));
+    uint32_t mid = ah * yl + al * yh + ((al * yl) >> 16) + ((uint32_t)1 << 14);
+    uint32_t v = ((ah * yh) << 1) + (mid >> 15);
     if (v > (uint32_t)QO_Q30_ONE) v = (uint32_t)QO_Q30_ONE;
     return c < 0 ? -(int32_t)v : (int32_t)v;
 }
@@ -321,7 +321,7 @@ qo_status qo_quat_normalize_fast_q30(qo_quat_q30 q, qo_quat_q30 *out)
 {
     uint32_t aw = mag32(q.w), ax = mag32(q.x), ay = mag32(q.y), az = mag32(q.z);
     uint32_t m = aw | ax | ay | az, x, y, hh = 0, hl = 0, ll = 0;
-    unsigned sh = 0, s = 31;
+    unsigned sh = 0;
     if (out == NULL) return QO_E_NULL;
     if (m == 0) {
         *out = qo_quat_identity_q30();
@@ -344,7 +344,8 @@ qo_status qo_quat_normalize_fast_q30(qo_quat_q30 q, qo_quat_q30 *out)
      * hl < 2^32, ll < 2^18. x = |a|^2 / 2^30 in [2^28, 2^32], or / 2^28 when that is below
      * 2^30 (an even shift keeps the square root a power of two), so x is in [2^30, 2^32) and
      * 1/|a| = 2^(46 - s) / sqrt(x) with s = 31 (30 for the second case): y = 2^46 / sqrt(x)
-     * and a_i 2^30 / |a| = a_i y / 2^s. Truncation: a few units of x (2^-28 relative). */
+     * and a_i 2^30 / |a| = a_i y / 2^s, taken as (2 a_i) y / 2^31 when s = 30. Truncation: a
+     * few units of x (2^-28 relative). */
     nf_sq(aw, &hh, &hl, &ll); nf_sq(ax, &hh, &hl, &ll);
     nf_sq(ay, &hh, &hl, &ll); nf_sq(az, &hh, &hl, &ll);
     if (hh >= ((uint32_t)1 << 30)) {
@@ -352,15 +353,19 @@ qo_status qo_quat_normalize_fast_q30(qo_quat_q30 q, qo_quat_q30 *out)
     } else {
         x = (hh << 2) + (hl >> 13) + (ll >> 14);
         if (x < ((uint32_t)1 << 30)) {
-            x = (hh << 4) + (hl >> 11) + (ll >> 12);   /* < 2^32: x was < 2^30 */
-            s = 30;
+            /* The three truncations cost less than 3 in total: + 3 keeps x >= 2^30 (|a|^2 >=
+             * 2^58), and x < 4 (x + 2) + 3 stays below 2^32 unless the first x is within 2
+             * of 2^30, where 2^32 - 1 is within 2^-29. */
+            x = x >= ((uint32_t)1 << 30) - 2u ? 0xFFFFFFFFu
+                                               : (hh << 4) + (hl >> 11) + (ll >> 12) + 3u;
+            aw <<= 1; ax <<= 1; ay <<= 1; az <<= 1;   /* a y / 2^30 = (2 a) y / 2^31, exact */
         }
     }
     y = qo_fx_rsqrt32_q30(x);
-    out->w = nf_out(q.w, aw, y, s);
-    out->x = nf_out(q.x, ax, y, s);
-    out->y = nf_out(q.y, ay, y, s);
-    out->z = nf_out(q.z, az, y, s);
+    out->w = nf_out(q.w, aw, y);
+    out->x = nf_out(q.x, ax, y);
+    out->y = nf_out(q.y, ay, y);
+    out->z = nf_out(q.z, az, y);
     return QO_OK;
 }
 
