@@ -189,7 +189,7 @@ static void primitives(void)
 
 static void rotations(void)
 {
-    double wmul = 0, wrot = 0, wnorm = 0, waa_from = 0, waa_to = 0, wrv_from = 0, wrv_to = 0;
+    double wmul = 0, wrot = 0, wnorm = 0, wnormf = 0, waa_from = 0, waa_to = 0, wrv_from = 0, wrv_to = 0;
     double wm_to = 0, wm_from = 0, wexp = 0, wlog = 0, wint = 0, wang = 0;
     int k, i, j;
     printf("Part 2: rotation error vs double over %d fixed-seed random rotations (end to end)\n", NROT);
@@ -226,6 +226,10 @@ static void rotations(void)
             upd(&wnorm, qangle(dbl(fr), dnorm(dbl(in))));
             /* and the unit-ness of the output */
             upd(&wnorm, fabs(sqrt(dbl(fr).w * dbl(fr).w + dbl(fr).x * dbl(fr).x + dbl(fr).y * dbl(fr).y + dbl(fr).z * dbl(fr).z) - 1.0));
+            /* the fast tier, same input, same two measures */
+            (void)qo_quat_normalize_fast_q30(in, &fr);
+            upd(&wnormf, qangle(dbl(fr), dnorm(dbl(in))));
+            upd(&wnormf, fabs(sqrt(dbl(fr).w * dbl(fr).w + dbl(fr).x * dbl(fr).x + dbl(fr).y * dbl(fr).y + dbl(fr).z * dbl(fr).z) - 1.0));
         }
         /* axis-angle from / to */
         {
@@ -291,6 +295,7 @@ static void rotations(void)
     report_rad("qo_quat_mul_q30", wmul);
     report_rad("qo_quat_rotate_q30 (|v| = 1)", wrot);
     report_rad("qo_quat_normalize_q30 (|q| 1e-6..1.9)", wnorm);
+    report_rad("qo_quat_normalize_fast_q30 (same)", wnormf);
     report_rad("qo_quat_from_axis_angle_q30", waa_from);
     report_rad("qo_quat_to_axis_angle_q30", waa_to);
     report_rad("qo_quat_from_rotvec_q30", wrv_from);

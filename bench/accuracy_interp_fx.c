@@ -9,6 +9,7 @@
  * Goals (exit status 1 if one is missed):
  *   slerp rotation error vs double        <= 1e-6 rad and <= the float32 core's worst on the
  *                                         same cases (random pairs and t + the edge table)
+ *   the same for qo_quat_slerp_fast_q30   <= 2e-7 rad (issue 14's bound for the fast tier)
  *   |norm - 1| of every result            <= 1e-6
  *   spline: error at the keys             <= 1e-6 rad
  * Other figures (nlerp, Bezier, spline between keys, Squad) are reported only. */
@@ -91,7 +92,7 @@ static dq dq_from_f(qo_quat_f32 q) { dq r = { q.w, q.x, q.y, q.z }; return r; }
 static double norm_dev_x(qo_quat_q30 q) { return fabs(dq_norm(dq_from_x(q)) - 1.0); }
 
 /* running maxima */
-static double slerp_rot, slerp_4d, slerp_rot_f, norm_max, bez_err, key_err, spl_err, squad_err;
+static double slerp_rot_fast, slerp_rot, slerp_4d, slerp_rot_f, norm_max, bez_err, key_err, spl_err, squad_err;
 static double nlerp_err, agree_fx_f, squadc_err;
 static long n_slerp, n_norm, n_fail;
 
@@ -125,6 +126,13 @@ static void slerp_case(dq a, dq b, double t)
     if (e > slerp_4d) slerp_4d = e;
     note_norm(out);
     n_slerp++;
+    /* the fast tier on the same inputs, against the same reference */
+    if (qo_quat_slerp_fast_q30(xa, xb, xt, &out) != QO_OK) {
+        n_fail++;
+        return;
+    }
+    e = rot_err(ref, dq_from_x(out));
+    if (e > slerp_rot_fast) slerp_rot_fast = e;
     /* float32 core, same case */
     ua = dq_unit(dq_from_f(fa));
     ub = dq_unit(dq_from_f(fb));
@@ -345,6 +353,8 @@ int main(void)
            n_slerp, n_random, n_edge, n_fail);
     printf("  worst rotation error, fixed   %.3g rad   (goal <= 1e-6 and <= float32) %s\n",
            slerp_rot, (slerp_rot <= 1e-6 && slerp_rot <= slerp_rot_f) ? "ok" : "MISSED");
+    printf("  worst rotation error, fast    %.3g rad   (qo_quat_slerp_fast_q30; goal <= 2e-7) %s\n",
+           slerp_rot_fast, slerp_rot_fast <= 2e-7 ? "ok" : "MISSED");
     printf("  worst rotation error, float32 %.3g rad   (same cases, float32 inputs)\n",
            slerp_rot_f);
     printf("  worst 4-D error (signed)      %.3g\n", slerp_4d);
@@ -359,7 +369,7 @@ int main(void)
     printf("squad: worst inner-point error      %.3g rad   (vs double formula)\n", squadc_err);
     printf("squad: worst segment error          %.3g rad   (vs double, same inner points)\n",
            squad_err);
-    if (slerp_rot > 1e-6 || slerp_rot > slerp_rot_f || norm_max > 1e-6 || key_err > 1e-6 ||
+    if (slerp_rot > 1e-6 || slerp_rot > slerp_rot_f || slerp_rot_fast > 2e-7 || norm_max > 1e-6 || key_err > 1e-6 ||
         n_fail != 0)
         fail = 1;
     return fail;

@@ -230,12 +230,30 @@ static qo_status x_unit(dq q, dq *out)
     *out = dq_from_x(o);
     return st;
 }
-static qo_status x_slerp(dq a, dq b, double t, dq *out)
+/* A two-point Q1.30 interpolation (slerp and its fast tier) on double inputs. */
+typedef qo_status (*x_interp_fn)(qo_quat_q30, qo_quat_q30, qo_q30, qo_quat_q30 *);
+static qo_status x_interp(x_interp_fn f, dq a, dq b, double t, dq *out)
 {
     qo_quat_q30 o;
-    qo_status st = qo_quat_slerp_q30(x_from(a), x_from(b), fx_from_d(t, Q30), &o);
+    qo_status st = f(x_from(a), x_from(b), fx_from_d(t, Q30), &o);
     *out = dq_from_x(o);
     return st;
+}
+static qo_status x_slerp(dq a, dq b, double t, dq *out)
+{
+    return x_interp(qo_quat_slerp_q30, a, b, t, out);
+}
+/* The fast tier: its own normalisation (qo_quat_normalize_fast_q30) and slerp. */
+static qo_status x_unit_fast(dq q, dq *out)
+{
+    qo_quat_q30 o;
+    qo_status st = qo_quat_normalize_fast_q30(x_from(q), &o);
+    *out = dq_from_x(o);
+    return st;
+}
+static qo_status x_slerp_fast(dq a, dq b, double t, dq *out)
+{
+    return x_interp(qo_quat_slerp_fast_q30, a, b, t, out);
 }
 static qo_status x_nlerp(dq a, dq b, double t, dq *out)
 {
@@ -306,6 +324,12 @@ static const core CORE_F32 = {
 static const core CORE_Q30 = {
     "q30", 3e-8, 3e-9, 1.99, x_q_in, x_t_in, x_s_in, x_unit, x_slerp, x_nlerp, x_bezier,
     x_spline_controls, x_spline_eval, x_squad_controls, x_squad
+};
+/* The fast tier (slerp tests only): documented 5e-8 rad; its unit is normalize_fast's
+ * (16 LSB, 1.5e-8 of norm). */
+static const core CORE_Q30_FAST = {
+    "q30 fast", 5e-8, 3e-8, 1.99, x_q_in, x_t_in, x_s_in, x_unit_fast, x_slerp_fast, x_nlerp,
+    x_bezier, x_spline_controls, x_spline_eval, x_squad_controls, x_squad
 };
 
 /* ---- check helper ----------------------------------------------------------------------- */
@@ -1321,6 +1345,7 @@ static void test_fx_squad(void **state)
 
 #define BOTH(fn) cmocka_unit_test_prestate(fn, (void *)&CORE_F32), \
                  cmocka_unit_test_prestate(fn, (void *)&CORE_Q30)
+#define FAST(fn) cmocka_unit_test_prestate(fn, (void *)&CORE_Q30_FAST)
 
 int main(void)
 {
@@ -1332,6 +1357,13 @@ int main(void)
         BOTH(test_slerp_nearly_180_ambiguous),
         BOTH(test_slerp_exact_endpoints),
         BOTH(test_slerp_constant_rate),
+        FAST(test_slerp_random_vs_double),
+        FAST(test_slerp_edge_table),
+        FAST(test_slerp_same_rotation_opposite_sign),
+        FAST(test_slerp_exact_180),
+        FAST(test_slerp_nearly_180_ambiguous),
+        FAST(test_slerp_exact_endpoints),
+        FAST(test_slerp_constant_rate),
         BOTH(test_slerp_nlerp_errors),
         BOTH(test_nlerp),
         BOTH(test_bezier),

@@ -150,14 +150,30 @@ static void test_mul_dot_norm(void **state)
     }
 }
 
-static void check_normalize(qo_quat_q30 q)
+/* The exact normalisation (1 LSB) and its fast tier (16 LSB, never beyond +-1.0) run through
+ * the same checks. */
+typedef struct norm_impl {
+    const char *name;
+    qo_status (*fn)(qo_quat_q30, qo_quat_q30 *);
+    double bound_lsb;
+} norm_impl;
+static const norm_impl norm_impls[] = {
+    { "normalize", qo_quat_normalize_q30, 1.0 },
+    { "normalize_fast", qo_quat_normalize_fast_q30, 16.0 },
+};
+
+static void check_normalize(const norm_impl *f, qo_quat_q30 q)
 {
     qo_quat_q30 r;
     dq want = dnormalize(from_fx(q));
     double e;
-    assert_int_equal(qo_quat_normalize_q30(q, &r), QO_OK);
+    assert_int_equal(f->fn(q, &r), QO_OK);
     e = err_lsb(r, want);
-    if (e > 1.0 + 1e-6) fail_msg("normalize " QFMT " = " QFMT ": %.3f LSB", QARG(q), QARG(r), e);
+    if (e > f->bound_lsb + 1e-6)
+        fail_msg("%s " QFMT " = " QFMT ": %.3f LSB", f->name, QARG(q), QARG(r), e);
+    if (r.w > QO_Q30_ONE || r.w < -QO_Q30_ONE || r.x > QO_Q30_ONE || r.x < -QO_Q30_ONE ||
+        r.y > QO_Q30_ONE || r.y < -QO_Q30_ONE || r.z > QO_Q30_ONE || r.z < -QO_Q30_ONE)
+        fail_msg("%s " QFMT " = " QFMT ": beyond 1", f->name, QARG(q), QARG(r));
 }
 
 static void test_normalize(void **state)
@@ -167,28 +183,45 @@ static void test_normalize(void **state)
         { 1, 0, 0, 0 }, { 0, 0, 0, -1 }, { 1, 1, 1, 1 }, { 1, -1, 2, 0 },
         { INT32_MIN, INT32_MIN, INT32_MIN, INT32_MIN }, { INT32_MAX, INT32_MAX, INT32_MAX, INT32_MAX },
         { INT32_MIN, 0, 0, 0 }, { INT32_MAX, INT32_MIN, 1, -1 }, { QO_Q30_ONE, 0, 0, 0 },
-        { 3, 4, 0, 0 },
+        { 3, 4, 0, 0 }, { 1 << 29, 1 << 29, 1 << 29, 1 << 29 }, { (1 << 29) - 1, 0, 0, 0 },
+        { 0x3FFFFFFF, 0x3FFFFFFF, 0x3FFFFFFF, 0x3FFFFFFF }, { 0, 1 << 30, 0, 1 << 30 },
+        /* |q|^2 just below 2^60 (normalize_fast's 2^30 boundary of its scaled square) */
+        { 717548339, 401245721, 510734886, 464970573 }, { 1 << 29, 1, 1, 1 },
     };
-    size_t i;
+    size_t i, f;
     int k;
     (void)state;
-    assert_int_equal(qo_quat_normalize_q30(z, &r), QO_E_DEGENERATE);
-    assert_int_equal(r.w, QO_Q30_ONE); assert_int_equal(r.x, 0);
-    assert_int_equal(qo_quat_normalize_q30(z, NULL), QO_E_NULL);
-    for (i = 0; i < sizeof edges / sizeof edges[0]; i++) check_normalize(edges[i]);
-    /* Sign kept. */
-    assert_int_equal(qo_quat_normalize_q30(edges[6], &r), QO_OK);
-    assert_int_equal(r.w, -QO_Q30_ONE);
-    rng_state = 12;
-    for (k = 0; k < 20000; k++) {
-        /* Random directions at random scales, from a few LSB to the end of the range. */
-        dq d = rand_unit();
-        double s = ldexp(1.0, -(int)(rnd() % 28u)) * (1.0 + urand());
-        qo_quat_q30 q;
-        q.w = qo_q30_from_f32((float)(d.w * s)); q.x = qo_q30_from_f32((float)(d.x * s));
-        q.y = qo_q30_from_f32((float)(d.y * s)); q.z = qo_q30_from_f32((float)(d.z * s));
-        if (q.w == 0 && q.x == 0 && q.y == 0 && q.z == 0) continue;
-        check_normalize(q);
+    for (f = 0; f < sizeof norm_impls / sizeof norm_impls[0]; f++) {
+        const norm_impl *n = &norm_impls[f];
+        r.w = 7;
+        assert_int_equal(n->fn(z, &r), QO_E_DEGENERATE);
+        assert_int_equal(r.w, QO_Q30_ONE); assert_int_equal(r.x, 0);
+        assert_int_equal(n->fn(z, NULL), QO_E_NULL);
+        for (i = 0; i < sizeof edges / sizeof edges[0]; i++) check_normalize(n, edges[i]);
+        /* Sign kept (-1 exactly for the exact one). */
+        assert_int_equal(n->fn(edges[6], &r), QO_OK);
+        assert_true(r.w >= -QO_Q30_ONE && r.w <= -QO_Q30_ONE + (int32_t)n->bound_lsb);
+        if (n->bound_lsb <= 1.0) assert_int_equal(r.w, -QO_Q30_ONE);
+        rng_state = 12;
+        for (k = 0; k < 20000; k++) {
+            /* Random directions at random scales, from a few LSB to the end of the range. */
+            dq d = rand_unit();
+            double s = ldexp(1.0, -(int)(rnd() % 28u)) * (1.0 + urand());
+            qo_quat_q30 q;
+            q.w = qo_q30_from_f32((float)(d.w * s)); q.x = qo_q30_from_f32((float)(d.x * s));
+            q.y = qo_q30_from_f32((float)(d.y * s)); q.z = qo_q30_from_f32((float)(d.z * s));
+            if (q.w == 0 && q.x == 0 && q.y == 0 && q.z == 0) continue;
+            check_normalize(n, q);
+        }
+        /* Raw int32 components of random magnitude (every scaling branch). */
+        for (k = 0; k < 200000; k++) {
+            unsigned sh = (unsigned)(rnd() % 32u);
+            qo_quat_q30 q;
+            q.w = (int32_t)(uint32_t)rnd() >> sh; q.x = (int32_t)(uint32_t)rnd() >> sh;
+            q.y = (int32_t)(uint32_t)rnd() >> sh; q.z = (int32_t)(uint32_t)rnd() >> sh;
+            if (q.w == 0 && q.x == 0 && q.y == 0 && q.z == 0) continue;
+            check_normalize(n, q);
+        }
     }
 }
 

@@ -163,6 +163,10 @@ int main(void)
         qo_quat_q30 r; (void)qo_quat_slerp_q30(qi[j], qi[(j + 1) & 7], ti[j], &r); sink_i = r.w + r.x + r.y + r.z;
 #elif OP == 21
         qo_quat_f32 r; (void)qo_quat_slerp_f32(qf[j], qf[(j + 1) & 7], tf[j], &r); sink_f = r.w + r.x + r.y + r.z;
+#elif OP == 22
+        qo_quat_q30 r; (void)qo_quat_normalize_fast_q30(qi[j], &r); sink_i = r.w + r.x + r.y + r.z;
+#elif OP == 23 && HAVE_INTERP_FX
+        qo_quat_q30 r; (void)qo_quat_slerp_fast_q30(qi[j], qi[(j + 1) & 7], ti[j], &r); sink_i = r.w + r.x + r.y + r.z;
 #endif
     }
     return 0;
@@ -200,10 +204,11 @@ for spec in "0:loop body alone" \
             "15:qo_quat_from_rotvec_q30" "16:qo_quat_to_mat3_q30" \
             "17:to_mat3 + from_mat3 _q30" \
             "18:qo_quat_to_euler_q30" "19:qo_quat_to_euler_f32 (soft)" \
-            "20:qo_quat_slerp_q30" "21:qo_quat_slerp_f32 (soft)"; do
+            "20:qo_quat_slerp_q30" "21:qo_quat_slerp_f32 (soft)" \
+            "22:qo_quat_normalize_fast_q30" "23:qo_quat_slerp_fast_q30"; do
     op=${spec%%:*}; name=${spec#*:}
     case " ${OPS:-$op} " in *" $op "*) ;; *) continue ;; esac
-    if [ "$op" = 20 ] && [ "$HAVE_INTERP_FX" = 0 ]; then
+    if { [ "$op" = 20 ] || [ "$op" = 23 ]; } && [ "$HAVE_INTERP_FX" = 0 ]; then
         printf '%-30s %s\n' "$name" "n/a (lib/src/interp_fx.c not on this branch)"; continue
     fi
     n0=$(run_count "$op" 0)

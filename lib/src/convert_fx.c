@@ -5,16 +5,9 @@
 #include "qorient/fxmath.h"
 #include "qorient/quat_fx.h"
 
+#include "fx_internal.h"
+
 #define P(a, b) ((int64_t)(a) * (b))
-
-static uint64_t mag(int64_t v) { return (uint64_t)(v < 0 ? -v : v); }
-
-/* round(num / den) to nearest, ties away from zero; den > 0, |num| < 2^63. */
-static int64_t div_round(int64_t num, uint64_t den)
-{
-    uint64_t q = (mag(num) + den / 2u) / den;
-    return num < 0 ? -(int64_t)q : (int64_t)q;
-}
 
 static qo_mat3_q30 mat3_identity(void)
 {
@@ -27,16 +20,16 @@ static qo_mat3_q30 mat3_identity(void)
  * squares of three values <= 2^31 sum below 2^64). Returns 0 for the zero vector. */
 static uint64_t scale_vec3(int64_t c[3])
 {
-    uint64_t m = mag(c[0]);
+    uint64_t m = qo_fx_abs_u64(c[0]);
     int i;
-    if (mag(c[1]) > m) m = mag(c[1]);
-    if (mag(c[2]) > m) m = mag(c[2]);
+    if (qo_fx_abs_u64(c[1]) > m) m = qo_fx_abs_u64(c[1]);
+    if (qo_fx_abs_u64(c[2]) > m) m = qo_fx_abs_u64(c[2]);
     if (m == 0) return 0;
     while (m < ((uint64_t)1 << 30)) {
         m <<= 1;
         for (i = 0; i < 3; i++) c[i] *= 2;
     }
-    return qo_fx_sqrt_u64(mag(c[0]) * mag(c[0]) + mag(c[1]) * mag(c[1]) + mag(c[2]) * mag(c[2]));
+    return qo_fx_sqrt_u64(qo_fx_abs_u64(c[0]) * qo_fx_abs_u64(c[0]) + qo_fx_abs_u64(c[1]) * qo_fx_abs_u64(c[1]) + qo_fx_abs_u64(c[2]) * qo_fx_abs_u64(c[2]));
 }
 
 qo_status qo_quat_from_axis_angle_q30(qo_vec3_q30 axis, qo_q28 angle, qo_quat_q30 *out)
@@ -52,9 +45,9 @@ qo_status qo_quat_from_axis_angle_q30(qo_vec3_q30 axis, qo_q28 angle, qo_quat_q3
     (void)qo_fx_sincos_half_q28(angle, &s, &co);
     /* sin(angle/2) * c_i / |c|, one rounding; |c_i * s| <= 2^61. */
     out->w = co;
-    out->x = (qo_q30)div_round(c[0] * s, n);
-    out->y = (qo_q30)div_round(c[1] * s, n);
-    out->z = (qo_q30)div_round(c[2] * s, n);
+    out->x = (qo_q30)qo_fx_div_round_away(c[0] * s, n);
+    out->y = (qo_q30)qo_fx_div_round_away(c[1] * s, n);
+    out->z = (qo_q30)qo_fx_div_round_away(c[2] * s, n);
     return QO_OK;
 }
 
@@ -73,9 +66,9 @@ qo_status qo_quat_to_axis_angle_q30(qo_quat_q30 q, qo_vec3_q30 *axis, qo_q28 *an
     c[0] = u.x; c[1] = u.y; c[2] = u.z;
     n = scale_vec3(c);
     if (n == 0) return QO_OK;   /* zero rotation: axis (1, 0, 0), angle 0 */
-    axis->x = (qo_q30)div_round(c[0] * QO_Q30_ONE, n);
-    axis->y = (qo_q30)div_round(c[1] * QO_Q30_ONE, n);
-    axis->z = (qo_q30)div_round(c[2] * QO_Q30_ONE, n);
+    axis->x = (qo_q30)qo_fx_div_round_away(c[0] * QO_Q30_ONE, n);
+    axis->y = (qo_q30)qo_fx_div_round_away(c[1] * QO_Q30_ONE, n);
+    axis->z = (qo_q30)qo_fx_div_round_away(c[2] * QO_Q30_ONE, n);
     /* 2 atan2(|v|, |w|), scale-free: the angle between the identity and q. */
     *angle = qo_quat_angle_between_q30(qo_quat_identity_q30(), u);
     return QO_OK;
@@ -83,20 +76,7 @@ qo_status qo_quat_to_axis_angle_q30(qo_quat_q30 q, qo_vec3_q30 *axis, qo_q28 *an
 
 qo_status qo_quat_from_rotvec_q30(qo_vec3_q28 rv, qo_quat_q30 *out)
 {
-    uint64_t n;
-    qo_q30 s, c;
-    if (out == NULL) return QO_E_NULL;
-    *out = qo_quat_identity_q30();
-    /* Three squares of at most 2^62 sum below 2^64; the norm is below 2^32 (|rv| < 16). */
-    n = qo_fx_sqrt_u64(mag(rv.x) * mag(rv.x) + mag(rv.y) * mag(rv.y) + mag(rv.z) * mag(rv.z));
-    if (n == 0) return QO_OK;
-    /* Half of |rv| in Q3.60 without rounding: n * 2^31 < 2^63. */
-    (void)qo_fx_sincos_q60((int64_t)n * ((int64_t)1 << 31), &s, &c);
-    out->w = c;
-    out->x = (qo_q30)div_round(P(rv.x, s), n);
-    out->y = (qo_q30)div_round(P(rv.y, s), n);
-    out->z = (qo_q30)div_round(P(rv.z, s), n);
-    return QO_OK;
+    return qo_fx_quat_from_rotvec(rv, out);
 }
 
 qo_status qo_quat_to_rotvec_q30(qo_quat_q30 q, qo_vec3_q28 *out)
@@ -135,17 +115,17 @@ static int unit_q31(qo_quat_q30 q, int64_t u[4])
     uint64_t m = 0, n2 = 0, n;
     int i, all = 1;
     c[0] = q.w; c[1] = q.x; c[2] = q.y; c[3] = q.z;
-    for (i = 0; i < 4; i++) if (mag(c[i]) > m) m = mag(c[i]);
+    for (i = 0; i < 4; i++) if (qo_fx_abs_u64(c[i]) > m) m = qo_fx_abs_u64(c[i]);
     if (m == 0) return 0;
     while (m < ((uint64_t)1 << 30)) {
         m <<= 1;
         for (i = 0; i < 4; i++) c[i] *= 2;
     }
-    for (i = 0; i < 4; i++) if (mag(c[i]) != ((uint64_t)1 << 31)) all = 0;
+    for (i = 0; i < 4; i++) if (qo_fx_abs_u64(c[i]) != ((uint64_t)1 << 31)) all = 0;
     if (all) for (i = 0; i < 4; i++) c[i] /= 2;   /* four of 2^31 would carry out of 64 bits */
-    for (i = 0; i < 4; i++) n2 += mag(c[i]) * mag(c[i]);
+    for (i = 0; i < 4; i++) n2 += qo_fx_abs_u64(c[i]) * qo_fx_abs_u64(c[i]);
     n = qo_fx_sqrt_u64(n2);
-    for (i = 0; i < 4; i++) u[i] = div_round(c[i] * ((int64_t)1 << 31), n);
+    for (i = 0; i < 4; i++) u[i] = qo_fx_div_round_away(c[i] * ((int64_t)1 << 31), n);
     return 1;
 }
 
@@ -252,7 +232,7 @@ qo_status qo_quat_from_mat3_q30(const qo_mat3_q30 *m, qo_quat_q30 *out)
      * (costs at most 2 bits of 2^32, far below an LSB of the normalised result). */
     for (;;) {
         mx = 0;
-        for (i = 0; i < 4; i++) if (mag(q[i]) > mx) mx = mag(q[i]);
+        for (i = 0; i < 4; i++) if (qo_fx_abs_u64(q[i]) > mx) mx = qo_fx_abs_u64(q[i]);
         if (mx < ((uint64_t)1 << 31)) break;
         for (i = 0; i < 4; i++) q[i] = (q[i] + 1) >> 1;
     }

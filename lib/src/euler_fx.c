@@ -17,6 +17,8 @@
 #include "qorient/euler_fx.h"
 #include "qorient/fxmath.h"
 
+#include "fx_internal.h"
+
 /* pi and 2pi in Q8.56 (int64, rounded): the angle arithmetic of the nearest-solution variant
  * is done at 2^-56 and rounded to Q3.28 once. */
 #define PI_Q56     ((int64_t)226375608064910089LL)
@@ -40,23 +42,12 @@ static int seq_proper(qo_euler_seq seq) { return ((int)seq % 12) >= 6; }
 /* A quaternion held in int64 components, w x y z = v[0..3]. */
 typedef struct q64 { int64_t v[4]; } q64;
 
-static uint64_t abs_u64(int64_t a)
-{
-    return a < 0 ? (uint64_t)0 - (uint64_t)a : (uint64_t)a;
-}
-
 /* a * b exactly, for |a|, |b| < 2^32 (every product in this file): the magnitudes through
  * the 32x32 product of fxmath.h, not libgcc's 64x64 multiply (slow on Cortex-M0). */
 static int64_t smul(int64_t a, int64_t b)
 {
-    uint64_t p = qo_fx_umul32_u64((uint32_t)abs_u64(a), (uint32_t)abs_u64(b));
+    uint64_t p = qo_fx_umul32_u64((uint32_t)qo_fx_abs_u64(a), (uint32_t)qo_fx_abs_u64(b));
     return (a < 0) != (b < 0) ? -(int64_t)p : (int64_t)p;
-}
-
-/* round(a / 2^s) for s >= 1 (ties toward +inf). */
-static int64_t rshift_round(int64_t a, unsigned s)
-{
-    return (a + ((int64_t)1 << (s - 1))) >> s;
 }
 
 /* atan2(y, x) for int64 arguments of one scale, |y|, |x| < 2^63: both are reduced by the
@@ -83,7 +74,7 @@ static uint32_t shr_round(uint64_t v, unsigned s)
 
 static qo_q28 atan2_i64(int64_t y, int64_t x)
 {
-    uint64_t ay = abs_u64(y), ax = abs_u64(x), m = ay > ax ? ay : ax;
+    uint64_t ay = qo_fx_abs_u64(y), ax = qo_fx_abs_u64(x), m = ay > ax ? ay : ax;
     unsigned s = 0;
     int32_t yy, xx;
     uint32_t t;
@@ -100,25 +91,23 @@ static qo_q28 atan2_i64(int64_t y, int64_t x)
     return qo_fx_atan2_q28(yy, xx);
 }
 
-/* round(a / 2^s) for s >= 1, ties away from zero: odd in a, so a product with -q is exactly
- * the negated product with q (q and -q then give bit-identical angles, as in the _f32 core). */
-static int64_t rshift_round_odd(int64_t a, unsigned s)
-{
-    int64_t m = (int64_t)((abs_u64(a) + ((uint64_t)1 << (s - 1))) >> s);
-    return a < 0 ? -m : m;
-}
-
-/* Hamilton product a * b, each component round(sum / 2^shift) (ties away from zero). The caller guarantees the
+/* Hamilton product a * b, each component round(sum / 2^shift) with ties away from zero: odd,
+ * so a product with -q is exactly the negated product with q (q and -q then give bit-identical
+ * angles, as in the _f32 core). The caller guarantees the
  * bounds: every single product < 2^62 and the true sum < 2^62 (then the partial sums of up to
  * four such products stay below 2^63). */
 static q64 qmul(q64 a, q64 b, unsigned shift)
 {
     const int64_t *p = a.v, *q = b.v;
     q64 r;
-    r.v[0] = rshift_round_odd(smul(p[0], q[0]) - smul(p[1], q[1]) - smul(p[2], q[2]) - smul(p[3], q[3]), shift);
-    r.v[1] = rshift_round_odd(smul(p[0], q[1]) + smul(p[1], q[0]) + smul(p[2], q[3]) - smul(p[3], q[2]), shift);
-    r.v[2] = rshift_round_odd(smul(p[0], q[2]) - smul(p[1], q[3]) + smul(p[2], q[0]) + smul(p[3], q[1]), shift);
-    r.v[3] = rshift_round_odd(smul(p[0], q[3]) + smul(p[1], q[2]) - smul(p[2], q[1]) + smul(p[3], q[0]), shift);
+    r.v[0] = qo_fx_rshift_round_away(
+        smul(p[0], q[0]) - smul(p[1], q[1]) - smul(p[2], q[2]) - smul(p[3], q[3]), shift);
+    r.v[1] = qo_fx_rshift_round_away(
+        smul(p[0], q[1]) + smul(p[1], q[0]) + smul(p[2], q[3]) - smul(p[3], q[2]), shift);
+    r.v[2] = qo_fx_rshift_round_away(
+        smul(p[0], q[2]) - smul(p[1], q[3]) + smul(p[2], q[0]) + smul(p[3], q[1]), shift);
+    r.v[3] = qo_fx_rshift_round_away(
+        smul(p[0], q[3]) + smul(p[1], q[2]) - smul(p[2], q[1]) + smul(p[3], q[0]), shift);
     return r;
 }
 
@@ -176,11 +165,11 @@ static q64 scale_pow2(qo_quat_q30 q)
     int i;
     r.v[0] = q.w; r.v[1] = q.x; r.v[2] = q.y; r.v[3] = q.z;
     m = 0;
-    for (i = 0; i < 4; i++) if (abs_u64(r.v[i]) > m) m = abs_u64(r.v[i]);
+    for (i = 0; i < 4; i++) if (qo_fx_abs_u64(r.v[i]) > m) m = qo_fx_abs_u64(r.v[i]);
     if (m > ((uint64_t)1 << 30)) {
         /* halved, rounded on the magnitude (so q and -q stay exact negatives): <= 2^30 */
         for (i = 0; i < 4; i++) {
-            int64_t h = (int64_t)((abs_u64(r.v[i]) + 1u) >> 1);
+            int64_t h = (int64_t)((qo_fx_abs_u64(r.v[i]) + 1u) >> 1);
             r.v[i] = r.v[i] < 0 ? -h : h;
         }
     } else {
@@ -345,16 +334,16 @@ static int64_t unwrap_toward(int64_t a, qo_q28 ref)
 /* (a - ref) in Q3.28 for the nearness comparison (a is within a few pi of ref). */
 static int64_t diff_q28(int64_t a, qo_q28 ref)
 {
-    return rshift_round(a - q56_from_q28(ref), 28);
+    return qo_fx_rshift_round_up(a - q56_from_q28(ref), 28);
 }
 
 /* The Q8.56 angle rounded to Q3.28; if that does not fit int32 (|angle| >= 8 rad) it is taken
  * one turn back toward zero and *ovf is set. */
 static qo_q28 to_q28(int64_t a, int *ovf)
 {
-    int64_t r = rshift_round(a, 28);
-    if (r > INT32_MAX) { r = rshift_round(a - TWO_PI_Q56, 28); *ovf = 1; }
-    else if (r < INT32_MIN) { r = rshift_round(a + TWO_PI_Q56, 28); *ovf = 1; }
+    int64_t r = qo_fx_rshift_round_up(a, 28);
+    if (r > INT32_MAX) { r = qo_fx_rshift_round_up(a - TWO_PI_Q56, 28); *ovf = 1; }
+    else if (r < INT32_MIN) { r = qo_fx_rshift_round_up(a + TWO_PI_Q56, 28); *ovf = 1; }
     return (qo_q28)r;
 }
 
@@ -388,7 +377,7 @@ qo_status qo_quat_to_euler_near_q30(qo_quat_q30 q, qo_euler_seq seq, qo_euler_q2
          * flips the sign of its quaternion, which the fit ignores). */
         if ((da2 < 0 ? -da2 : da2) < (dp2 < 0 ? -dp2 : dp2)) {
             p2 = alt2;
-            a2_in_range = seq_proper(seq) ? -r.e.a2 : (qo_q28)rshift_round(PI_Q56 - q56_from_q28(r.e.a2), 28);
+            a2_in_range = seq_proper(seq) ? -r.e.a2 : (qo_q28)qo_fx_rshift_round_up(PI_Q56 - q56_from_q28(r.e.a2), 28);
         } else {
             a2_in_range = r.e.a2;
         }

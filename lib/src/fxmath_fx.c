@@ -2,9 +2,7 @@
  * Integer arithmetic only (int64 products and divisions): no floating point, no libm. */
 #include "qorient/fxmath.h"
 
-/* The rounding shifts below rely on >> of a negative value being an arithmetic shift
- * (implementation-defined in C99, arithmetic on gcc and clang for every target). */
-typedef char qo_fx_arith_shift_check[((-1) >> 1) == -1 ? 1 : -1];
+#include "fx_internal.h"
 
 /* pi/2 in Q3.60 and 2pi in Q3.60 (rounded): the reduction constants of sincos and wrap. */
 #define HALF_PI_Q60 ((int64_t)1811004864519280711LL)
@@ -35,8 +33,7 @@ qo_q30 qo_fx_neg_q30(qo_q30 a) { return qo_fx_sat_i32(-(int64_t)a); }
  * overflow. */
 static int32_t mul_shift(int32_t a, int32_t b, unsigned shift)
 {
-    int64_t p = (int64_t)a * b;
-    return qo_fx_sat_i32((p + ((int64_t)1 << (shift - 1))) >> shift);
+    return qo_fx_sat_i32(qo_fx_rshift_round_up((int64_t)a * b, shift));
 }
 
 qo_q30 qo_fx_mul_q30(int32_t a, qo_q30 b) { return mul_shift(a, b, 30); }
@@ -137,6 +134,19 @@ uint64_t qo_fx_sqrt_u64(uint64_t v)
     return ((uint64_t)s + ((uint64_t)1 << (k - 1u))) >> k;
 }
 
+uint32_t qo_fx_rsqrt32_q30(uint32_t x)
+{
+    /* Two Newton steps y (3 - h y^2) / 2, h = x / 2^32, from the table seed (2^-7.8), in
+     * 32x32 -> 64 products (truncations <= 2^-30): 2^-7.8 -> ~2^-15 -> ~2^-29. */
+    uint32_t y = rsqrt_seed[(x >> 25) - 32u], y2, e;          /* Q1.15 */
+    e = 3u * ((uint32_t)1 << 30) - (uint32_t)(qo_fx_umul32_u64(x, y * y) >> 32);   /* Q2.30 */
+    y = (uint32_t)(qo_fx_umul32_u64(y, e) >> 16);             /* Q2.30, ~2^-15 */
+    if (y > 0x7FFFFFFFu) y = 0x7FFFFFFFu;                     /* 1/sqrt(h) <= 2: y^2 < 2^62 */
+    y2 = (uint32_t)(qo_fx_umul32_u64(y, y) >> 30);            /* y^2, Q2.30 (< 4) */
+    e = 3u * ((uint32_t)1 << 30) - (uint32_t)(qo_fx_umul32_u64(x, y2) >> 32);
+    return (uint32_t)(qo_fx_umul32_u64(y, e) >> 31);          /* y e / 2, Q2.30 */
+}
+
 qo_status qo_fx_sqrt_q30(qo_q30 x, qo_q30 *out)
 {
     if (out == NULL) return QO_E_NULL;
@@ -194,13 +204,7 @@ qo_q30 qo_fx_norm4_q30(qo_q30 w, qo_q30 x, qo_q30 y, qo_q30 z)
 /* round(a * b / 2^31) for |a|, |b| <= 2^31 (product <= 2^62). */
 static int64_t mul31(int64_t a, int64_t b)
 {
-    return (a * b + ((int64_t)1 << 30)) >> 31;
-}
-
-/* round(v / 2^s), s >= 1. */
-static int64_t rshift_round(int64_t v, unsigned s)
-{
-    return (v + ((int64_t)1 << (s - 1))) >> s;
+    return qo_fx_rshift_round_up(a * b, 31);
 }
 
 /* Taylor coefficients in Q1.31 (rounded): sin = r + r*u*(c3 + u*(c5 + ...)) to r^11 and
@@ -221,7 +225,7 @@ qo_status qo_fx_sincos_q60(int64_t angle_q60, qo_q30 *s, qo_q30 *c)
      * leading terms r and 1 are kept exact in Q2.62; u = r^2 is formed from r in Q32 as an
      * exact unsigned 64-bit square; only the small correction terms go through the Q1.31
      * Horner evaluation. |r| <= pi/4, so |r32| < 2^31.7 and r32^2 < 2^63.3 (unsigned). */
-    r32 = rshift_round(r, 28);
+    r32 = qo_fx_rshift_round_up(r, 28);
     ar = (uint64_t)(r32 < 0 ? -r32 : r32);
     u64 = ar * ar;                                   /* Q64 */
     u31 = (int64_t)((u64 + ((uint64_t)1 << 32)) >> 33);
@@ -231,15 +235,15 @@ qo_status qo_fx_sincos_q60(int64_t angle_q60, qo_q30 *s, qo_q30 *c)
     ws = sin_c[2] + mul31(u31, ws);
     ws = sin_c[1] + mul31(u31, ws);
     ws = sin_c[0] + mul31(u31, ws);                  /* ~ -1/6, Q1.31 */
-    w34 = rshift_round(u31 * ws, 28);                /* u * ws ~ -u/6 in Q34 (< 2^30.8) */
-    sv = r * 4 + rshift_round(r32 * w34, 4);         /* Q62: r + r u ws */
+    w34 = qo_fx_rshift_round_up(u31 * ws, 28);       /* u * ws ~ -u/6 in Q34 (< 2^30.8) */
+    sv = r * 4 + qo_fx_rshift_round_up(r32 * w34, 4);   /* Q62: r + r u ws */
     wc = cos_c[5];
     wc = cos_c[4] + mul31(u31, wc);
     wc = cos_c[3] + mul31(u31, wc);
     wc = cos_c[2] + mul31(u31, wc);
     wc = cos_c[1] + mul31(u31, wc);
     wc = cos_c[0] + mul31(u31, wc);                  /* ~ -1/2, Q1.31 */
-    cv = ((int64_t)1 << 62) + rshift_round(u33 * wc, 2);   /* Q62: 1 + u wc */
+    cv = ((int64_t)1 << 62) + qo_fx_rshift_round_up(u33 * wc, 2);   /* Q62: 1 + u wc */
     quadrant = (int)(((k % 4) + 4) % 4);
     switch (quadrant) {
     case 1: t = sv; sv = cv; cv = -t; break;
@@ -248,8 +252,8 @@ qo_status qo_fx_sincos_q60(int64_t angle_q60, qo_q30 *s, qo_q30 *c)
     default: break;
     }
     /* Q2.62 -> Q1.30, rounded once, and kept within [-1, 1]. */
-    sv = rshift_round(sv, 32);
-    cv = rshift_round(cv, 32);
+    sv = qo_fx_rshift_round_up(sv, 32);
+    cv = qo_fx_rshift_round_up(cv, 32);
     if (sv > QO_Q30_ONE) sv = QO_Q30_ONE;
     if (sv < -QO_Q30_ONE) sv = -QO_Q30_ONE;
     if (cv > QO_Q30_ONE) cv = QO_Q30_ONE;
@@ -257,6 +261,44 @@ qo_status qo_fx_sincos_q60(int64_t angle_q60, qo_q30 *s, qo_q30 *c)
     if (s != NULL) *s = (qo_q30)sv;
     if (c != NULL) *c = (qo_q30)cv;
     return (s == NULL || c == NULL) ? QO_E_NULL : QO_OK;
+}
+
+/* round(a * b / 2^31) for |a|, |b| < 2^31 through the 32x32 product (no libgcc call). */
+static int64_t mul31s(int64_t a, int64_t b)
+{
+    return qo_fx_rshift_round_up(qo_fx_mul32_i64((int32_t)a, (int32_t)b), 31);
+}
+
+/* About a b / 2^31 for int32 a, b with |a b| < 2^62, from three 16x16 products (the low x
+ * low one dropped) in 32-bit words: within 2 units of 2^-31 of the exact value. */
+static int32_t mulq31_fast(int32_t a, int32_t b)
+{
+    int32_t ah = a >> 16, bh = b >> 16;
+    int32_t al = (int32_t)((uint32_t)a & 0xFFFFu), bl = (int32_t)((uint32_t)b & 0xFFFFu);
+    return 2 * ah * bh + (((ah * bl) >> 1) + ((al * bh) >> 1)) / 16384;
+}
+
+/* Taylor coefficients on |y| <= pi/4 in Q1.31: sin to y^9 (truncation < 2e-9), cos to y^10
+ * (< 2e-10). */
+static const int32_t sin2y_c[4] = { -357913941, 17895697, -426088, 5918 };
+static const int32_t cos2y_c[5] = { -1073741824, 89478485, -2982616, 53261, -592 };
+
+void qo_fx_sincos_2y_q30(uint32_t y, qo_q30 *s, qo_q30 *c)
+{
+    /* sin y = y (1 + u ws), cos y = 1 + u wc, u = y^2, Horner in 32-bit words; then the
+     * angle doubling: sin 2y = 2 sin y cos y, cos 2y = (cos y - sin y)(cos y + sin y). */
+    int32_t u = mulq31_fast((int32_t)y, (int32_t)y);   /* Q1.31, <= 0.62 */
+    int32_t ws = sin2y_c[3], wc = cos2y_c[4];
+    uint32_t sy, cy;
+    int k;
+    for (k = 2; k >= 0; k--) ws = sin2y_c[k] + mulq31_fast(u, ws);
+    for (k = 3; k >= 0; k--) wc = cos2y_c[k] + mulq31_fast(u, wc);
+    /* Q1.31, both < 2^31 for y <= pi/4 (the factor 1 + u ws is <= 2^31: unsigned) */
+    sy = (uint32_t)(qo_fx_umul32_u64(y, (uint32_t)(((int32_t)1 << 30) + (mulq31_fast(u, ws) >> 1)) * 2u) >> 31);
+    cy = (uint32_t)((int64_t)((uint32_t)1 << 31) + mulq31_fast(u, wc));
+    *s = (qo_q30)(qo_fx_umul32_u64(sy, cy) >> 31);
+    /* cos y - sin y >= 0 but for rounding at y = pi/4 itself */
+    *c = (qo_q30)(qo_fx_umul32_u64(cy > sy ? cy - sy : 0u, cy + sy) >> 32);
 }
 
 qo_status qo_fx_sincos_q28(qo_q28 angle_rad, qo_q30 *s, qo_q30 *c)
@@ -285,14 +327,8 @@ qo_q30 qo_fx_cos_q28(qo_q28 angle_rad)
     return c;
 }
 
-/* round(a * b / 2^31) for |a|, |b| < 2^31 through the 32x32 product (no libgcc call). */
-static int64_t mul31s(int64_t a, int64_t b)
-{
-    return (qo_fx_mul32_i64((int32_t)a, (int32_t)b) + ((int64_t)1 << 30)) >> 31;
-}
-
 /* 2^62 / d at the midpoint of each of 64 intervals of d in [2^31, 2^32) (index d >> 25),
- * rounded: relative error <= 2^-8, the seed of recip62 (256 bytes of flash). */
+ * rounded: relative error <= 2^-8, the seed of qo_fx_recip62_u32 (256 bytes of flash). */
 static const uint32_t recip_seed[64] = {
     2130836488u, 2098304633u, 2066751180u, 2036132644u, 2006408080u, 1977538899u, 1949488702u, 1922223125u,
     1895709703u, 1869917734u, 1844818167u, 1820383490u, 1796587627u, 1773405851u, 1750814694u, 1728791868u,
@@ -304,19 +340,15 @@ static const uint32_t recip_seed[64] = {
     1140572228u, 1131184802u, 1121950641u, 1112866020u, 1103927337u, 1095131103u, 1086473940u, 1077952576u,
 };
 
-/* About 2^62 / d for d in [2^31, 2^32): two Newton steps r += r (2^62 - d r) / 2^62 from the
- * seed, multiplications only. The first in 16x16 products (d r / 2^32 from the high halves,
- * relative truncation < 2^-14: 2^-8 -> ~2^-14), the second in full 64-bit products
+/* See fx_internal.h. The first Newton step in 16x16 products (d r / 2^32 from the high
+ * halves, relative truncation < 2^-14: 2^-8 -> ~2^-14), the second in full 64-bit products
  * (-> ~2^-28, the truncations included). */
-static uint32_t recip62(uint32_t d)
+uint32_t qo_fx_recip62_u32(uint32_t d)
 {
     uint32_t r = recip_seed[(d >> 25) - 64u];
     int32_t e32 = (int32_t)((uint32_t)1 << 30) - (int32_t)((d >> 16) * (r >> 16));   /* |.| < 2^23 */
-    int64_t e;
     r = (uint32_t)((int64_t)r + ((int32_t)(r >> 16) * (e32 / 128)) / 128);   /* may reach 2^31 */
-    e = ((int64_t)1 << 62) - (int64_t)qo_fx_umul32_u64(d, r);   /* |e| <= 2^49 */
-    r = (uint32_t)((int64_t)r + (qo_fx_mul32_i64((int32_t)(r >> 1), (int32_t)(e >> 31)) >> 30));
-    return r;
+    return qo_fx_recip62_step(d, r);
 }
 
 qo_q28 qo_fx_atan2_q28(int32_t y, int32_t x)
@@ -357,7 +389,7 @@ qo_q28 qo_fx_atan2_q28(int32_t y, int32_t x)
      * final rounding 2^-32: about 0.3 LSB of Q1.31 in all (0.04 LSB of the Q3.28 result). */
     f = (bx >> 35) ? 4u : (bx >> 34) ? 3u : 2u;
     d = (uint32_t)(bx >> f);
-    r = recip62(d);                                   /* ~2^62 / d */
+    r = qo_fx_recip62_u32(d);                         /* ~2^62 / d */
     t = (qo_fx_mul32_i64(by, (int32_t)(r >> 1)) + ((int64_t)1 << (29u + f))) >> (30u + f);
     /* atan(t) = t (1 - t^2/3 + t^4/5 - t^6/7); the next term is < 2e-12. u = t^2 <= 2^-8:
      * the two inner Horner steps only feed terms below u^2/5 < 2^-18, so 16x16 products

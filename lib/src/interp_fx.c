@@ -6,9 +6,7 @@
 #include "qorient/fxmath.h"
 #include "qorient/quat_fx.h"
 
-/* The rounding shifts below rely on >> of a negative value being an arithmetic shift
- * (implementation-defined in C99, arithmetic on gcc and clang for every target). */
-typedef char qo_interp_fx_arith_shift_check[((-1) >> 1) == -1 ? 1 : -1];
+#include "fx_internal.h"
 
 #define ONE64 ((int64_t)QO_Q30_ONE)
 /* 1/3 and 2/3 in Q1.30, rounded to nearest. */
@@ -43,17 +41,6 @@ static int is_zero_q(qo_quat_q30 q)
     return q.w == 0 && q.x == 0 && q.y == 0 && q.z == 0;
 }
 
-/* round(v / 2^s), ties toward +inf, s >= 1. */
-static int64_t rshift_round(int64_t v, unsigned s)
-{
-    return (v + ((int64_t)1 << (s - 1))) >> s;
-}
-
-static uint64_t abs_u64(int64_t v)
-{
-    return v < 0 ? (uint64_t)0 - (uint64_t)v : (uint64_t)v;
-}
-
 /* Unit quaternion v/|v| of an int64 4-vector of any scale (the format cancels), rounded to
  * nearest per component. Returns 0 (and identity) for the zero vector.
  * The vector is scaled by a power of two so that its largest component is in [2^30, 2^31]:
@@ -69,7 +56,7 @@ static int unit_from_i64(const int64_t v[4], qo_quat_q30 *out)
     unsigned sh = 0, k;
     int i;
     for (i = 0; i < 4; i++) {
-        uint64_t av = abs_u64(v[i]);
+        uint64_t av = qo_fx_abs_u64(v[i]);
         if (av > m) m = av;
     }
     if (m == 0) {
@@ -79,7 +66,7 @@ static int unit_from_i64(const int64_t v[4], qo_quat_q30 *out)
     if (m > ((uint64_t)1 << 31)) {
         while ((m >> sh) > ((uint64_t)1 << 31)) sh++;
         /* m >> sh in (2^30, 2^31]; after rounding the largest is at most 2^31. */
-        for (i = 0; i < 4; i++) w[i] = rshift_round(v[i], sh);
+        for (i = 0; i < 4; i++) w[i] = qo_fx_rshift_round_up(v[i], sh);
     } else {
         while ((m << sh) < ((uint64_t)1 << 30)) sh++;
         for (i = 0; i < 4; i++) w[i] = v[i] * ((int64_t)1 << sh);   /* exact, no shift of < 0 */
@@ -91,7 +78,7 @@ static int unit_from_i64(const int64_t v[4], qo_quat_q30 *out)
     for (i = 0; i < 4; i++) {
         qo_q30 c;
         /* w_i 2^30 / |w| = w_i 2^(29 + k/2) / N; |w_i| 2^(29 + k/2) <= 2^31 * 2^31. */
-        num = abs_u64(w[i]) << (29u + k / 2u);
+        num = qo_fx_abs_u64(w[i]) << (29u + k / 2u);
         q = (num + N / 2u) / N;
         c = (qo_q30)q;   /* <= 2^30 */
         if (w[i] < 0) c = -c;
@@ -154,10 +141,10 @@ static qo_q28 angle4(qo_quat_q30 a, qo_quat_q30 b)
 /* sin(x)/x in Q1.31 for x in Q3.28 (int64), |x| <= pi (+ a few LSB). */
 static int64_t sinc_q31(int64_t x)
 {
-    int64_t v = rshift_round(x * x, 29);   /* x^2 (Q56) / 16 -> Q31, <= 0.62 * 2^31 */
+    int64_t v = qo_fx_rshift_round_up(x * x, 29);   /* x^2 (Q56) / 16 -> Q31, <= 0.62 * 2^31 */
     int64_t h = sinc_c[10];
     int k;
-    for (k = 9; k >= 0; k--) h = sinc_c[k] + rshift_round(v * h, 31);
+    for (k = 9; k >= 0; k--) h = sinc_c[k] + qo_fx_rshift_round_up(v * h, 31);
     return h;
 }
 
@@ -165,8 +152,8 @@ static int64_t sinc_q31(int64_t x)
  * |u th| <= pi. Relative accuracy ~1e-9 for every th, including th == 0 (w = u exactly). */
 static int64_t weight_q31(int64_t u, qo_q28 th)
 {
-    int64_t ut = rshift_round(u * th, 30);   /* Q3.28 */
-    return rshift_round(u * sinc_q31(ut), 30);
+    int64_t ut = qo_fx_rshift_round_up(u * th, 30);   /* Q3.28 */
+    return qo_fx_rshift_round_up(u * sinc_q31(ut), 30);
 }
 
 /* Great-circle interpolation of unit a and b with th = angle4(a, b), u in Q1.30 within
@@ -200,7 +187,7 @@ static qo_quat_q30 slerp_weights(qo_quat_q30 a, qo_quat_q30 b, qo_q28 th, int64_
         hi = sa >> 30;
         lo = sa - hi * ((int64_t)1 << 30);   /* 0 <= lo < 2^30 */
         for (i = 0; i < 4; i++)
-            r[i] = s[i] * ((int64_t)1 << 30) - hi * av[i] - rshift_round(lo * av[i], 30);
+            r[i] = s[i] * ((int64_t)1 << 30) - hi * av[i] - qo_fx_rshift_round_up(lo * av[i], 30);
         (void)unit_from_i64(r, &e);
         /* u th in Q3.60: u (Q30) * th (Q28) is Q58, |u th| <= 2 pi < 8. */
         (void)qo_fx_sincos_q60(u * th * 4, &sn, &cs);
@@ -239,10 +226,10 @@ qo_status qo_quat_lerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *
     if (check_t(t) != QO_OK) return QO_E_RANGE;
     /* a + round(t (b - a)): |t (b - a)| <= 2^30 * 2^32; the result lies between a and b,
      * so it fits (t == 1: b - a exactly). */
-    out->w = (qo_q30)(a.w + rshift_round((int64_t)t * ((int64_t)b.w - a.w), 30));
-    out->x = (qo_q30)(a.x + rshift_round((int64_t)t * ((int64_t)b.x - a.x), 30));
-    out->y = (qo_q30)(a.y + rshift_round((int64_t)t * ((int64_t)b.y - a.y), 30));
-    out->z = (qo_q30)(a.z + rshift_round((int64_t)t * ((int64_t)b.z - a.z), 30));
+    out->w = (qo_q30)(a.w + qo_fx_rshift_round_up((int64_t)t * ((int64_t)b.w - a.w), 30));
+    out->x = (qo_q30)(a.x + qo_fx_rshift_round_up((int64_t)t * ((int64_t)b.x - a.x), 30));
+    out->y = (qo_q30)(a.y + qo_fx_rshift_round_up((int64_t)t * ((int64_t)b.y - a.y), 30));
+    out->z = (qo_q30)(a.z + qo_fx_rshift_round_up((int64_t)t * ((int64_t)b.z - a.z), 30));
     return QO_OK;
 }
 
@@ -297,6 +284,70 @@ qo_status qo_quat_slerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 
         return QO_OK;
     }
     *out = slerp_weights(ua, ub, angle4(ua, ub), t);
+    return QO_OK;
+}
+
+/* round(p / 2^30) of an exact product sum (ties up). */
+static int32_t rnd30_i32(int64_t p) { return (int32_t)qo_fx_rshift_round_up(p, 30); }
+
+qo_status qo_quat_slerp_fast_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out)
+{
+    qo_quat_q30 ua, ub, v, e;
+    qo_status sa, sb;
+    int64_t d;
+    int32_t c, vn;
+    qo_q30 sn, cs;
+    qo_q28 th;
+    if (out == NULL) return QO_E_NULL;
+    sa = qo_quat_normalize_fast_q30(a, &ua);
+    sb = qo_quat_normalize_fast_q30(b, &ub);
+    if (sa != QO_OK || sb != QO_OK) {
+        *out = identity_q();
+        return sa != QO_OK ? sa : sb;
+    }
+    *out = ua;
+    if (check_t(t) != QO_OK) return QO_E_RANGE;
+    /* Products through qo_fx_mul32_i64: no libgcc 64-bit multiply on Cortex-M0. |ua|, |ub|
+     * <= 1 (normalize_fast never exceeds 1), so every sum below stays far inside int64. */
+    d = qo_fx_mul32_i64(ua.w, ub.w) + qo_fx_mul32_i64(ua.x, ub.x) + qo_fx_mul32_i64(ua.y, ub.y) +
+        qo_fx_mul32_i64(ua.z, ub.z);
+    if (d < 0) {
+        ub = neg_q(ub);
+        d = -d;
+    }
+    if (t == 0) return QO_OK;
+    if (t == QO_Q30_ONE) {
+        *out = ub;
+        return QO_OK;
+    }
+    if (ua.w == ub.w && ua.x == ub.x && ua.y == ub.y && ua.z == ub.z) return QO_OK;   /* one point */
+    c = rnd30_i32(d);
+    if (c > QO_Q30_ONE) c = QO_Q30_ONE;
+    /* The unit direction e of b' orthogonal to a, from v = b' - cos(th) a: short for a small
+     * th, but its rounding error (<= 1 LSB) becomes an error of e of ~1 LSB / sin(th), which
+     * the result carries times sin(t th): at most ~t LSB. */
+    v.w = ub.w - rnd30_i32(qo_fx_mul32_i64(c, ua.w));
+    v.x = ub.x - rnd30_i32(qo_fx_mul32_i64(c, ua.x));
+    v.y = ub.y - rnd30_i32(qo_fx_mul32_i64(c, ua.y));
+    v.z = ub.z - rnd30_i32(qo_fx_mul32_i64(c, ua.z));
+    if (qo_quat_normalize_fast_q30(v, &e) != QO_OK) return QO_OK;   /* b' == a: a itself */
+    /* th = atan2(|v|, cos th) in [0, pi/2], |v| = v . e */
+    vn = rnd30_i32(qo_fx_mul32_i64(v.w, e.w) + qo_fx_mul32_i64(v.x, e.x) +
+                   qo_fx_mul32_i64(v.y, e.y) + qo_fx_mul32_i64(v.z, e.z));
+    th = qo_fx_atan2_q28(vn, c);
+    /* y = t th / 2 in Q1.31 = (t th, Q4.58) / 2^28, in [0, pi/4] */
+    qo_fx_sincos_2y_q30((uint32_t)qo_fx_rshift_round_up(qo_fx_mul32_i64(t, th), 28), &sn, &cs);
+    /* cos(t th) a + sin(t th) e: unit to the accuracy of a and e; clamped to +-1. */
+    {
+        int32_t o[4];
+        const int32_t av[4] = { ua.w, ua.x, ua.y, ua.z }, ev[4] = { e.w, e.x, e.y, e.z };
+        int i;
+        for (i = 0; i < 4; i++) {
+            int32_t r = rnd30_i32(qo_fx_mul32_i64(cs, av[i]) + qo_fx_mul32_i64(sn, ev[i]));
+            o[i] = r > QO_Q30_ONE ? QO_Q30_ONE : r < -QO_Q30_ONE ? -QO_Q30_ONE : r;
+        }
+        out->w = o[0]; out->x = o[1]; out->y = o[2]; out->z = o[3];
+    }
     return QO_OK;
 }
 
@@ -518,7 +569,7 @@ qo_status qo_quat_squad_q30(qo_quat_q30 q0, qo_quat_q30 s0, qo_quat_q30 s1, qo_q
     (void)slerp_raw(p[0], p[3], t, &x);
     (void)slerp_raw(p[1], p[2], t, &y);
     /* 2 t (1 - t) in Q1.30, exact product rounded once; in [0, 1/2]. */
-    h = rshift_round(2 * (int64_t)t * (ONE64 - t), 30);
+    h = qo_fx_rshift_round_up(2 * (int64_t)t * (ONE64 - t), 30);
     (void)slerp_raw(x, y, h, out);
     return QO_OK;
 }
@@ -534,7 +585,7 @@ static qo_vec3_q28 log_unit(qo_quat_q30 q)
 /* -(l1 + l2)/4, each component rounded once (|l| <= pi/2 + rounding: no overflow). */
 static qo_q28 quarter_neg_sum(qo_q28 a, qo_q28 b)
 {
-    return (qo_q28)rshift_round(-((int64_t)a + b), 2);
+    return (qo_q28)qo_fx_rshift_round_up(-((int64_t)a + b), 2);
 }
 
 qo_status qo_quat_squad_controls_q30(const qo_quat_q30 *keys, size_t n, qo_quat_q30 *s)

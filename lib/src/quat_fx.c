@@ -1,14 +1,18 @@
 /* Quaternion algebra in fixed point (Q1.30). See qorient/quat_fx.h for the contracts.
  * Integer arithmetic only: products in int64, sums rounded once with qo_fx_sum_round_i64.
  * mul, rotate and normalize have a fast path for components within +-1.25 (every normalised
- * quaternion) written for Cortex-M0 (no 64-bit multiply, no divider): 16-bit column sums and
- * one Newton reciprocal instead of libgcc's 64-bit multiply and division. It gives the
- * identical result (same exact sum, same single rounding); other inputs take the general
- * path. */
+ * quaternion). mul and rotate take it in two forms chosen per architecture (QO_FX_NARROW_MUL,
+ * fx_internal.h): 16-bit column sums on Cortex-M0/M0+ (no 64-bit multiply), plain int64 sums
+ * where a widening multiply exists (x86-64, aarch64, ARMv7-M). normalize uses one Newton
+ * reciprocal instead of four 64-bit divisions (no divider on Cortex-M0). Every form gives the
+ * identical result (same exact sum, same single rounding; tests/test_parts_fx.c compares
+ * them); other inputs take the general path. This file is the kernel of the fixed core: it
+ * depends on fxmath only (convert_fx.c, interp_fx.c build on it, not the other way). */
 #include "qorient/quat_fx.h"
 
-#include "qorient/convert_fx.h"
 #include "qorient/fxmath.h"
+
+#include "fx_internal.h"
 
 qo_quat_q30 qo_quat_identity_q30(void)
 {
@@ -39,9 +43,7 @@ static int fast_quat(qo_quat_q30 q)
            (uint32_t)q.y + FAST_LIM <= 2u * FAST_LIM && (uint32_t)q.z + FAST_LIM <= 2u * FAST_LIM;
 }
 
-/* round(s / 2^30) for an exact int64 sum s (ties toward +inf); |s| < 2^63 - 2^29. */
-#define RND30(s) (((s) + ((int64_t)1 << 29)) >> 30)
-
+#if QO_FX_NARROW_MUL
 /*
  * The exact sum of a_i b_i, i < n, as three int32 columns, for |a_i| <= 1.25 * 2^30 and
  * either n <= 3 or also |b_i| <= 1.25 * 2^30 (the fast paths below). Cortex-M0 has only a
@@ -57,12 +59,21 @@ static int fast_quat(qo_quat_q30 q)
  * bounded too), so |H| < 2^31 for the n used; |M| < n 2^17, L < n 2^16.
  * (int16_t) of an int32 is modular on every two's-complement compiler (see fxmath.h).
  */
-typedef struct cols { int32_t h, m; uint32_t l; } cols;
+typedef struct dsum { int32_t h, m; uint32_t l; } dsum;
 
-static cols dot_cols(const int32_t *a, const int32_t *b, int n)
+/* The loops over 2 to 4 products, unrolled where gcc allows it (a loop counter and its branch
+ * cost more than a tenth of each product on Cortex-M0). */
+#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 8
+#define QO_UNROLL_4 _Pragma("GCC unroll 4")
+#else
+#define QO_UNROLL_4
+#endif
+
+static dsum dot_exact(const int32_t *a, const int32_t *b, int n)
 {
-    cols c = { 0, 0, 0 };
+    dsum c = { 0, 0, 0 };
     int i;
+    QO_UNROLL_4
     for (i = 0; i < n; i++) {
         int32_t al = (int16_t)a[i], bl = (int16_t)b[i];
         int32_t ah = ((a[i] >> 15) + 1) >> 1, bh = ((b[i] >> 15) + 1) >> 1;
@@ -76,13 +87,13 @@ static cols dot_cols(const int32_t *a, const int32_t *b, int n)
 
 /* sum / 2^sh = h 2^(32-sh) + (m >> (sh-16)) + (l + (m mod 2^(sh-16)) 2^16) / 2^sh: only the
  * last term has a fraction (its numerator < 2^sh + 2^20 < 2^32), so it alone is rounded. */
-static int64_t rnd30(cols c)
+static int64_t rnd30(dsum c)
 {
     uint32_t f = c.l + (((uint32_t)c.m & 0x3FFFu) << 16) + ((uint32_t)1 << 29);
     return (int64_t)c.h * 4 + ((c.m >> 14) + (int32_t)(f >> 30));
 }
 
-static int64_t rnd29(cols c)
+static int64_t rnd29(dsum c)
 {
     uint32_t f = c.l + (((uint32_t)c.m & 0x1FFFu) << 16) + ((uint32_t)1 << 28);
     return (int64_t)c.h * 8 + ((c.m >> 13) + (int32_t)(f >> 29));
@@ -90,7 +101,7 @@ static int64_t rnd29(cols c)
 
 /* rnd30 saturated to int32 (over set on saturation), in 32-bit arithmetic unless H is near
  * the int32 range of the result (then through rnd30's int64 value). */
-static int32_t rnd30_sat(cols c, int *over)
+static int32_t rnd30_sat(dsum c, int *over)
 {
     if (c.h > -(1 << 28) && c.h < (1 << 28)) {
         uint32_t f = c.l + (((uint32_t)c.m & 0x3FFFu) << 16) + ((uint32_t)1 << 29);
@@ -103,6 +114,31 @@ static int32_t rnd30_sat(cols c, int *over)
     }
 }
 
+#else
+/* With a widening multiply the same exact sum is a plain int64 sum: for the operands of the
+ * fast paths (bounds as above) every partial sum stays below 2^63. */
+typedef int64_t dsum;
+
+static dsum dot_exact(const int32_t *a, const int32_t *b, int n)
+{
+    dsum s = 0;
+    int i;
+    for (i = 0; i < n; i++) s += (int64_t)a[i] * b[i];
+    return s;
+}
+
+static int64_t rnd30(dsum s) { return qo_fx_rshift_round_up(s, 30); }
+static int64_t rnd29(dsum s) { return qo_fx_rshift_round_up(s, 29); }
+
+static int32_t rnd30_sat(dsum s, int *over)
+{
+    int64_t v = rnd30(s);
+    int32_t r = qo_fx_sat_i32(v);
+    if ((int64_t)r != v) *over = 1;
+    return r;
+}
+#endif
+
 /* a*b for the fast range (fast_quat of both): exact, rounded once, saturated; returns 1 if a
  * component saturated. */
 static int mul_fast(qo_quat_q30 a, qo_quat_q30 b, qo_quat_q30 *out)
@@ -113,10 +149,10 @@ static int mul_fast(qo_quat_q30 a, qo_quat_q30 b, qo_quat_q30 *out)
     const int32_t bv[16] = { b.w, -b.x, -b.y, -b.z,   b.x, b.w, b.z, -b.y,
                              b.y, -b.z, b.w, b.x,     b.z, b.y, -b.x, b.w };
     int over = 0;
-    out->w = rnd30_sat(dot_cols(bv, av, 4), &over);
-    out->x = rnd30_sat(dot_cols(bv + 4, av, 4), &over);
-    out->y = rnd30_sat(dot_cols(bv + 8, av, 4), &over);
-    out->z = rnd30_sat(dot_cols(bv + 12, av, 4), &over);
+    out->w = rnd30_sat(dot_exact(bv, av, 4), &over);
+    out->x = rnd30_sat(dot_exact(bv + 4, av, 4), &over);
+    out->y = rnd30_sat(dot_exact(bv + 8, av, 4), &over);
+    out->z = rnd30_sat(dot_exact(bv + 12, av, 4), &over);
     return over;
 }
 
@@ -188,44 +224,8 @@ qo_q30 qo_quat_norm_q30(qo_quat_q30 q)
     return qo_fx_norm4_q30(q.w, q.x, q.y, q.z);
 }
 
-static uint64_t mag(int64_t v) { return (uint64_t)(v < 0 ? -v : v); }
-
-/* round(num / den) to nearest, ties away from zero; den > 0, |num| < 2^63. */
-static int64_t div_round(int64_t num, uint64_t den)
-{
-    uint64_t q = (mag(num) + den / 2u) / den;
-    return num < 0 ? -(int64_t)q : (int64_t)q;
-}
-
-/* 2^62 / d at the midpoint of each of 32 intervals of d in [2^31, 2^32) (index d >> 26),
- * rounded: relative error <= 2^-6, the seed of the Newton reciprocal below. */
-static const uint32_t recip_seed[32] = {
-    2114445438u, 2051327664u, 1991868891u, 1935759908u, 1882725390u, 1832519380u, 1784921474u, 1739733588u,
-    1696777203u, 1655891006u, 1616928864u, 1579758086u, 1544257904u, 1510318170u, 1477838209u, 1446725826u,
-    1416896428u, 1388272257u, 1360781718u, 1334358772u, 1308942414u, 1284476201u, 1260907830u, 1238188770u,
-    1216273925u, 1195121335u, 1174691910u, 1154949189u, 1135859120u, 1117389866u, 1099511628u, 1082196484u,
-};
-
-/* About 2^62 / d for d in [2^31, 2^32): three Newton steps r += r (2^62 - d r) / 2^62 from
- * the seed (2^-6 -> ~2^-12 -> 2^-24 -> ~2^-31 relative with the truncations; with two,
- * div30's correction loop ran ~12 times per component). Only an estimate: div30 makes it
- * exact. */
-static uint32_t recip62(uint32_t d)
-{
-    uint32_t r = recip_seed[(d >> 26) - 32u];
-    /* First step in 16x16 products (d r / 2^32 from the high halves, truncation < 2^-14). */
-    int32_t e32 = (int32_t)((uint32_t)1 << 30) - (int32_t)((d >> 16) * (r >> 16));   /* < 2^25 */
-    int i;
-    r = (uint32_t)((int64_t)r + ((int32_t)(r >> 16) * (e32 / 512)) / 32);   /* may reach 2^31 */
-    for (i = 0; i < 2; i++) {
-        int64_t e = ((int64_t)1 << 62) - (int64_t)qo_fx_umul32_u64(d, r);   /* |e| <= 2^50 */
-        r = (uint32_t)((int64_t)r + (qo_fx_mul32_i64((int32_t)(r >> 1), (int32_t)(e >> 31)) >> 30));
-    }
-    return r;
-}
-
 /* floor((a 2^30 + floor(n / 2)) / n), i.e. round(a 2^30 / n) with ties away from zero, for
- * a <= 2^31, 2^30 <= n < 2^32, given r = recip62(n << sh) (sh = 1 if n < 2^31, else 0):
+ * a <= 2^31, 2^30 <= n < 2^32, given r ~ 2^62 / (n << sh) (sh = 1 if n < 2^31, else 0):
  * an estimate from the reciprocal, then made exact against the remainder (a few steps at
  * most; the result does not depend on the estimate's error). */
 static uint32_t div30(uint32_t a, uint32_t n, uint32_t r, unsigned sh)
@@ -287,7 +287,8 @@ qo_status qo_quat_normalize_q30(qo_quat_q30 q, qo_quat_q30 *out)
      * each made exact against its remainder. */
     nn = (uint32_t)n;
     sh = nn < ((uint32_t)1 << 31) ? 1u : 0u;
-    r = recip62(nn << sh);
+    /* Two 64-bit Newton steps (~2^-31): div30's correction then takes 0 or 1 step. */
+    r = qo_fx_recip62_step(nn << sh, qo_fx_recip62_u32(nn << sh));
     {
         int32_t o[4];
         for (i = 0; i < 4; i++) {
@@ -296,6 +297,84 @@ qo_status qo_quat_normalize_q30(qo_quat_q30 q, qo_quat_q30 *out)
         }
         out->w = o[0]; out->x = o[1]; out->y = o[2]; out->z = o[3];
     }
+    return QO_OK;
+}
+
+/* |v| of an int32 as uint32 (2^31 for INT32_MIN). */
+static uint32_t mag32(int32_t v) { return v < 0 ? 0u - (uint32_t)v : (uint32_t)v; }
+
+/* One output of normalize_fast: sign(c) min(round(a y / 2^31), 2^30) for a <= 2^31 (a < 2^31
+ * unless a mod 2^16 == 0) and y < 2^31, in 16-bit partial products and 32-bit words (no 64-bit
+ * arithmetic on Cortex-M0): a y = ah yh 2^32 + (ah yl + al yh) 2^16 + al yl, the cross sum
+ * below 2^32 - 2^17; only the low 16 bits of al yl are dropped before the rounding. */
+static int32_t nf_out(int32_t c, uint32_t a, uint32_t y)
+{
+    uint32_t ah = a >> 16, al = a & 0xFFFFu, yh = y >> 16, yl = y & 0xFFFFu;
+    uint32_t mid = ah * yl + al * yh + ((al * yl) >> 16) + ((uint32_t)1 << 14);
+    uint32_t v = ((ah * yh) << 1) + (mid >> 15);
+    if (v > (uint32_t)QO_Q30_ONE) v = (uint32_t)QO_Q30_ONE;
+    return c < 0 ? -(int32_t)v : (int32_t)v;
+}
+
+/* Columns of a^2 for a < 2^30 (a = ah 2^16 + al): ah^2 into *hh, ah al into *hl (the cross
+ * term halved), al^2 / 2^16 into *ll; for four components none of the sums overflows. */
+static void nf_sq(uint32_t a, uint32_t *hh, uint32_t *hl, uint32_t *ll)
+{
+    uint32_t ah = a >> 16, al = a & 0xFFFFu;
+    *hh += ah * ah;
+    *hl += ah * al;
+    *ll += (al * al) >> 16;
+}
+
+qo_status qo_quat_normalize_fast_q30(qo_quat_q30 q, qo_quat_q30 *out)
+{
+    uint32_t aw = mag32(q.w), ax = mag32(q.x), ay = mag32(q.y), az = mag32(q.z);
+    uint32_t m = aw | ax | ay | az, x, y, hh = 0, hl = 0, ll = 0;
+    unsigned sh = 0;
+    if (out == NULL) return QO_E_NULL;
+    if (m == 0) {
+        *out = qo_quat_identity_q30();
+        return QO_E_DEGENERATE;
+    }
+    /* Exact power-of-two scaling so the largest magnitude is in [2^29, 2^30] (the OR of the
+     * magnitudes has the top bit of the largest; a unit quaternion is there already): the
+     * squares then sum to at most 2^62 and short inputs keep 30 significant bits. */
+    if (m >= ((uint32_t)1 << 30)) {
+        aw = (aw + 1u) >> 1; ax = (ax + 1u) >> 1; ay = (ay + 1u) >> 1; az = (az + 1u) >> 1;
+    } else if (m < ((uint32_t)1 << 29)) {
+        if ((m >> 14) == 0) { m <<= 16; sh = 16; }
+        if ((m >> 22) == 0) { m <<= 8; sh += 8; }
+        if ((m >> 26) == 0) { m <<= 4; sh += 4; }
+        if ((m >> 28) == 0) { m <<= 2; sh += 2; }
+        if ((m >> 29) == 0) sh += 1;
+        aw <<= sh; ax <<= sh; ay <<= sh; az <<= sh;
+    }
+    /* |a|^2 = hh 2^32 + hl 2^17 + ll 2^16 (+ < 2^18 dropped) in [2^58, 2^62]: hh < 2^30,
+     * hl < 2^32, ll < 2^18. x = |a|^2 / 2^30 in [2^28, 2^32], or / 2^28 when that is below
+     * 2^30 (an even shift keeps the square root a power of two), so x is in [2^30, 2^32) and
+     * 1/|a| = 2^(46 - s) / sqrt(x) with s = 31 (30 for the second case): y = 2^46 / sqrt(x)
+     * and a_i 2^30 / |a| = a_i y / 2^s, taken as (2 a_i) y / 2^31 when s = 30. Truncation: a
+     * few units of x (2^-28 relative). */
+    nf_sq(aw, &hh, &hl, &ll); nf_sq(ax, &hh, &hl, &ll);
+    nf_sq(ay, &hh, &hl, &ll); nf_sq(az, &hh, &hl, &ll);
+    if (hh >= ((uint32_t)1 << 30)) {
+        x = 0xFFFFFFFFu;                            /* |a|^2 = 2^62 exactly: 2^-32 off */
+    } else {
+        x = (hh << 2) + (hl >> 13) + (ll >> 14);
+        if (x < ((uint32_t)1 << 30)) {
+            /* The three truncations cost less than 3 in total: + 3 keeps x >= 2^30 (|a|^2 >=
+             * 2^58), and x < 4 (x + 2) + 3 stays below 2^32 unless the first x is within 2
+             * of 2^30, where 2^32 - 1 is within 2^-29. */
+            x = x >= ((uint32_t)1 << 30) - 2u ? 0xFFFFFFFFu
+                                               : (hh << 4) + (hl >> 11) + (ll >> 12) + 3u;
+            aw <<= 1; ax <<= 1; ay <<= 1; az <<= 1;   /* a y / 2^30 = (2 a) y / 2^31, exact */
+        }
+    }
+    y = qo_fx_rsqrt32_q30(x);
+    out->w = nf_out(q.w, aw, y);
+    out->x = nf_out(q.x, ax, y);
+    out->y = nf_out(q.y, ay, y);
+    out->z = nf_out(q.z, az, y);
     return QO_OK;
 }
 
@@ -337,17 +416,17 @@ qo_vec3_q30 qo_quat_rotate_q30(qo_quat_q30 q, qo_vec3_q30 v)
                                  q.w, q.y, -q.z, q.w, q.z, -q.x, q.w, q.x, -q.y };
         int32_t vb[3], tb[3];
         vb[0] = v.z; vb[1] = v.y;
-        tx = qo_fx_sat_i32(rnd30(dot_cols(qa, vb, 2)));
+        tx = qo_fx_sat_i32(rnd30(dot_exact(qa, vb, 2)));
         vb[0] = v.x; vb[1] = v.z;
-        ty = qo_fx_sat_i32(rnd30(dot_cols(qa + 2, vb, 2)));
+        ty = qo_fx_sat_i32(rnd30(dot_exact(qa + 2, vb, 2)));
         vb[0] = v.y; vb[1] = v.x;
-        tz = qo_fx_sat_i32(rnd30(dot_cols(qa + 4, vb, 2)));
+        tz = qo_fx_sat_i32(rnd30(dot_exact(qa + 4, vb, 2)));
         tb[0] = tx; tb[1] = tz; tb[2] = ty;
-        r.x = rot_out(v.x, rnd29(dot_cols(qa + 6, tb, 3)));
+        r.x = rot_out(v.x, rnd29(dot_exact(qa + 6, tb, 3)));
         tb[0] = ty; tb[1] = tx; tb[2] = tz;
-        r.y = rot_out(v.y, rnd29(dot_cols(qa + 9, tb, 3)));
+        r.y = rot_out(v.y, rnd29(dot_exact(qa + 9, tb, 3)));
         tb[0] = tz; tb[1] = ty; tb[2] = tx;
-        r.z = rot_out(v.z, rnd29(dot_cols(qa + 12, tb, 3)));
+        r.z = rot_out(v.z, rnd29(dot_exact(qa + 12, tb, 3)));
         return r;
     }
     /* t = u x v, rounded once and saturated so every later product stays <= 2^62. */
@@ -377,17 +456,17 @@ qo_vec3_q30 qo_quat_rotate_q30(qo_quat_q30 q, qo_vec3_q30 v)
  * scaled down together until the vector norm and w fit int32. */
 static qo_q28 half_angle(int64_t w, int64_t x, int64_t y, int64_t z)
 {
-    uint64_t m = mag(x);
+    uint64_t m = qo_fx_abs_u64(x);
     uint64_t n;
-    if (mag(y) > m) m = mag(y);
-    if (mag(z) > m) m = mag(z);
-    if (mag(w) > m) m = mag(w);
+    if (qo_fx_abs_u64(y) > m) m = qo_fx_abs_u64(y);
+    if (qo_fx_abs_u64(z) > m) m = qo_fx_abs_u64(z);
+    if (qo_fx_abs_u64(w) > m) m = qo_fx_abs_u64(w);
     /* Components below 2^30 keep |v| < 2^31 (sqrt 3 * 2^30 < 2^31). */
     while (m >= ((uint64_t)1 << 30)) {
         m >>= 1;
         w /= 2; x /= 2; y /= 2; z /= 2;
     }
-    n = qo_fx_sqrt_u64(mag(x) * mag(x) + mag(y) * mag(y) + mag(z) * mag(z));
+    n = qo_fx_sqrt_u64(qo_fx_abs_u64(x) * qo_fx_abs_u64(x) + qo_fx_abs_u64(y) * qo_fx_abs_u64(y) + qo_fx_abs_u64(z) * qo_fx_abs_u64(z));
     return qo_fx_atan2_q28((int32_t)n, (int32_t)w);
 }
 
@@ -397,6 +476,26 @@ qo_q28 qo_quat_angle_between_q30(qo_quat_q30 a, qo_quat_q30 b)
     mul_wide(qo_quat_conj_q30(a), b, r);
     /* Precision: for unit inputs the components are < 2^31 and nothing is shifted. */
     return (qo_q28)(2 * half_angle(r[0] < 0 ? -r[0] : r[0], r[1], r[2], r[3]));
+}
+
+qo_status qo_fx_quat_from_rotvec(qo_vec3_q28 rv, qo_quat_q30 *out)
+{
+    uint64_t n;
+    qo_q30 s, c;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_q30();
+    /* Three squares of at most 2^62 sum below 2^64; the norm is below 2^32 (|rv| < 16). */
+    n = qo_fx_sqrt_u64(qo_fx_abs_u64(rv.x) * qo_fx_abs_u64(rv.x) +
+                       qo_fx_abs_u64(rv.y) * qo_fx_abs_u64(rv.y) +
+                       qo_fx_abs_u64(rv.z) * qo_fx_abs_u64(rv.z));
+    if (n == 0) return QO_OK;
+    /* Half of |rv| in Q3.60 without rounding: n * 2^31 < 2^63. */
+    (void)qo_fx_sincos_q60((int64_t)n * ((int64_t)1 << 31), &s, &c);
+    out->w = c;
+    out->x = (qo_q30)qo_fx_div_round_away(P(rv.x, s), n);
+    out->y = (qo_q30)qo_fx_div_round_away(P(rv.y, s), n);
+    out->z = (qo_q30)qo_fx_div_round_away(P(rv.z, s), n);
+    return QO_OK;
 }
 
 qo_status qo_quat_exp_q30(qo_vec3_q28 v, qo_quat_q30 *out)
@@ -410,7 +509,7 @@ qo_status qo_quat_exp_q30(qo_vec3_q28 v, qo_quat_q30 *out)
     }
     /* exp((0, v)) is the rotation by the rotation vector 2v; doubling is exact here. */
     rv.x = 2 * v.x; rv.y = 2 * v.y; rv.z = 2 * v.z;
-    return qo_quat_from_rotvec_q30(rv, out);
+    return qo_fx_quat_from_rotvec(rv, out);
 }
 
 qo_status qo_quat_log_q30(qo_quat_q30 q, qo_vec3_q28 *out)
@@ -430,17 +529,17 @@ qo_status qo_quat_log_q30(qo_quat_q30 q, qo_vec3_q28 *out)
      * [2^30, 2^31]: then the rounded |u| is good to 2^-31 relative even for a short u (a
      * rotation near 2pi), and phi * c_i <= 2^61. */
     c[0] = q.x; c[1] = q.y; c[2] = q.z;
-    m = mag(c[0]);
-    if (mag(c[1]) > m) m = mag(c[1]);
-    if (mag(c[2]) > m) m = mag(c[2]);
+    m = qo_fx_abs_u64(c[0]);
+    if (qo_fx_abs_u64(c[1]) > m) m = qo_fx_abs_u64(c[1]);
+    if (qo_fx_abs_u64(c[2]) > m) m = qo_fx_abs_u64(c[2]);
     while (m < ((uint64_t)1 << 30)) {
         m <<= 1;
         c[0] *= 2; c[1] *= 2; c[2] *= 2;
     }
-    n = qo_fx_sqrt_u64(mag(c[0]) * mag(c[0]) + mag(c[1]) * mag(c[1]) + mag(c[2]) * mag(c[2]));
-    out->x = (qo_q28)div_round(phi * c[0], n);
-    out->y = (qo_q28)div_round(phi * c[1], n);
-    out->z = (qo_q28)div_round(phi * c[2], n);
+    n = qo_fx_sqrt_u64(qo_fx_abs_u64(c[0]) * qo_fx_abs_u64(c[0]) + qo_fx_abs_u64(c[1]) * qo_fx_abs_u64(c[1]) + qo_fx_abs_u64(c[2]) * qo_fx_abs_u64(c[2]));
+    out->x = (qo_q28)qo_fx_div_round_away(phi * c[0], n);
+    out->y = (qo_q28)qo_fx_div_round_away(phi * c[1], n);
+    out->z = (qo_q28)qo_fx_div_round_away(phi * c[2], n);
     return QO_OK;
 }
 
@@ -451,6 +550,6 @@ qo_status qo_quat_integrate_q30(qo_quat_q30 q, qo_vec3_q28 dtheta, qo_quat_q30 *
     if (out == NULL) return QO_E_NULL;
     st = qo_quat_normalize_q30(q, &qn);
     if (st != QO_OK) { *out = qn; return st; }
-    (void)qo_quat_from_rotvec_q30(dtheta, &dq);
+    (void)qo_fx_quat_from_rotvec(dtheta, &dq);
     return qo_quat_normalize_q30(qo_quat_mul_q30(qn, dq), out);
 }

@@ -2,6 +2,8 @@
  * table layout, the formats and the error bound. */
 #include "qorient/spline_fx.h"
 
+#include "fx_internal.h"
+
 /* Normalised segment time s in Q5.27: with int32 coefficients (|b| < 2^31; the conversion
  * keeps them below 2^30, or 2^31 for f = 0) the Horner sums
  * stay below 20 * 2^31 < 2^35.4, and 2^35.4 * 2^27 < 2^63, so no product can overflow int64. */
@@ -21,16 +23,13 @@ size_t qo_spline_q16_len(size_t n_joints, size_t n_keys)
     return n_keys * per_key + QO_SPLINE_Q16_JOINT_WORDS * n_joints;
 }
 
-/* x / 2^sh rounded half away from zero, 0 <= sh. Written on magnitudes: right shifts of
- * negative values are implementation-defined in C99. */
+/* x / 2^sh rounded half away from zero for any sh (the sampler's exponents may be <= 0 or
+ * >= 63). */
 static int64_t rshift_round(int64_t x, int32_t sh)
 {
-    uint64_t m;
     if (sh <= 0) return x;
     if (sh >= 63) return 0; /* |x| < 2^62 here, so the rounded quotient is 0 */
-    m = x < 0 ? (uint64_t)0 - (uint64_t)x : (uint64_t)x;
-    m = (m + ((uint64_t)1 << (sh - 1))) >> sh;
-    return x < 0 ? -(int64_t)m : (int64_t)m;
+    return qo_fx_rshift_round_away(x, (unsigned)sh);
 }
 
 /* x * m * 2^-e, rounded; |x| < 2^37, 0 < m < 2^24 so the product fits. For e < 0 the result

@@ -14,6 +14,7 @@
  *   qo_quat_lerp_q30            component-wise lerp, not normalised
  *   qo_quat_nlerp_q30           normalised lerp, short way
  *   qo_quat_slerp_q30           spherical linear interpolation, short way, exact endpoints
+ *   qo_quat_slerp_fast_q30      the same to ~5e-8 rad with no square root or division (fast tier)
  *   qo_quat_align_keys_q30      copy of keyframes, normalised and made sign-continuous
  *   qo_quat_bezier_q30          Bezier curve on the sphere (de Casteljau with slerp), n points
  *   qo_quat_bezier3_q30         cubic Bezier on the sphere (4 control points)
@@ -116,6 +117,18 @@ qo_status qo_quat_nlerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 
  * Returns QO_OK; QO_E_NULL (out NULL, nothing written); QO_E_DEGENERATE if a or b is zero
  * (*out = identity); QO_E_RANGE if t is outside [0, QO_Q30_ONE] (*out = unit a). */
 qo_status qo_quat_slerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out);
+
+/* The fast tier of qo_quat_slerp_q30 for cores without a 64-bit multiply or divider
+ * (Cortex-M0/M0+): the inputs through qo_quat_normalize_fast_q30, then
+ * out = cos(t th) a + sin(t th) e with e the unit direction of b' - cos(th) a (orthogonal to
+ * a), th = atan2(|b' - cos(th) a|, cos th) from the Q1.30 dot product, one sincos: no square
+ * root, no division, no 64-bit multiply from libgcc. The same contract as qo_quat_slerp_q30
+ * (sign flip to the short way, exact endpoints t == 0 -> unit a and t == 1 -> unit b',
+ * statuses and outputs on error), but "unit" is normalize_fast's (within 16 LSB), and the
+ * result is within 5e-8 rad of the exact slerp of the inputs (checked in
+ * tests/test_interp_fx.c and measured by bench/accuracy_interp_fx.c), never beyond +-1.0.
+ * a == b' to rounding gives unit a. */
+qo_status qo_quat_slerp_fast_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out);
 
 /* Writes out[i] = keys[i] normalised and sign-aligned: out[0] = unit keys[0] and each
  * following key is negated when its dot product with the previous ALIGNED key is negative.

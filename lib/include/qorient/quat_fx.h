@@ -13,6 +13,7 @@
  *   qo_quat_dot_q30             4-D dot product, Q1.30, rounded once
  *   qo_quat_norm_q30            Euclidean length, Q1.30, correctly rounded
  *   qo_quat_normalize_q30       unit length; zero -> identity + QO_E_DEGENERATE
+ *   qo_quat_normalize_fast_q30  the same to ~2e-8 with no square root or division (fast tier)
  *   qo_quat_inverse_q30         inverse of a UNIT quaternion (= the conjugate)
  *   qo_quat_canonical_q30       the sign with w >= 0 (ties by the first non-zero of x, y, z)
  *   qo_quat_rotate_q30          rotate a Q1.30 vector by a unit quaternion
@@ -69,6 +70,18 @@ qo_q30 qo_quat_norm_q30(qo_quat_q30 q);
  * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_DEGENERATE if q is (0,0,0,0) (*out is the
  * identity). */
 qo_status qo_quat_normalize_q30(qo_quat_q30 q, qo_quat_q30 *out);
+
+/* The fast tier of qo_quat_normalize_q30, for loops that renormalise every step on a core
+ * without a 64-bit multiply or divider (Cortex-M0/M0+): q / |q| through one Newton reciprocal
+ * square root (two steps, ~2^-26 relative) and four products in 32-bit words, no square root,
+ * no division, no 64-bit arithmetic. Each component within 16 LSB (1.5e-8) of the exact unit
+ * quaternion (checked in tests/test_quat_fx.c, worst seen 14 LSB, e.g. (0, 0, -1, 0) gives
+ * -(1 - 14 LSB); the exact function: 1 LSB), never beyond +-1.0; the sign of q is kept; any
+ * non-zero q, as qo_quat_normalize_q30. About a third of the exact one's instructions on
+ * Cortex-M0 (tools/qemu-icount.sh).
+ * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_DEGENERATE if q is (0,0,0,0) (*out is the
+ * identity). */
+qo_status qo_quat_normalize_fast_q30(qo_quat_q30 q, qo_quat_q30 *out);
 
 /* The inverse of a UNIT quaternion, which is its conjugate (exact). In fixed point the
  * general conj(q)/|q|^2 is rarely wanted (a short q has an inverse beyond the Q1.30 range);

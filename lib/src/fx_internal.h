@@ -1,0 +1,100 @@
+/*
+ * lib/src/fx_internal.h - the integer helpers of the fixed core, in one place (private: not
+ * installed, not part of the API). Modelled on CMSIS-DSP's Include/dsp/utils.h: static inline,
+ * each named by what it does and how it rounds, so a caller picks the rounding it relies on:
+ *
+ *   qo_fx_abs_u64              |v| of an int64 as uint64, exact for every value (INT64_MIN too)
+ *   qo_fx_rshift_round_up      round(v / 2^s), ties toward +infinity (add half, floor)
+ *   qo_fx_rshift_round_away    round(v / 2^s), ties away from zero (odd: f(-v) == -f(v))
+ *   qo_fx_div_round_away       round(num / den), ties away from zero (64-bit division)
+ *   qo_fx_recip62_u32          about 2^62 / d for d in [2^31, 2^32) (Newton, no division)
+ *   qo_fx_recip62_step         one more Newton step of that reciprocal
+ *   qo_fx_rsqrt32_q30          about 2^30 / sqrt(x / 2^32) for x in [2^30, 2^32) (Newton)
+ *   qo_fx_sincos_2y_q30        sin and cos of 2y for y in [0, pi/4] (no reduction, 32-bit)
+ *
+ * The rounding shifts rely on >> of a negative int64 being an arithmetic shift (implementation-
+ * defined in C99, arithmetic on gcc and clang for every target): checked here, once, for every
+ * file that includes this header.
+ */
+#ifndef QORIENT_FX_INTERNAL_H
+#define QORIENT_FX_INTERNAL_H
+
+#include <stdint.h>
+
+#include "qorient/fxmath.h"
+
+/* 1 where the fast paths take the ARMv6-M (Cortex-M0/M0+) form: no 32x32 -> 64 multiply
+ * there, so exact sums of products are built from 16-bit partial products in 32-bit words.
+ * Everywhere else (x86-64, aarch64, ARMv7-M SMULL, RV32M mulh) a widening multiply is one or
+ * two instructions and plain int64 sums are shorter. Both forms are exact and round once, so
+ * results are bit-identical; QO_FX_MUL_PARTS forces the ARMv6-M form on any target (the
+ * tests build it on the host and compare). */
+#if defined(__ARM_ARCH_6M__) || defined(QO_FX_MUL_PARTS)
+#define QO_FX_NARROW_MUL 1
+#else
+#define QO_FX_NARROW_MUL 0
+#endif
+
+typedef char qo_fx_arith_shift_check[((-1) >> 1) == -1 && (((int64_t)-1) >> 1) == -1 ? 1 : -1];
+
+/* |v| as an unsigned 64-bit value; exact for every int64 including INT64_MIN (2^63). */
+static inline uint64_t qo_fx_abs_u64(int64_t v)
+{
+    return v < 0 ? (uint64_t)0 - (uint64_t)v : (uint64_t)v;
+}
+
+/* round(v / 2^s) with ties toward +infinity, 1 <= s <= 62. Precondition (unchecked): v plus
+ * 2^(s-1) does not overflow, i.e. v <= INT64_MAX - 2^(s-1). Not odd: -5/2 gives -2, 5/2 gives 3. */
+static inline int64_t qo_fx_rshift_round_up(int64_t v, unsigned s)
+{
+    return (v + ((int64_t)1 << (s - 1u))) >> s;
+}
+
+/* round(v / 2^s) with ties away from zero, 1 <= s <= 63, every int64 v: computed on the
+ * magnitude, so it is odd (the rounding of -v is exactly the negated rounding of v). */
+static inline int64_t qo_fx_rshift_round_away(int64_t v, unsigned s)
+{
+    uint64_t m = (qo_fx_abs_u64(v) + ((uint64_t)1 << (s - 1u))) >> s;
+    return v < 0 ? -(int64_t)m : (int64_t)m;
+}
+
+/* round(num / den) to nearest with ties away from zero, for den > 0 and |num| + den / 2 < 2^64
+ * (so every |num| < 2^63). A 64-bit division: a library call on cores without a divider. */
+static inline int64_t qo_fx_div_round_away(int64_t num, uint64_t den)
+{
+    uint64_t q = (qo_fx_abs_u64(num) + den / 2u) / den;
+    return num < 0 ? -(int64_t)q : (int64_t)q;
+}
+
+/* One Newton step r += r (2^62 - d r) / 2^62 of a reciprocal r ~ 2^62 / d, d in [2^31, 2^32),
+ * for r within 2^-13 relative of the true value (then |2^62 - d r| <= 2^50): the relative
+ * error squares (plus ~2^-31 of truncation). Multiplications only (no divider on ARMv6-M). */
+static inline uint32_t qo_fx_recip62_step(uint32_t d, uint32_t r)
+{
+    int64_t e = ((int64_t)1 << 62) - (int64_t)qo_fx_umul32_u64(d, r);
+    return (uint32_t)((int64_t)r + (qo_fx_mul32_i64((int32_t)(r >> 1), (int32_t)(e >> 31)) >> 30));
+}
+
+/* About 2^62 / d for d in [2^31, 2^32), within ~2^-28 relative (a table seed of 2^-8, a
+ * 16-bit Newton step and one qo_fx_recip62_step); a second qo_fx_recip62_step gives ~2^-31.
+ * An estimate only: callers that need an exact quotient correct it against the remainder.
+ * Defined in fxmath_fx.c (its seed table lives in flash once). */
+uint32_t qo_fx_recip62_u32(uint32_t d);
+
+/* About 2^30 / sqrt(x / 2^32) (Q2.30, in (2^30, 2^31)) for x in [2^30, 2^32): the 96-entry
+ * seed of qo_fx_sqrt_u64, a 16-bit Newton step and one in 32x32 -> 64 products, within ~2^-28
+ * relative (measured bound in tests/test_fxmath.c). Multiplications only. In fxmath_fx.c. */
+uint32_t qo_fx_rsqrt32_q30(uint32_t x);
+
+/* sin(2y) and cos(2y) in Q1.30 for y in [0, pi/4] given in Q1.31 (y * 2^31 <= 1686629713):
+ * the Taylor sums of qo_fx_sincos_q60 at y in 32x32 -> 64 products and the angle-doubling
+ * formulas, no range reduction and no 64-bit multiply or division (the fast tier of slerp;
+ * within 8 LSB, tests/test_fxmath.c). In fxmath_fx.c. */
+void qo_fx_sincos_2y_q30(uint32_t y, qo_q30 *s, qo_q30 *c);
+
+/* The unit quaternion of a rotation vector rv (Q3.28 radians, |rv| < 16): the kernel of
+ * qo_quat_exp_q30 (quat_fx.c) and of qo_quat_from_rotvec_q30 (convert_fx.c), which calls it, so
+ * the quaternion kernel depends on nothing above it. Contract: qo_quat_from_rotvec_q30. */
+qo_status qo_fx_quat_from_rotvec(qo_vec3_q28 rv, qo_quat_q30 *out);
+
+#endif /* QORIENT_FX_INTERNAL_H */
