@@ -5,6 +5,8 @@
 #include <float.h>
 #include <math.h>
 
+#include "qorient/fmath.h"
+
 /* Newton polar iteration: at most this many steps (scaled Newton needs < 10 for any matrix we
  * accept; the cap only stops a pathological input from looping). */
 #define CONV_NEWTON_MAX_ITER 30
@@ -151,6 +153,7 @@ qo_status qo_quat_from_axis_angle_f32(qo_vec3_f32 axis, float angle, qo_quat_f32
     qo_quat_f32 u;
     qo_status st;
     float s;
+    qo_fm_sincos_f32_t sc;
     if (out == NULL) return QO_E_NULL;
     *out = qo_quat_identity_f32();
     if (!vec3_is_finite(axis) || !isfinite(angle)) return QO_E_NONFINITE;
@@ -161,8 +164,9 @@ qo_status qo_quat_from_axis_angle_f32(qo_vec3_f32 axis, float angle, qo_quat_f32
         *out = qo_quat_identity_f32();
         return QO_E_DEGENERATE;
     }
-    s = sinf(0.5f * angle);
-    out->w = cosf(0.5f * angle);
+    sc = qo_fm_sincos_f32(0.5f * angle);
+    s = sc.s;
+    out->w = sc.c;
     out->x = s * u.x; out->y = s * u.y; out->z = s * u.z;
     return QO_OK;
 }
@@ -184,7 +188,7 @@ qo_status qo_quat_to_axis_angle_f32(qo_quat_f32 q, qo_vec3_f32 *axis, float *ang
     /* Unit axis through the safe normaliser: v can be subnormal after normalising q. */
     if (qo_quat_normalize_f32(v, &v) != QO_OK) return QO_OK;
     *axis = vec3(v.x, v.y, v.z);
-    *angle = 2.0f * atan2f(vn, n.w);
+    *angle = 2.0f * qo_fm_atan2_f32(vn, n.w);
     return QO_OK;
 }
 
@@ -199,13 +203,14 @@ qo_status qo_quat_from_rotvec_f32(qo_vec3_f32 rv, qo_quat_f32 *out)
     h = 0.5f * theta;
     if (h < 1e-2f) {
         /* cos h and sin(h)/theta by Taylor: at h < 1e-2 the next terms are < 2e-15, and a
-         * tiny rv gives w = 1, k = 1/2 exactly (sinf(h)/theta would lose the quotient). */
+         * tiny rv gives w = 1, k = 1/2 exactly (qo_fm_sin_f32(h)/theta would lose the quotient). */
         float h2 = h * h;
         out->w = 1.0f - 0.5f * h2 * (1.0f - h2 * (1.0f / 12.0f));
         k = 0.5f * (1.0f - h2 * (1.0f / 6.0f) * (1.0f - h2 * (1.0f / 20.0f)));
     } else {
-        out->w = cosf(h);
-        k = sinf(h) / theta;
+        qo_fm_sincos_f32_t sc = qo_fm_sincos_f32(h);
+        out->w = sc.c;
+        k = sc.s / theta;
     }
     out->x = k * rv.x; out->y = k * rv.y; out->z = k * rv.z;
     return QO_OK;
@@ -225,12 +230,12 @@ qo_status qo_quat_to_rotvec_f32(qo_quat_f32 q, qo_vec3_f32 *out)
     vn = qo_quat_norm_f32(v);
     if (vn < 1e-3f) {
         /* 2 atan(t)/t * (1/w) with t = vn/w <= ~1e-3: series, so a subnormal vector part
-         * keeps its full relative precision (atan2f would round in the subnormal range).
+         * keeps its full relative precision (atan2 would round in the subnormal range).
          * vn == 0 falls in here too and gives the zero vector. */
         float t2 = (vn / n.w) * (vn / n.w);
         k = (2.0f / n.w) * (1.0f - t2 * (1.0f / 3.0f));
     } else {
-        k = 2.0f * atan2f(vn, n.w) / vn;
+        k = 2.0f * qo_fm_atan2_f32(vn, n.w) / vn;
     }
     *out = vec3(k * n.x, k * n.y, k * n.z);
     return QO_OK;

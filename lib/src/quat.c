@@ -3,6 +3,8 @@
 
 #include <math.h>
 
+#include "qorient/fmath.h"
+
 qo_quat_f32 qo_quat_identity_f32(void)
 {
     qo_quat_f32 q = { 1.0f, 0.0f, 0.0f, 0.0f };
@@ -156,7 +158,7 @@ float qo_quat_angle_between_f32(qo_quat_f32 a, qo_quat_f32 b)
 {
     qo_quat_f32 d = qo_quat_mul_f32(qo_quat_conj_f32(a), b);
     float vn = sqrtf(d.x * d.x + d.y * d.y + d.z * d.z);
-    return 2.0f * atan2f(vn, fabsf(d.w));
+    return 2.0f * qo_fm_atan2_f32(vn, fabsf(d.w));
 }
 
 /* sin(r)/r, accurate also for r -> 0 where the quotient loses all digits. */
@@ -166,7 +168,7 @@ static float sinc_f32(float r)
         float r2 = r * r;
         return 1.0f - r2 * (1.0f / 6.0f) * (1.0f - r2 * (1.0f / 20.0f));
     }
-    return sinf(r) / r;
+    return qo_fm_sin_f32(r) / r;
 }
 
 qo_status qo_quat_exp_f32(qo_quat_f32 q, qo_quat_f32 *out)
@@ -177,10 +179,10 @@ qo_status qo_quat_exp_f32(qo_quat_f32 q, qo_quat_f32 *out)
     if (!qo_quat_is_finite_f32(q)) return QO_E_NONFINITE;
     r = sqrtf(q.x * q.x + q.y * q.y + q.z * q.z);
     if (isinf(r)) return QO_E_NONFINITE;
-    ew = expf(q.w);
+    ew = qo_fm_exp_f32(q.w);
     if (isinf(ew)) return QO_E_NONFINITE;
     k = ew * sinc_f32(r);
-    out->w = ew * cosf(r);
+    out->w = ew * qo_fm_cos_f32(r);
     out->x = k * q.x; out->y = k * q.y; out->z = k * q.z;
     return QO_OK;
 }
@@ -208,14 +210,14 @@ qo_status qo_quat_log_f32(qo_quat_f32 q, qo_quat_f32 *out)
      * which dropped the vector part (and near w = -1 replaced its axis by the fallback x). */
     v.w = 0.0f; v.x = q.x; v.y = q.y; v.z = q.z;
     vn = qo_quat_norm_f32(v);
-    out->w = logf(n) + lnscale;
+    out->w = qo_fm_log_f32(n) + lnscale;
     if (vn == 0.0f) {
         /* Real quaternion: log of a positive real is real; of a negative real the angle is pi
          * about an arbitrary axis - we take x and say so in the header. */
         if (q.w < 0.0f) out->x = 3.14159265358979f;
         return QO_OK;
     }
-    ang = atan2f(vn, q.w);
+    ang = qo_fm_atan2_f32(vn, q.w);
     /* angle * unit axis; v/vn rather than (ang/vn)*v so a subnormal vn cannot overflow. */
     out->x = ang * (q.x / vn); out->y = ang * (q.y / vn); out->z = ang * (q.z / vn);
     return QO_OK;
