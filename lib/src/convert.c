@@ -1,4 +1,6 @@
 /* float32 rotation conversions. See qorient/convert.h for the contract of each function. */
+/* The header's inline functions are also compiled here as external definitions (ABI). */
+#define QORIENT_CONVERT_EXTERN_DEFS
 #include "qorient/convert.h"
 #include "qorient/quat.h"
 
@@ -241,41 +243,16 @@ qo_status qo_quat_to_rotvec_f32(qo_quat_f32 q, qo_vec3_f32 *out)
     return QO_OK;
 }
 
-qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out)
+qo_status qo_quat_to_mat3_full_f32(qo_quat_f32 q, qo_mat3_f32 *out)
 {
     qo_quat_f32 n;
     qo_status st;
-    float s, xx, yy, zz, xy, xz, yz, wx, wy, wz;
     if (out == NULL) return QO_E_NULL;
-    /* Fast path: |q|^2 in [1e-30, 1e30] means q is finite and non-zero and needs no range
-     * scaling, so the normalisation is inlined (bit for bit qo_quat_normalize_f32's result,
-     * without its call and checks). Normalising is kept although s = 2/|n|^2 below would
-     * absorb any scale: measured, the unnormalised form is up to 1.4x less accurate. */
-    s = q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z;
-    if (s >= 1e-30f && s <= 1e30f) {
-        s = 1.0f / sqrtf(s);
-        n.w = q.w * s; n.x = q.x * s; n.y = q.y * s; n.z = q.z * s;
-    } else {
-        *out = qo_mat3_identity_f32();
-        st = qo_quat_normalize_f32(q, &n);
-        if (st != QO_OK) return st;
-    }
-    /* s = 2/|n|^2 rather than 2: I + s(...) is orthogonal for ANY non-zero n, so the few-ulp
-     * norm error left by normalising does not leak into the matrix as non-orthogonality. */
-    s = 2.0f / (n.w * n.w + n.x * n.x + n.y * n.y + n.z * n.z);
-    xx = n.x * n.x; yy = n.y * n.y; zz = n.z * n.z;
-    xy = n.x * n.y; xz = n.x * n.z; yz = n.y * n.z;
-    wx = n.w * n.x; wy = n.w * n.y; wz = n.w * n.z;
-    out->m[0][0] = 1.0f - s * (yy + zz);
-    out->m[0][1] = s * (xy - wz);
-    out->m[0][2] = s * (xz + wy);
-    out->m[1][0] = s * (xy + wz);
-    out->m[1][1] = 1.0f - s * (xx + zz);
-    out->m[1][2] = s * (yz - wx);
-    out->m[2][0] = s * (xz - wy);
-    out->m[2][1] = s * (yz + wx);
-    out->m[2][2] = 1.0f - s * (xx + yy);
-    return QO_OK;
+    *out = qo_mat3_identity_f32();
+    st = qo_quat_normalize_f32(q, &n);
+    if (st != QO_OK) return st;
+    /* |n| is 1 to a few ulp: the inline path takes it */
+    return qo_quat_to_mat3_f32(n, out);
 }
 
 /* Shepperd's method on a matrix already known to be a rotation within tolerance. */

@@ -1,41 +1,11 @@
 /* Quaternion algebra, float32. See qorient/quat.h for the contract of each function. */
+/* The header's inline functions are also compiled here as external definitions (ABI). */
+#define QORIENT_QUAT_EXTERN_DEFS
 #include "qorient/quat.h"
 
 #include <math.h>
 
 #include "qorient/fmath.h"
-
-qo_quat_f32 qo_quat_identity_f32(void)
-{
-    qo_quat_f32 q = { 1.0f, 0.0f, 0.0f, 0.0f };
-    return q;
-}
-
-qo_quat_f32 qo_quat_mul_f32(qo_quat_f32 a, qo_quat_f32 b)
-{
-    qo_quat_f32 r;
-    r.w = a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z;
-    r.x = a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y;
-    r.y = a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x;
-    r.z = a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w;
-    return r;
-}
-
-qo_quat_f32 qo_quat_conj_f32(qo_quat_f32 q)
-{
-    qo_quat_f32 r = { q.w, -q.x, -q.y, -q.z };
-    return r;
-}
-
-float qo_quat_dot_f32(qo_quat_f32 a, qo_quat_f32 b)
-{
-    return a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z;
-}
-
-int qo_quat_is_finite_f32(qo_quat_f32 q)
-{
-    return isfinite(q.w) && isfinite(q.x) && isfinite(q.y) && isfinite(q.z);
-}
 
 float qo_quat_norm_f32(qo_quat_f32 q)
 {
@@ -66,7 +36,7 @@ float qo_quat_norm_f32(qo_quat_f32 q)
     return m * sqrtf(w * w + x * x + y * y + z * z);
 }
 
-qo_status qo_quat_normalize_f32(qo_quat_f32 q, qo_quat_f32 *out)
+qo_status qo_quat_normalize_full_f32(qo_quat_f32 q, qo_quat_f32 *out)
 {
     float n, inv, m;
     if (out == NULL) return QO_E_NULL;
@@ -139,19 +109,6 @@ qo_quat_f32 qo_quat_canonical_f32(qo_quat_f32 q)
     /* -0.0 becomes +0.0 so canonical quaternions compare equal bitwise. */
     q.w += 0.0f; q.x += 0.0f; q.y += 0.0f; q.z += 0.0f;
     return q;
-}
-
-qo_vec3_f32 qo_quat_rotate_f32(qo_quat_f32 q, qo_vec3_f32 v)
-{
-    /* t = 2 u x v; v' = v + w t + u x t  (15 multiplies, 15 adds). */
-    float tx = 2.0f * (q.y * v.z - q.z * v.y);
-    float ty = 2.0f * (q.z * v.x - q.x * v.z);
-    float tz = 2.0f * (q.x * v.y - q.y * v.x);
-    qo_vec3_f32 r;
-    r.x = v.x + q.w * tx + (q.y * tz - q.z * ty);
-    r.y = v.y + q.w * ty + (q.z * tx - q.x * tz);
-    r.z = v.z + q.w * tz + (q.x * ty - q.y * tx);
-    return r;
 }
 
 float qo_quat_angle_between_f32(qo_quat_f32 a, qo_quat_f32 b)
