@@ -326,6 +326,22 @@ qo_status qo_quat_from_mat3_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
     return QO_OK;
 }
 
+qo_status qo_quat_from_mat3_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
+{
+    qo_status st;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_f32();
+    if (m == NULL) return QO_E_NULL;
+    /* Each pivot branch combines all six off-diagonal entries, so a NaN/Inf there reaches q
+     * (and normalising reports it); the diagonal enters through clamped square roots, which
+     * would hide a NaN: the trace catches any non-finite diagonal entry. */
+    if (!isfinite(m->m[0][0] + m->m[1][1] + m->m[2][2])) return QO_E_NONFINITE;
+    st = qo_quat_normalize_f32(mat3_to_quat_pivot(m), out);
+    if (st != QO_OK) return st;
+    *out = qo_quat_canonical_f32(*out);
+    return QO_OK;
+}
+
 qo_status qo_mat3_orthonormalize_f32(const qo_mat3_f32 *m, qo_mat3_f32 *out)
 {
     qo_mat3_f32 x, c;

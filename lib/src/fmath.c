@@ -130,6 +130,29 @@ static reduced reduce(float x)
     return out;
 }
 
+/* pi/2 - PIO2_HI - PIO2_LO */
+#define PIO2_LO2 (-0x1.ee59dap-50f)
+
+/* x - k pi/2 for pi/4 < |x| < 5pi/4 (k = +-1, +-2: k PIO2_HI is exact and x - k PIO2_HI is
+ * exact by Sterbenz), the rest of k pi/2 subtracted as a float pair (TwoSum), so r + rlo
+ * carries pi/2 to 2^-74: the whole Payne-Hanek reduction is not needed for the angles the
+ * core passes (half angles, slerp's u th). */
+static reduced reduce_small(float x)
+{
+    reduced out;
+    float kf, r1, b, r, bb;
+    int k = (int)(x * 0x1.45f306p-1f + (x < 0.0f ? -0.5f : 0.5f)); /* round(x 2/pi) */
+    kf = (float)k;
+    r1 = x - kf * PIO2_HI;
+    b = -kf * PIO2_LO;
+    r = r1 + b;
+    bb = r - r1;
+    out.r = r;
+    out.rlo = ((r1 - (r - bb)) + (b - bb)) - kf * PIO2_LO2;
+    out.k = (unsigned)k & 3u;
+    return out;
+}
+
 /* Taylor coefficients: on |r| <= pi/4 the first omitted terms (r^11/11!, r^12/12!) are below
  * 2e-9, a few hundredths of an ulp, so rounding - not the approximation - sets the error. */
 #define S1 (-1.0f / 6.0f)
@@ -183,7 +206,8 @@ qo_fm_sincos_f32_t qo_fm_sincos_f32(float x)
         o.s = o.c = x - x;
         return o;
     }
-    rd = reduce(x);
+    if (ax < 0x407b53d1u) rd = reduce_small(x); /* |x| < 5pi/4: k = +-1, +-2 */
+    else rd = reduce(x);
     s = sin_kernel(rd.r, rd.rlo);
     c = cos_kernel(rd.r, rd.rlo);
     switch (rd.k) {

@@ -18,6 +18,7 @@
  *   qo_quat_from_mat3_f32         rotation matrix -> canonical unit quaternion (strict check)
  *   qo_mat3_orthonormalize_f32    nearest rotation matrix (orthogonal polar factor)
  *   qo_quat_from_mat3_ortho_f32   orthonormalise, then convert (for drifted matrices)
+ *   qo_quat_from_mat3_trusted_f32 no rotation check (for matrices known to be rotations)
  *   qo_mat3_mul_vec3_f32          M v
  *   qo_mat3_mul_f32               A B
  *   qo_mat3_transpose_f32         M^T
@@ -151,6 +152,21 @@ qo_status qo_mat3_orthonormalize_f32(const qo_mat3_f32 *m, qo_mat3_f32 *out);
  * qo_mat3_orthonormalize_f32). *out is the identity on every error.
  */
 qo_status qo_quat_from_mat3_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
+
+/*
+ * Canonical unit quaternion of *m for callers whose matrix is KNOWN to be a rotation (built
+ * from a quaternion or from rotations, to float rounding): the pivoting formula of
+ * qo_quat_from_mat3_f32 (Shepperd: largest of trace, m00, m11, m22) and one normalisation,
+ * without the rotation check (orthogonality, determinant) that costs most of
+ * qo_quat_from_mat3_f32. For a float-rounded rotation the result is the same rotation to
+ * ~2e-7 rad (bench/accuracy_convert.c). A matrix that is not a rotation gives an unspecified
+ * unit quaternion (never NaN from finite input) - use qo_quat_from_mat3_f32 or _ortho_f32
+ * when that can happen.
+ * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NONFINITE for a NaN/Inf entry (or
+ * entries so large that the formula overflows: not a rotation). *out is the identity on every
+ * error.
+ */
+qo_status qo_quat_from_mat3_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 
 /* M v (no checks; NaN propagates). */
 qo_vec3_f32 qo_mat3_mul_vec3_f32(const qo_mat3_f32 *m, qo_vec3_f32 v);
