@@ -73,10 +73,10 @@ static void note(worst *w, double err, float x, float y)
 
 static void check(const worst *w)
 {
-    printf("  %-6s worst %.3f ulp at (%a, %a), bound %.1f\n", w->name, w->err, (double)w->x,
+    printf("  %-6s worst %.3f ulp at (%.9e, %.9e), bound %.1f\n", w->name, w->err, (double)w->x,
            (double)w->y, w->bound);
     if (!(w->err <= w->bound))
-        fail_msg("%s: %.3f ulp at x = %a (y = %a), bound %.1f", w->name, w->err, (double)w->x,
+        fail_msg("%s: %.3f ulp at x = %.9e (y = %.9e), bound %.1f", w->name, w->err, (double)w->x,
                  (double)w->y, w->bound);
 }
 
