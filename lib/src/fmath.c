@@ -219,14 +219,45 @@ qo_fm_sincos_f32_t qo_fm_sincos_f32(float x)
     return o;
 }
 
+/* sin or cos alone: the same reduction and kernels as qo_fm_sincos_f32 (so the same bits),
+ * only the one kernel the quadrant needs. */
+static int reduce_any(float x, reduced *rd)
+{
+    uint32_t ax = bits_of(x) & 0x7fffffffu;
+    if (ax <= 0x3f490fdau) {
+        rd->r = x;
+        rd->rlo = 0.0f;
+        rd->k = 0u;
+        return 1;
+    }
+    if (ax >= 0x7f800000u) return 0;
+    if (ax < 0x407b53d1u) *rd = reduce_small(x);
+    else *rd = reduce(x);
+    return 1;
+}
+
+/* sin(k pi/2 + r): the sin or cos kernel by k's parity, negated in the lower half-turn. */
+static float sin_quadrant(reduced rd)
+{
+    float v = (rd.k & 1u) ? cos_kernel(rd.r, rd.rlo) : sin_kernel(rd.r, rd.rlo);
+    return (rd.k & 2u) ? -v : v;
+}
+
 float qo_fm_sin_f32(float x)
 {
-    return qo_fm_sincos_f32(x).s;
+    reduced rd;
+    if ((bits_of(x) & 0x7fffffffu) < 0x39800000u) return x; /* as qo_fm_sincos_f32 */
+    if (!reduce_any(x, &rd)) return x - x;
+    return sin_quadrant(rd);
 }
 
 float qo_fm_cos_f32(float x)
 {
-    return qo_fm_sincos_f32(x).c;
+    reduced rd;
+    if ((bits_of(x) & 0x7fffffffu) < 0x39800000u) return 1.0f;
+    if (!reduce_any(x, &rd)) return x - x;
+    rd.k = (rd.k + 1u) & 3u; /* cos x = sin(x + pi/2) */
+    return sin_quadrant(rd);
 }
 
 /* ---- atan2, asin, acos ---------------------------------------------------------------- */
@@ -257,20 +288,24 @@ float qo_fm_atan2_f32(float y, float x)
 {
     float ay = fabsf(y), ax = fabsf(x), num, den, u, du, hi, lo, r, s, t;
     int swap, xneg = (bits_of(x) >> 31) != 0u;
-    if (isnan(x) || isnan(y)) return x + y;
-    if (isinf(ax) || isinf(ay)) {
-        if (isinf(ax) && isinf(ay)) r = xneg ? (PI3O4_HI + PI3O4_LO) : (PIO4_HI + PIO4_LO);
-        else if (isinf(ax)) r = xneg ? (PI_HI + PI_LO) : 0.0f;
-        else r = PIO2_HI + PIO2_LO;
-        return (bits_of(y) >> 31) ? -r : r;
-    }
-    if (ay == 0.0f) {
-        r = xneg ? (PI_HI + PI_LO) : 0.0f;
-        return (bits_of(y) >> 31) ? -r : r;
-    }
-    if (ax == 0.0f) {
-        r = PIO2_HI + PIO2_LO;
-        return (y < 0.0f) ? -r : r;
+    /* One test for the common case, both finite and non-zero (magnitude bits - 1 below
+     * those of +Inf - 1); the special cases follow only when it fails. */
+    if (!((bits_of(ax) - 1u) < 0x7f7fffffu && (bits_of(ay) - 1u) < 0x7f7fffffu)) {
+        if (isnan(x) || isnan(y)) return x + y;
+        if (isinf(ax) || isinf(ay)) {
+            if (isinf(ax) && isinf(ay)) r = xneg ? (PI3O4_HI + PI3O4_LO) : (PIO4_HI + PIO4_LO);
+            else if (isinf(ax)) r = xneg ? (PI_HI + PI_LO) : 0.0f;
+            else r = PIO2_HI + PIO2_LO;
+            return (bits_of(y) >> 31) ? -r : r;
+        }
+        if (ay == 0.0f) {
+            r = xneg ? (PI_HI + PI_LO) : 0.0f;
+            return (bits_of(y) >> 31) ? -r : r;
+        }
+        if (ax == 0.0f) {
+            r = PIO2_HI + PIO2_LO;
+            return (y < 0.0f) ? -r : r;
+        }
     }
     swap = ay > ax;
     num = swap ? ax : ay;
