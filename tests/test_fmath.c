@@ -20,8 +20,8 @@
 
 /* The stated bounds, in ulp of the correctly rounded result (qorient/fmath.h). */
 #define BOUND_SINCOS 1.0
-#define BOUND_ATAN2 2.5
-#define BOUND_ASINCOS 3.0
+#define BOUND_ATAN2 1.5
+#define BOUND_ASINCOS 2.0
 #define BOUND_EXPLOG 1.0
 
 /* Sweep density: the emulated Cortex-M targets run double libm in software, ~100x slower, so

@@ -27,26 +27,31 @@
  * floats nearest multiples of pi/2).
  *   sincos  range reduction x - k pi/2 EXACT for every float: x * 2/pi in integers with a
  *           224-bit table of 2/pi (Payne-Hanek; 3 32x32->64 products), the remainder carried
- *           as a float pair; minimax polynomials on [-pi/4, pi/4] (sin to r^7, cos to r^8,
- *           the 1 - r^2/2 step with its rounding error recovered).  bound 1 ulp.
+ *           as a float pair (|x| < 5pi/4: one exact k pi/2 step with a three-part pi/2);
+ *           Taylor polynomials on [-pi/4, pi/4] (sin to r^9, cos to r^10: truncation
+ *           below 0.04 ulp), r^2 and the 1 - r^2/2 step with their rounding errors
+ *           recovered.  bound 1 ulp.
  *   atan2   octant folding; for min/max > tan(pi/8) the argument (n - d)/(n + d) straight
  *           from the inputs (no rounded quotient first); the offset (0, pi/4 ... pi) as a
  *           two-float constant added last, so the result is rounded once at its own size;
- *           a degree-9 odd polynomial on [-tan(pi/8), tan(pi/8)].  bound 2.5 ulp (measured 2.09,
- *           near atan2 = pi/8 where the rounded (n - d)/(n + d) costs up to 1 ulp); in
- *           absolute terms never more than 0.5 ulp of the result plus 4e-8 rad.
+ *           u + u^3 P(u^2) on [-tan(pi/8), tan(pi/8)], P of degree 4
+ *           (tools/fmath-fit-atan.c); the rounding errors of u = n/d (or (n-d)/(n+d)) are
+ *           computed exactly (Dekker) and added as du/(1 + u^2).  bound 1.5 ulp.
  *   asin    atan2(x, sqrt((1 - x)(1 + x))); acos: atan2(sqrt((1 - x)(1 + x)), x): 1 - x is
- *           exact near 1, so +-1 and their neighbourhood keep full accuracy.  bound 3 ulp.
+ *           exact near 1, so +-1 and their neighbourhood keep full accuracy.  bound 2 ulp.
  *           |x| > 1 gives NaN.
- *   exp     x = k ln2 + r with a two-part ln 2, degree-7 polynomial on |r| <= ln2/2, scaled
+ *   exp     x = k ln2 + r + rlo with a two-part ln 2 (the rounding of r kept, as is that of
+ *           1 + r), Taylor to r^8 on |r| <= ln2/2, scaled
  *           by 2^k (two steps for subnormal results).  bound 1 ulp (normal results; subnormal
  *           ones within 2^-149).
  *           Overflows to +Inf above 88.7228, 0 below -103.98.
  *   log     exponent and mantissa split (subnormals scaled first), mantissa in
- *           [sqrt(1/2), sqrt(2)), degree-10 polynomial, a two-part ln 2.  bound 1 ulp.
+ *           [sqrt(1/2), sqrt(2)), degree-10 polynomial (Cephes logf), a two-part ln 2; the
+ *           roundings of f - f^2/2 and of e ln 2 + that are recovered exactly.
+ *           bound 1 ulp.
  *           log(+-0) = -Inf, log(x < 0) = NaN, log(+Inf) = +Inf.
  * The bounds above are the ones the tests enforce; the measured worst cases are printed by
- * `build/tests/test_fmath` (and docs/FIGURES.md).
+ * `build/tests/test_fmath`.
  */
 #ifndef QORIENT_FMATH_H
 #define QORIENT_FMATH_H
