@@ -2,15 +2,15 @@
  * The same bits on every target: a fixed set of inputs (built from integers only, so the inputs
  * themselves do not depend on any libm) goes through every float32 function that uses a
  * transcendental kernel - qorient/fmath.h itself, quat exp/log/angle/integrate, every
- * conversion, all 24 Euler conventions both ways, slerp, squad, spline - and a 32-bit FNV-1a
+ * conversion, all 24 Euler conventions both ways, slerp, nlerp, squad, Bezier - and an FNV-1a
  * digest of each output's bits (and status) is compared with the committed table
- * tests/golden/same_bits.h. The table was made on x86-64; the test runs unchanged on aarch64
- * and armhf (qemu-user, make test-qemu) and bare metal on Cortex-M4F/M7 (core test), so a
+ * tests/common/same_bits.h. The table was made on x86-64; the test runs unchanged on aarch64
+ * and armhf (qemu-user, make test-qemu) and bare metal on Cortex-M0/M4F/M7 (core test), so a
  * difference of one ulp anywhere on any target fails here with the function and the case.
  *
  * Regenerate the table after an intended change of results:
  *   QORIENT_SAME_BITS_PRINT=1 build/tests/test_same_bits | sed -n '/same_bits.h:/,/^};/p' \
- *       > tests/golden/same_bits.h
+ *       > tests/common/same_bits.h
  */
 #include <math.h>
 #include <setjmp.h>
@@ -33,7 +33,7 @@ enum { F_KERNELS, F_QUAT, F_CONVERT, F_EULER, F_INTERP, F_COUNT };
 static const char *const family[F_COUNT] = { "fmath", "quat", "convert", "euler", "interp" };
 
 /* the committed digests: same_bits_expected[family][case] */
-#include "golden/same_bits.h"
+#include "common/same_bits.h"
 
 static uint32_t digest[F_COUNT][N_CASES];
 
@@ -163,7 +163,7 @@ static void test_same_bits(void **state)
     (void)state;
     for (c = 0; c < N_CASES; c++) run_case(c);
     if (print != NULL && print[0] != '\0') {
-        printf("/* tests/golden/same_bits.h: digests of tests/test_same_bits.c (made on x86-64; how: see\n"
+        printf("/* tests/common/same_bits.h: digests of tests/test_same_bits.c (made on x86-64; how: see\n"
                " * that file's comment). Every target must reproduce them bit for bit. */\n"
                "static const uint32_t same_bits_expected[%d][%d] = {\n", F_COUNT, N_CASES);
         for (f = 0; f < F_COUNT; f++) {
@@ -184,7 +184,7 @@ static void test_same_bits(void **state)
                             (unsigned long)same_bits_expected[f][c]);
                 bad++;
             }
-    if (bad) fail_msg("%d digests differ from tests/golden/same_bits.h", bad);
+    if (bad) fail_msg("%d digests differ from tests/common/same_bits.h", bad);
 }
 
 int main(void)
