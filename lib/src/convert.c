@@ -109,8 +109,13 @@ static qo_mat3_f32 mat3_cofactor(const qo_mat3_f32 *m)
 
 float qo_mat3_det_f32(const qo_mat3_f32 *m)
 {
-    qo_mat3_f32 c = mat3_cofactor(m);
-    return m->m[0][0] * c.m[0][0] + m->m[0][1] * c.m[0][1] + m->m[0][2] * c.m[0][2];
+    /* Expansion along the first row: only its three cofactors (as mat3_cofactor computes
+     * them, so the same value), not all nine. */
+    const float (*a)[3] = m->m;
+    float c00 = a[1][1] * a[2][2] - a[1][2] * a[2][1];
+    float c01 = a[1][2] * a[2][0] - a[1][0] * a[2][2];
+    float c02 = a[1][0] * a[2][1] - a[1][1] * a[2][0];
+    return a[0][0] * c00 + a[0][1] * c01 + a[0][2] * c02;
 }
 
 static float mat3_frobenius(const qo_mat3_f32 *m)
@@ -133,20 +138,21 @@ static float mat3_orthogonality_error(const qo_mat3_f32 *m)
     /* Written out (the generic i <= j loop was not unrolled at -O2 and cost 2.5x as much);
      * the same six dot products in the same order, so the same value. */
     float e[6];
-    float worst = 0.0f;
-    int k;
+    float worst;
     e[0] = fabsf(mat3_col_dot(m, 0, 0) - 1.0f);
     e[1] = fabsf(mat3_col_dot(m, 0, 1));
     e[2] = fabsf(mat3_col_dot(m, 0, 2));
     e[3] = fabsf(mat3_col_dot(m, 1, 1) - 1.0f);
     e[4] = fabsf(mat3_col_dot(m, 1, 2));
     e[5] = fabsf(mat3_col_dot(m, 2, 2) - 1.0f);
-    /* NaN is sticky: a later finite e must not replace it (the caller relies on a NaN entry
-     * giving a NaN error). */
-    for (k = 0; k < 6; k++) {
-        if (!(e[k] <= worst)) worst = e[k];
-        if (isnan(worst)) break;
-    }
+    /* The largest by plain comparisons (no loop, no libm call); NaN must win (the caller
+     * relies on a NaN entry giving a NaN error): the sum is NaN exactly when one e is. */
+    worst = e[0] > e[1] ? e[0] : e[1];
+    if (e[2] > worst) worst = e[2];
+    if (e[3] > worst) worst = e[3];
+    if (e[4] > worst) worst = e[4];
+    if (e[5] > worst) worst = e[5];
+    if (isnan(e[0] + e[1] + e[2] + e[3] + e[4] + e[5])) return NAN;
     return worst;
 }
 
@@ -255,6 +261,12 @@ qo_status qo_quat_to_mat3_full_f32(qo_quat_f32 q, qo_mat3_f32 *out)
     return qo_quat_to_mat3_f32(n, out);
 }
 
+/* fmaxf(v, FLT_MIN) without the libm call (NaN gives FLT_MIN as there). */
+static float clamp_min(float v)
+{
+    return v > FLT_MIN ? v : FLT_MIN;
+}
+
 /* Shepperd's method on a matrix already known to be a rotation within tolerance. */
 static qo_quat_f32 mat3_to_quat_pivot(const qo_mat3_f32 *m)
 {
@@ -266,28 +278,28 @@ static qo_quat_f32 mat3_to_quat_pivot(const qo_mat3_f32 *m)
      * diagonal entries picks the same one. Its square root argument is then >= 1 for an exact
      * rotation; clamping keeps round-off from producing sqrt of a negative number. */
     if (t >= a[0][0] && t >= a[1][1] && t >= a[2][2]) {
-        r = sqrtf(fmaxf(1.0f + t, FLT_MIN));
+        r = sqrtf(clamp_min(1.0f + t));
         s = 0.5f / r;
         q.w = 0.5f * r;
         q.x = (a[2][1] - a[1][2]) * s;
         q.y = (a[0][2] - a[2][0]) * s;
         q.z = (a[1][0] - a[0][1]) * s;
     } else if (a[0][0] >= a[1][1] && a[0][0] >= a[2][2]) {
-        r = sqrtf(fmaxf(1.0f + a[0][0] - a[1][1] - a[2][2], FLT_MIN));
+        r = sqrtf(clamp_min(1.0f + a[0][0] - a[1][1] - a[2][2]));
         s = 0.5f / r;
         q.w = (a[2][1] - a[1][2]) * s;
         q.x = 0.5f * r;
         q.y = (a[0][1] + a[1][0]) * s;
         q.z = (a[0][2] + a[2][0]) * s;
     } else if (a[1][1] >= a[2][2]) {
-        r = sqrtf(fmaxf(1.0f - a[0][0] + a[1][1] - a[2][2], FLT_MIN));
+        r = sqrtf(clamp_min(1.0f - a[0][0] + a[1][1] - a[2][2]));
         s = 0.5f / r;
         q.w = (a[0][2] - a[2][0]) * s;
         q.x = (a[0][1] + a[1][0]) * s;
         q.y = 0.5f * r;
         q.z = (a[1][2] + a[2][1]) * s;
     } else {
-        r = sqrtf(fmaxf(1.0f - a[0][0] - a[1][1] + a[2][2], FLT_MIN));
+        r = sqrtf(clamp_min(1.0f - a[0][0] - a[1][1] + a[2][2]));
         s = 0.5f / r;
         q.w = (a[1][0] - a[0][1]) * s;
         q.x = (a[0][2] + a[2][0]) * s;
