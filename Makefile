@@ -17,7 +17,7 @@
 #                          built and fuzzed without them
 #   tests/test_*.c         one cmocka program each; tests/common/*.c linked into all of them
 #   tests/test_*.sh        shell tests of the command, run with build/qorient
-#   bench/*.c              figure programs (accuracy_*.c run by `make figures`)
+#   bench/*.c              figure programs (accuracy_*.c run by `make figures`, docs/FIGURES.md)
 
 CC      ?= cc
 BUILD   ?= build
@@ -58,7 +58,7 @@ SPORT_OBJ := $(PORT_SRC:%.c=$(BUILD)/san/%.o)
 SCOMMON_OBJ := $(TEST_COMMON:%.c=$(BUILD)/san/%.o)
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all lib demo test test-run test-vm core-check clean tests-build figures
+.PHONY: all lib demo test test-run test-vm core-check clean tests-build figures figures-check
 # Keep the sanitizer objects between runs (they are intermediates of the test pattern rule).
 .SECONDARY:
 all: $(BUILD)/libqorient.a $(BUILD)/libqorient_ports.a $(BUILD)/qorient
@@ -114,9 +114,13 @@ $(BUILD)/bench/%: bench/%.c $(BUILD)/libqorient_ports.a $(BUILD)/libqorient.a
 	$(CC) $(STD) $(WARN) $(FPFLAGS) -O2 -g $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports -Itests $(PKG_CFLAGS) $< \
 	    $(BUILD)/libqorient_ports.a $(BUILD)/libqorient.a $(PKG_LIBS) -lm -pthread -lutil -o $@
 
-# Builds every bench/ program and runs the accuracy_* ones (each prints its figures).
+# docs/FIGURES.md regenerated from the code (tools/figures.sh: one script per section in
+# tools/figures/); figures-check regenerates the deterministic sections and fails when the
+# committed page differs (CI).
 figures: $(BENCH_BIN)
-	@for b in $(filter $(BUILD)/bench/accuracy_%,$(BENCH_BIN)); do echo "== $$b"; $$b || exit 1; done
+	@BUILD=$(BUILD) sh tools/figures.sh
+figures-check: $(BENCH_BIN)
+	@BUILD=$(BUILD) sh tools/figures.sh --check
 
 tests-build: $(TEST_BIN) $(BUILD)/qorient
 

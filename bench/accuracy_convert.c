@@ -25,11 +25,11 @@
 #define LIMIT_RAD 1e-6
 
 enum {
-    C_Q2M, C_M2Q, C_M2Q_DRIFT, C_M2Q_ORTHO_EXACT, C_M2Q_ORTHO_NOISY, C_ORTHO_NOISY, C_AA2Q, C_Q2AA,
+    C_Q2M, C_M2Q, C_M2Q_TRUSTED, C_M2Q_DRIFT, C_M2Q_ORTHO_EXACT, C_M2Q_ORTHO_NOISY, C_ORTHO_NOISY, C_AA2Q, C_Q2AA,
     C_RV2Q, C_Q2RV, C_Q2M2Q, C_COUNT
 };
 static const char *const names[C_COUNT] = {
-    "quat_to_mat3", "quat_from_mat3", "quat_from_mat3 (drift 1e-5)",
+    "quat_to_mat3", "quat_from_mat3", "quat_from_mat3_trusted", "quat_from_mat3 (drift 1e-5)",
     "quat_from_mat3_ortho (rotation)",
     "quat_from_mat3_ortho (noise 1e-2)", "mat3_orthonormalize (noise 1e-2)",
     "quat_from_axis_angle", "quat_to_axis_angle", "quat_from_rotvec", "quat_to_rotvec",
@@ -74,6 +74,8 @@ static void measure(ref_quat rq, ref_rng *rng)
     near = ref_mat3_nearest_rotation(&rmd);
     s = qo_quat_from_mat3_f32(&mf, &q2);
     record(C_M2Q, ref_quat_angle_between(ref_quat_from_f32(q2), ref_mat3_to_quat(&near)), s);
+    s = qo_quat_from_mat3_trusted_f32(&mf, &q2);
+    record(C_M2Q_TRUSTED, ref_quat_angle_between(ref_quat_from_f32(q2), ref_mat3_to_quat(&near)), s);
     s = qo_quat_from_mat3_ortho_f32(&mf, &q2);
     record(C_M2Q_ORTHO_EXACT, ref_quat_angle_between(ref_quat_from_f32(q2), ref_mat3_to_quat(&near)), s);
 

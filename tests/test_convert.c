@@ -294,6 +294,55 @@ static void test_quat_from_mat3_random(void **state)
     }
 }
 
+/* The trusted variant: random rotations and the edge table (every pivot, 180 deg, tiny) against
+ * the double quaternion; non-finite entries (diagonal and off-diagonal) and NULL refused with
+ * the identity written; a non-rotation gives some unit quaternion, never NaN. */
+static void test_quat_from_mat3_trusted(void **state)
+{
+    ref_rng rng = { 37 };
+    int n, i;
+    size_t k;
+    qo_quat_f32 q;
+    qo_mat3_f32 m;
+    (void)state;
+    for (n = 0; n < N_RANDOM + (int)N_EDGES; n++) {
+        ref_quat rq;
+        double err;
+        if (n < N_RANDOM) {
+            m = rand_rot_f32(&rng, &rq);
+        } else {
+            ref_mat3 r;
+            rq = edge_quat((size_t)(n - N_RANDOM));
+            r = ref_quat_to_mat3(rq);
+            m = ref_mat3_to_f32(&r);
+        }
+        assert_int_equal(qo_quat_from_mat3_trusted_f32(&m, &q), QO_OK);
+        err = ref_quat_angle_between(ref_quat_from_f32(q), rq);
+        if (err > TOL_RAD || q.w < 0.0f || fabs(ref_quat_norm(ref_quat_from_f32(q)) - 1.0) > 1e-6) {
+            print_m("m", &m);
+            print_q("got", q);
+            fail_msg("quat_from_mat3_trusted case %d: error %.3g rad (w >= 0, |q| 1)", n, err);
+        }
+    }
+    for (k = 0; k < 9; k++) {
+        float bad[3] = { NAN, INFINITY, -INFINITY };
+        for (i = 0; i < 3; i++) {
+            m = qo_mat3_identity_f32();
+            m.m[k / 3][k % 3] = bad[i];
+            q.w = 7.0f;
+            if (qo_quat_from_mat3_trusted_f32(&m, &q) != QO_E_NONFINITE || !is_identity_q(q))
+                fail_msg("trusted: entry %d = %g not refused", (int)k, (double)bad[i]);
+        }
+    }
+    assert_int_equal(qo_quat_from_mat3_trusted_f32(NULL, &q), QO_E_NULL);
+    assert_true(is_identity_q(q));
+    assert_int_equal(qo_quat_from_mat3_trusted_f32(&m, NULL), QO_E_NULL);
+    memset(&m, 0, sizeof m);
+    m.m[0][0] = 2.0f; m.m[1][2] = -3.0f; /* not a rotation: some unit quaternion */
+    assert_int_equal(qo_quat_from_mat3_trusted_f32(&m, &q), QO_OK);
+    assert_true(fabs(ref_quat_norm(ref_quat_from_f32(q)) - 1.0) < 1e-6);
+}
+
 static void test_quat_from_mat3_edges(void **state)
 {
     size_t k;
@@ -958,6 +1007,7 @@ int main(void)
         cmocka_unit_test(test_quat_to_mat3_errors),
         cmocka_unit_test(test_quat_from_mat3_random),
         cmocka_unit_test(test_quat_from_mat3_edges),
+        cmocka_unit_test(test_quat_from_mat3_trusted),
         cmocka_unit_test(test_quat_from_mat3_non_rotations),
         cmocka_unit_test(test_quat_from_mat3_drifted),
         cmocka_unit_test(test_edges_all_conversions),

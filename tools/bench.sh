@@ -7,34 +7,19 @@
 #   sh tools/bench.sh qemu    Cortex-M0 (soft float) and Cortex-M4F instruction counts
 #   sh tools/bench.sh plots   tables + PNGs from existing result files
 #
-# One flag set for every library (C and C++ alike): BENCH_FLAGS below. Override the number of
+# One flag set for every library (C and C++ alike): bench/compare/build.sh. Override the number of
 # timing repetitions with REPS=n (default 41; the median is reported).
 set -eu
 BUILD=${BUILD:-build}
 OUT=$BUILD/bench-results
 OBJ=$BUILD/bench-compare
 REPS=${REPS:-41}
-BENCH_FLAGS="-O2 -ffp-contract=off -march=x86-64 -g"
 mkdir -p "$OUT" "$OBJ"
 
-# build_one VARIANT EXTRA_FLAGS: builds $OBJ/VARIANT/bench with BENCH_FLAGS + EXTRA_FLAGS for
-# every source (qorient, cglm, Eigen and the driver alike; libfixmath is Debian's prebuilt .a).
+# build_one VARIANT EXTRA_FLAGS: $OBJ/VARIANT/bench with the common flags + EXTRA_FLAGS for every
+# source (bench/compare/build.sh, shared with tools/figures/).
 build_one() {
-    d=$OBJ/$1; f="$BENCH_FLAGS $2"; objs=""
-    mkdir -p "$d"
-    for s in lib/src/*.c; do
-        o=$d/lib_$(basename "$s" .c).o
-        gcc -std=c99 $f -Ilib/include -c "$s" -o "$o"; objs="$objs $o"
-    done
-    gcc -std=c99 $f -Ilib/include -Itests -c tests/common/ref.c -o "$d/ref.o"
-    for s in bench/compare/*.c; do
-        o=$d/$(basename "$s" .c).o
-        gcc -std=c11 -D_POSIX_C_SOURCE=200809L -Wall -Wextra $f -Ilib/include -Itests -c "$s" -o "$o"
-        objs="$objs $o"
-    done
-    g++ -std=c++14 -Wall -Wextra $f -Ilib/include -I/usr/include/eigen3 \
-        -c bench/compare/k_eigen.cpp -o "$d/k_eigen.o"
-    g++ $f -o "$d/bench" $objs "$d/ref.o" "$d/k_eigen.o" -llibfixmath -lm
+    sh bench/compare/build.sh "$OBJ/$1" "$2"
 }
 
 # callgrind VARIANT PATTERN: instructions per call of every kernel bk_* matching PATTERN
@@ -49,7 +34,7 @@ callgrind() {
 }
 
 host() {
-    echo "bench: building (flags: $BENCH_FLAGS; and again with -flto)"
+    echo "bench: building (flags: see bench/compare/build.sh; and again with -flto)"
     build_one lib ""
     build_one lto "-flto"
     echo "bench: timing ($REPS repetitions of 1024 calls per kernel, interleaved)"

@@ -6,7 +6,10 @@
 #  4. the fixed-point core (lib/src/*_fx.c) references no float/double helper
 #     (__aeabi_f*, __aeabi_d*), no libm function and no float32-core symbol (*_f32) on
 #     Cortex-M0+ soft float, and builds freestanding for rv32imac,
-#  5. no core source includes an OS, bus or stdio header.
+#  5. no core source includes an OS, bus or stdio header,
+#  6. the float core (every non-_fx object) references no libm transcendental function: its
+#     results come from qorient/fmath.h's kernels, bit-identical on every target (only the
+#     exactly rounded sqrtf, fmodf, roundf, fabsf, fmaxf/fminf, floorf/ceilf may be linked).
 set -eu
 OUT=${BUILD:-build}/core-check
 rm -rf "$OUT"; mkdir -p "$OUT"
@@ -41,6 +44,19 @@ for o in "$OUT"/m4f/*.o; do
         bad "$o references the heap"
     fi
 done
+
+for o in "$OUT"/m4f/*.o "$OUT"/host-gcc/*.o; do
+    [ -f "$o" ] || continue
+    case $o in *_fx.o) continue;; esac
+    for sym in $(nm -u "$o" 2>/dev/null | awk '{print $2}'); do
+        case $sym in
+        sin|sinf|cos|cosf|sincos|sincosf|tan|tanf|asin|asinf|acos|acosf|atan|atanf|atan2|atan2f|\
+exp|expf|exp2f|expm1f|log|logf|log2f|log1pf|pow|powf|cbrt|cbrtf|hypot|hypotf|sinh*|cosh*|tanh*)
+            bad "float core $o references libm $sym (use qorient/fmath.h)";;
+        esac
+    done
+done
+say "core-check: float core references no libm transcendental (sin ... hypot)"
 
 if [ -n "$FX" ]; then
     SRCS=$FX

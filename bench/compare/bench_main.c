@@ -186,7 +186,7 @@ static double op_error(const char *op, const bk_output *o, int i, const char **u
         ref_mat3 m = ref_quat_to_mat3(a);
         return mat_err(&o->m[i], &m);
     }
-    if (!strcmp(op, "from_mat3")) {
+    if (!strcmp(op, "from_mat3") || !strcmp(op, "from_mat3_trusted")) {
         ref_mat3 m = ref_mat3_from_f32(&in->m[i]);
         return quat_err(gq, ref_mat3_to_quat(&m));
     }

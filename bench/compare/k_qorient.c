@@ -61,6 +61,13 @@ void bk_qorient_from_mat3(void)
     for (i = 0; i < BK_N; i++) (void)qo_quat_from_mat3_f32(&g_in->m[i], &g_q[i]);
 }
 
+void bk_qorient_from_mat3_trusted(void);
+void bk_qorient_from_mat3_trusted(void)
+{
+    int i;
+    for (i = 0; i < BK_N; i++) (void)qo_quat_from_mat3_trusted_f32(&g_in->m[i], &g_q[i]);
+}
+
 static void euler(qo_euler_seq seq)
 {
     int i;
@@ -87,6 +94,7 @@ const bk_kernel bk_qorient_kernels[] = {
     { "qorient", "normalize", bk_qorient_normalize, fetch },
     { "qorient", "to_mat3", bk_qorient_to_mat3, fetch },
     { "qorient", "from_mat3", bk_qorient_from_mat3, fetch },
+    { "qorient", "from_mat3_trusted", bk_qorient_from_mat3_trusted, fetch },
     { "qorient", "to_euler_XYZ", bk_qorient_to_euler_XYZ, fetch },
     { "qorient", "to_euler_ZYX", bk_qorient_to_euler_ZYX, fetch },
     { "qorient", "to_euler_ZXZ", bk_qorient_to_euler_ZXZ, fetch },

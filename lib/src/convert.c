@@ -1,9 +1,13 @@
 /* float32 rotation conversions. See qorient/convert.h for the contract of each function. */
+/* The header's inline functions are also compiled here as external definitions (ABI). */
+#define QORIENT_CONVERT_EXTERN_DEFS
 #include "qorient/convert.h"
 #include "qorient/quat.h"
 
 #include <float.h>
 #include <math.h>
+
+#include "qorient/fmath.h"
 
 /* Newton polar iteration: at most this many steps (scaled Newton needs < 10 for any matrix we
  * accept; the cap only stops a pathological input from looping). */
@@ -105,8 +109,13 @@ static qo_mat3_f32 mat3_cofactor(const qo_mat3_f32 *m)
 
 float qo_mat3_det_f32(const qo_mat3_f32 *m)
 {
-    qo_mat3_f32 c = mat3_cofactor(m);
-    return m->m[0][0] * c.m[0][0] + m->m[0][1] * c.m[0][1] + m->m[0][2] * c.m[0][2];
+    /* Expansion along the first row: only its three cofactors (as mat3_cofactor computes
+     * them, so the same value), not all nine. */
+    const float (*a)[3] = m->m;
+    float c00 = a[1][1] * a[2][2] - a[1][2] * a[2][1];
+    float c01 = a[1][2] * a[2][0] - a[1][0] * a[2][2];
+    float c02 = a[1][0] * a[2][1] - a[1][1] * a[2][0];
+    return a[0][0] * c00 + a[0][1] * c01 + a[0][2] * c02;
 }
 
 static float mat3_frobenius(const qo_mat3_f32 *m)
@@ -129,20 +138,21 @@ static float mat3_orthogonality_error(const qo_mat3_f32 *m)
     /* Written out (the generic i <= j loop was not unrolled at -O2 and cost 2.5x as much);
      * the same six dot products in the same order, so the same value. */
     float e[6];
-    float worst = 0.0f;
-    int k;
+    float worst;
     e[0] = fabsf(mat3_col_dot(m, 0, 0) - 1.0f);
     e[1] = fabsf(mat3_col_dot(m, 0, 1));
     e[2] = fabsf(mat3_col_dot(m, 0, 2));
     e[3] = fabsf(mat3_col_dot(m, 1, 1) - 1.0f);
     e[4] = fabsf(mat3_col_dot(m, 1, 2));
     e[5] = fabsf(mat3_col_dot(m, 2, 2) - 1.0f);
-    /* NaN is sticky: a later finite e must not replace it (the caller relies on a NaN entry
-     * giving a NaN error). */
-    for (k = 0; k < 6; k++) {
-        if (!(e[k] <= worst)) worst = e[k];
-        if (isnan(worst)) break;
-    }
+    /* The largest by plain comparisons (no loop, no libm call); NaN must win (the caller
+     * relies on a NaN entry giving a NaN error): the sum is NaN exactly when one e is. */
+    worst = e[0] > e[1] ? e[0] : e[1];
+    if (e[2] > worst) worst = e[2];
+    if (e[3] > worst) worst = e[3];
+    if (e[4] > worst) worst = e[4];
+    if (e[5] > worst) worst = e[5];
+    if (isnan(e[0] + e[1] + e[2] + e[3] + e[4] + e[5])) return NAN;
     return worst;
 }
 
@@ -151,6 +161,7 @@ qo_status qo_quat_from_axis_angle_f32(qo_vec3_f32 axis, float angle, qo_quat_f32
     qo_quat_f32 u;
     qo_status st;
     float s;
+    qo_fm_sincos_f32_t sc;
     if (out == NULL) return QO_E_NULL;
     *out = qo_quat_identity_f32();
     if (!vec3_is_finite(axis) || !isfinite(angle)) return QO_E_NONFINITE;
@@ -161,8 +172,9 @@ qo_status qo_quat_from_axis_angle_f32(qo_vec3_f32 axis, float angle, qo_quat_f32
         *out = qo_quat_identity_f32();
         return QO_E_DEGENERATE;
     }
-    s = sinf(0.5f * angle);
-    out->w = cosf(0.5f * angle);
+    sc = qo_fm_sincos_f32(0.5f * angle);
+    s = sc.s;
+    out->w = sc.c;
     out->x = s * u.x; out->y = s * u.y; out->z = s * u.z;
     return QO_OK;
 }
@@ -184,7 +196,7 @@ qo_status qo_quat_to_axis_angle_f32(qo_quat_f32 q, qo_vec3_f32 *axis, float *ang
     /* Unit axis through the safe normaliser: v can be subnormal after normalising q. */
     if (qo_quat_normalize_f32(v, &v) != QO_OK) return QO_OK;
     *axis = vec3(v.x, v.y, v.z);
-    *angle = 2.0f * atan2f(vn, n.w);
+    *angle = 2.0f * qo_fm_atan2_f32(vn, n.w);
     return QO_OK;
 }
 
@@ -199,13 +211,14 @@ qo_status qo_quat_from_rotvec_f32(qo_vec3_f32 rv, qo_quat_f32 *out)
     h = 0.5f * theta;
     if (h < 1e-2f) {
         /* cos h and sin(h)/theta by Taylor: at h < 1e-2 the next terms are < 2e-15, and a
-         * tiny rv gives w = 1, k = 1/2 exactly (sinf(h)/theta would lose the quotient). */
+         * tiny rv gives w = 1, k = 1/2 exactly (qo_fm_sin_f32(h)/theta would lose the quotient). */
         float h2 = h * h;
         out->w = 1.0f - 0.5f * h2 * (1.0f - h2 * (1.0f / 12.0f));
         k = 0.5f * (1.0f - h2 * (1.0f / 6.0f) * (1.0f - h2 * (1.0f / 20.0f)));
     } else {
-        out->w = cosf(h);
-        k = sinf(h) / theta;
+        qo_fm_sincos_f32_t sc = qo_fm_sincos_f32(h);
+        out->w = sc.c;
+        k = sc.s / theta;
     }
     out->x = k * rv.x; out->y = k * rv.y; out->z = k * rv.z;
     return QO_OK;
@@ -225,52 +238,33 @@ qo_status qo_quat_to_rotvec_f32(qo_quat_f32 q, qo_vec3_f32 *out)
     vn = qo_quat_norm_f32(v);
     if (vn < 1e-3f) {
         /* 2 atan(t)/t * (1/w) with t = vn/w <= ~1e-3: series, so a subnormal vector part
-         * keeps its full relative precision (atan2f would round in the subnormal range).
+         * keeps its full relative precision (atan2 would round in the subnormal range).
          * vn == 0 falls in here too and gives the zero vector. */
         float t2 = (vn / n.w) * (vn / n.w);
         k = (2.0f / n.w) * (1.0f - t2 * (1.0f / 3.0f));
     } else {
-        k = 2.0f * atan2f(vn, n.w) / vn;
+        k = 2.0f * qo_fm_atan2_f32(vn, n.w) / vn;
     }
     *out = vec3(k * n.x, k * n.y, k * n.z);
     return QO_OK;
 }
 
-qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out)
+qo_status qo_quat_to_mat3_full_f32(qo_quat_f32 q, qo_mat3_f32 *out)
 {
     qo_quat_f32 n;
     qo_status st;
-    float s, xx, yy, zz, xy, xz, yz, wx, wy, wz;
     if (out == NULL) return QO_E_NULL;
-    /* Fast path: |q|^2 in [1e-30, 1e30] means q is finite and non-zero and needs no range
-     * scaling, so the normalisation is inlined (bit for bit qo_quat_normalize_f32's result,
-     * without its call and checks). Normalising is kept although s = 2/|n|^2 below would
-     * absorb any scale: measured, the unnormalised form is up to 1.4x less accurate. */
-    s = q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z;
-    if (s >= 1e-30f && s <= 1e30f) {
-        s = 1.0f / sqrtf(s);
-        n.w = q.w * s; n.x = q.x * s; n.y = q.y * s; n.z = q.z * s;
-    } else {
-        *out = qo_mat3_identity_f32();
-        st = qo_quat_normalize_f32(q, &n);
-        if (st != QO_OK) return st;
-    }
-    /* s = 2/|n|^2 rather than 2: I + s(...) is orthogonal for ANY non-zero n, so the few-ulp
-     * norm error left by normalising does not leak into the matrix as non-orthogonality. */
-    s = 2.0f / (n.w * n.w + n.x * n.x + n.y * n.y + n.z * n.z);
-    xx = n.x * n.x; yy = n.y * n.y; zz = n.z * n.z;
-    xy = n.x * n.y; xz = n.x * n.z; yz = n.y * n.z;
-    wx = n.w * n.x; wy = n.w * n.y; wz = n.w * n.z;
-    out->m[0][0] = 1.0f - s * (yy + zz);
-    out->m[0][1] = s * (xy - wz);
-    out->m[0][2] = s * (xz + wy);
-    out->m[1][0] = s * (xy + wz);
-    out->m[1][1] = 1.0f - s * (xx + zz);
-    out->m[1][2] = s * (yz - wx);
-    out->m[2][0] = s * (xz - wy);
-    out->m[2][1] = s * (yz + wx);
-    out->m[2][2] = 1.0f - s * (xx + yy);
-    return QO_OK;
+    *out = qo_mat3_identity_f32();
+    st = qo_quat_normalize_f32(q, &n);
+    if (st != QO_OK) return st;
+    /* |n| is 1 to a few ulp: the inline path takes it */
+    return qo_quat_to_mat3_f32(n, out);
+}
+
+/* fmaxf(v, FLT_MIN) without the libm call (NaN gives FLT_MIN as there). */
+static float clamp_min(float v)
+{
+    return v > FLT_MIN ? v : FLT_MIN;
 }
 
 /* Shepperd's method on a matrix already known to be a rotation within tolerance. */
@@ -284,28 +278,28 @@ static qo_quat_f32 mat3_to_quat_pivot(const qo_mat3_f32 *m)
      * diagonal entries picks the same one. Its square root argument is then >= 1 for an exact
      * rotation; clamping keeps round-off from producing sqrt of a negative number. */
     if (t >= a[0][0] && t >= a[1][1] && t >= a[2][2]) {
-        r = sqrtf(fmaxf(1.0f + t, FLT_MIN));
+        r = sqrtf(clamp_min(1.0f + t));
         s = 0.5f / r;
         q.w = 0.5f * r;
         q.x = (a[2][1] - a[1][2]) * s;
         q.y = (a[0][2] - a[2][0]) * s;
         q.z = (a[1][0] - a[0][1]) * s;
     } else if (a[0][0] >= a[1][1] && a[0][0] >= a[2][2]) {
-        r = sqrtf(fmaxf(1.0f + a[0][0] - a[1][1] - a[2][2], FLT_MIN));
+        r = sqrtf(clamp_min(1.0f + a[0][0] - a[1][1] - a[2][2]));
         s = 0.5f / r;
         q.w = (a[2][1] - a[1][2]) * s;
         q.x = 0.5f * r;
         q.y = (a[0][1] + a[1][0]) * s;
         q.z = (a[0][2] + a[2][0]) * s;
     } else if (a[1][1] >= a[2][2]) {
-        r = sqrtf(fmaxf(1.0f - a[0][0] + a[1][1] - a[2][2], FLT_MIN));
+        r = sqrtf(clamp_min(1.0f - a[0][0] + a[1][1] - a[2][2]));
         s = 0.5f / r;
         q.w = (a[0][2] - a[2][0]) * s;
         q.x = (a[0][1] + a[1][0]) * s;
         q.y = 0.5f * r;
         q.z = (a[1][2] + a[2][1]) * s;
     } else {
-        r = sqrtf(fmaxf(1.0f - a[0][0] - a[1][1] + a[2][2], FLT_MIN));
+        r = sqrtf(clamp_min(1.0f - a[0][0] - a[1][1] + a[2][2]));
         s = 0.5f / r;
         q.w = (a[1][0] - a[0][1]) * s;
         q.x = (a[0][2] + a[2][0]) * s;
@@ -341,6 +335,22 @@ qo_status qo_quat_from_mat3_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
     q = mat3_to_quat_pivot(m);
     if (qo_quat_normalize_f32(q, &q) != QO_OK) return QO_E_NOT_ROTATION;
     *out = qo_quat_canonical_f32(q);
+    return QO_OK;
+}
+
+qo_status qo_quat_from_mat3_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
+{
+    qo_status st;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_f32();
+    if (m == NULL) return QO_E_NULL;
+    /* Each pivot branch combines all six off-diagonal entries, so a NaN/Inf there reaches q
+     * (and normalising reports it); the diagonal enters through clamped square roots, which
+     * would hide a NaN: the trace catches any non-finite diagonal entry. */
+    if (!isfinite(m->m[0][0] + m->m[1][1] + m->m[2][2])) return QO_E_NONFINITE;
+    st = qo_quat_normalize_f32(mat3_to_quat_pivot(m), out);
+    if (st != QO_OK) return st;
+    *out = qo_quat_canonical_f32(*out);
     return QO_OK;
 }
 

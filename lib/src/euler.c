@@ -12,6 +12,8 @@
 
 #include <math.h>
 
+#include "qorient/fmath.h"
+
 #define HALF_PI_F 1.57079632679490f
 /* 2*pi split for Cody-Waite reduction: HI has 8 significant bits, so k*HI is exact for
  * |k| < 2^16 and the reduction of a few thousand turns keeps full float accuracy. */
@@ -84,8 +86,9 @@ static qo_quat_f32 elem_quat(int axis, float t)
 {
     qo_quat_f32 q = { 0.0f, 0.0f, 0.0f, 0.0f };
     float h = 0.5f * t;
-    float s = sinf(h);
-    q.w = cosf(h);
+    qo_fm_sincos_f32_t sc = qo_fm_sincos_f32(h);
+    float s = sc.s;
+    q.w = sc.c;
     if (axis == 0) q.x = s;
     else if (axis == 1) q.y = s;
     else q.z = s;
@@ -132,7 +135,7 @@ static float add_pi(float a)
 /* arg(u + iv)^2 = 2 arg(u + iv), already in [-pi, pi] (no wrap, no 2*pi constant error). */
 static float double_arg(float u, float v)
 {
-    return atan2f(2.0f * u * v, (u - v) * (u + v));
+    return qo_fm_atan2_f32(2.0f * u * v, (u - v) * (u + v));
 }
 
 /* The full (unlocked) decomposition of q, plus the lock margin. */
@@ -187,9 +190,9 @@ static decomp decompose(qo_quat_f32 q, qo_euler_seq seq, float skip_band)
         float a = q.w, b = quat_comp(q, i), c = quat_comp(q, j), d = eps * quat_comp(q, l);
         n1 = sqrtf(a * a + b * b);
         n2 = sqrtf(c * c + d * d);
-        t2 = 2.0f * atan2f(n2, n1);
-        t1 = atan2f(b * c + a * d, a * c - b * d);
-        t3 = atan2f(b * c - a * d, a * c + b * d);
+        t2 = 2.0f * qo_fm_atan2_f32(n2, n1);
+        t1 = qo_fm_atan2_f32(b * c + a * d, a * c - b * d);
+        t3 = qo_fm_atan2_f32(b * c - a * d, a * c + b * d);
     } else {
         /* Tait-Bryan. With t3' = eps t3 and (x, y, z) = (q_i, q_j, eps q_k), the product
          * q_i(t1) q_j(t2) q_k(t3) is the even-permutation one, and
@@ -204,22 +207,22 @@ static decomp decompose(qo_quat_f32 q, qo_euler_seq seq, float skip_band)
         float a = q.w - y, b = x + z, c = q.w + y, d = z - x;
         n1 = sqrtf(a * a + d * d);
         n2 = sqrtf(b * b + c * c);
-        t2 = atan2f((n2 - n1) * (n2 + n1), 2.0f * n1 * n2);
-        t1 = atan2f(b * a - c * d, c * a + b * d);
-        t3 = eps * atan2f(b * a + c * d, c * a - b * d);
+        t2 = qo_fm_atan2_f32((n2 - n1) * (n2 + n1), 2.0f * n1 * n2);
+        t1 = qo_fm_atan2_f32(b * a - c * d, c * a + b * d);
+        t3 = eps * qo_fm_atan2_f32(b * a + c * d, c * a - b * d);
     }
     /* The distance to the nearer singularity straight from the two norms (no subtraction
      * from pi, so it keeps its accuracy down to 0). */
     lo = n1 < n2 ? n1 : n2;
     hi = n1 < n2 ? n2 : n1;
     /* margin = 2 atan(lo/hi) >= (pi/2) lo/hi on [0, 1] (atan is concave there): when that
-     * bound clears the band by 1 % (far more than atan2f's rounding) and lo/hi is far from
+     * bound clears the band by 1 % (far more than atan2's 2.5 ulp) and lo/hi is far from
      * underflow, the margin exceeds the band and its atan2 (a quarter of the cost of the
      * whole decomposition) is not needed. */
     if (skip_band >= 0.0f && lo > 1e-30f * hi && 1.5707963f * lo > 1.01f * skip_band * hi)
         r.margin = HALF_PI_F;
     else
-        r.margin = 2.0f * atan2f(lo, hi);
+        r.margin = 2.0f * qo_fm_atan2_f32(lo, hi);
     r.e.a2 = t2;
     r.e.a1 = intrinsic ? t1 : t3;
     r.e.a3 = intrinsic ? t3 : t1;

@@ -4,6 +4,8 @@
 
 #include <math.h>
 
+#include "qorient/fmath.h"
+
 #include "qorient/quat.h"
 
 #define QO_PI_F 3.14159265358979f
@@ -34,7 +36,7 @@ static qo_quat_f32 align_to(qo_quat_f32 b, qo_quat_f32 ref)
 /* 4-D angle between unit a and unit b in [0, pi]: 2*atan2(|a-b|, |a+b|). Unlike acos(dot) it
  * keeps full relative precision of the small differences near 0 and near pi. */
 /* *sin_th = sin(th) from the same two lengths: th = 2 phi with tan(phi) = d/s, so
- * sin(th) = 2 d s / (d^2 + s^2) - all terms positive, a few ulp, and no sinf call. */
+ * sin(th) = 2 d s / (d^2 + s^2) - all terms positive, a few ulp, and no sin call. */
 static float angle4(qo_quat_f32 a, qo_quat_f32 b, float *sin_th)
 {
     float dw = a.w - b.w, dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
@@ -43,7 +45,7 @@ static float angle4(qo_quat_f32 a, qo_quat_f32 b, float *sin_th)
     float s2 = sw * sw + sx * sx + sy * sy + sz * sz;
     float d = sqrtf(d2), s = sqrtf(s2);
     *sin_th = (d2 + s2 > 0.0f) ? 2.0f * d * s / (d2 + s2) : 0.0f;
-    return 2.0f * atan2f(d, s);
+    return 2.0f * qo_fm_atan2_f32(d, s);
 }
 
 /* sin(u th)/sin(th) for th < QO_SLERP_SERIES_ANGLE: u (1 + (1 - u^2) th^2/6) + O(th^4). */
@@ -64,8 +66,8 @@ static qo_quat_f32 slerp_weights(qo_quat_f32 a, qo_quat_f32 b, float th, float s
         wb = series_weight(u, th2);
     } else if (th <= 0.5f * QO_PI_F) {
         float inv = 1.0f / sin_th;
-        wa = sinf((1.0f - u) * th) * inv;
-        wb = sinf(u * th) * inv;
+        wa = qo_fm_sin_f32((1.0f - u) * th) * inv;
+        wb = qo_fm_sin_f32(u * th) * inv;
     } else {
         /* Beyond 90 deg (long way, extrapolated control points) the weights grow like
          * 1/sin(th) and their difference amplifies the error of th by 1/sin^2(th). Instead
@@ -76,7 +78,8 @@ static qo_quat_f32 slerp_weights(qo_quat_f32 a, qo_quat_f32 b, float th, float s
          * half the series angle, so e is defined. */
         qo_quat_f32 e, sum = comb_q(1.0f, a, 1.0f, b);
         (void)qo_quat_normalize_f32(comb_q(1.0f, sum, -qo_quat_dot_f32(sum, a), a), &e);
-        r = comb_q(cosf(u * th), a, sinf(u * th), e);
+        qo_fm_sincos_f32_t sc = qo_fm_sincos_f32(u * th);
+        r = comb_q(sc.c, a, sc.s, e);
         (void)qo_quat_normalize_f32(r, &n);
         return n;
     }

@@ -1,39 +1,11 @@
 /* Quaternion algebra, float32. See qorient/quat.h for the contract of each function. */
+/* The header's inline functions are also compiled here as external definitions (ABI). */
+#define QORIENT_QUAT_EXTERN_DEFS
 #include "qorient/quat.h"
 
 #include <math.h>
 
-qo_quat_f32 qo_quat_identity_f32(void)
-{
-    qo_quat_f32 q = { 1.0f, 0.0f, 0.0f, 0.0f };
-    return q;
-}
-
-qo_quat_f32 qo_quat_mul_f32(qo_quat_f32 a, qo_quat_f32 b)
-{
-    qo_quat_f32 r;
-    r.w = a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z;
-    r.x = a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y;
-    r.y = a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x;
-    r.z = a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w;
-    return r;
-}
-
-qo_quat_f32 qo_quat_conj_f32(qo_quat_f32 q)
-{
-    qo_quat_f32 r = { q.w, -q.x, -q.y, -q.z };
-    return r;
-}
-
-float qo_quat_dot_f32(qo_quat_f32 a, qo_quat_f32 b)
-{
-    return a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z;
-}
-
-int qo_quat_is_finite_f32(qo_quat_f32 q)
-{
-    return isfinite(q.w) && isfinite(q.x) && isfinite(q.y) && isfinite(q.z);
-}
+#include "qorient/fmath.h"
 
 float qo_quat_norm_f32(qo_quat_f32 q)
 {
@@ -64,7 +36,7 @@ float qo_quat_norm_f32(qo_quat_f32 q)
     return m * sqrtf(w * w + x * x + y * y + z * z);
 }
 
-qo_status qo_quat_normalize_f32(qo_quat_f32 q, qo_quat_f32 *out)
+qo_status qo_quat_normalize_full_f32(qo_quat_f32 q, qo_quat_f32 *out)
 {
     float n, inv, m;
     if (out == NULL) return QO_E_NULL;
@@ -139,24 +111,11 @@ qo_quat_f32 qo_quat_canonical_f32(qo_quat_f32 q)
     return q;
 }
 
-qo_vec3_f32 qo_quat_rotate_f32(qo_quat_f32 q, qo_vec3_f32 v)
-{
-    /* t = 2 u x v; v' = v + w t + u x t  (15 multiplies, 15 adds). */
-    float tx = 2.0f * (q.y * v.z - q.z * v.y);
-    float ty = 2.0f * (q.z * v.x - q.x * v.z);
-    float tz = 2.0f * (q.x * v.y - q.y * v.x);
-    qo_vec3_f32 r;
-    r.x = v.x + q.w * tx + (q.y * tz - q.z * ty);
-    r.y = v.y + q.w * ty + (q.z * tx - q.x * tz);
-    r.z = v.z + q.w * tz + (q.x * ty - q.y * tx);
-    return r;
-}
-
 float qo_quat_angle_between_f32(qo_quat_f32 a, qo_quat_f32 b)
 {
     qo_quat_f32 d = qo_quat_mul_f32(qo_quat_conj_f32(a), b);
     float vn = sqrtf(d.x * d.x + d.y * d.y + d.z * d.z);
-    return 2.0f * atan2f(vn, fabsf(d.w));
+    return 2.0f * qo_fm_atan2_f32(vn, fabsf(d.w));
 }
 
 /* sin(r)/r, accurate also for r -> 0 where the quotient loses all digits. */
@@ -166,7 +125,7 @@ static float sinc_f32(float r)
         float r2 = r * r;
         return 1.0f - r2 * (1.0f / 6.0f) * (1.0f - r2 * (1.0f / 20.0f));
     }
-    return sinf(r) / r;
+    return qo_fm_sin_f32(r) / r;
 }
 
 qo_status qo_quat_exp_f32(qo_quat_f32 q, qo_quat_f32 *out)
@@ -177,10 +136,10 @@ qo_status qo_quat_exp_f32(qo_quat_f32 q, qo_quat_f32 *out)
     if (!qo_quat_is_finite_f32(q)) return QO_E_NONFINITE;
     r = sqrtf(q.x * q.x + q.y * q.y + q.z * q.z);
     if (isinf(r)) return QO_E_NONFINITE;
-    ew = expf(q.w);
+    ew = qo_fm_exp_f32(q.w);
     if (isinf(ew)) return QO_E_NONFINITE;
     k = ew * sinc_f32(r);
-    out->w = ew * cosf(r);
+    out->w = ew * qo_fm_cos_f32(r);
     out->x = k * q.x; out->y = k * q.y; out->z = k * q.z;
     return QO_OK;
 }
@@ -208,14 +167,14 @@ qo_status qo_quat_log_f32(qo_quat_f32 q, qo_quat_f32 *out)
      * which dropped the vector part (and near w = -1 replaced its axis by the fallback x). */
     v.w = 0.0f; v.x = q.x; v.y = q.y; v.z = q.z;
     vn = qo_quat_norm_f32(v);
-    out->w = logf(n) + lnscale;
+    out->w = qo_fm_log_f32(n) + lnscale;
     if (vn == 0.0f) {
         /* Real quaternion: log of a positive real is real; of a negative real the angle is pi
          * about an arbitrary axis - we take x and say so in the header. */
         if (q.w < 0.0f) out->x = 3.14159265358979f;
         return QO_OK;
     }
-    ang = atan2f(vn, q.w);
+    ang = qo_fm_atan2_f32(vn, q.w);
     /* angle * unit axis; v/vn rather than (ang/vn)*v so a subnormal vn cannot overflow. */
     out->x = ang * (q.x / vn); out->y = ang * (q.y / vn); out->z = ang * (q.z / vn);
     return QO_OK;

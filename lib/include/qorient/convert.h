@@ -13,10 +13,12 @@
  *   qo_quat_to_axis_angle_f32     quaternion -> unit axis + angle in [0, pi]
  *   qo_quat_from_rotvec_f32       rotation vector (axis * angle) -> unit quaternion
  *   qo_quat_to_rotvec_f32         quaternion -> rotation vector, |rv| in [0, pi]
- *   qo_quat_to_mat3_f32           quaternion -> rotation matrix
+ *   qo_quat_to_mat3_f32           quaternion -> rotation matrix (static inline fast path)
+ *   qo_quat_to_mat3_full_f32      its out-of-line complete path
  *   qo_quat_from_mat3_f32         rotation matrix -> canonical unit quaternion (strict check)
  *   qo_mat3_orthonormalize_f32    nearest rotation matrix (orthogonal polar factor)
  *   qo_quat_from_mat3_ortho_f32   orthonormalise, then convert (for drifted matrices)
+ *   qo_quat_from_mat3_trusted_f32 no rotation check (for matrices known to be rotations)
  *   qo_mat3_mul_vec3_f32          M v
  *   qo_mat3_mul_f32               A B
  *   qo_mat3_transpose_f32         M^T
@@ -31,6 +33,9 @@
  */
 #ifndef QORIENT_CONVERT_H
 #define QORIENT_CONVERT_H
+
+#include <math.h>
+#include <stddef.h>
 
 #include "qorient/status.h"
 #include "qorient/types.h"
@@ -97,12 +102,10 @@ qo_status qo_quat_from_rotvec_f32(qo_vec3_f32 rv, qo_quat_f32 *out);
 qo_status qo_quat_to_rotvec_f32(qo_quat_f32 q, qo_vec3_f32 *out);
 
 /*
- * Rotation matrix of q (row-major, v' = M v, the same rotation as qo_quat_rotate_f32).
- * q is normalised first, so any non-zero finite q (and q or -q) gives a proper rotation.
- * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_NONFINITE for a NaN/Inf component;
- * QO_E_DEGENERATE for q == 0. *out is the identity matrix on every error.
+ * qo_quat_to_mat3_f32's complete path, out of line (every input; for |q|^2 outside
+ * [1e-30, 1e30] it normalises with range scaling first). Same contract as qo_quat_to_mat3_f32.
  */
-qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out);
+qo_status qo_quat_to_mat3_full_f32(qo_quat_f32 q, qo_mat3_f32 *out);
 
 /*
  * Canonical unit quaternion (w >= 0) of the rotation matrix *m (row-major, v' = M v).
@@ -150,6 +153,21 @@ qo_status qo_mat3_orthonormalize_f32(const qo_mat3_f32 *m, qo_mat3_f32 *out);
  */
 qo_status qo_quat_from_mat3_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 
+/*
+ * Canonical unit quaternion of *m for callers whose matrix is KNOWN to be a rotation (built
+ * from a quaternion or from rotations, to float rounding): the pivoting formula of
+ * qo_quat_from_mat3_f32 (Shepperd: largest of trace, m00, m11, m22) and one normalisation,
+ * without the rotation check (orthogonality, determinant) that costs most of
+ * qo_quat_from_mat3_f32. For a float-rounded rotation the result is the same rotation to
+ * ~2e-7 rad (bench/accuracy_convert.c). A matrix that is not a rotation gives an unspecified
+ * unit quaternion (never NaN from finite input) - use qo_quat_from_mat3_f32 or _ortho_f32
+ * when that can happen.
+ * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NONFINITE for a NaN/Inf entry (or
+ * entries so large that the formula overflows: not a rotation). *out is the identity on every
+ * error.
+ */
+qo_status qo_quat_from_mat3_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
+
 /* M v (no checks; NaN propagates). */
 qo_vec3_f32 qo_mat3_mul_vec3_f32(const qo_mat3_f32 *m, qo_vec3_f32 v);
 
@@ -165,6 +183,55 @@ qo_mat3_f32 qo_mat3_identity_f32(void);
 /* Determinant (cofactor expansion along the first row): +1 for a rotation, -1 for a
  * reflection. */
 float qo_mat3_det_f32(const qo_mat3_f32 *m);
+
+
+/* ---- inline functions (as in qorient/quat.h: also exported under the same name; bit-identical
+ * to the library when the caller does not contract a*b+c, see quat.h) -------------------- */
+#if defined(QORIENT_CONVERT_EXTERN_DEFS)
+#define QO_CONVERT_INLINE
+qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out);
+#else
+#define QO_CONVERT_INLINE static inline
+#endif
+
+#ifdef __clang__
+#pragma STDC FP_CONTRACT OFF
+#endif
+
+/*
+ * Rotation matrix of q (row-major, v' = M v, the same rotation as qo_quat_rotate_f32).
+ * q is normalised first, so any non-zero finite q (and q or -q) gives a proper rotation.
+ * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_NONFINITE for a NaN/Inf component;
+ * QO_E_DEGENERATE for q == 0. *out is the identity matrix on every error.
+ * Inline: |q|^2 in [1e-30, 1e30] (q finite, non-zero, no scaling needed) is handled here;
+ * the rest by qo_quat_to_mat3_full_f32.
+ */
+QO_CONVERT_INLINE qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out)
+{
+    float s = q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z;
+    float w, x, y, z, xx, yy, zz, xy, xz, yz, wx, wy, wz;
+    if (out == NULL || !(s >= 1e-30f && s <= 1e30f)) return qo_quat_to_mat3_full_f32(q, out);
+    /* Normalising is kept although s = 2/|n|^2 below would absorb any scale: measured, the
+     * unnormalised form is up to 1.4x less accurate. */
+    s = 1.0f / sqrtf(s);
+    w = q.w * s; x = q.x * s; y = q.y * s; z = q.z * s;
+    /* s = 2/|n|^2 rather than 2: I + s(...) is orthogonal for ANY non-zero n, so the few-ulp
+     * norm error left by normalising does not leak into the matrix as non-orthogonality. */
+    s = 2.0f / (w * w + x * x + y * y + z * z);
+    xx = x * x; yy = y * y; zz = z * z;
+    xy = x * y; xz = x * z; yz = y * z;
+    wx = w * x; wy = w * y; wz = w * z;
+    out->m[0][0] = 1.0f - s * (yy + zz);
+    out->m[0][1] = s * (xy - wz);
+    out->m[0][2] = s * (xz + wy);
+    out->m[1][0] = s * (xy + wz);
+    out->m[1][1] = 1.0f - s * (xx + zz);
+    out->m[1][2] = s * (yz - wx);
+    out->m[2][0] = s * (xz - wy);
+    out->m[2][1] = s * (yz + wx);
+    out->m[2][2] = 1.0f - s * (xx + yy);
+    return QO_OK;
+}
 
 #ifdef __cplusplus
 }

@@ -18,9 +18,22 @@
  *   qo_quat_log_f32          natural logarithm of a quaternion
  *   qo_quat_integrate_f32    advance an orientation by a body-frame angular velocity over dt
  *   qo_quat_is_finite_f32    all four components finite
+ *   qo_quat_normalize_full_f32  the out-of-line complete path of qo_quat_normalize_f32
+ *
+ * Inline functions: identity, mul, conj, dot, rotate, is_finite and normalize's fast path are
+ * `static inline` here (a call would cost more than the arithmetic: mul is 16 multiplies).
+ * libqorient also exports each of them under the same name, built from these same bodies,
+ * so code linked against an older header keeps working. The inline copies compute exactly
+ * the library's bits when the caller's compiler does not fuse a*b+c into one rounding:
+ * clang honours the #pragma STDC FP_CONTRACT OFF below; gcc ignores it, and contracts by
+ * default in its GNU modes (-std=gnu99/gnu11) on FMA targets (aarch64, x86-64 with -mfma):
+ * there compile with -ffp-contract=off (or -std=c99/c11) for bit-identical results.
  */
 #ifndef QORIENT_QUAT_H
 #define QORIENT_QUAT_H
+
+#include <math.h>
+#include <stddef.h>
 
 #include "qorient/status.h"
 #include "qorient/types.h"
@@ -29,29 +42,9 @@
 extern "C" {
 #endif
 
-/* The identity rotation (1, 0, 0, 0). */
-qo_quat_f32 qo_quat_identity_f32(void);
-
-/* Hamilton product a*b. As rotations, a*b applies b first and then a (active, v' = a(b v b*)a*).
- * Not commutative. Norms multiply: |a*b| = |a||b|. */
-qo_quat_f32 qo_quat_mul_f32(qo_quat_f32 a, qo_quat_f32 b);
-
-/* Conjugate (w, -x, -y, -z): the inverse rotation for a unit quaternion. */
-qo_quat_f32 qo_quat_conj_f32(qo_quat_f32 q);
-
-/* Dot product a.w*b.w + a.x*b.x + a.y*b.y + a.z*b.z. For unit quaternions it is cos(theta/2)
- * of the rotation between them, with a sign that says which of +-b is nearer a. */
-float qo_quat_dot_f32(qo_quat_f32 a, qo_quat_f32 b);
-
 /* Euclidean norm sqrt(w^2+x^2+y^2+z^2), computed with scaling so that components up to
  * FLT_MAX do not overflow and tiny ones do not underflow to 0. NaN in -> NaN out. */
 float qo_quat_norm_f32(qo_quat_f32 q);
-
-/* Unit quaternion q/|q|.
- * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_NONFINITE if a component is NaN or Inf;
- * QO_E_DEGENERATE if |q| == 0 (also for subnormal-only inputs whose norm underflows).
- * On any error *out is the identity. The sign of q is kept. */
-qo_status qo_quat_normalize_f32(qo_quat_f32 q, qo_quat_f32 *out);
 
 /* Multiplicative inverse conj(q)/|q|^2 (for a unit quaternion: the conjugate), computed as
  * (conj(q)/|q|)/|q| so |q|^2 itself may overflow or underflow float (|q| = 1e30 is fine).
@@ -63,12 +56,6 @@ qo_status qo_quat_inverse_f32(qo_quat_f32 q, qo_quat_f32 *out);
 /* The representative of the same rotation with w >= 0; when w == 0 the first non-zero of
  * x, y, z is made positive. Matches scipy's as_quat(canonical=True). */
 qo_quat_f32 qo_quat_canonical_f32(qo_quat_f32 q);
-
-/* Rotates v by the unit quaternion q: v' = q (0,v) q*, evaluated as
- * v + 2w(u x v) + 2 u x (u x v) with u = (x, y, z) (no normalisation of q: pass a unit
- * quaternion; for a non-unit q the result is neither q v q* nor a rotation of v - normalise
- * first). */
-qo_vec3_f32 qo_quat_rotate_f32(qo_quat_f32 q, qo_vec3_f32 v);
 
 /* Angle in radians, in [0, pi], of the rotation that takes orientation a to orientation b
  * (both unit). Computed as 2*atan2(|vec(conj(a)*b)|, |scalar(conj(a)*b)|), accurate for
@@ -98,8 +85,102 @@ qo_status qo_quat_log_f32(qo_quat_f32 q, qo_quat_f32 *out);
  * (q is zero); *out is q normalised (or identity if that fails) on error. */
 qo_status qo_quat_integrate_f32(qo_quat_f32 q, qo_vec3_f32 omega, float dt, qo_quat_f32 *out);
 
-/* 1 if all four components are finite, else 0. */
+/* qo_quat_normalize_f32's complete path, out of line: the same contract and, for every
+ * input, the same result (including the fast-path cases). */
+qo_status qo_quat_normalize_full_f32(qo_quat_f32 q, qo_quat_f32 *out);
+
+/* ---- inline functions (see the file comment) ------------------------------------------- */
+#if defined(QORIENT_QUAT_EXTERN_DEFS)
+/* lib/src/quat.c: the same bodies once more as the library's external definitions. */
+#define QO_QUAT_INLINE
+qo_quat_f32 qo_quat_identity_f32(void);
+qo_quat_f32 qo_quat_mul_f32(qo_quat_f32 a, qo_quat_f32 b);
+qo_quat_f32 qo_quat_conj_f32(qo_quat_f32 q);
+float qo_quat_dot_f32(qo_quat_f32 a, qo_quat_f32 b);
 int qo_quat_is_finite_f32(qo_quat_f32 q);
+qo_vec3_f32 qo_quat_rotate_f32(qo_quat_f32 q, qo_vec3_f32 v);
+qo_status qo_quat_normalize_f32(qo_quat_f32 q, qo_quat_f32 *out);
+#else
+#define QO_QUAT_INLINE static inline
+#endif
+
+#ifdef __clang__
+#pragma STDC FP_CONTRACT OFF
+#endif
+
+/* The identity rotation (1, 0, 0, 0). */
+QO_QUAT_INLINE qo_quat_f32 qo_quat_identity_f32(void)
+{
+    qo_quat_f32 q = { 1.0f, 0.0f, 0.0f, 0.0f };
+    return q;
+}
+
+/* Hamilton product a*b. As rotations, a*b applies b first and then a (active, v' = a(b v b*)a*).
+ * Not commutative. Norms multiply: |a*b| = |a||b|. */
+QO_QUAT_INLINE qo_quat_f32 qo_quat_mul_f32(qo_quat_f32 a, qo_quat_f32 b)
+{
+    qo_quat_f32 r;
+    r.w = a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z;
+    r.x = a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y;
+    r.y = a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x;
+    r.z = a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w;
+    return r;
+}
+
+/* Conjugate (w, -x, -y, -z): the inverse rotation for a unit quaternion. */
+QO_QUAT_INLINE qo_quat_f32 qo_quat_conj_f32(qo_quat_f32 q)
+{
+    qo_quat_f32 r;
+    r.w = q.w; r.x = -q.x; r.y = -q.y; r.z = -q.z;
+    return r;
+}
+
+/* Dot product a.w*b.w + a.x*b.x + a.y*b.y + a.z*b.z. For unit quaternions it is cos(theta/2)
+ * of the rotation between them, with a sign that says which of +-b is nearer a. */
+QO_QUAT_INLINE float qo_quat_dot_f32(qo_quat_f32 a, qo_quat_f32 b)
+{
+    return a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+/* 1 if all four components are finite, else 0. */
+QO_QUAT_INLINE int qo_quat_is_finite_f32(qo_quat_f32 q)
+{
+    return isfinite(q.w) && isfinite(q.x) && isfinite(q.y) && isfinite(q.z);
+}
+
+/* Rotates v by the unit quaternion q: v' = q (0,v) q*, evaluated as
+ * v + 2w(u x v) + 2 u x (u x v) with u = (x, y, z) (no normalisation of q: pass a unit
+ * quaternion; for a non-unit q the result is neither q v q* nor a rotation of v - normalise
+ * first). 15 multiplies, 15 adds: t = 2 u x v; v' = v + w t + u x t. */
+QO_QUAT_INLINE qo_vec3_f32 qo_quat_rotate_f32(qo_quat_f32 q, qo_vec3_f32 v)
+{
+    float tx = 2.0f * (q.y * v.z - q.z * v.y);
+    float ty = 2.0f * (q.z * v.x - q.x * v.z);
+    float tz = 2.0f * (q.x * v.y - q.y * v.x);
+    qo_vec3_f32 r;
+    r.x = v.x + q.w * tx + (q.y * tz - q.z * ty);
+    r.y = v.y + q.w * ty + (q.z * tx - q.x * tz);
+    r.z = v.z + q.w * tz + (q.x * ty - q.y * tx);
+    return r;
+}
+
+/* Unit quaternion q/|q|.
+ * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_NONFINITE if a component is NaN or Inf;
+ * QO_E_DEGENERATE if |q| == 0 (also for subnormal-only inputs whose norm underflows).
+ * On any error *out is the identity. The sign of q is kept.
+ * Inline fast path: a sum of squares in [1e-30, 1e30] means every component is finite and no
+ * range scaling is needed, so q * (1/sqrt(sum)) is the whole answer (bit for bit what the
+ * full path computes); anything else goes to qo_quat_normalize_full_f32. */
+QO_QUAT_INLINE qo_status qo_quat_normalize_f32(qo_quat_f32 q, qo_quat_f32 *out)
+{
+    float n = q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z;
+    if (out != NULL && n >= 1e-30f && n <= 1e30f) {
+        float inv = 1.0f / sqrtf(n);
+        out->w = q.w * inv; out->x = q.x * inv; out->y = q.y * inv; out->z = q.z * inv;
+        return QO_OK;
+    }
+    return qo_quat_normalize_full_f32(q, out);
+}
 
 #ifdef __cplusplus
 }
