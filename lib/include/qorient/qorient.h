@@ -14,6 +14,7 @@
  *   motion.h    velocity/acceleration/jerk-limited multi-joint moves, re-planned online
  *   traj.h      one trajectory over N joints: keyframes or a queue of timed targets
  *   sink.h      the sink interface ports implement (N joint targets per tick)
+ *   fmath.h     float32 kernels (sin, cos, atan2, asin, acos, exp, log) with stated error bounds
  *   fxmath.h    fixed-point primitives (mul, div, sqrt, sincos, atan2, asin, acos)
  *   fxconv.h    float <-> fixed boundary conversions (static inline; FPU-less code need not use)
  *   quat_fx.h, convert_fx.h, euler_fx.h   quaternion algebra, conversions, Euler: Q1.30 / Q3.28
@@ -35,6 +36,7 @@
 #include "qorient/motion.h"
 #include "qorient/traj.h"
 #include "qorient/sink.h"
+#include "qorient/fmath.h"
 #include "qorient/fxmath.h"
 #include "qorient/fxconv.h"
 #include "qorient/quat_fx.h"
