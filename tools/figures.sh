@@ -18,6 +18,7 @@ SECTIONS="
 accuracy check
 ir check
 sizes check
+m0 check
 timing live
 "
 DOC=docs/FIGURES.md
