@@ -99,13 +99,37 @@ static unsigned build(int scurve, float v0, float a0, float vc, float tc, const 
     return n;
 }
 
-/* Displacement and duration of the zero-cruise profile through vc. */
-static void eval_vc(int scurve, float v0, float a0, float vc, const qo_motion_limits_f32 *l, float *disp,
-                    float *dur)
+/* The "dip" shape, the profiles without an acceleration zero before the stop: the acceleration
+ * ramps from a0 straight to am (between 0 and a0), then the fastest pulse from (v1, am) to rest
+ * (it ramps back away from zero, may hold at +-amax, and ramps to zero). E.g. a joint moving
+ * toward a near target while braking eases the braking first to travel further, then brakes
+ * harder: "ramp down, up to amax, hold, ramp to zero" of issue 11. With am = 0 it is the
+ * extremum-velocity profile through vn; with am = a0 the direct stop. The velocity never leaves
+ * [-|vn|, |vn|] on the way to rest, so it stays within vmax when the start does. SCURVE only. */
+static unsigned build_dip(float v0, float a0, float am, const qo_motion_limits_f32 *l, mseg *out)
 {
-    mseg g[MSEGS];
+    float j = am >= a0 ? l->jmax : -l->jmax, d = fabsf(am - a0) / l->jmax;
+    float v1 = v0 + d * (a0 + 0.5f * d * j);
+    out[0].d = d;
+    out[0].j = j;
+    out[0].seta = out[0].setv = 0;
+    return 1 + vchange(1, v1, am, 0.0f, l->amax, l->jmax, out + 1);
+}
+
+/* A joint's solved profile: family 0 = extremum velocity x with cruise tc (build), family 1 =
+ * dip to acceleration x (build_dip). */
+static unsigned build_fam(int scurve, int fam, float v0, float a0, float x, float tc,
+                          const qo_motion_limits_f32 *l, mseg *out)
+{
+    if (fam == 1) return build_dip(v0, a0, x, l, out);
+    return build(scurve, v0, a0, x, tc, l, out);
+}
+
+/* Displacement and duration of segments g[0..n) from velocity v0, acceleration a0. */
+static void eval_segs(float v0, float a0, const mseg *g, unsigned n, float *disp, float *dur)
+{
     mstate s;
-    unsigned i, n = build(scurve, v0, a0, vc, 0.0f, l, g);
+    unsigned i;
     float t = 0.0f;
     s.p = 0.0f;
     s.v = v0;
@@ -118,18 +142,40 @@ static void eval_vc(int scurve, float v0, float a0, float vc, const qo_motion_li
     *dur = t;
 }
 
+/* Displacement and duration of the zero-cruise profile through vc. */
+static void eval_vc(int scurve, float v0, float a0, float vc, const qo_motion_limits_f32 *l, float *disp,
+                    float *dur)
+{
+    mseg g[MSEGS];
+    unsigned n = build(scurve, v0, a0, vc, 0.0f, l, g);
+    eval_segs(v0, a0, g, n, disp, dur);
+}
+
 /* What a root search evaluates at extremum velocity vc. mode 0 (minimum time): displacement of
  * the zero-cruise profile minus dp, aux = its duration. mode 1 (time sync): position reached in
- * exactly T with the cruise filling the rest, minus dp, aux = that cruise time. */
+ * exactly T with the cruise filling the rest, minus dp, aux = that cruise time. mode 2: the dip
+ * profile to acceleration vc (build_dip), displacement minus dp, aux = its duration. */
 typedef struct rctx {
     int scurve, mode;
     float v0, a0, dp, T;
     const qo_motion_limits_f32 *l;
 } rctx;
 
+static rctx rctx_make(int scurve, int mode, float v0, float a0, float dp, float T, const qo_motion_limits_f32 *l)
+{
+    rctx c = { scurve, mode, v0, a0, dp, T, l };
+    return c;
+}
+
 static float resid(const rctx *c, float vc, float *aux)
 {
     float d, t;
+    if (c->mode == 2) {
+        mseg g[4];
+        unsigned n = build_dip(c->v0, c->a0, vc, c->l, g);
+        eval_segs(c->v0, c->a0, g, n, &d, aux);
+        return d - c->dp;
+    }
     eval_vc(c->scurve, c->v0, c->a0, vc, c->l, &d, &t);
     if (c->mode == 0) {
         *aux = t;
@@ -174,7 +220,8 @@ static float root(const rctx *c, float a, float b, float fa, float fb, float xa,
         }
         /* 2 ulps of the larger end, and no finer than 2.4e-10 vmax near vc = 0 (the residual's
          * slope there is bounded, so that is far below float32 resolution of the result) */
-        if (fabsf(b - a) <= 2.4e-7f * fmaxf(fmaxf(fabsf(a), fabsf(b)), 1e-3f * c->l->vmax)) break;
+        if (fabsf(b - a) <= 2.4e-7f * fmaxf(fmaxf(fabsf(a), fabsf(b)), 1e-3f * (c->mode == 2 ? c->l->amax : c->l->vmax)))
+            break;
     }
     /* Mode 0: prefer the end a short cruise can correct (residual opposite in sign to the
      * velocity: the profile falls short); near vn the displacement has a square-root kink, so
@@ -211,6 +258,38 @@ static void consider(float vc, float tc, float dur, float *bv, float *bt, float 
     }
 }
 
+/* Fastest dip profile (build_dip) with displacement dp: the residual is scanned at
+ * QO_MOTION_DIP_SCAN + 1 points of am in [0, a0] (its ends are the extremum-velocity profile
+ * through vn and the direct stop) and every sign change is solved. Returns 0 if none. */
+#define QO_MOTION_DIP_SCAN 4
+static int solve_dip(float v0, float a0, float dp, const qo_motion_limits_f32 *l, float *am, float *dur)
+{
+    rctx c;
+    float x[QO_MOTION_DIP_SCAN + 1], f[QO_MOTION_DIP_SCAN + 1], t[QO_MOTION_DIP_SCAN + 1];
+    unsigned k;
+    c = rctx_make(1, 2, v0, a0, dp, 0.0f, l);
+    *am = 0.0f;
+    *dur = INFINITY;
+    for (k = 0; k <= QO_MOTION_DIP_SCAN; k++) {
+        x[k] = a0 * (float)k / (float)QO_MOTION_DIP_SCAN;
+        f[k] = resid(&c, x[k], &t[k]);
+    }
+    for (k = 0; k <= QO_MOTION_DIP_SCAN; k++) {
+        float r = x[k], tr = t[k], fr = f[k];
+        if (fr != 0.0f) {
+            if (k == QO_MOTION_DIP_SCAN || f[k + 1] == 0.0f || (fr < 0.0f) == (f[k + 1] < 0.0f)) continue;
+            r = root(&c, x[k], x[k + 1], f[k], f[k + 1], t[k], t[k + 1], &tr, &fr);
+            /* no cruise absorbs a residual here: keep only a root to float precision */
+            if (fabsf(fr) > 1e-6f * (fabsf(dp) + (fabsf(v0) + l->vmax) * tr)) continue;
+        }
+        if (tr < *dur) {
+            *dur = tr;
+            *am = r;
+        }
+    }
+    return *dur < INFINITY;
+}
+
 /* Minimum-time extremum velocity vc and cruise tc for displacement dp (see motion.h).
  * The displacement D(vc) of the zero-cruise profile is monotone on [-vmax, min(0, vn)] and on
  * [max(0, vn), vmax], vn being the velocity the start reaches by ramping a0 to zero; between
@@ -218,18 +297,12 @@ static void consider(float vc, float tc, float dur, float *bv, float *bt, float 
  * interior extremum (located by golden section). Every monotone piece whose ends bracket dp
  * gives a root; the root (or the cruise at +-vmax) of smallest duration wins. */
 static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_limits_f32 *l, float *vc,
-                      float *tc)
+                      float *tc, int *fam)
 {
     rctx c;
     float pt[5], fp[5], xp[5], vn, bv = 0.0f, bt = 0.0f, bd = INFINITY, x;
     unsigned np = 0, i;
-    c.scurve = scurve;
-    c.mode = 0;
-    c.v0 = v0;
-    c.a0 = a0;
-    c.dp = dp;
-    c.T = 0.0f;
-    c.l = l;
+    c = rctx_make(scurve, 0, v0, a0, dp, 0.0f, l);
     vn = scurve ? v0 + a0 * fabsf(a0) / (2.0f * l->jmax) : v0;
     vn = fminf(fmaxf(vn, -l->vmax), l->vmax);
     pt[np++] = -l->vmax;
@@ -316,6 +389,16 @@ static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_
             consider(vn, tn, xn + tn - 1e-6f * xn, &bv, &bt, &bd);
         }
     }
+    *fam = 0;
+    if (scurve && a0 != 0.0f) {
+        float am, dd;
+        if (solve_dip(v0, a0, dp, l, &am, &dd) && dd < bd) {
+            bv = am;
+            bt = 0.0f;
+            bd = dd;
+            *fam = 1;
+        }
+    }
     if (!(bd < INFINITY)) {
         /* Not reachable for finite inputs (the pieces cover [-vmax, vmax] and the cruises
          * the rest); stop as a defined answer. */
@@ -340,13 +423,7 @@ static int solve_time(int scurve, float v0, float a0, float dp, float vcs, float
     float xs[QO_MOTION_SYNC_SCAN + 3], gs[QO_MOTION_SYNC_SCAN + 3], ts[QO_MOTION_SYNC_SCAN + 3];
     float bestd = INFINITY;
     unsigned n = 0, i, k;
-    c.scurve = scurve;
-    c.mode = 1;
-    c.v0 = v0;
-    c.a0 = a0;
-    c.dp = dp;
-    c.T = T;
-    c.l = l;
+    c = rctx_make(scurve, 1, v0, a0, dp, T, l);
     fa = resid(&c, 0.0f, &tca);
     fb = resid(&c, vcs, &tcb);
     if (fa != 0.0f && (fa < 0.0f) != (fb < 0.0f)) {
@@ -581,6 +658,25 @@ static void plan_brake_safe(qo_motion_planner_f32 *pl)
     if (!plan_ok(pl)) plan_hold(pl);
 }
 
+/* Largest |v|, |a|, |j| of a loaded plan: at phase ends, and |v| also where the acceleration
+ * crosses zero inside a phase (its only interior extremum). */
+static void peaks(const qo_motion_joint_f32 *jt, float *pv, float *pa, float *pj)
+{
+    unsigned k;
+    *pv = *pa = *pj = 0.0f;
+    for (k = 0; k < jt->nph; k++) {
+        const qo_motion_phase_f32 *ph = &jt->ph[k];
+        float d = ph->d, a1 = ph->a + d * ph->j, v1 = ph->v + d * (ph->a + 0.5f * d * ph->j);
+        *pj = fmaxf(*pj, fabsf(ph->j));
+        *pa = fmaxf(*pa, fmaxf(fabsf(ph->a), fabsf(a1)));
+        *pv = fmaxf(*pv, fmaxf(fabsf(ph->v), fabsf(v1)));
+        if ((ph->a < 0.0f) != (a1 < 0.0f) && ph->j != 0.0f) {
+            float tz = -ph->a / ph->j;
+            if (tz > 0.0f && tz < d) *pv = fmaxf(*pv, fabsf(ph->v + tz * (ph->a + 0.5f * tz * ph->j)));
+        }
+    }
+}
+
 /* Straight-line plan if every (v, a) is proportional to the displacement; 0 if not possible. */
 static int plan_phase(qo_motion_planner_f32 *pl)
 {
@@ -591,6 +687,8 @@ static int plan_phase(qo_motion_planner_f32 *pl)
     qo_motion_joint_f32 unit;
     mseg g[MSEGS];
     unsigned n;
+    int fam;
+    float pv, pa, pj;
     for (i = 0; i < pl->n; i++) {
         if (fabsf(pl->joints[i].w_d) > dr) {
             dr = fabsf(pl->joints[i].w_d);
@@ -615,9 +713,21 @@ static int plan_phase(qo_motion_planner_f32 *pl)
     /* The scalar profile's limits are ratios limit / |d|: a tiny d makes them so large that
      * the unit solve's products (amax^2 / jmax...) overflow; such a plan goes per joint. */
     if (!(limit_in_range(ls.vmax) && limit_in_range(ls.amax) && limit_in_range(ls.jmax))) return 0;
-    solve_min(sc, kv, ka, 1.0f, &ls, &vc, &tc);
-    n = build(sc, kv, ka, vc, tc, &ls, g);
+    solve_min(sc, kv, ka, 1.0f, &ls, &vc, &tc, &fam);
+    n = build_fam(sc, fam, kv, ka, vc, tc, &ls, g);
     load(&unit, 0.0f, kv, ka, g, n, 1.0f);
+    /* The scalar limits keep each joint's own limits only where the unit profile stays within
+     * its scalar limits; from a moving start it may not (the shared jerk min(jmax_i / |d_i|)
+     * can be too weak to brake a joint's initial acceleration in time): check the straight line
+     * against every joint's limits (or its start values beyond them) before using it. */
+    peaks(&unit, &pv, &pa, &pj);
+    for (i = 0; i < pl->n; i++) {
+        const qo_motion_joint_f32 *jt = &pl->joints[i];
+        float ad = fabsf(jt->w_d), tol = 1.0f + 1e-6f;
+        float vb = fmaxf(jt->lim.vmax, fabsf(jt->w_v) + jt->w_a * jt->w_a / (2.0f * jt->lim.jmax));
+        float ab = fmaxf(jt->lim.amax, fabsf(jt->w_a));
+        if (ad * pv > vb * tol || ad * pa > ab * tol || (sc && ad * pj > jt->lim.jmax * tol)) return 0;
+    }
     pl->duration = unit.duration;
     for (i = 0; i < pl->n; i++) {
         qo_motion_joint_f32 *jt = &pl->joints[i];
@@ -663,12 +773,16 @@ static void plan_goals(qo_motion_planner_f32 *pl)
     for (i = 0; i < pl->n; i++) {
         qo_motion_joint_f32 *jt = &pl->joints[i];
         float dum;
+        mseg g[MSEGS];
+        unsigned n;
+        jt->w_fam = 0;
         if (jt->w_d == 0.0f && jt->w_v == 0.0f && jt->w_a == 0.0f) {
             jt->w_vc = jt->w_tc = jt->w_t = 0.0f;
             continue;
         }
-        solve_min(sc, jt->w_v, jt->w_a, jt->w_d, &jt->lim, &jt->w_vc, &jt->w_tc);
-        eval_vc(sc, jt->w_v, jt->w_a, jt->w_vc, &jt->lim, &dum, &jt->w_t);
+        solve_min(sc, jt->w_v, jt->w_a, jt->w_d, &jt->lim, &jt->w_vc, &jt->w_tc, &jt->w_fam);
+        n = build_fam(sc, jt->w_fam, jt->w_v, jt->w_a, jt->w_vc, 0.0f, &jt->lim, g);
+        eval_segs(jt->w_v, jt->w_a, g, n, &dum, &jt->w_t);
         jt->w_t += jt->w_tc;
         if (jt->w_t > T) T = jt->w_t;
     }
@@ -677,6 +791,7 @@ static void plan_goals(qo_motion_planner_f32 *pl)
         mseg g[MSEGS];
         unsigned n;
         float vc = jt->w_vc, tc = jt->w_tc;
+        int fam = jt->w_fam;
         if (jt->w_t == 0.0f && jt->w_d == 0.0f && jt->w_v == 0.0f && jt->w_a == 0.0f) {
             jt->nph = 0;
             jt->final = jt->w_p;
@@ -684,15 +799,21 @@ static void plan_goals(qo_motion_planner_f32 *pl)
             continue;
         }
         if (pl->settings.sync != QO_MOTION_SYNC_NONE && jt->w_t < T) {
-            float v2, t2;
-            if (solve_time(sc, jt->w_v, jt->w_a, jt->w_d, vc, T, &jt->lim, &v2, &t2)) {
+            float v2, t2, vcs = vc;
+            if (fam == 1) {
+                /* a dip profile meets the extremum-velocity family at vn */
+                vcs = jt->w_v + jt->w_a * fabsf(jt->w_a) / (2.0f * jt->lim.jmax);
+                vcs = fminf(fmaxf(vcs, -jt->lim.vmax), jt->lim.vmax);
+            }
+            if (solve_time(sc, jt->w_v, jt->w_a, jt->w_d, vcs, T, &jt->lim, &v2, &t2)) {
                 vc = v2;
                 tc = t2;
+                fam = 0;
             } else {
                 pl->unsynced |= (uint32_t)1 << i;
             }
         }
-        n = build(sc, jt->w_v, jt->w_a, vc, tc, &jt->lim, g);
+        n = build_fam(sc, fam, jt->w_v, jt->w_a, vc, tc, &jt->lim, g);
         load(jt, jt->w_p, jt->w_v, jt->w_a, g, n, jt->w_p + jt->w_d);
     }
     pl->duration = 0.0f;
@@ -746,6 +867,7 @@ qo_status qo_motion_init_f32(qo_motion_planner_f32 *pl, qo_motion_joint_f32 *joi
         jt->nph = 0;
         jt->w_p = start[i];
         jt->w_v = jt->w_a = jt->w_d = jt->w_vc = jt->w_tc = jt->w_t = 0.0f;
+        jt->w_fam = 0;
     }
     pl->settings = st;
     pl->t0 = t0;
