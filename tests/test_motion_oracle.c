@@ -165,7 +165,8 @@ static int check_group(ref_rng *g, int cs, qo_motion_sync sync, double *tref_out
     int bad = 0;
     for (i = 0; i < NJ; i++) {
         rand_case(g, &c[i]);
-        tref[i] = ref_time(&c[i]);
+        /* PHASE is judged on its limits only (the straight line may be slower than TIME) */
+        tref[i] = sync == QO_MOTION_SYNC_PHASE ? 0.0 : ref_time(&c[i]);
         if (tref[i] < 0.0) {
             print_case("reference found no profile", cs, i, &c[i], 0.0, tref[i]);
             bad++;

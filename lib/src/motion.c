@@ -258,10 +258,87 @@ static void consider(float vc, float tc, float dur, float *bv, float *bt, float 
     }
 }
 
+/* Rest-to-rest SCURVE in closed form (the common case: a joint that has arrived). Peak velocity
+ * x >= 0 of the symmetric profile covering distance D: with the acceleration limit reached
+ * (x >= A^2/J) D = x (x/A + A/J), else D = 2 x sqrt(x/J). Used as a fast path: the profile's
+ * integrated displacement is then checked (rest_fix), and any doubt goes to the root search. */
+static float rest_peak(float D, const qo_motion_limits_f32 *l, float *slope)
+{
+    float V = l->vmax, A = l->amax, J = l->jmax, aj = A / J, x, t;
+    if (D >= 2.0f * A * aj * aj) {
+        x = 0.5f * A * (sqrtf(aj * aj + 4.0f * D / A) - aj);
+        *slope = 2.0f * x / A + aj;
+    } else {
+        t = cbrtf(0.5f * D * sqrtf(J));
+        x = t * t;
+        *slope = 3.0f * sqrtf(x / J);
+    }
+    if (x > V) x = V;
+    return x;
+}
+
+/* Settles a closed-form peak x (sign of the move) by its integrated residual f: a profile that
+ * falls short gets the cruise -f/x; one that overshoots is lowered by 2 f / slope (twice the
+ * linear step, so that it falls short) and checked again. Returns 0 (use the root search) if
+ * the residual is not at float32 rounding level. */
+static int rest_fix(const rctx *c, float x, float slope, float tol, float *vc, float *tc)
+{
+    int k;
+    for (k = 0; k < 2; k++) {
+        float t, f = resid(c, x, &t);
+        if (!(fabsf(f) <= tol)) return 0;
+        if (f * x <= 0.0f) {
+            *vc = x;
+            *tc = x != 0.0f ? (c->mode == 0 ? -f / x : t) : 0.0f;
+            return *tc >= 0.0f;
+        }
+        x -= 2.0f * f / slope;
+    }
+    return 0;
+}
+
+static int rest_min(float dp, const qo_motion_limits_f32 *l, float *vc, float *tc)
+{
+    rctx c = rctx_make(1, 0, 0.0f, 0.0f, dp, 0.0f, l);
+    float slope, x = rest_peak(fabsf(dp), l, &slope);
+    if (dp < 0.0f) x = -x;
+    return rest_fix(&c, x, slope, 4e-6f * fabsf(dp), vc, tc);
+}
+
+/* Rest-to-rest SCURVE profile of exactly duration T: D = x (T - tacc(x)), the smaller root,
+ * tacc = x/A + A/J (hold) or 2 sqrt(x/J); the second by safeguarded Newton on u = sqrt(x). */
+static int rest_time(float dp, float T, const qo_motion_limits_f32 *l, float *vc, float *tc)
+{
+    rctx c = rctx_make(1, 1, 0.0f, 0.0f, dp, T, l);
+    float D = fabsf(dp), A = l->amax, J = l->jmax, aj = A / J, Tp = T - aj, disc = Tp * Tp - 4.0f * D / A, x;
+    float slope;
+    if (Tp > 0.0f && disc >= 0.0f && (x = 2.0f * D / (Tp + sqrtf(disc))) >= A * aj) {
+        slope = Tp - 2.0f * x / A;
+    } else {
+        float sj = sqrtf(J), lo = sqrtf(D / T), hi = fminf(T * sj / 3.0f, sqrtf(l->vmax)), u = lo;
+        unsigned it;
+        if (!(lo <= hi)) return 0;
+        for (it = 0; it < 12; it++) {
+            float g = u * u * (T - 2.0f * u / sj) - D, dg = u * (2.0f * T - 6.0f * u / sj), un;
+            if (g < 0.0f) lo = u;
+            else hi = u;
+            un = dg > 0.0f ? u - g / dg : 0.5f * (lo + hi);
+            if (!(un > lo && un < hi)) un = 0.5f * (lo + hi);
+            if (un == u) break;
+            u = un;
+        }
+        x = u * u;
+        slope = T - 3.0f * u / sj;
+    }
+    if (!(slope > 0.0f)) return 0;
+    if (dp < 0.0f) x = -x;
+    return rest_fix(&c, x, slope, 4e-6f * (D + fabsf(x) * T), vc, tc);
+}
+
 /* Fastest dip profile (build_dip) with displacement dp: the residual is scanned at
  * QO_MOTION_DIP_SCAN + 1 points of am in [0, a0] (its ends are the extremum-velocity profile
  * through vn and the direct stop) and every sign change is solved. Returns 0 if none. */
-#define QO_MOTION_DIP_SCAN 4
+#define QO_MOTION_DIP_SCAN 1
 static int solve_dip(float v0, float a0, float dp, const qo_motion_limits_f32 *l, float *am, float *dur)
 {
     rctx c;
@@ -300,8 +377,10 @@ static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_
                       float *tc, int *fam)
 {
     rctx c;
-    float pt[5], fp[5], xp[5], vn, bv = 0.0f, bt = 0.0f, bd = INFINITY, x;
+    float pt[5], fp[5], xp[5], vn, bv = 0.0f, bt = 0.0f, bd = INFINITY, x, fz = NAN, fn0 = NAN, dipd = NAN;
     unsigned np = 0, i;
+    *fam = 0;
+    if (scurve && v0 == 0.0f && a0 == 0.0f && rest_min(dp, l, vc, tc)) return;
     c = rctx_make(scurve, 0, v0, a0, dp, 0.0f, l);
     vn = scurve ? v0 + a0 * fabsf(a0) / (2.0f * l->jmax) : v0;
     vn = fminf(fmaxf(vn, -l->vmax), l->vmax);
@@ -309,7 +388,11 @@ static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_
     if (fminf(0.0f, vn) > pt[np - 1]) pt[np++] = fminf(0.0f, vn);
     if (fmaxf(0.0f, vn) > pt[np - 1]) pt[np++] = fmaxf(0.0f, vn);
     if (l->vmax > pt[np - 1]) pt[np++] = l->vmax;
-    for (i = 0; i < np; i++) fp[i] = resid(&c, pt[i], &xp[i]);
+    for (i = 0; i < np; i++) {
+        fp[i] = resid(&c, pt[i], &xp[i]);
+        if (pt[i] == 0.0f) fz = fp[i];
+        if (pt[i] == vn) fn0 = fp[i];
+    }
     /* Cruising at +-vmax when even the fastest peak falls short. */
     if (fp[np - 1] <= 0.0f) consider(l->vmax, -fp[np - 1] / l->vmax, xp[np - 1] - fp[np - 1] / l->vmax, &bv, &bt, &bd);
     if (fp[0] >= 0.0f) consider(-l->vmax, fp[0] / l->vmax, xp[0] + fp[0] / l->vmax, &bv, &bt, &bd);
@@ -325,6 +408,19 @@ static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_
             float fr, r = root(&c, pt[i], pt[i + 1], fp[i], fp[i + 1], xp[i], xp[i + 1], &x, &fr);
             float tcr = (r != 0.0f && fr * r < 0.0f) ? -fr / r : 0.0f;
             consider(r, tcr, x + tcr, &bv, &bt, &bd);
+        }
+    }
+    /* The dip family runs from the extremum-velocity profile through vn (am = 0) to the direct
+     * stop (vc = 0, am = a0): searched when those two bracket dp, i.e. when the two-stage
+     * middle piece below would be; its profiles are then never shorter (checked against the
+     * reference in tests/test_motion_oracle.c), so that piece is searched only without a dip. */
+    if (scurve && a0 != 0.0f && vn != 0.0f && (fz < 0.0f) != (fn0 < 0.0f) && fz == fz && fn0 == fn0) {
+        float am, dd;
+        if (solve_dip(v0, a0, dp, l, &am, &dd) && dd < bd) {
+            bv = am;
+            bt = 0.0f;
+            bd = dipd = dd;
+            *fam = 1;
         }
     }
     /* The two-stage middle piece: split it at its extremum when it has one. */
@@ -389,16 +485,7 @@ static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_
             consider(vn, tn, xn + tn - 1e-6f * xn, &bv, &bt, &bd);
         }
     }
-    *fam = 0;
-    if (scurve && a0 != 0.0f) {
-        float am, dd;
-        if (solve_dip(v0, a0, dp, l, &am, &dd) && dd < bd) {
-            bv = am;
-            bt = 0.0f;
-            bd = dd;
-            *fam = 1;
-        }
-    }
+    if (bd != dipd) *fam = 0; /* a later candidate (vn) was shorter */
     if (!(bd < INFINITY)) {
         /* Not reachable for finite inputs (the pieces cover [-vmax, vmax] and the cruises
          * the rest); stop as a defined answer. */
@@ -423,6 +510,7 @@ static int solve_time(int scurve, float v0, float a0, float dp, float vcs, float
     float xs[QO_MOTION_SYNC_SCAN + 3], gs[QO_MOTION_SYNC_SCAN + 3], ts[QO_MOTION_SYNC_SCAN + 3];
     float bestd = INFINITY;
     unsigned n = 0, i, k;
+    if (scurve && v0 == 0.0f && a0 == 0.0f && rest_time(dp, T, l, vc, tc)) return 1;
     c = rctx_make(scurve, 1, v0, a0, dp, T, l);
     fa = resid(&c, 0.0f, &tca);
     fb = resid(&c, vcs, &tcb);
