@@ -200,9 +200,12 @@ static float root(const rctx *c, float a, float b, float fa, float fb, float xa,
         if (!(m > fminf(a, b) && m < fmaxf(a, b))) m = 0.5f * (a + b);
         if (m == a || m == b) break;
         fm = resid(c, m, &xm);
-        if (fm == 0.0f) {
+        /* Done once the position misses by float32 rounding of the move (what the 2-ulp bracket
+         * below would give at best), on the side a cruise can absorb in mode 0. */
+        if (fm == 0.0f || (fabsf(fm) <= 1.2e-7f * (fabsf(c->dp) + fabsf(m) * (c->mode == 1 ? c->T : xm)) &&
+                           (c->mode != 0 || fm * m <= 0.0f))) {
             *aux = xm;
-            *fres = 0.0f;
+            *fres = fm;
             return m;
         }
         if ((fm < 0.0f) == (fb < 0.0f)) {
@@ -281,7 +284,7 @@ static float rest_peak(float D, const qo_motion_limits_f32 *l, float *slope)
  * falls short gets the cruise -f/x; one that overshoots is lowered by 2 f / slope (twice the
  * linear step, so that it falls short) and checked again. Returns 0 (use the root search) if
  * the residual is not at float32 rounding level. */
-static int rest_fix(const rctx *c, float x, float slope, float tol, float *vc, float *tc)
+static int rest_fix(const rctx *c, float x, float slope, float tol, float *vc, float *tc, float *dur)
 {
     int k;
     for (k = 0; k < 2; k++) {
@@ -290,6 +293,7 @@ static int rest_fix(const rctx *c, float x, float slope, float tol, float *vc, f
         if (f * x <= 0.0f) {
             *vc = x;
             *tc = x != 0.0f ? (c->mode == 0 ? -f / x : t) : 0.0f;
+            *dur = c->mode == 0 ? t + *tc : c->T;
             return *tc >= 0.0f;
         }
         x -= 2.0f * f / slope;
@@ -297,12 +301,12 @@ static int rest_fix(const rctx *c, float x, float slope, float tol, float *vc, f
     return 0;
 }
 
-static int rest_min(float dp, const qo_motion_limits_f32 *l, float *vc, float *tc)
+static int rest_min(float dp, const qo_motion_limits_f32 *l, float *vc, float *tc, float *dur)
 {
     rctx c = rctx_make(1, 0, 0.0f, 0.0f, dp, 0.0f, l);
     float slope, x = rest_peak(fabsf(dp), l, &slope);
     if (dp < 0.0f) x = -x;
-    return rest_fix(&c, x, slope, 4e-6f * fabsf(dp), vc, tc);
+    return rest_fix(&c, x, slope, 4e-6f * fabsf(dp), vc, tc, dur);
 }
 
 /* Rest-to-rest SCURVE profile of exactly duration T: D = x (T - tacc(x)), the smaller root,
@@ -332,7 +336,7 @@ static int rest_time(float dp, float T, const qo_motion_limits_f32 *l, float *vc
     }
     if (!(slope > 0.0f)) return 0;
     if (dp < 0.0f) x = -x;
-    return rest_fix(&c, x, slope, 4e-6f * (D + fabsf(x) * T), vc, tc);
+    return rest_fix(&c, x, slope, 4e-6f * (D + fabsf(x) * T), vc, tc, &D);
 }
 
 /* Fastest dip profile (build_dip) with displacement dp: the residual is scanned at
@@ -374,13 +378,13 @@ static int solve_dip(float v0, float a0, float dp, const qo_motion_limits_f32 *l
  * interior extremum (located by golden section). Every monotone piece whose ends bracket dp
  * gives a root; the root (or the cruise at +-vmax) of smallest duration wins. */
 static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_limits_f32 *l, float *vc,
-                      float *tc, int *fam)
+                      float *tc, int *fam, float *dur)
 {
     rctx c;
-    float pt[5], fp[5], xp[5], vn, bv = 0.0f, bt = 0.0f, bd = INFINITY, x, fz = NAN, fn0 = NAN, dipd = NAN;
+    float pt[5], fp[5], xp[5], vn, bv = 0.0f, bt = 0.0f, bd = INFINITY, x, fz = NAN, fn0 = NAN, xn0 = 0.0f, dipd = NAN;
     unsigned np = 0, i;
     *fam = 0;
-    if (scurve && v0 == 0.0f && a0 == 0.0f && rest_min(dp, l, vc, tc)) return;
+    if (scurve && v0 == 0.0f && a0 == 0.0f && rest_min(dp, l, vc, tc, dur)) return;
     c = rctx_make(scurve, 0, v0, a0, dp, 0.0f, l);
     vn = scurve ? v0 + a0 * fabsf(a0) / (2.0f * l->jmax) : v0;
     vn = fminf(fmaxf(vn, -l->vmax), l->vmax);
@@ -391,7 +395,10 @@ static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_
     for (i = 0; i < np; i++) {
         fp[i] = resid(&c, pt[i], &xp[i]);
         if (pt[i] == 0.0f) fz = fp[i];
-        if (pt[i] == vn) fn0 = fp[i];
+        if (pt[i] == vn) {
+            fn0 = fp[i];
+            xn0 = xp[i];
+        }
     }
     /* Cruising at +-vmax when even the fastest peak falls short. */
     if (fp[np - 1] <= 0.0f) consider(l->vmax, -fp[np - 1] / l->vmax, xp[np - 1] - fp[np - 1] / l->vmax, &bv, &bt, &bd);
@@ -478,11 +485,16 @@ static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_
         /* A root a float ulp away from the velocity the start state reaches anyway (vn)
          * would add a pulse of 2 sqrt(eps / jmax) seconds: take vn itself when it is a root to
          * float precision, and let a short cruise absorb the residual when its sign allows. */
-        float fn, xn, tn = 0.0f;
-        fn = resid(&c, vn, &xn);
+        float fn = fn0, xn = xn0, tn = 0.0f;
+        if (fn != fn) fn = resid(&c, vn, &xn); /* vn was not among the points */
         if (fabsf(fn) <= 2e-7f * (fabsf(dp) + (fabsf(v0) + l->vmax) * xn)) {
             if (vn != 0.0f && -fn / vn >= 0.0f) tn = -fn / vn;
-            consider(vn, tn, xn + tn - 1e-6f * xn, &bv, &bt, &bd);
+            /* preferred over a candidate up to 1e-6 relative shorter */
+            if (xn + tn - 1e-6f * xn < bd) {
+                bv = vn;
+                bt = tn;
+                bd = xn + tn;
+            }
         }
     }
     if (bd != dipd) *fam = 0; /* a later candidate (vn) was shorter */
@@ -494,6 +506,7 @@ static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_
     }
     *vc = bv;
     *tc = bt;
+    *dur = bd < INFINITY ? bd : 0.0f;
 }
 
 /* A profile of exactly duration T >= the minimum. First bracket: lower |vc| from vc* toward 0
@@ -801,7 +814,7 @@ static int plan_phase(qo_motion_planner_f32 *pl)
     /* The scalar profile's limits are ratios limit / |d|: a tiny d makes them so large that
      * the unit solve's products (amax^2 / jmax...) overflow; such a plan goes per joint. */
     if (!(limit_in_range(ls.vmax) && limit_in_range(ls.amax) && limit_in_range(ls.jmax))) return 0;
-    solve_min(sc, kv, ka, 1.0f, &ls, &vc, &tc, &fam);
+    solve_min(sc, kv, ka, 1.0f, &ls, &vc, &tc, &fam, &pv);
     n = build_fam(sc, fam, kv, ka, vc, tc, &ls, g);
     load(&unit, 0.0f, kv, ka, g, n, 1.0f);
     /* The scalar limits keep each joint's own limits only where the unit profile stays within
@@ -860,18 +873,12 @@ static void plan_goals(qo_motion_planner_f32 *pl)
     if (pl->settings.sync == QO_MOTION_SYNC_PHASE && plan_phase(pl)) return;
     for (i = 0; i < pl->n; i++) {
         qo_motion_joint_f32 *jt = &pl->joints[i];
-        float dum;
-        mseg g[MSEGS];
-        unsigned n;
         jt->w_fam = 0;
         if (jt->w_d == 0.0f && jt->w_v == 0.0f && jt->w_a == 0.0f) {
             jt->w_vc = jt->w_tc = jt->w_t = 0.0f;
             continue;
         }
-        solve_min(sc, jt->w_v, jt->w_a, jt->w_d, &jt->lim, &jt->w_vc, &jt->w_tc, &jt->w_fam);
-        n = build_fam(sc, jt->w_fam, jt->w_v, jt->w_a, jt->w_vc, 0.0f, &jt->lim, g);
-        eval_segs(jt->w_v, jt->w_a, g, n, &dum, &jt->w_t);
-        jt->w_t += jt->w_tc;
+        solve_min(sc, jt->w_v, jt->w_a, jt->w_d, &jt->lim, &jt->w_vc, &jt->w_tc, &jt->w_fam, &jt->w_t);
         if (jt->w_t > T) T = jt->w_t;
     }
     for (i = 0; i < pl->n; i++) {
