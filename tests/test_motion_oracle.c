@@ -251,6 +251,109 @@ static void test_oracle_phase(void **state)
     run_mode(QO_MOTION_SYNC_PHASE, 1103);
 }
 
+/* 1 if T is a whole number of periods to float32 rounding of the phase sums. */
+static int on_tick(double T, double period)
+{
+    double k = floor(T / period + 0.5);
+    return fabs(T - k * period) <= 4e-7 * T + 1e-9;
+}
+
+/* qo_motion_set_timing_f32: minimum duration and durations rounded up to a control period, in
+ * every sync mode, from moving starts; the duration is the smallest allowed one above the
+ * reference minimum, limits hold, every synchronised joint ends on the tick. */
+static void test_timing(void **state)
+{
+    ref_rng g;
+    int cs, bad = 0;
+    (void)state;
+    g.s = 1104;
+    for (cs = 0; cs < 600 && bad < 10; cs++) {
+        qo_motion_planner_f32 pl;
+        qo_motion_joint_f32 jts[NJ];
+        jcase c[NJ];
+        qo_motion_sync sync = (qo_motion_sync)(cs % 3);
+        double period = cs % 4 == 0 ? 0.0 : ref_rng_range(&g, 1e-3, 0.2);
+        double mind = cs % 5 == 0 ? 0.0 : ref_rng_range(&g, 0.0, 3.0), tref[NJ], tmax = 0.0, T;
+        float pos[NJ];
+        size_t i;
+        for (i = 0; i < NJ; i++) {
+            rand_case(&g, &c[i]);
+            tref[i] = ref_time(&c[i]);
+            tmax = fmax(tmax, tref[i]);
+        }
+        assert_int_equal(plan_cases(&pl, jts, c, NJ, sync), QO_OK);
+        assert_int_equal(qo_motion_set_timing_f32(&pl, (float)mind, (float)period), QO_OK);
+        /* the rules apply from the next re-plan: re-plan the same targets at time 0 */
+        for (i = 0; i < NJ; i++) {
+            put_state(&pl, i, c[i].p0, c[i].v0, c[i].a0);
+            pos[i] = c[i].target;
+        }
+        assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, pos, NULL), QO_OK);
+        mind = (float)mind;
+        period = (float)period;
+        T = pl.duration;
+        for (i = 0; i < NJ; i++) {
+            double Ti = jts[i].duration, lo = fmax(sync == QO_MOTION_SYNC_NONE ? tref[i] : tmax, mind);
+            int synced = !(pl.unsynced >> i & 1u);
+            if (limit_excess(&pl, i, 64) > RELLIM) {
+                print_case("timing: limit exceeded", cs, i, &c[i], Ti, 0.0);
+                bad++;
+            }
+            if (sync != QO_MOTION_SYNC_NONE && synced && fabs(Ti - T) > 4e-7 * T + 1e-9) {
+                print_case("timing: joint not synchronised", cs, i, &c[i], Ti, T);
+                bad++;
+            }
+            if (sync == QO_MOTION_SYNC_NONE && synced && jts[i].nph > 0) {
+                if (Ti < lo * (1.0 - 1e-6) || (period > 0.0 && !on_tick(Ti, period)) ||
+                    Ti > (period > 0.0 ? lo + period : lo) * (1.0 + RELTIME) + 1e-6) {
+                    print_case("timing: joint duration", cs, i, &c[i], Ti, lo);
+                    bad++;
+                }
+            }
+        }
+        if (sync != QO_MOTION_SYNC_NONE) {
+            double lo = fmax(tmax, mind);
+            if (T < lo * (1.0 - 1e-6) || (period > 0.0 && pl.unsynced == 0 && !on_tick(T, period)) ||
+                T > (period > 0.0 ? lo + period : lo) * (1.0 + RELTIME) + 1e-6) {
+                print_error("timing case %d sync %d: T %.9g, min %.9g, period %g, min duration %g, used %d\n", cs,
+                            (int)sync, T, tmax, period, mind, (int)pl.sync_used);
+                bad++;
+            }
+        }
+    }
+    assert_int_equal(bad, 0);
+}
+
+static void test_timing_args(void **state)
+{
+    qo_motion_planner_f32 pl;
+    qo_motion_joint_f32 jts[1];
+    qo_motion_limits_f32 l = qo_motion_limits_default;
+    float p = 0.0f;
+    (void)state;
+    assert_int_equal(qo_motion_set_timing_f32(NULL, 0.0f, 0.0f), QO_E_NULL);
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 0, &l, &p, 0.0f, NULL), QO_E_TOO_FEW);
+    assert_int_equal(qo_motion_set_timing_f32(&pl, 0.0f, 0.0f), QO_E_STATE);
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, &p, 0.0f, NULL), QO_OK);
+    assert_true(pl.min_duration == 0.0f && pl.period == 0.0f);
+    assert_int_equal(qo_motion_set_timing_f32(&pl, 1.0f, 0.01f), QO_OK);
+    assert_int_equal(qo_motion_set_timing_f32(&pl, -1.0f, 0.0f), QO_E_ARG);
+    assert_int_equal(qo_motion_set_timing_f32(&pl, NAN, 0.0f), QO_E_ARG);
+    assert_int_equal(qo_motion_set_timing_f32(&pl, INFINITY, 0.0f), QO_E_ARG);
+    assert_int_equal(qo_motion_set_timing_f32(&pl, 0.0f, -0.01f), QO_E_ARG);
+    assert_int_equal(qo_motion_set_timing_f32(&pl, 0.0f, NAN), QO_E_ARG);
+    assert_int_equal(qo_motion_set_timing_f32(&pl, 0.0f, 1e-9f), QO_E_ARG);
+    assert_int_equal(qo_motion_set_timing_f32(&pl, 0.0f, 1e5f), QO_E_ARG);
+    /* rules unchanged by the refused calls */
+    assert_true(pl.min_duration == 1.0f && pl.period == 0.01f);
+    /* a move of 0.01 u (minimum 0.684 s) takes the minimum duration, 1 s = 100 periods */
+    p = 0.01f;
+    assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, &p, NULL), QO_OK);
+    assert_true(fabs(pl.duration - 1.0) < 1e-6);
+    assert_int_equal(qo_motion_brake_f32(&pl, 0.5f), QO_OK);
+    assert_true(pl.joints[0].duration < 0.5f); /* a safety stop ignores the rules */
+}
+
 /* The reference itself against the closed form, rest to rest (symmetric limits). */
 static void test_reference_closed_form(void **state)
 {
@@ -356,6 +459,8 @@ int main(void)
         cmocka_unit_test(test_oracle_none),
         cmocka_unit_test(test_oracle_time),
         cmocka_unit_test(test_oracle_phase),
+        cmocka_unit_test(test_timing),
+        cmocka_unit_test(test_timing_args),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

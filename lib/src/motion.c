@@ -759,6 +759,16 @@ static void plan_brake_safe(qo_motion_planner_f32 *pl)
     if (!plan_ok(pl)) plan_hold(pl);
 }
 
+/* A minimum duration T >= 0 after qo_motion_set_timing_f32's rules: at least min_duration,
+ * rounded up to a whole number of periods. T within 4e-7 relative above a whole number counts
+ * as that number: 1 s with a period of 0.01f (0.0099999998) is 100 periods, not 101. */
+static float timed(const qo_motion_planner_f32 *pl, float T)
+{
+    if (T > 0.0f && T < pl->min_duration) T = pl->min_duration;
+    if (T > 0.0f && pl->period > 0.0f) T = fmaxf(ceilf(T / pl->period * (1.0f - 4e-7f)), 1.0f) * pl->period;
+    return T;
+}
+
 /* Largest |v|, |a|, |j| of a loaded plan: at phase ends, and |v| also where the acceleration
  * crosses zero inside a phase (its only interior extremum). */
 static void peaks(const qo_motion_joint_f32 *jt, float *pv, float *pa, float *pj)
@@ -817,6 +827,8 @@ static int plan_phase(qo_motion_planner_f32 *pl)
     solve_min(sc, kv, ka, 1.0f, &ls, &vc, &tc, &fam, &pv);
     n = build_fam(sc, fam, kv, ka, vc, tc, &ls, g);
     load(&unit, 0.0f, kv, ka, g, n, 1.0f);
+    /* a straight line has one duration: with duration rules that would change it, use TIME */
+    if (timed(pl, unit.duration) != unit.duration) return 0;
     /* The scalar limits keep each joint's own limits only where the unit profile stays within
      * its scalar limits; from a moving start it may not (the shared jerk min(jmax_i / |d_i|)
      * can be too weak to brake a joint's initial acceleration in time): check the straight line
@@ -861,7 +873,7 @@ static void plan_goals(qo_motion_planner_f32 *pl)
 {
     size_t i;
     int sc = pl->settings.profile == QO_MOTION_SCURVE;
-    float T = 0.0f;
+    float T = 0.0f, Tj;
     pl->braking = 0;
     pl->unsynced = 0;
     for (i = 0; i < pl->n; i++) {
@@ -881,6 +893,7 @@ static void plan_goals(qo_motion_planner_f32 *pl)
         solve_min(sc, jt->w_v, jt->w_a, jt->w_d, &jt->lim, &jt->w_vc, &jt->w_tc, &jt->w_fam, &jt->w_t);
         if (jt->w_t > T) T = jt->w_t;
     }
+    T = timed(pl, T);
     for (i = 0; i < pl->n; i++) {
         qo_motion_joint_f32 *jt = &pl->joints[i];
         mseg g[MSEGS];
@@ -893,14 +906,15 @@ static void plan_goals(qo_motion_planner_f32 *pl)
             jt->duration = 0.0f;
             continue;
         }
-        if (pl->settings.sync != QO_MOTION_SYNC_NONE && jt->w_t < T) {
+        Tj = pl->settings.sync != QO_MOTION_SYNC_NONE ? T : timed(pl, jt->w_t);
+        if (jt->w_t < Tj) {
             float v2, t2, vcs = vc;
             if (fam == 1) {
                 /* a dip profile meets the extremum-velocity family at vn */
                 vcs = jt->w_v + jt->w_a * fabsf(jt->w_a) / (2.0f * jt->lim.jmax);
                 vcs = fminf(fmaxf(vcs, -jt->lim.vmax), jt->lim.vmax);
             }
-            if (solve_time(sc, jt->w_v, jt->w_a, jt->w_d, vcs, T, &jt->lim, &v2, &t2)) {
+            if (solve_time(sc, jt->w_v, jt->w_a, jt->w_d, vcs, Tj, &jt->lim, &v2, &t2)) {
                 vc = v2;
                 tc = t2;
                 fam = 0;
@@ -941,6 +955,8 @@ qo_status qo_motion_init_f32(qo_motion_planner_f32 *pl, qo_motion_joint_f32 *joi
     pl->sync_used = QO_MOTION_SYNC_NONE;
     pl->unsynced = 0;
     pl->braking = 0;
+    pl->min_duration = 0.0f;
+    pl->period = 0.0f;
     if (joints == NULL || limits == NULL || start == NULL) return QO_E_NULL;
     if (n == 0) return QO_E_TOO_FEW;
     if (n > QO_MOTION_MAX_JOINTS) return QO_E_CAPACITY;
@@ -1119,6 +1135,18 @@ qo_status qo_motion_shift_time_f32(qo_motion_planner_f32 *pl, float dt)
     if (pl->n == 0 || pl->joints == NULL) return QO_E_STATE;
     if (!isfinite(dt)) return QO_E_NONFINITE;
     pl->t0 -= dt;
+    return QO_OK;
+}
+
+qo_status qo_motion_set_timing_f32(qo_motion_planner_f32 *pl, float min_duration, float period)
+{
+    if (pl == NULL) return QO_E_NULL;
+    if (pl->n == 0 || pl->joints == NULL) return QO_E_STATE;
+    if (!(min_duration >= 0.0f && min_duration <= QO_MOTION_DURATION_MAX) ||
+        !(period >= 0.0f && period <= QO_MOTION_DURATION_MAX) || (period > 0.0f && period < QO_MOTION_PERIOD_MIN))
+        return QO_E_ARG;
+    pl->min_duration = min_duration;
+    pl->period = period;
     return QO_OK;
 }
 

@@ -12,6 +12,7 @@
  *   qo_motion_duration_f32          seconds from the last re-plan until every joint is at rest
  *   qo_motion_end_time_f32          absolute time at which every joint is at rest
  *   qo_motion_done_f32              1 once t has reached the end time
+ *   qo_motion_set_timing_f32        minimum duration, durations rounded up to a control period
  *   qo_motion_sync_used             which synchronisation the last plan really used
  *   qo_motion_shift_time_f32        move the time origin (keep float32 times small in long runs)
  *   qo_motion_export_q16            the current plan as a fixed-point table (see motion_fx.h)
@@ -145,6 +146,11 @@ extern "C" {
 #define QO_MOTION_LIMIT_MIN 1e-6f
 #define QO_MOTION_LIMIT_MAX 1e12f
 #define QO_MOTION_POS_MAX 1e18f
+/* Range of qo_motion_set_timing_f32's durations [s]: a period below QO_MOTION_PERIOD_MIN
+ * (1 us) would make T / period lose float32 resolution; the upper bound keeps every plan's
+ * float32 time axis at sub-millisecond resolution. */
+#define QO_MOTION_DURATION_MAX 1e4f
+#define QO_MOTION_PERIOD_MIN 1e-6f
 /* Upper bound of root-search steps in one solve (typically 5-12 are used; bounded anyway). */
 #define QO_MOTION_BISECT_ITERS 48
 
@@ -212,6 +218,7 @@ typedef struct qo_motion_planner_f32 {
     uint32_t unsynced;             /* bit i: joint i could not be given the common duration
                                     * (it arrives earlier, at its own minimum time; see above) */
     int braking;                   /* 1 if the current plan is a safety stop */
+    float min_duration, period;    /* duration rules (qo_motion_set_timing_f32), 0 = off */
 } qo_motion_planner_f32;
 
 /*
@@ -290,6 +297,21 @@ float qo_motion_end_time_f32(const qo_motion_planner_f32 *pl);
 /* 1 if t >= the end time (every joint at rest at its final position), else 0; 1 for NULL or an
  * uninitialised planner (nothing moves). NaN t gives 0. */
 int qo_motion_done_f32(const qo_motion_planner_f32 *pl, float t);
+
+/*
+ * Duration rules for the plans made from now on (set_target, set_limits; not the safety stops
+ * of brake and of bad input, which stop as fast as possible). A plan that moves lasts at least
+ * `min_duration` seconds, and with `period` > 0 its duration is rounded up to a whole number of
+ * periods, so that it ends on a control tick (to float32 rounding of the phase sums, ~1e-7
+ * relative). With SYNC_TIME the common duration obeys the rules; with SYNC_NONE each joint's own;
+ * SYNC_PHASE is used only if its straight line already obeys them, else the plan falls back to
+ * TIME (sync_used says so). A joint that cannot be given the longer duration (the sync gap
+ * described above) keeps its own minimum time and its bit in `unsynced` is set. 0 = off (the
+ * default after init). Does not re-plan: the rules apply from the next re-plan.
+ * Returns QO_OK; QO_E_NULL; QO_E_STATE (not initialised); QO_E_ARG (either value negative, NaN,
+ * above QO_MOTION_DURATION_MAX, or a period in (0, QO_MOTION_PERIOD_MIN): rules unchanged).
+ */
+qo_status qo_motion_set_timing_f32(qo_motion_planner_f32 *pl, float min_duration, float period);
 
 /* The synchronisation the current plan really used (PHASE may have fallen back to TIME; a
  * safety stop reports NONE). NONE for NULL. */
