@@ -24,6 +24,7 @@
 #include <cmocka.h>
 
 #include "qorient/motion.h"
+#include "qorient/motion_fx.h"
 #include "common/motion_ref.h"
 #include "common/ref.h"
 
@@ -354,6 +355,136 @@ static void test_timing_args(void **state)
     assert_true(pl.joints[0].duration < 0.5f); /* a safety stop ignores the rules */
 }
 
+/* Velocity interface: from random moving states to random target velocities in the minimum
+ * time of the velocity change (reference), within the limits, continuous at the call, then on at
+ * the target velocity; a later set_target leaves velocity mode without a jump; bad input. */
+static void test_velocity(void **state)
+{
+    ref_rng g;
+    int cs, bad = 0;
+    (void)state;
+    g.s = 1105;
+    for (cs = 0; cs < 400 && bad < 10; cs++) {
+        qo_motion_planner_f32 pl;
+        qo_motion_joint_f32 jts[NJ];
+        jcase c[NJ];
+        float vt[NJ], p1[NJ], v1[NJ], a1[NJ], p2[NJ], v2[NJ], a2[NJ], tg[NJ];
+        float tm, te;
+        size_t i;
+        qo_motion_sync sync = (qo_motion_sync)(cs % 3);
+        for (i = 0; i < NJ; i++) {
+            rand_case(&g, &c[i]);
+            vt[i] = (float)(ref_rng_range(&g, -1.0, 1.0) * c[i].lim.vmax);
+            if (cs % 7 == 0) vt[i] = 0.0f;
+        }
+        assert_int_equal(plan_cases(&pl, jts, c, NJ, sync), QO_OK);
+        tm = 0.3f * pl.duration;
+        qo_motion_sample_f32(&pl, tm, p1, v1, a1);
+        assert_int_equal(qo_motion_set_velocity_f32(&pl, tm, vt), QO_OK);
+        assert_int_equal(pl.vel_mode, 1);
+        qo_motion_sample_f32(&pl, tm, p2, v2, a2);
+        for (i = 0; i < NJ; i++) {
+            mref_lim r = ref_lim_of(&c[i].lim);
+            /* the sampled a may exceed amax by float32 rounding: the reference takes it at amax */
+            double as = fmin(fmax(a1[i], r.amin), r.amax);
+            double tr = mref_vel_time(&r, v1[i], as, vt[i], 0.0), Ti = jts[i].duration;
+            if (fabs(p2[i] - p1[i]) > 1e-6 * (1.0 + fabs(p1[i])) || fabs(v2[i] - v1[i]) > 1e-6 * c[i].lim.vmax ||
+                fabs(a2[i] - a1[i]) > 1e-6 * c[i].lim.amax) {
+                print_case("velocity: jump at the call", cs, i, &c[i], v2[i], v1[i]);
+                bad++;
+            }
+            if (fabs(Ti - tr) > RELTIME * tr + 1e-6) {
+                print_case("velocity: time of the velocity change", cs, i, &c[i], Ti, tr);
+                bad++;
+            }
+            if (limit_excess(&pl, i, 64) > RELLIM) {
+                print_case("velocity: limit exceeded", cs, i, &c[i], Ti, 0.0);
+                bad++;
+            }
+        }
+        /* after the end: on at the target velocity, on a straight line */
+        te = qo_motion_end_time_f32(&pl);
+        qo_motion_sample_f32(&pl, te + 0.5f, p1, v1, a1);
+        qo_motion_sample_f32(&pl, te + 1.5f, p2, v2, a2);
+        for (i = 0; i < NJ; i++) {
+            if (v1[i] != vt[i] || v2[i] != vt[i] || a1[i] != 0.0f || a2[i] != 0.0f ||
+                fabs((p2[i] - p1[i]) - vt[i]) > 1e-5 * (1.0 + fabs(p1[i]))) {
+                print_case("velocity: not moving on at the target", cs, i, &c[i], v2[i], vt[i]);
+                bad++;
+            }
+            tg[i] = c[i].target;
+        }
+        /* back to a position target: continuous, ends at rest */
+        qo_motion_sample_f32(&pl, te + 1.5f, p1, v1, a1);
+        assert_int_equal(qo_motion_set_target_f32(&pl, te + 1.5f, tg, NULL), QO_OK);
+        assert_int_equal(pl.vel_mode, 0);
+        qo_motion_sample_f32(&pl, te + 1.5f, p2, v2, a2);
+        for (i = 0; i < NJ; i++) {
+            if (fabs(p2[i] - p1[i]) > 1e-6 * (1.0 + fabs(p1[i])) || fabs(v2[i] - v1[i]) > 1e-6 * c[i].lim.vmax ||
+                jts[i].vend != 0.0f) {
+                print_case("velocity: jump back to position mode", cs, i, &c[i], v2[i], v1[i]);
+                bad++;
+            }
+        }
+        qo_motion_sample_f32(&pl, qo_motion_end_time_f32(&pl) + 1.0f, p2, v2, a2);
+        for (i = 0; i < NJ; i++)
+            /* final = start + (goal - start) in float32: the goal to an ulp of the positions */
+            if (fabs(p2[i] - tg[i]) > 2.4e-7 * (fabs(tg[i]) + fabs(p1[i])) || v2[i] != 0.0f) {
+                print_case("velocity: position target not reached", cs, i, &c[i], p2[i], tg[i]);
+                bad++;
+            }
+    }
+    assert_int_equal(bad, 0);
+}
+
+static void test_velocity_args(void **state)
+{
+    qo_motion_planner_f32 pl;
+    qo_motion_joint_f32 jts[2];
+    qo_motion_limits_f32 l[2];
+    qo_motion_table_q16 tab;
+    qo_motion_seg_q16 segs[2 * QO_MOTION_Q16_SEGS];
+    qo_q16 qp[2], qv[2];
+    float p[2] = { 0.0f, 1.0f }, v[2] = { 0.5f, -0.25f }, d0, pos[2], vel[2];
+    (void)state;
+    l[0] = l[1] = qo_motion_limits_default;
+    l[0].pmax = 0.5f; /* the range does not stop a joint in velocity mode */
+    assert_int_equal(qo_motion_set_velocity_f32(NULL, 0.0f, v), QO_E_NULL);
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 0, l, p, 0.0f, NULL), QO_E_TOO_FEW);
+    assert_int_equal(qo_motion_set_velocity_f32(&pl, 0.0f, v), QO_E_STATE);
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 2, l, p, 1.0f, NULL), QO_OK);
+    assert_int_equal(qo_motion_set_velocity_f32(&pl, 1.0f, NULL), QO_E_NULL);
+    assert_int_equal(qo_motion_set_velocity_f32(&pl, 0.5f, v), QO_E_ORDER);
+    assert_int_equal(qo_motion_set_velocity_f32(&pl, NAN, v), QO_E_NONFINITE);
+    v[1] = -1.5f; /* beyond vmax: refused, nothing moves */
+    assert_int_equal(qo_motion_set_velocity_f32(&pl, 1.0f, v), QO_E_RANGE);
+    assert_int_equal(pl.vel_mode, 0);
+    assert_true(pl.duration == 0.0f);
+    v[1] = -0.25f;
+    assert_int_equal(qo_motion_set_velocity_f32(&pl, 1.0f, v), QO_OK);
+    d0 = pl.duration;
+    assert_true(d0 > 0.0f);
+    /* ten seconds later joint 0 is far past its pmax, moving on */
+    assert_int_equal(qo_motion_sample_f32(&pl, 11.0f, pos, vel, NULL), QO_OK);
+    assert_true(pos[0] > 4.0f && vel[0] == 0.5f && vel[1] == -0.25f);
+    /* the Q16.16 export moves on the same way */
+    assert_int_equal(qo_motion_export_q16(&pl, &tab, segs, 2 * QO_MOTION_Q16_SEGS), QO_OK);
+    assert_int_equal(qo_motion_sample_q16(&tab, 10 << 16, qp, qv, NULL), QO_OK);
+    assert_true(fabs(qp[0] / 65536.0 - pos[0]) < 1e-3 && qv[0] == 32768 && qv[1] == -16384);
+    /* set_limits keeps velocity mode, clamped to the new vmax */
+    l[1].vmax = 0.1f;
+    assert_int_equal(qo_motion_set_limits_f32(&pl, 11.0f, 1, &l[1]), QO_OK);
+    assert_int_equal(pl.vel_mode, 1);
+    assert_true(jts[1].vend == -0.1f);
+    /* a NaN velocity brakes every joint to rest */
+    v[0] = NAN;
+    assert_int_equal(qo_motion_set_velocity_f32(&pl, 12.0f, v), QO_E_NONFINITE);
+    assert_int_equal(pl.braking, 1);
+    assert_int_equal(pl.vel_mode, 0);
+    assert_int_equal(qo_motion_sample_f32(&pl, 100.0f, pos, vel, NULL), QO_OK);
+    assert_true(vel[0] == 0.0f && vel[1] == 0.0f);
+}
+
 /* The reference itself against the closed form, rest to rest (symmetric limits). */
 static void test_reference_closed_form(void **state)
 {
@@ -461,6 +592,8 @@ int main(void)
         cmocka_unit_test(test_oracle_phase),
         cmocka_unit_test(test_timing),
         cmocka_unit_test(test_timing_args),
+        cmocka_unit_test(test_velocity),
+        cmocka_unit_test(test_velocity_args),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

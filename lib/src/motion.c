@@ -616,6 +616,11 @@ static mstate joint_state(const qo_motion_joint_f32 *jt, float tau)
         s.p = jt->final;
         s.v = 0.0f;
         s.a = 0.0f;
+        if (jt->vend != 0.0f && tau > jt->duration) {
+            /* velocity interface: the joint keeps its target velocity after the last phase */
+            s.p = jt->final + jt->vend * (tau - jt->duration);
+            s.v = jt->vend;
+        }
         return s;
     }
     if (tau < 0.0f) tau = 0.0f;
@@ -662,7 +667,7 @@ static int plan_ok(const qo_motion_planner_f32 *pl)
     if (!isfinite(pl->duration)) return 0;
     for (i = 0; i < pl->n; i++) {
         const qo_motion_joint_f32 *jt = &pl->joints[i];
-        if (!pos_in_range(jt->final) || !isfinite(jt->duration)) return 0;
+        if (!pos_in_range(jt->final) || !isfinite(jt->duration) || !isfinite(jt->vend)) return 0;
         for (k = 0; k < jt->nph; k++) {
             const qo_motion_phase_f32 *ph = &jt->ph[k];
             float d = ph->d;
@@ -691,6 +696,7 @@ static void plan_hold(qo_motion_planner_f32 *pl)
     pl->sync_used = QO_MOTION_SYNC_NONE;
     pl->unsynced = 0;
     pl->braking = 1;
+    pl->vel_mode = 0;
 }
 
 /* Short way round for a continuous joint: d in (-w/2, w/2]. */
@@ -716,11 +722,15 @@ static void capture(qo_motion_planner_f32 *pl, float t_now)
         jt->w_p = s.p;
         jt->w_v = s.v;
         jt->w_a = pl->settings.profile == QO_MOTION_SCURVE ? s.a : 0.0f;
+        jt->vend = 0.0f; /* every plan made from here ends at rest unless it says otherwise */
     }
     pl->t0 = t_now;
 }
 
-static void plan_brake(qo_motion_planner_f32 *pl)
+/* Velocity interface and safety stop: every joint from its captured state to (w_vg, 0) as fast
+ * as its limits allow, then on at w_vg (a brake: w_vg = 0, at rest there). No sync. The end
+ * positions become the goals. */
+static void plan_velocity(qo_motion_planner_f32 *pl)
 {
     size_t i;
     int sc = pl->settings.profile == QO_MOTION_SCURVE;
@@ -730,26 +740,30 @@ static void plan_brake(qo_motion_planner_f32 *pl)
         mseg g[3];
         mstate s;
         unsigned k, n;
-        if (jt->w_v == 0.0f && jt->w_a == 0.0f) {
-            jt->nph = 0;
-            jt->final = jt->w_p;
-            jt->duration = 0.0f;
-            jt->goal = jt->w_p;
-            continue;
-        }
-        n = vchange(sc, jt->w_v, jt->w_a, 0.0f, jt->lim.amax, jt->lim.jmax, g);
         s.p = jt->w_p;
         s.v = jt->w_v;
         s.a = jt->w_a;
+        n = (jt->w_v == jt->w_vg && jt->w_a == 0.0f) ? 0 : vchange(sc, jt->w_v, jt->w_a, jt->w_vg, jt->lim.amax, jt->lim.jmax, g);
         for (k = 0; k < n; k++) integ(&s, &g[k]);
         load(jt, jt->w_p, jt->w_v, jt->w_a, g, n, s.p);
+        jt->vend = jt->w_vg;
         jt->goal = s.p;
         if (jt->duration > dur) dur = jt->duration;
     }
     pl->duration = dur;
     pl->sync_used = QO_MOTION_SYNC_NONE;
     pl->unsynced = 0;
+    pl->braking = 0;
+    pl->vel_mode = 1;
+}
+
+static void plan_brake(qo_motion_planner_f32 *pl)
+{
+    size_t i;
+    for (i = 0; i < pl->n; i++) pl->joints[i].w_vg = 0.0f;
+    plan_velocity(pl);
     pl->braking = 1;
+    pl->vel_mode = 0;
 }
 
 /* Brake; hold if even the stop would not be finite. */
@@ -875,6 +889,7 @@ static void plan_goals(qo_motion_planner_f32 *pl)
     int sc = pl->settings.profile == QO_MOTION_SCURVE;
     float T = 0.0f, Tj;
     pl->braking = 0;
+    pl->vel_mode = 0;
     pl->unsynced = 0;
     for (i = 0; i < pl->n; i++) {
         qo_motion_joint_f32 *jt = &pl->joints[i];
@@ -940,6 +955,15 @@ static qo_status plan_goals_checked(qo_motion_planner_f32 *pl)
     return QO_E_RANGE;
 }
 
+/* Velocity plan; QO_E_RANGE with the safe brake if it is not finite. */
+static qo_status plan_velocity_checked(qo_motion_planner_f32 *pl)
+{
+    plan_velocity(pl);
+    if (plan_ok(pl)) return QO_OK;
+    plan_brake_safe(pl);
+    return QO_E_RANGE;
+}
+
 qo_status qo_motion_init_f32(qo_motion_planner_f32 *pl, qo_motion_joint_f32 *joints, size_t n,
                              const qo_motion_limits_f32 *limits, const float *start, float t0,
                              const qo_motion_settings_f32 *settings)
@@ -957,6 +981,7 @@ qo_status qo_motion_init_f32(qo_motion_planner_f32 *pl, qo_motion_joint_f32 *joi
     pl->braking = 0;
     pl->min_duration = 0.0f;
     pl->period = 0.0f;
+    pl->vel_mode = 0;
     if (joints == NULL || limits == NULL || start == NULL) return QO_E_NULL;
     if (n == 0) return QO_E_TOO_FEW;
     if (n > QO_MOTION_MAX_JOINTS) return QO_E_CAPACITY;
@@ -979,6 +1004,7 @@ qo_status qo_motion_init_f32(qo_motion_planner_f32 *pl, qo_motion_joint_f32 *joi
         jt->w_p = start[i];
         jt->w_v = jt->w_a = jt->w_d = jt->w_vc = jt->w_tc = jt->w_t = 0.0f;
         jt->w_fam = 0;
+        jt->w_vg = jt->vend = 0.0f;
     }
     pl->settings = st;
     pl->t0 = t0;
@@ -1034,6 +1060,27 @@ qo_status qo_motion_set_target_f32(qo_motion_planner_f32 *pl, float t_now, const
     return st;
 }
 
+qo_status qo_motion_set_velocity_f32(qo_motion_planner_f32 *pl, float t_now, const float *vel)
+{
+    size_t i;
+    qo_status st;
+    if (pl == NULL || vel == NULL) return QO_E_NULL;
+    st = check_time(pl, t_now);
+    if (st != QO_OK) return st;
+    for (i = 0; i < pl->n; i++) {
+        if (!isfinite(vel[i])) {
+            capture(pl, t_now);
+            plan_brake_safe(pl);
+            return QO_E_NONFINITE;
+        }
+    }
+    for (i = 0; i < pl->n; i++)
+        if (fabsf(vel[i]) > pl->joints[i].lim.vmax) return QO_E_RANGE; /* refused: nothing changes */
+    capture(pl, t_now);
+    for (i = 0; i < pl->n; i++) pl->joints[i].w_vg = vel[i];
+    return plan_velocity_checked(pl);
+}
+
 qo_status qo_motion_set_limits_f32(qo_motion_planner_f32 *pl, float t_now, size_t i,
                                    const qo_motion_limits_f32 *limits)
 {
@@ -1049,6 +1096,14 @@ qo_status qo_motion_set_limits_f32(qo_motion_planner_f32 *pl, float t_now, size_
         return QO_E_LIMIT;
     }
     pl->joints[i].lim = *limits;
+    if (pl->vel_mode) {
+        /* velocity interface: on toward the same velocities, within the new vmax */
+        for (k = 0; k < pl->n; k++) {
+            qo_motion_joint_f32 *jt = &pl->joints[k];
+            jt->w_vg = fminf(fmaxf(jt->w_vg, -jt->lim.vmax), jt->lim.vmax);
+        }
+        return plan_velocity_checked(pl);
+    }
     for (k = 0; k < pl->n; k++) {
         qo_motion_joint_f32 *jt = &pl->joints[k];
         if (jt->goal < jt->lim.pmin) jt->goal = jt->lim.pmin;
@@ -1219,7 +1274,8 @@ qo_status qo_motion_export_q16(const qo_motion_planner_f32 *pl, qo_motion_table_
         for (; k < QO_MOTION_Q16_SEGS; k++) {
             sg[k].t = jt->nph ? to_q16(jt->duration, &ovf) : 0;
             sg[k].c0 = to_q32(jt->final, &ovf);
-            sg[k].c1 = sg[k].c2 = sg[k].c3 = 0;
+            sg[k].c1 = to_q32(jt->vend, &ovf); /* 0 at rest; the velocity interface's cruise */
+            sg[k].c2 = sg[k].c3 = 0;
             if (fabsf(jt->final) >= 32767.0f) ovf = 1;
         }
     }

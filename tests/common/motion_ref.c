@@ -232,6 +232,12 @@ double mref_min_time(const mref_lim *l, double p0, double v0, double a0, double 
     return best < INFINITY ? best : -1.0;
 }
 
+double mref_vel_time(const mref_lim *l, double v0, double a0, double v1, double a1)
+{
+    xph x;
+    return xfer(l, v0, a0, v1, a1, &x) ? x.t : -1.0;
+}
+
 double mref_rest_time(double D, double V, double A, double J)
 {
     double d = fabs(D), ta, tj, tv;

@@ -5,6 +5,7 @@
  * Index:
  *   mref_lim            limits of one joint (asymmetric velocity and acceleration allowed)
  *   mref_min_time       minimum time from (p0, v0, a0) to (pf, vf, af), or -1 if none found
+ *   mref_vel_time       minimum time of a velocity change (v0, a0) -> (v1, a1)
  *   mref_rest_time      closed-form rest-to-rest minimum time (symmetric limits), the oracle's
  *                       own check
  *
@@ -30,6 +31,10 @@ typedef struct mref_lim {
 
 /* Minimum time [s] from (p0, v0, a0) to (pf, vf, af) within `l`; -1 if no profile was found. */
 double mref_min_time(const mref_lim *l, double p0, double v0, double a0, double pf, double vf, double af);
+
+/* Minimum time [s] of the velocity change (v0, a0) -> (v1, a1) within `l` (position free: the
+ * fastest single pulse); -1 if none. */
+double mref_vel_time(const mref_lim *l, double v0, double a0, double v1, double a1);
 
 /* Closed form: rest-to-rest minimum time over distance D (any sign), symmetric limits V, A, J. */
 double mref_rest_time(double D, double V, double A, double J);

@@ -6,6 +6,7 @@
  *   qo_motion_limits_default        const default limits of one joint (all 1, no range, no wrap)
  *   qo_motion_init_f32              set up a planner over caller arrays, at rest at given positions
  *   qo_motion_set_target_f32        re-plan from the sampled state at t_now to new targets
+ *   qo_motion_set_velocity_f32      velocity interface: every joint to a target velocity, then on
  *   qo_motion_set_limits_f32        change one joint's limits at t_now (bad limits -> brake)
  *   qo_motion_brake_f32             stop every joint as fast as its limits allow, from t_now
  *   qo_motion_sample_f32            position, velocity, acceleration of every joint at time t
@@ -113,8 +114,9 @@
  * rest; the remaining step is the solver residual (~1e-7 relative in position, float32
  * rounding in v and a).
  * Absolute times are float32 too: keep the caller's time origin recent (ulp(1000 s) = 61 us).
- * Resources (arm-none-eabi-gcc -O2, Cortex-M4F): ~8.9 KB code, worst stack of a re-plan ~1.3 KB
- * (independent of N: per-joint scratch lives in the joint struct), 236 B per joint; no heap, no
+ * Resources (arm-none-eabi-gcc -O2, Cortex-M4F): ~12.9 KB code (text of motion.o), worst stack
+ * of a re-plan ~1.4 KB (-fstack-usage along plan_goals, solve_min, root, resid; independent of
+ * N: per-joint scratch lives in the joint struct), 240 B per joint; no heap, no
  * static mutable state: planners never interfere. A re-plan costs O(N) root searches.
  */
 #ifndef QORIENT_MOTION_H
@@ -205,6 +207,9 @@ typedef struct qo_motion_joint_f32 {
      * a re-plan needs no stack proportional to N. Not meaningful to the caller. */
     float w_p, w_v, w_a, w_d, w_vc, w_tc, w_t;
     int w_fam; /* profile family of the solve: 0 extremum velocity w_vc, 1 dip to w_vc [u/s^2] */
+    float w_vg;                                    /* velocity interface: target velocity */
+    float vend;  /* velocity after the last phase [u/s]: 0 = at rest at `final`; the velocity
+                  * interface's target (the joint then moves on at vend from `final`) */
 } qo_motion_joint_f32;
 
 /* The planner. Fields are readable; change them only through the functions. */
@@ -219,6 +224,7 @@ typedef struct qo_motion_planner_f32 {
                                     * (it arrives earlier, at its own minimum time; see above) */
     int braking;                   /* 1 if the current plan is a safety stop */
     float min_duration, period;    /* duration rules (qo_motion_set_timing_f32), 0 = off */
+    int vel_mode;                  /* 1 if the current plan came from qo_motion_set_velocity_f32 */
 } qo_motion_planner_f32;
 
 /*
@@ -255,6 +261,24 @@ qo_status qo_motion_set_target_f32(qo_motion_planner_f32 *pl, float t_now, const
                                    uint32_t *clamped);
 
 /*
+ * Velocity interface (jogging, teleoperation): from its state sampled at `t_now` every joint
+ * changes to velocity vel[i] [u/s] (n entries) as fast as its limits allow (jerk-limited for
+ * SCURVE, at +-amax for TRAPEZOID; no synchronisation, no position target) and then keeps
+ * moving at vel[i] without end: the plan's duration is the time to reach the velocities, after
+ * which qo_motion_done_f32 is 1 and samples continue the straight line p = final + vend*(t - end)
+ * (joint field vend). The position range is NOT applied (nothing stops the joint but a later
+ * call): set_target and brake leave velocity mode, and set_limits re-plans toward the same
+ * velocities (clamped to the new vmax). Positions stay float32: re-plan or shift time before a
+ * long run loses resolution (ulp(1000 s) = 61 us, ulp(1e4 u) = 1e-3 u). The Q16.16 export
+ * carries the end velocity in its rest segment.
+ * Returns QO_OK; QO_E_NULL (pl or vel NULL); QO_E_STATE; QO_E_ORDER (t_now < t0: unchanged);
+ * QO_E_NONFINITE (t_now non-finite: unchanged; a velocity NaN/Inf: every joint brakes to rest
+ * from t_now); QO_E_RANGE (some |vel[i]| > vmax: refused, the plan is unchanged; or the plan
+ * would not be finite: brake, as for set_target).
+ */
+qo_status qo_motion_set_velocity_f32(qo_motion_planner_f32 *pl, float t_now, const float *vel);
+
+/*
  * Replaces joint `i`'s limits at `t_now` and re-plans all joints toward their goals from their
  * state at t_now (so lowering vmax on the fly first brakes into the new limits).
  * Returns QO_OK; QO_E_NULL; QO_E_STATE; QO_E_RANGE (i >= n); QO_E_NONFINITE (t_now);
@@ -278,7 +302,8 @@ qo_status qo_motion_brake_f32(qo_motion_planner_f32 *pl, float t_now);
 /*
  * Samples every joint at absolute time t (seconds): positions, velocities [u/s] and
  * accelerations [u/s^2] into n-element arrays; vel and acc may be NULL. Before the plan's t0
- * the state at t0 is given (QO_E_RANGE); after the end the final positions at rest.
+ * the state at t0 is given (QO_E_RANGE); after the end the final positions at rest (velocity
+ * interface: moving on from them at the target velocities).
  * Returns QO_OK; QO_E_NULL (pl or pos NULL); QO_E_STATE; QO_E_NONFINITE (t NaN/Inf: outputs are
  * the state at t0); QO_E_RANGE (t < t0; or, as a last line of defence not reachable for the
  * checked plans, a joint's sample would not be finite: that joint gets its final position at
