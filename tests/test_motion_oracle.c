@@ -546,10 +546,12 @@ static void test_issue_phase_sync_moving(void **state)
 }
 
 /* Issue 11, defect 2: the profile "acceleration ramps down, then up to amax, holds, ramps to
- * zero" was missing (0.3363 s instead of 0.2627 s); also in a TIME plan (1.3925 s for 1.3231 s). */
+ * zero" was missing (0.3363 s instead of 0.2627 s); also in a TIME plan (1.3925 s for 1.3231 s).
+ * Third: the other orientation (a0 ramps briefly further away from zero, then up to amax),
+ * found by make check-motion (0.5281 s instead of 0.5184 s). */
 static void test_issue_missing_shape(void **state)
 {
-    jcase c[2];
+    jcase c[3];
     qo_motion_planner_f32 pl;
     qo_motion_joint_f32 jts[NJ];
     int k;
@@ -569,7 +571,15 @@ static void test_issue_missing_shape(void **state)
     c[1].v0 = -2.97041011f;
     c[1].a0 = 1.55960763f;
     c[1].target = -0.646739721f;
-    for (k = 0; k < 2; k++) {
+    c[2].lim = qo_motion_limits_default;
+    c[2].lim.vmax = 4.1246357f;
+    c[2].lim.amax = 3.74037433f;
+    c[2].lim.jmax = 19.2452679f;
+    c[2].p0 = 0.384773493f;
+    c[2].v0 = -0.953012407f;
+    c[2].a0 = -1.15454602f;
+    c[2].target = 0.0998001546f;
+    for (k = 0; k < 3; k++) {
         double tr = ref_time(&c[k]);
         assert_int_equal(plan_cases(&pl, jts, &c[k], 1, QO_MOTION_SYNC_TIME), QO_OK);
         if (!(pl.duration <= tr * (1.0 + RELTIME)) || limit_excess(&pl, 0, 2000) > RELLIM) {
@@ -579,6 +589,7 @@ static void test_issue_missing_shape(void **state)
     }
     assert_true(fabs(ref_time(&c[0]) - 0.2627) < 1e-3);
     assert_true(fabs(ref_time(&c[1]) - 1.3231) < 1e-3);
+    assert_true(fabs(ref_time(&c[2]) - 0.5184) < 1e-3);
 }
 
 int main(void)

@@ -343,16 +343,18 @@ static int rest_time(float dp, float T, const qo_motion_limits_f32 *l, float *vc
  * QO_MOTION_DIP_SCAN + 1 points of am in [0, a0] (its ends are the extremum-velocity profile
  * through vn and the direct stop) and every sign change is solved. Returns 0 if none. */
 #define QO_MOTION_DIP_SCAN 1
-static int solve_dip(float v0, float a0, float dp, const qo_motion_limits_f32 *l, float *am, float *dur)
+static int solve_dip(float v0, float a0, float dp, float e0, float e1, const qo_motion_limits_f32 *l, float *am,
+                     float *dur)
 {
     rctx c;
     float x[QO_MOTION_DIP_SCAN + 1], f[QO_MOTION_DIP_SCAN + 1], t[QO_MOTION_DIP_SCAN + 1];
+    float vb = fmaxf(l->vmax, fabsf(v0 + a0 * fabsf(a0) / (2.0f * l->jmax))) * (1.0f + 1e-6f);
     unsigned k;
     c = rctx_make(1, 2, v0, a0, dp, 0.0f, l);
     *am = 0.0f;
     *dur = INFINITY;
     for (k = 0; k <= QO_MOTION_DIP_SCAN; k++) {
-        x[k] = a0 * (float)k / (float)QO_MOTION_DIP_SCAN;
+        x[k] = e0 + (e1 - e0) * (float)k / (float)QO_MOTION_DIP_SCAN;
         f[k] = resid(&c, x[k], &t[k]);
     }
     for (k = 0; k <= QO_MOTION_DIP_SCAN; k++) {
@@ -362,6 +364,13 @@ static int solve_dip(float v0, float a0, float dp, const qo_motion_limits_f32 *l
             r = root(&c, x[k], x[k + 1], f[k], f[k + 1], t[k], t[k + 1], &tr, &fr);
             /* no cruise absorbs a residual here: keep only a root to float precision */
             if (fabsf(fr) > 1e-6f * (fabsf(dp) + (fabsf(v0) + l->vmax) * tr)) continue;
+        }
+        {
+            /* ramping a0 away from zero first drives the velocity further: its extremum, where
+             * the pulse to rest crosses a = 0, must stay within vmax (or the start's own reach) */
+            float d = fabsf(r - a0) / l->jmax, j = r >= a0 ? l->jmax : -l->jmax;
+            float v1 = v0 + d * (a0 + 0.5f * d * j);
+            if (fabsf(v1 + r * fabsf(r) / (2.0f * l->jmax)) > vb) continue;
         }
         if (tr < *dur) {
             *dur = tr;
@@ -423,11 +432,27 @@ static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_
      * reference in tests/test_motion_oracle.c), so that piece is searched only without a dip. */
     if (scurve && a0 != 0.0f && vn != 0.0f && (fz < 0.0f) != (fn0 < 0.0f) && fz == fz && fn0 == fn0) {
         float am, dd;
-        if (solve_dip(v0, a0, dp, l, &am, &dd) && dd < bd) {
+        if (solve_dip(v0, a0, dp, 0.0f, a0, l, &am, &dd) && dd < bd) {
             bv = am;
             bt = 0.0f;
             bd = dipd = dd;
             *fam = 1;
+        }
+    }
+    /* The other orientation: a0 ramped further away from zero first (to am between a0 and
+     * +-amax), then the pulse to rest; from the direct stop (am = a0) to am = +-amax. Its far
+     * end is evaluated only here; solved when it brackets dp with the direct stop. */
+    if (scurve && a0 != 0.0f && fabsf(a0) < l->amax && fz == fz) {
+        float aw = a0 > 0.0f ? l->amax : -l->amax, am, dd, fw, tw;
+        rctx cw = rctx_make(1, 2, v0, a0, dp, 0.0f, l);
+        fw = resid(&cw, aw, &tw);
+        if (fw != fw || (fw < 0.0f) != (fz < 0.0f) || fw == 0.0f) {
+            if (solve_dip(v0, a0, dp, a0, aw, l, &am, &dd) && dd < bd) {
+                bv = am;
+                bt = 0.0f;
+                bd = dipd = dd;
+                *fam = 1;
+            }
         }
     }
     /* The two-stage middle piece: split it at its extremum when it has one. */

@@ -45,8 +45,10 @@
  * and a cruise at +-vmax is used when even vc = +-vmax falls short. SCURVE starts with a0 != 0
  * also try the "dip" profiles, which have no acceleration zero before the stop: a0 ramps
  * straight to am between 0 and a0, then the fastest pulse from there to rest (e.g. braking is
- * eased first, then raised to amax, held and released: issue 11); am is scanned at 5 points
- * and each sign change solved the same way, and the shorter family wins. For TRAPEZOID this family
+ * eased first, then raised to amax, held and released: issue 11), solved where the profiles
+ * through vn and 0 bracket the distance; and the other orientation, a0 first ramped further
+ * away from zero (am between a0 and +-amax), solved where it brackets the distance with the
+ * direct stop (velocity extremum checked against vmax). The shortest candidate wins. For TRAPEZOID this family
  * provably contains the minimum-time solution (double integrator, state bound on v). For SCURVE
  * it contains the minimum-time rest-to-rest solution (checked against the closed form in
  * tests/test_motion.c). Evidence for moving SCURVE starts within the limits:
