@@ -116,7 +116,7 @@
  * rest; the remaining step is the solver residual (~1e-7 relative in position, float32
  * rounding in v and a).
  * Absolute times are float32 too: keep the caller's time origin recent (ulp(1000 s) = 61 us).
- * Resources (arm-none-eabi-gcc -O2, Cortex-M4F): ~12.9 KB code (text of motion.o), worst stack
+ * Resources (arm-none-eabi-gcc -O2, Cortex-M4F): ~13.8 KB code (text of motion.o), worst stack
  * of a re-plan ~1.4 KB (-fstack-usage along plan_goals, solve_min, root, resid; independent of
  * N: per-joint scratch lives in the joint struct), 240 B per joint; no heap, no
  * static mutable state: planners never interfere. A re-plan costs O(N) root searches.
