@@ -118,7 +118,7 @@
  * Absolute times are float32 too: keep the caller's time origin recent (ulp(1000 s) = 61 us).
  * Resources (arm-none-eabi-gcc -O2, Cortex-M4F): ~13.8 KB code (text of motion.o), worst stack
  * of a re-plan ~1.4 KB (-fstack-usage along plan_goals, solve_min, root, resid; independent of
- * N: per-joint scratch lives in the joint struct), 240 B per joint; no heap, no
+ * N: per-joint scratch lives in the joint struct), 248 B per joint; no heap, no
  * static mutable state: planners never interfere. A re-plan costs O(N) root searches.
  */
 #ifndef QORIENT_MOTION_H
