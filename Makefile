@@ -158,3 +158,4 @@ clean:
 -include mk/bench.mk
 -include mk/qemu.mk
 -include mk/fuzz.mk
+-include mk/motion.mk

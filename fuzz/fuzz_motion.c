@@ -2,12 +2,14 @@
  * fuzz/fuzz_motion.c - limited moves (qorient/motion.h, motion_fx.h): 1..4 joints with fuzzed
  * limits (vmax/amax/jmax/range/wrap, also zero, negative, NaN, Inf, denormal), both profiles
  * and every sync (and one bad value of each), then a fuzzed sequence of set_target,
- * set_limits, brake and sample calls at fuzzed times, and the Q16.16 export and sampler.
+ * set_velocity, set_limits, brake, set_timing (fuzzed minimum duration and period) and sample calls at
+ * fuzzed times, and the Q16.16 export and sampler.
  * Properties from the header: documented statuses; a failed init leaves n = 0 (every later
  * call QO_E_STATE); *clamped is 0 on error; every sample with QO_OK (or QO_E_RANGE, which
  * also gives the state at t0) is finite; while no limit was changed and no brake or NaN
  * target happened, |vel| <= vmax and |acc| <= amax (1e-3 relative slack); the export and its
- * sampler return documented statuses.
+ * sampler return documented statuses; set_timing accepts only values in its documented range
+ * and never re-plans by itself.
  */
 #include "fuzz_common.h"
 #include "qorient/motion.h"
@@ -69,6 +71,16 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
         float t = ((op & 0x30u) == 0x30u) ? qo_fz_f32(&f) : pl.t0 + (float)(qo_fz_u8(&f)) * 0.05f;
         switch (op & 3u) {
         case 0:
+            if (op & 0x80u) {
+                /* velocity interface: fuzzed velocities (NaN brakes, beyond vmax is refused) */
+                for (i = 0; i < n; i++) tg[i] = (op & 0x40u) ? qo_fz_f32(&f) : (float)((int)qo_fz_u8(&f) - 128) * 0.01f;
+                st = qo_motion_set_velocity_f32(&pl, t, tg);
+                QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_ORDER || st == QO_E_RANGE,
+                              "set_velocity status %d", (int)st);
+                if (st == QO_OK) QO_FUZZ_CHECK(pl.vel_mode == 1, "set_velocity OK without velocity mode");
+                if (st == QO_E_NONFINITE) steady = 0;
+                break;
+            }
             for (i = 0; i < n; i++) {
                 tg[i] = (op & 0x40u) ? qo_fz_f32(&f) : start[i] + (float)((int)qo_fz_u8(&f) - 128) * 0.1f;
             }
@@ -87,6 +99,18 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
             if (st == QO_OK || st == QO_E_LIMIT || st == QO_E_RANGE) steady = 0;
             break;
         case 2:
+            if (op & 0x80u) {
+                /* duration rules: accepted only in range, never re-plan by themselves */
+                float md = qo_fz_f32(&f), per = qo_fz_f32(&f), d0 = qo_motion_duration_f32(&pl);
+                st = qo_motion_set_timing_f32(&pl, md, per);
+                QO_FUZZ_CHECK(st == QO_OK || st == QO_E_ARG, "set_timing status %d", (int)st);
+                if (st == QO_OK)
+                    QO_FUZZ_CHECK(pl.min_duration == md && pl.period == per && md >= 0.0f && per >= 0.0f &&
+                                      md <= QO_MOTION_DURATION_MAX && per <= QO_MOTION_DURATION_MAX,
+                                  "set_timing accepted %g %g", (double)md, (double)per);
+                QO_FUZZ_CHECK(qo_motion_duration_f32(&pl) == d0, "set_timing re-planned");
+                break;
+            }
             st = qo_motion_brake_f32(&pl, t);
             QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_ORDER || st == QO_E_RANGE, "brake status %d", (int)st);
             if (st == QO_OK || st == QO_E_RANGE) steady = 0;

@@ -15,6 +15,7 @@
 
 #include "qorient/motion.h"
 #include "qorient/motion_fx.h"
+#include "common/motion_ref.h"
 
 #define NJ 6
 
@@ -421,9 +422,22 @@ static void test_scurve_moving(void **state)
                         (double)v0, (double)a0, (double)tg, (double)l.vmax, (double)l.amax, (double)l.jmax, T, ref);
             fail();
         }
-        if (T < ref * (1.0 - 1e-3) - 1e-5) {
-            print_error("scurve moving case %d: T %.9g below the family optimum %.9g\n", cs, T, ref);
-            fail();
+        /* The extremum-velocity family is not all: "dip" profiles (issue 11) can be shorter.
+         * For starts within the limits the full reference (tests/common/motion_ref.c) bounds the
+         * planner from below as well (the random sweep is tests/test_motion_oracle.c). */
+        if (cs % 3 != 0) {
+            mref_lim ml;
+            double full;
+            ml.vmax = l.vmax;
+            ml.vmin = -(double)l.vmax;
+            ml.amax = l.amax;
+            ml.amin = -(double)l.amax;
+            ml.jmax = l.jmax;
+            full = mref_min_time(&ml, 0.0, v0, a0, tg, 0.0, 0.0);
+            if (T < full * (1.0 - 1e-3) - 1e-5 || T > full * (1.0 + 1e-3) + 1e-5) {
+                print_error("scurve moving case %d: T %.9g, full reference %.9g\n", cs, T, full);
+                fail();
+            }
         }
         check_plan(&pl, "scurve moving", cs, 400);
     }

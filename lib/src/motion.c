@@ -99,13 +99,37 @@ static unsigned build(int scurve, float v0, float a0, float vc, float tc, const 
     return n;
 }
 
-/* Displacement and duration of the zero-cruise profile through vc. */
-static void eval_vc(int scurve, float v0, float a0, float vc, const qo_motion_limits_f32 *l, float *disp,
-                    float *dur)
+/* The "dip" shape, the profiles without an acceleration zero before the stop: the acceleration
+ * ramps from a0 straight to am (between 0 and a0), then the fastest pulse from (v1, am) to rest
+ * (it ramps back away from zero, may hold at +-amax, and ramps to zero). E.g. a joint moving
+ * toward a near target while braking eases the braking first to travel further, then brakes
+ * harder: "ramp down, up to amax, hold, ramp to zero" of issue 11. With am = 0 it is the
+ * extremum-velocity profile through vn; with am = a0 the direct stop. The velocity never leaves
+ * [-|vn|, |vn|] on the way to rest, so it stays within vmax when the start does. SCURVE only. */
+static unsigned build_dip(float v0, float a0, float am, const qo_motion_limits_f32 *l, mseg *out)
 {
-    mseg g[MSEGS];
+    float j = am >= a0 ? l->jmax : -l->jmax, d = fabsf(am - a0) / l->jmax;
+    float v1 = v0 + d * (a0 + 0.5f * d * j);
+    out[0].d = d;
+    out[0].j = j;
+    out[0].seta = out[0].setv = 0;
+    return 1 + vchange(1, v1, am, 0.0f, l->amax, l->jmax, out + 1);
+}
+
+/* A joint's solved profile: family 0 = extremum velocity x with cruise tc (build), family 1 =
+ * dip to acceleration x (build_dip). */
+static unsigned build_fam(int scurve, int fam, float v0, float a0, float x, float tc,
+                          const qo_motion_limits_f32 *l, mseg *out)
+{
+    if (fam == 1) return build_dip(v0, a0, x, l, out);
+    return build(scurve, v0, a0, x, tc, l, out);
+}
+
+/* Displacement and duration of segments g[0..n) from velocity v0, acceleration a0. */
+static void eval_segs(float v0, float a0, const mseg *g, unsigned n, float *disp, float *dur)
+{
     mstate s;
-    unsigned i, n = build(scurve, v0, a0, vc, 0.0f, l, g);
+    unsigned i;
     float t = 0.0f;
     s.p = 0.0f;
     s.v = v0;
@@ -118,18 +142,40 @@ static void eval_vc(int scurve, float v0, float a0, float vc, const qo_motion_li
     *dur = t;
 }
 
+/* Displacement and duration of the zero-cruise profile through vc. */
+static void eval_vc(int scurve, float v0, float a0, float vc, const qo_motion_limits_f32 *l, float *disp,
+                    float *dur)
+{
+    mseg g[MSEGS];
+    unsigned n = build(scurve, v0, a0, vc, 0.0f, l, g);
+    eval_segs(v0, a0, g, n, disp, dur);
+}
+
 /* What a root search evaluates at extremum velocity vc. mode 0 (minimum time): displacement of
  * the zero-cruise profile minus dp, aux = its duration. mode 1 (time sync): position reached in
- * exactly T with the cruise filling the rest, minus dp, aux = that cruise time. */
+ * exactly T with the cruise filling the rest, minus dp, aux = that cruise time. mode 2: the dip
+ * profile to acceleration vc (build_dip), displacement minus dp, aux = its duration. */
 typedef struct rctx {
     int scurve, mode;
     float v0, a0, dp, T;
     const qo_motion_limits_f32 *l;
 } rctx;
 
+static rctx rctx_make(int scurve, int mode, float v0, float a0, float dp, float T, const qo_motion_limits_f32 *l)
+{
+    rctx c = { scurve, mode, v0, a0, dp, T, l };
+    return c;
+}
+
 static float resid(const rctx *c, float vc, float *aux)
 {
     float d, t;
+    if (c->mode == 2) {
+        mseg g[4];
+        unsigned n = build_dip(c->v0, c->a0, vc, c->l, g);
+        eval_segs(c->v0, c->a0, g, n, &d, aux);
+        return d - c->dp;
+    }
     eval_vc(c->scurve, c->v0, c->a0, vc, c->l, &d, &t);
     if (c->mode == 0) {
         *aux = t;
@@ -154,9 +200,12 @@ static float root(const rctx *c, float a, float b, float fa, float fb, float xa,
         if (!(m > fminf(a, b) && m < fmaxf(a, b))) m = 0.5f * (a + b);
         if (m == a || m == b) break;
         fm = resid(c, m, &xm);
-        if (fm == 0.0f) {
+        /* Done once the position misses by float32 rounding of the move (what the 2-ulp bracket
+         * below would give at best), on the side a cruise can absorb in mode 0. */
+        if (fm == 0.0f || (fabsf(fm) <= 1.2e-7f * (fabsf(c->dp) + fabsf(m) * (c->mode == 1 ? c->T : xm)) &&
+                           (c->mode != 0 || fm * m <= 0.0f))) {
             *aux = xm;
-            *fres = 0.0f;
+            *fres = fm;
             return m;
         }
         if ((fm < 0.0f) == (fb < 0.0f)) {
@@ -174,7 +223,8 @@ static float root(const rctx *c, float a, float b, float fa, float fb, float xa,
         }
         /* 2 ulps of the larger end, and no finer than 2.4e-10 vmax near vc = 0 (the residual's
          * slope there is bounded, so that is far below float32 resolution of the result) */
-        if (fabsf(b - a) <= 2.4e-7f * fmaxf(fmaxf(fabsf(a), fabsf(b)), 1e-3f * c->l->vmax)) break;
+        if (fabsf(b - a) <= 2.4e-7f * fmaxf(fmaxf(fabsf(a), fabsf(b)), 1e-3f * (c->mode == 2 ? c->l->amax : c->l->vmax)))
+            break;
     }
     /* Mode 0: prefer the end a short cruise can correct (residual opposite in sign to the
      * velocity: the profile falls short); near vn the displacement has a square-root kink, so
@@ -211,6 +261,125 @@ static void consider(float vc, float tc, float dur, float *bv, float *bt, float 
     }
 }
 
+/* Rest-to-rest SCURVE in closed form (the common case: a joint that has arrived). Peak velocity
+ * x >= 0 of the symmetric profile covering distance D: with the acceleration limit reached
+ * (x >= A^2/J) D = x (x/A + A/J), else D = 2 x sqrt(x/J). Used as a fast path: the profile's
+ * integrated displacement is then checked (rest_fix), and any doubt goes to the root search. */
+static float rest_peak(float D, const qo_motion_limits_f32 *l, float *slope)
+{
+    float V = l->vmax, A = l->amax, J = l->jmax, aj = A / J, x, t;
+    if (D >= 2.0f * A * aj * aj) {
+        x = 0.5f * A * (sqrtf(aj * aj + 4.0f * D / A) - aj);
+        *slope = 2.0f * x / A + aj;
+    } else {
+        t = cbrtf(0.5f * D * sqrtf(J));
+        x = t * t;
+        *slope = 3.0f * sqrtf(x / J);
+    }
+    if (x > V) x = V;
+    return x;
+}
+
+/* Settles a closed-form peak x (sign of the move) by its integrated residual f: a profile that
+ * falls short gets the cruise -f/x; one that overshoots is lowered by 2 f / slope (twice the
+ * linear step, so that it falls short) and checked again. Returns 0 (use the root search) if
+ * the residual is not at float32 rounding level. */
+static int rest_fix(const rctx *c, float x, float slope, float tol, float *vc, float *tc, float *dur)
+{
+    int k;
+    for (k = 0; k < 2; k++) {
+        float t, f = resid(c, x, &t);
+        if (!(fabsf(f) <= tol)) return 0;
+        if (f * x <= 0.0f) {
+            *vc = x;
+            *tc = x != 0.0f ? (c->mode == 0 ? -f / x : t) : 0.0f;
+            *dur = c->mode == 0 ? t + *tc : c->T;
+            return *tc >= 0.0f;
+        }
+        x -= 2.0f * f / slope;
+    }
+    return 0;
+}
+
+static int rest_min(float dp, const qo_motion_limits_f32 *l, float *vc, float *tc, float *dur)
+{
+    rctx c = rctx_make(1, 0, 0.0f, 0.0f, dp, 0.0f, l);
+    float slope, x = rest_peak(fabsf(dp), l, &slope);
+    if (dp < 0.0f) x = -x;
+    return rest_fix(&c, x, slope, 4e-6f * fabsf(dp), vc, tc, dur);
+}
+
+/* Rest-to-rest SCURVE profile of exactly duration T: D = x (T - tacc(x)), the smaller root,
+ * tacc = x/A + A/J (hold) or 2 sqrt(x/J); the second by safeguarded Newton on u = sqrt(x). */
+static int rest_time(float dp, float T, const qo_motion_limits_f32 *l, float *vc, float *tc)
+{
+    rctx c = rctx_make(1, 1, 0.0f, 0.0f, dp, T, l);
+    float D = fabsf(dp), A = l->amax, J = l->jmax, aj = A / J, Tp = T - aj, disc = Tp * Tp - 4.0f * D / A, x;
+    float slope;
+    if (Tp > 0.0f && disc >= 0.0f && (x = 2.0f * D / (Tp + sqrtf(disc))) >= A * aj) {
+        slope = Tp - 2.0f * x / A;
+    } else {
+        float sj = sqrtf(J), lo = sqrtf(D / T), hi = fminf(T * sj / 3.0f, sqrtf(l->vmax)), u = lo;
+        unsigned it;
+        if (!(lo <= hi)) return 0;
+        for (it = 0; it < 12; it++) {
+            float g = u * u * (T - 2.0f * u / sj) - D, dg = u * (2.0f * T - 6.0f * u / sj), un;
+            if (g < 0.0f) lo = u;
+            else hi = u;
+            un = dg > 0.0f ? u - g / dg : 0.5f * (lo + hi);
+            if (!(un > lo && un < hi)) un = 0.5f * (lo + hi);
+            if (un == u) break;
+            u = un;
+        }
+        x = u * u;
+        slope = T - 3.0f * u / sj;
+    }
+    if (!(slope > 0.0f)) return 0;
+    if (dp < 0.0f) x = -x;
+    return rest_fix(&c, x, slope, 4e-6f * (D + fabsf(x) * T), vc, tc, &D);
+}
+
+/* Fastest dip profile (build_dip) with displacement dp: the residual is scanned at
+ * QO_MOTION_DIP_SCAN + 1 points of am in [0, a0] (its ends are the extremum-velocity profile
+ * through vn and the direct stop) and every sign change is solved. Returns 0 if none. */
+#define QO_MOTION_DIP_SCAN 1
+static int solve_dip(float v0, float a0, float dp, float e0, float e1, const qo_motion_limits_f32 *l, float *am,
+                     float *dur)
+{
+    rctx c;
+    float x[QO_MOTION_DIP_SCAN + 1], f[QO_MOTION_DIP_SCAN + 1], t[QO_MOTION_DIP_SCAN + 1];
+    float vb = fmaxf(l->vmax, fabsf(v0 + a0 * fabsf(a0) / (2.0f * l->jmax))) * (1.0f + 1e-6f);
+    unsigned k;
+    c = rctx_make(1, 2, v0, a0, dp, 0.0f, l);
+    *am = 0.0f;
+    *dur = INFINITY;
+    for (k = 0; k <= QO_MOTION_DIP_SCAN; k++) {
+        x[k] = e0 + (e1 - e0) * (float)k / (float)QO_MOTION_DIP_SCAN;
+        f[k] = resid(&c, x[k], &t[k]);
+    }
+    for (k = 0; k <= QO_MOTION_DIP_SCAN; k++) {
+        float r = x[k], tr = t[k], fr = f[k];
+        if (fr != 0.0f) {
+            if (k == QO_MOTION_DIP_SCAN || f[k + 1] == 0.0f || (fr < 0.0f) == (f[k + 1] < 0.0f)) continue;
+            r = root(&c, x[k], x[k + 1], f[k], f[k + 1], t[k], t[k + 1], &tr, &fr);
+            /* no cruise absorbs a residual here: keep only a root to float precision */
+            if (fabsf(fr) > 1e-6f * (fabsf(dp) + (fabsf(v0) + l->vmax) * tr)) continue;
+        }
+        {
+            /* ramping a0 away from zero first drives the velocity further: its extremum, where
+             * the pulse to rest crosses a = 0, must stay within vmax (or the start's own reach) */
+            float d = fabsf(r - a0) / l->jmax, j = r >= a0 ? l->jmax : -l->jmax;
+            float v1 = v0 + d * (a0 + 0.5f * d * j);
+            if (fabsf(v1 + r * fabsf(r) / (2.0f * l->jmax)) > vb) continue;
+        }
+        if (tr < *dur) {
+            *dur = tr;
+            *am = r;
+        }
+    }
+    return *dur < INFINITY;
+}
+
 /* Minimum-time extremum velocity vc and cruise tc for displacement dp (see motion.h).
  * The displacement D(vc) of the zero-cruise profile is monotone on [-vmax, min(0, vn)] and on
  * [max(0, vn), vmax], vn being the velocity the start reaches by ramping a0 to zero; between
@@ -218,25 +387,28 @@ static void consider(float vc, float tc, float dur, float *bv, float *bt, float 
  * interior extremum (located by golden section). Every monotone piece whose ends bracket dp
  * gives a root; the root (or the cruise at +-vmax) of smallest duration wins. */
 static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_limits_f32 *l, float *vc,
-                      float *tc)
+                      float *tc, int *fam, float *dur)
 {
     rctx c;
-    float pt[5], fp[5], xp[5], vn, bv = 0.0f, bt = 0.0f, bd = INFINITY, x;
+    float pt[5], fp[5], xp[5], vn, bv = 0.0f, bt = 0.0f, bd = INFINITY, x, fz = NAN, fn0 = NAN, xn0 = 0.0f, dipd = NAN;
     unsigned np = 0, i;
-    c.scurve = scurve;
-    c.mode = 0;
-    c.v0 = v0;
-    c.a0 = a0;
-    c.dp = dp;
-    c.T = 0.0f;
-    c.l = l;
+    *fam = 0;
+    if (scurve && v0 == 0.0f && a0 == 0.0f && rest_min(dp, l, vc, tc, dur)) return;
+    c = rctx_make(scurve, 0, v0, a0, dp, 0.0f, l);
     vn = scurve ? v0 + a0 * fabsf(a0) / (2.0f * l->jmax) : v0;
     vn = fminf(fmaxf(vn, -l->vmax), l->vmax);
     pt[np++] = -l->vmax;
     if (fminf(0.0f, vn) > pt[np - 1]) pt[np++] = fminf(0.0f, vn);
     if (fmaxf(0.0f, vn) > pt[np - 1]) pt[np++] = fmaxf(0.0f, vn);
     if (l->vmax > pt[np - 1]) pt[np++] = l->vmax;
-    for (i = 0; i < np; i++) fp[i] = resid(&c, pt[i], &xp[i]);
+    for (i = 0; i < np; i++) {
+        fp[i] = resid(&c, pt[i], &xp[i]);
+        if (pt[i] == 0.0f) fz = fp[i];
+        if (pt[i] == vn) {
+            fn0 = fp[i];
+            xn0 = xp[i];
+        }
+    }
     /* Cruising at +-vmax when even the fastest peak falls short. */
     if (fp[np - 1] <= 0.0f) consider(l->vmax, -fp[np - 1] / l->vmax, xp[np - 1] - fp[np - 1] / l->vmax, &bv, &bt, &bd);
     if (fp[0] >= 0.0f) consider(-l->vmax, fp[0] / l->vmax, xp[0] + fp[0] / l->vmax, &bv, &bt, &bd);
@@ -252,6 +424,35 @@ static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_
             float fr, r = root(&c, pt[i], pt[i + 1], fp[i], fp[i + 1], xp[i], xp[i + 1], &x, &fr);
             float tcr = (r != 0.0f && fr * r < 0.0f) ? -fr / r : 0.0f;
             consider(r, tcr, x + tcr, &bv, &bt, &bd);
+        }
+    }
+    /* The dip family runs from the extremum-velocity profile through vn (am = 0) to the direct
+     * stop (vc = 0, am = a0): searched when those two bracket dp, i.e. when the two-stage
+     * middle piece below would be; its profiles are then never shorter (checked against the
+     * reference in tests/test_motion_oracle.c), so that piece is searched only without a dip. */
+    if (scurve && a0 != 0.0f && vn != 0.0f && (fz < 0.0f) != (fn0 < 0.0f) && fz == fz && fn0 == fn0) {
+        float am, dd;
+        if (solve_dip(v0, a0, dp, 0.0f, a0, l, &am, &dd) && dd < bd) {
+            bv = am;
+            bt = 0.0f;
+            bd = dipd = dd;
+            *fam = 1;
+        }
+    }
+    /* The other orientation: a0 ramped further away from zero first (to am between a0 and
+     * +-amax), then the pulse to rest; from the direct stop (am = a0) to am = +-amax. Its far
+     * end is evaluated only here; solved when it brackets dp with the direct stop. */
+    if (scurve && a0 != 0.0f && fabsf(a0) < l->amax && fz == fz) {
+        float aw = a0 > 0.0f ? l->amax : -l->amax, am, dd, fw, tw;
+        rctx cw = rctx_make(1, 2, v0, a0, dp, 0.0f, l);
+        fw = resid(&cw, aw, &tw);
+        if (fw != fw || (fw < 0.0f) != (fz < 0.0f) || fw == 0.0f) {
+            if (solve_dip(v0, a0, dp, a0, aw, l, &am, &dd) && dd < bd) {
+                bv = am;
+                bt = 0.0f;
+                bd = dipd = dd;
+                *fam = 1;
+            }
         }
     }
     /* The two-stage middle piece: split it at its extremum when it has one. */
@@ -309,13 +510,19 @@ static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_
         /* A root a float ulp away from the velocity the start state reaches anyway (vn)
          * would add a pulse of 2 sqrt(eps / jmax) seconds: take vn itself when it is a root to
          * float precision, and let a short cruise absorb the residual when its sign allows. */
-        float fn, xn, tn = 0.0f;
-        fn = resid(&c, vn, &xn);
+        float fn = fn0, xn = xn0, tn = 0.0f;
+        if (fn != fn) fn = resid(&c, vn, &xn); /* vn was not among the points */
         if (fabsf(fn) <= 2e-7f * (fabsf(dp) + (fabsf(v0) + l->vmax) * xn)) {
             if (vn != 0.0f && -fn / vn >= 0.0f) tn = -fn / vn;
-            consider(vn, tn, xn + tn - 1e-6f * xn, &bv, &bt, &bd);
+            /* preferred over a candidate up to 1e-6 relative shorter */
+            if (xn + tn - 1e-6f * xn < bd) {
+                bv = vn;
+                bt = tn;
+                bd = xn + tn;
+            }
         }
     }
+    if (bd != dipd) *fam = 0; /* a later candidate (vn) was shorter */
     if (!(bd < INFINITY)) {
         /* Not reachable for finite inputs (the pieces cover [-vmax, vmax] and the cruises
          * the rest); stop as a defined answer. */
@@ -324,6 +531,7 @@ static void solve_min(int scurve, float v0, float a0, float dp, const qo_motion_
     }
     *vc = bv;
     *tc = bt;
+    *dur = bd < INFINITY ? bd : 0.0f;
 }
 
 /* A profile of exactly duration T >= the minimum. First bracket: lower |vc| from vc* toward 0
@@ -340,13 +548,8 @@ static int solve_time(int scurve, float v0, float a0, float dp, float vcs, float
     float xs[QO_MOTION_SYNC_SCAN + 3], gs[QO_MOTION_SYNC_SCAN + 3], ts[QO_MOTION_SYNC_SCAN + 3];
     float bestd = INFINITY;
     unsigned n = 0, i, k;
-    c.scurve = scurve;
-    c.mode = 1;
-    c.v0 = v0;
-    c.a0 = a0;
-    c.dp = dp;
-    c.T = T;
-    c.l = l;
+    if (scurve && v0 == 0.0f && a0 == 0.0f && rest_time(dp, T, l, vc, tc)) return 1;
+    c = rctx_make(scurve, 1, v0, a0, dp, T, l);
     fa = resid(&c, 0.0f, &tca);
     fb = resid(&c, vcs, &tcb);
     if (fa != 0.0f && (fa < 0.0f) != (fb < 0.0f)) {
@@ -438,6 +641,11 @@ static mstate joint_state(const qo_motion_joint_f32 *jt, float tau)
         s.p = jt->final;
         s.v = 0.0f;
         s.a = 0.0f;
+        if (jt->vend != 0.0f && tau > jt->duration) {
+            /* velocity interface: the joint keeps its target velocity after the last phase */
+            s.p = jt->final + jt->vend * (tau - jt->duration);
+            s.v = jt->vend;
+        }
         return s;
     }
     if (tau < 0.0f) tau = 0.0f;
@@ -484,7 +692,7 @@ static int plan_ok(const qo_motion_planner_f32 *pl)
     if (!isfinite(pl->duration)) return 0;
     for (i = 0; i < pl->n; i++) {
         const qo_motion_joint_f32 *jt = &pl->joints[i];
-        if (!pos_in_range(jt->final) || !isfinite(jt->duration)) return 0;
+        if (!pos_in_range(jt->final) || !isfinite(jt->duration) || !isfinite(jt->vend)) return 0;
         for (k = 0; k < jt->nph; k++) {
             const qo_motion_phase_f32 *ph = &jt->ph[k];
             float d = ph->d;
@@ -513,6 +721,7 @@ static void plan_hold(qo_motion_planner_f32 *pl)
     pl->sync_used = QO_MOTION_SYNC_NONE;
     pl->unsynced = 0;
     pl->braking = 1;
+    pl->vel_mode = 0;
 }
 
 /* Short way round for a continuous joint: d in (-w/2, w/2]. */
@@ -538,11 +747,15 @@ static void capture(qo_motion_planner_f32 *pl, float t_now)
         jt->w_p = s.p;
         jt->w_v = s.v;
         jt->w_a = pl->settings.profile == QO_MOTION_SCURVE ? s.a : 0.0f;
+        jt->vend = 0.0f; /* every plan made from here ends at rest unless it says otherwise */
     }
     pl->t0 = t_now;
 }
 
-static void plan_brake(qo_motion_planner_f32 *pl)
+/* Velocity interface and safety stop: every joint from its captured state to (w_vg, 0) as fast
+ * as its limits allow, then on at w_vg (a brake: w_vg = 0, at rest there). No sync. The end
+ * positions become the goals. */
+static void plan_velocity(qo_motion_planner_f32 *pl)
 {
     size_t i;
     int sc = pl->settings.profile == QO_MOTION_SCURVE;
@@ -552,26 +765,30 @@ static void plan_brake(qo_motion_planner_f32 *pl)
         mseg g[3];
         mstate s;
         unsigned k, n;
-        if (jt->w_v == 0.0f && jt->w_a == 0.0f) {
-            jt->nph = 0;
-            jt->final = jt->w_p;
-            jt->duration = 0.0f;
-            jt->goal = jt->w_p;
-            continue;
-        }
-        n = vchange(sc, jt->w_v, jt->w_a, 0.0f, jt->lim.amax, jt->lim.jmax, g);
         s.p = jt->w_p;
         s.v = jt->w_v;
         s.a = jt->w_a;
+        n = (jt->w_v == jt->w_vg && jt->w_a == 0.0f) ? 0 : vchange(sc, jt->w_v, jt->w_a, jt->w_vg, jt->lim.amax, jt->lim.jmax, g);
         for (k = 0; k < n; k++) integ(&s, &g[k]);
         load(jt, jt->w_p, jt->w_v, jt->w_a, g, n, s.p);
+        jt->vend = jt->w_vg;
         jt->goal = s.p;
         if (jt->duration > dur) dur = jt->duration;
     }
     pl->duration = dur;
     pl->sync_used = QO_MOTION_SYNC_NONE;
     pl->unsynced = 0;
+    pl->braking = 0;
+    pl->vel_mode = 1;
+}
+
+static void plan_brake(qo_motion_planner_f32 *pl)
+{
+    size_t i;
+    for (i = 0; i < pl->n; i++) pl->joints[i].w_vg = 0.0f;
+    plan_velocity(pl);
     pl->braking = 1;
+    pl->vel_mode = 0;
 }
 
 /* Brake; hold if even the stop would not be finite. */
@@ -579,6 +796,35 @@ static void plan_brake_safe(qo_motion_planner_f32 *pl)
 {
     plan_brake(pl);
     if (!plan_ok(pl)) plan_hold(pl);
+}
+
+/* A minimum duration T >= 0 after qo_motion_set_timing_f32's rules: at least min_duration,
+ * rounded up to a whole number of periods. T within 4e-7 relative above a whole number counts
+ * as that number: 1 s with a period of 0.01f (0.0099999998) is 100 periods, not 101. */
+static float timed(const qo_motion_planner_f32 *pl, float T)
+{
+    if (T > 0.0f && T < pl->min_duration) T = pl->min_duration;
+    if (T > 0.0f && pl->period > 0.0f) T = fmaxf(ceilf(T / pl->period * (1.0f - 4e-7f)), 1.0f) * pl->period;
+    return T;
+}
+
+/* Largest |v|, |a|, |j| of a loaded plan: at phase ends, and |v| also where the acceleration
+ * crosses zero inside a phase (its only interior extremum). */
+static void peaks(const qo_motion_joint_f32 *jt, float *pv, float *pa, float *pj)
+{
+    unsigned k;
+    *pv = *pa = *pj = 0.0f;
+    for (k = 0; k < jt->nph; k++) {
+        const qo_motion_phase_f32 *ph = &jt->ph[k];
+        float d = ph->d, a1 = ph->a + d * ph->j, v1 = ph->v + d * (ph->a + 0.5f * d * ph->j);
+        *pj = fmaxf(*pj, fabsf(ph->j));
+        *pa = fmaxf(*pa, fmaxf(fabsf(ph->a), fabsf(a1)));
+        *pv = fmaxf(*pv, fmaxf(fabsf(ph->v), fabsf(v1)));
+        if ((ph->a < 0.0f) != (a1 < 0.0f) && ph->j != 0.0f) {
+            float tz = -ph->a / ph->j;
+            if (tz > 0.0f && tz < d) *pv = fmaxf(*pv, fabsf(ph->v + tz * (ph->a + 0.5f * tz * ph->j)));
+        }
+    }
 }
 
 /* Straight-line plan if every (v, a) is proportional to the displacement; 0 if not possible. */
@@ -591,6 +837,8 @@ static int plan_phase(qo_motion_planner_f32 *pl)
     qo_motion_joint_f32 unit;
     mseg g[MSEGS];
     unsigned n;
+    int fam;
+    float pv, pa, pj;
     for (i = 0; i < pl->n; i++) {
         if (fabsf(pl->joints[i].w_d) > dr) {
             dr = fabsf(pl->joints[i].w_d);
@@ -615,9 +863,23 @@ static int plan_phase(qo_motion_planner_f32 *pl)
     /* The scalar profile's limits are ratios limit / |d|: a tiny d makes them so large that
      * the unit solve's products (amax^2 / jmax...) overflow; such a plan goes per joint. */
     if (!(limit_in_range(ls.vmax) && limit_in_range(ls.amax) && limit_in_range(ls.jmax))) return 0;
-    solve_min(sc, kv, ka, 1.0f, &ls, &vc, &tc);
-    n = build(sc, kv, ka, vc, tc, &ls, g);
+    solve_min(sc, kv, ka, 1.0f, &ls, &vc, &tc, &fam, &pv);
+    n = build_fam(sc, fam, kv, ka, vc, tc, &ls, g);
     load(&unit, 0.0f, kv, ka, g, n, 1.0f);
+    /* a straight line has one duration: with duration rules that would change it, use TIME */
+    if (timed(pl, unit.duration) != unit.duration) return 0;
+    /* The scalar limits keep each joint's own limits only where the unit profile stays within
+     * its scalar limits; from a moving start it may not (the shared jerk min(jmax_i / |d_i|)
+     * can be too weak to brake a joint's initial acceleration in time): check the straight line
+     * against every joint's limits (or its start values beyond them) before using it. */
+    peaks(&unit, &pv, &pa, &pj);
+    for (i = 0; i < pl->n; i++) {
+        const qo_motion_joint_f32 *jt = &pl->joints[i];
+        float ad = fabsf(jt->w_d), tol = 1.0f + 1e-6f;
+        float vb = fmaxf(jt->lim.vmax, fabsf(jt->w_v) + jt->w_a * jt->w_a / (2.0f * jt->lim.jmax));
+        float ab = fmaxf(jt->lim.amax, fabsf(jt->w_a));
+        if (ad * pv > vb * tol || ad * pa > ab * tol || (sc && ad * pj > jt->lim.jmax * tol)) return 0;
+    }
     pl->duration = unit.duration;
     for (i = 0; i < pl->n; i++) {
         qo_motion_joint_f32 *jt = &pl->joints[i];
@@ -650,8 +912,9 @@ static void plan_goals(qo_motion_planner_f32 *pl)
 {
     size_t i;
     int sc = pl->settings.profile == QO_MOTION_SCURVE;
-    float T = 0.0f;
+    float T = 0.0f, Tj;
     pl->braking = 0;
+    pl->vel_mode = 0;
     pl->unsynced = 0;
     for (i = 0; i < pl->n; i++) {
         qo_motion_joint_f32 *jt = &pl->joints[i];
@@ -662,37 +925,44 @@ static void plan_goals(qo_motion_planner_f32 *pl)
     if (pl->settings.sync == QO_MOTION_SYNC_PHASE && plan_phase(pl)) return;
     for (i = 0; i < pl->n; i++) {
         qo_motion_joint_f32 *jt = &pl->joints[i];
-        float dum;
+        jt->w_fam = 0;
         if (jt->w_d == 0.0f && jt->w_v == 0.0f && jt->w_a == 0.0f) {
             jt->w_vc = jt->w_tc = jt->w_t = 0.0f;
             continue;
         }
-        solve_min(sc, jt->w_v, jt->w_a, jt->w_d, &jt->lim, &jt->w_vc, &jt->w_tc);
-        eval_vc(sc, jt->w_v, jt->w_a, jt->w_vc, &jt->lim, &dum, &jt->w_t);
-        jt->w_t += jt->w_tc;
+        solve_min(sc, jt->w_v, jt->w_a, jt->w_d, &jt->lim, &jt->w_vc, &jt->w_tc, &jt->w_fam, &jt->w_t);
         if (jt->w_t > T) T = jt->w_t;
     }
+    T = timed(pl, T);
     for (i = 0; i < pl->n; i++) {
         qo_motion_joint_f32 *jt = &pl->joints[i];
         mseg g[MSEGS];
         unsigned n;
         float vc = jt->w_vc, tc = jt->w_tc;
+        int fam = jt->w_fam;
         if (jt->w_t == 0.0f && jt->w_d == 0.0f && jt->w_v == 0.0f && jt->w_a == 0.0f) {
             jt->nph = 0;
             jt->final = jt->w_p;
             jt->duration = 0.0f;
             continue;
         }
-        if (pl->settings.sync != QO_MOTION_SYNC_NONE && jt->w_t < T) {
-            float v2, t2;
-            if (solve_time(sc, jt->w_v, jt->w_a, jt->w_d, vc, T, &jt->lim, &v2, &t2)) {
+        Tj = pl->settings.sync != QO_MOTION_SYNC_NONE ? T : timed(pl, jt->w_t);
+        if (jt->w_t < Tj) {
+            float v2, t2, vcs = vc;
+            if (fam == 1) {
+                /* a dip profile meets the extremum-velocity family at vn */
+                vcs = jt->w_v + jt->w_a * fabsf(jt->w_a) / (2.0f * jt->lim.jmax);
+                vcs = fminf(fmaxf(vcs, -jt->lim.vmax), jt->lim.vmax);
+            }
+            if (solve_time(sc, jt->w_v, jt->w_a, jt->w_d, vcs, Tj, &jt->lim, &v2, &t2)) {
                 vc = v2;
                 tc = t2;
+                fam = 0;
             } else {
                 pl->unsynced |= (uint32_t)1 << i;
             }
         }
-        n = build(sc, jt->w_v, jt->w_a, vc, tc, &jt->lim, g);
+        n = build_fam(sc, fam, jt->w_v, jt->w_a, vc, tc, &jt->lim, g);
         load(jt, jt->w_p, jt->w_v, jt->w_a, g, n, jt->w_p + jt->w_d);
     }
     pl->duration = 0.0f;
@@ -705,6 +975,15 @@ static void plan_goals(qo_motion_planner_f32 *pl)
 static qo_status plan_goals_checked(qo_motion_planner_f32 *pl)
 {
     plan_goals(pl);
+    if (plan_ok(pl)) return QO_OK;
+    plan_brake_safe(pl);
+    return QO_E_RANGE;
+}
+
+/* Velocity plan; QO_E_RANGE with the safe brake if it is not finite. */
+static qo_status plan_velocity_checked(qo_motion_planner_f32 *pl)
+{
+    plan_velocity(pl);
     if (plan_ok(pl)) return QO_OK;
     plan_brake_safe(pl);
     return QO_E_RANGE;
@@ -725,6 +1004,9 @@ qo_status qo_motion_init_f32(qo_motion_planner_f32 *pl, qo_motion_joint_f32 *joi
     pl->sync_used = QO_MOTION_SYNC_NONE;
     pl->unsynced = 0;
     pl->braking = 0;
+    pl->min_duration = 0.0f;
+    pl->period = 0.0f;
+    pl->vel_mode = 0;
     if (joints == NULL || limits == NULL || start == NULL) return QO_E_NULL;
     if (n == 0) return QO_E_TOO_FEW;
     if (n > QO_MOTION_MAX_JOINTS) return QO_E_CAPACITY;
@@ -746,6 +1028,8 @@ qo_status qo_motion_init_f32(qo_motion_planner_f32 *pl, qo_motion_joint_f32 *joi
         jt->nph = 0;
         jt->w_p = start[i];
         jt->w_v = jt->w_a = jt->w_d = jt->w_vc = jt->w_tc = jt->w_t = 0.0f;
+        jt->w_fam = 0;
+        jt->w_vg = jt->vend = 0.0f;
     }
     pl->settings = st;
     pl->t0 = t0;
@@ -801,6 +1085,27 @@ qo_status qo_motion_set_target_f32(qo_motion_planner_f32 *pl, float t_now, const
     return st;
 }
 
+qo_status qo_motion_set_velocity_f32(qo_motion_planner_f32 *pl, float t_now, const float *vel)
+{
+    size_t i;
+    qo_status st;
+    if (pl == NULL || vel == NULL) return QO_E_NULL;
+    st = check_time(pl, t_now);
+    if (st != QO_OK) return st;
+    for (i = 0; i < pl->n; i++) {
+        if (!isfinite(vel[i])) {
+            capture(pl, t_now);
+            plan_brake_safe(pl);
+            return QO_E_NONFINITE;
+        }
+    }
+    for (i = 0; i < pl->n; i++)
+        if (fabsf(vel[i]) > pl->joints[i].lim.vmax) return QO_E_RANGE; /* refused: nothing changes */
+    capture(pl, t_now);
+    for (i = 0; i < pl->n; i++) pl->joints[i].w_vg = vel[i];
+    return plan_velocity_checked(pl);
+}
+
 qo_status qo_motion_set_limits_f32(qo_motion_planner_f32 *pl, float t_now, size_t i,
                                    const qo_motion_limits_f32 *limits)
 {
@@ -816,6 +1121,14 @@ qo_status qo_motion_set_limits_f32(qo_motion_planner_f32 *pl, float t_now, size_
         return QO_E_LIMIT;
     }
     pl->joints[i].lim = *limits;
+    if (pl->vel_mode) {
+        /* velocity interface: on toward the same velocities, within the new vmax */
+        for (k = 0; k < pl->n; k++) {
+            qo_motion_joint_f32 *jt = &pl->joints[k];
+            jt->w_vg = fminf(fmaxf(jt->w_vg, -jt->lim.vmax), jt->lim.vmax);
+        }
+        return plan_velocity_checked(pl);
+    }
     for (k = 0; k < pl->n; k++) {
         qo_motion_joint_f32 *jt = &pl->joints[k];
         if (jt->goal < jt->lim.pmin) jt->goal = jt->lim.pmin;
@@ -905,6 +1218,18 @@ qo_status qo_motion_shift_time_f32(qo_motion_planner_f32 *pl, float dt)
     return QO_OK;
 }
 
+qo_status qo_motion_set_timing_f32(qo_motion_planner_f32 *pl, float min_duration, float period)
+{
+    if (pl == NULL) return QO_E_NULL;
+    if (pl->n == 0 || pl->joints == NULL) return QO_E_STATE;
+    if (!(min_duration >= 0.0f && min_duration <= QO_MOTION_DURATION_MAX) ||
+        !(period >= 0.0f && period <= QO_MOTION_DURATION_MAX) || (period > 0.0f && period < QO_MOTION_PERIOD_MIN))
+        return QO_E_ARG;
+    pl->min_duration = min_duration;
+    pl->period = period;
+    return QO_OK;
+}
+
 qo_motion_sync qo_motion_sync_used(const qo_motion_planner_f32 *pl)
 {
     return pl ? pl->sync_used : QO_MOTION_SYNC_NONE;
@@ -974,7 +1299,8 @@ qo_status qo_motion_export_q16(const qo_motion_planner_f32 *pl, qo_motion_table_
         for (; k < QO_MOTION_Q16_SEGS; k++) {
             sg[k].t = jt->nph ? to_q16(jt->duration, &ovf) : 0;
             sg[k].c0 = to_q32(jt->final, &ovf);
-            sg[k].c1 = sg[k].c2 = sg[k].c3 = 0;
+            sg[k].c1 = to_q32(jt->vend, &ovf); /* 0 at rest; the velocity interface's cruise */
+            sg[k].c2 = sg[k].c3 = 0;
             if (fabsf(jt->final) >= 32767.0f) ovf = 1;
         }
     }

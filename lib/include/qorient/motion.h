@@ -6,12 +6,14 @@
  *   qo_motion_limits_default        const default limits of one joint (all 1, no range, no wrap)
  *   qo_motion_init_f32              set up a planner over caller arrays, at rest at given positions
  *   qo_motion_set_target_f32        re-plan from the sampled state at t_now to new targets
+ *   qo_motion_set_velocity_f32      velocity interface: every joint to a target velocity, then on
  *   qo_motion_set_limits_f32        change one joint's limits at t_now (bad limits -> brake)
  *   qo_motion_brake_f32             stop every joint as fast as its limits allow, from t_now
  *   qo_motion_sample_f32            position, velocity, acceleration of every joint at time t
  *   qo_motion_duration_f32          seconds from the last re-plan until every joint is at rest
  *   qo_motion_end_time_f32          absolute time at which every joint is at rest
  *   qo_motion_done_f32              1 once t has reached the end time
+ *   qo_motion_set_timing_f32        minimum duration, durations rounded up to a control period
  *   qo_motion_sync_used             which synchronisation the last plan really used
  *   qo_motion_shift_time_f32        move the time origin (keep float32 times small in long runs)
  *   qo_motion_export_q16            the current plan as a fixed-point table (see motion_fx.h)
@@ -40,17 +42,22 @@
  * the middle piece is split at its extremum (golden section) and solved only when they give no
  * root. Each root is found by the Illinois method (regula falsi that keeps a bracket like
  * bisection), at most QO_MOTION_BISECT_ITERS steps, typically 5-12; the shortest candidate wins,
- * and a cruise at +-vmax is used when even vc = +-vmax falls short. For TRAPEZOID this family
+ * and a cruise at +-vmax is used when even vc = +-vmax falls short. SCURVE starts with a0 != 0
+ * also try the "dip" profiles, which have no acceleration zero before the stop: a0 ramps
+ * straight to am between 0 and a0, then the fastest pulse from there to rest (e.g. braking is
+ * eased first, then raised to amax, held and released: issue 11), solved where the profiles
+ * through vn and 0 bracket the distance; and the other orientation, a0 first ramped further
+ * away from zero (am between a0 and +-amax), solved where it brackets the distance with the
+ * direct stop (velocity extremum checked against vmax). The shortest candidate wins. For TRAPEZOID this family
  * provably contains the minimum-time solution (double integrator, state bound on v). For SCURVE
  * it contains the minimum-time rest-to-rest solution (checked against the closed form in
- * tests/test_motion.c) and, for moving starts, the profiles of Reflexxes Type IV for a target at
- * rest. Evidence for moving SCURVE starts: tests/test_motion.c checks that no member of the
- * family (dense double-precision search over vc, cruise at any vc, refined near vn) is shorter;
- * bench/bench_motion.c solves a linear program over ALL piecewise-constant jerk profiles (40
- * steps, limits checked at step ends and mid-steps, any solution verified densely) and finds
- * none 1 % shorter (that check caught, and now guards, a case where the two-stage stop had been
- * chosen over a faster pulse). A general proof for moving SCURVE starts is NOT claimed (Ruckig
- * lists further profile shapes for general target states).
+ * tests/test_motion.c). Evidence for moving SCURVE starts within the limits:
+ * tests/test_motion_oracle.c compares every joint with an independent double-precision
+ * reference (tests/common/motion_ref.c: exhaustive search over every two-pulse profile with
+ * optional cruise, i.e. every 7-phase bang-bang jerk profile) on 31,500 random joints in
+ * `make test` (1,000,000 in `make check-motion`): none more than 0.1 % slower, none over a limit
+ * by 1e-5. A general proof is NOT claimed, and starts beyond the limits are only checked
+ * against the extremum-velocity family.
  *
  * Synchronisation (settings.sync):
  *   - QO_MOTION_SYNC_NONE: each joint takes its own minimum time.
@@ -69,7 +76,10 @@
  *     1e-6 of max(vmax, |v0|) and max(amax, |a0|), which bounds the velocity / acceleration
  *     step the straight line may introduce, and when the scalar limits min_i(vmax_i/|d_i|)...
  *     lie in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] (a tiny d_i makes them overflow
- *     float32 products); otherwise the plan falls back to TIME and
+ *     float32 products), and when the straight line's phase coefficients keep every joint
+ *     within its own vmax, amax, jmax (or its start values beyond them) to 1e-6 relative:
+ *     from a moving start the shared jerk min_i(jmax_i/|d_i|) may brake a joint's initial
+ *     acceleration too late (issue 11: 3.84x vmax); otherwise the plan falls back to TIME and
  *     qo_motion_sync_used() says so. The straight line can take longer than TIME sync, because
  *     the binding limit may come from different joints for v, a and j.
  *
@@ -106,8 +116,9 @@
  * rest; the remaining step is the solver residual (~1e-7 relative in position, float32
  * rounding in v and a).
  * Absolute times are float32 too: keep the caller's time origin recent (ulp(1000 s) = 61 us).
- * Resources (arm-none-eabi-gcc -O2, Cortex-M4F): ~8.9 KB code, worst stack of a re-plan ~1.3 KB
- * (independent of N: per-joint scratch lives in the joint struct), 236 B per joint; no heap, no
+ * Resources (arm-none-eabi-gcc -O2, Cortex-M4F): ~13.8 KB code (text of motion.o), worst stack
+ * of a re-plan ~1.4 KB (-fstack-usage along plan_goals, solve_min, root, resid; independent of
+ * N: per-joint scratch lives in the joint struct), 248 B per joint; no heap, no
  * static mutable state: planners never interfere. A re-plan costs O(N) root searches.
  */
 #ifndef QORIENT_MOTION_H
@@ -139,6 +150,11 @@ extern "C" {
 #define QO_MOTION_LIMIT_MIN 1e-6f
 #define QO_MOTION_LIMIT_MAX 1e12f
 #define QO_MOTION_POS_MAX 1e18f
+/* Range of qo_motion_set_timing_f32's durations [s]: a period below QO_MOTION_PERIOD_MIN
+ * (1 us) would make T / period lose float32 resolution; the upper bound keeps every plan's
+ * float32 time axis at sub-millisecond resolution. */
+#define QO_MOTION_DURATION_MAX 1e4f
+#define QO_MOTION_PERIOD_MIN 1e-6f
 /* Upper bound of root-search steps in one solve (typically 5-12 are used; bounded anyway). */
 #define QO_MOTION_BISECT_ITERS 48
 
@@ -192,6 +208,10 @@ typedef struct qo_motion_joint_f32 {
     /* Planner scratch (state at the re-plan time, displacement, solve results), kept here so
      * a re-plan needs no stack proportional to N. Not meaningful to the caller. */
     float w_p, w_v, w_a, w_d, w_vc, w_tc, w_t;
+    int w_fam; /* profile family of the solve: 0 extremum velocity w_vc, 1 dip to w_vc [u/s^2] */
+    float w_vg;                                    /* velocity interface: target velocity */
+    float vend;  /* velocity after the last phase [u/s]: 0 = at rest at `final`; the velocity
+                  * interface's target (the joint then moves on at vend from `final`) */
 } qo_motion_joint_f32;
 
 /* The planner. Fields are readable; change them only through the functions. */
@@ -205,6 +225,8 @@ typedef struct qo_motion_planner_f32 {
     uint32_t unsynced;             /* bit i: joint i could not be given the common duration
                                     * (it arrives earlier, at its own minimum time; see above) */
     int braking;                   /* 1 if the current plan is a safety stop */
+    float min_duration, period;    /* duration rules (qo_motion_set_timing_f32), 0 = off */
+    int vel_mode;                  /* 1 if the current plan came from qo_motion_set_velocity_f32 */
 } qo_motion_planner_f32;
 
 /*
@@ -241,6 +263,24 @@ qo_status qo_motion_set_target_f32(qo_motion_planner_f32 *pl, float t_now, const
                                    uint32_t *clamped);
 
 /*
+ * Velocity interface (jogging, teleoperation): from its state sampled at `t_now` every joint
+ * changes to velocity vel[i] [u/s] (n entries) as fast as its limits allow (jerk-limited for
+ * SCURVE, at +-amax for TRAPEZOID; no synchronisation, no position target) and then keeps
+ * moving at vel[i] without end: the plan's duration is the time to reach the velocities, after
+ * which qo_motion_done_f32 is 1 and samples continue the straight line p = final + vend*(t - end)
+ * (joint field vend). The position range is NOT applied (nothing stops the joint but a later
+ * call): set_target and brake leave velocity mode, and set_limits re-plans toward the same
+ * velocities (clamped to the new vmax). Positions stay float32: re-plan or shift time before a
+ * long run loses resolution (ulp(1000 s) = 61 us, ulp(1e4 u) = 1e-3 u). The Q16.16 export
+ * carries the end velocity in its rest segment.
+ * Returns QO_OK; QO_E_NULL (pl or vel NULL); QO_E_STATE; QO_E_ORDER (t_now < t0: unchanged);
+ * QO_E_NONFINITE (t_now non-finite: unchanged; a velocity NaN/Inf: every joint brakes to rest
+ * from t_now); QO_E_RANGE (some |vel[i]| > vmax: refused, the plan is unchanged; or the plan
+ * would not be finite: brake, as for set_target).
+ */
+qo_status qo_motion_set_velocity_f32(qo_motion_planner_f32 *pl, float t_now, const float *vel);
+
+/*
  * Replaces joint `i`'s limits at `t_now` and re-plans all joints toward their goals from their
  * state at t_now (so lowering vmax on the fly first brakes into the new limits).
  * Returns QO_OK; QO_E_NULL; QO_E_STATE; QO_E_RANGE (i >= n); QO_E_NONFINITE (t_now);
@@ -264,7 +304,8 @@ qo_status qo_motion_brake_f32(qo_motion_planner_f32 *pl, float t_now);
 /*
  * Samples every joint at absolute time t (seconds): positions, velocities [u/s] and
  * accelerations [u/s^2] into n-element arrays; vel and acc may be NULL. Before the plan's t0
- * the state at t0 is given (QO_E_RANGE); after the end the final positions at rest.
+ * the state at t0 is given (QO_E_RANGE); after the end the final positions at rest (velocity
+ * interface: moving on from them at the target velocities).
  * Returns QO_OK; QO_E_NULL (pl or pos NULL); QO_E_STATE; QO_E_NONFINITE (t NaN/Inf: outputs are
  * the state at t0); QO_E_RANGE (t < t0; or, as a last line of defence not reachable for the
  * checked plans, a joint's sample would not be finite: that joint gets its final position at
@@ -283,6 +324,21 @@ float qo_motion_end_time_f32(const qo_motion_planner_f32 *pl);
 /* 1 if t >= the end time (every joint at rest at its final position), else 0; 1 for NULL or an
  * uninitialised planner (nothing moves). NaN t gives 0. */
 int qo_motion_done_f32(const qo_motion_planner_f32 *pl, float t);
+
+/*
+ * Duration rules for the plans made from now on (set_target, set_limits; not the safety stops
+ * of brake and of bad input, which stop as fast as possible). A plan that moves lasts at least
+ * `min_duration` seconds, and with `period` > 0 its duration is rounded up to a whole number of
+ * periods, so that it ends on a control tick (to float32 rounding of the phase sums, ~1e-7
+ * relative). With SYNC_TIME the common duration obeys the rules; with SYNC_NONE each joint's own;
+ * SYNC_PHASE is used only if its straight line already obeys them, else the plan falls back to
+ * TIME (sync_used says so). A joint that cannot be given the longer duration (the sync gap
+ * described above) keeps its own minimum time and its bit in `unsynced` is set. 0 = off (the
+ * default after init). Does not re-plan: the rules apply from the next re-plan.
+ * Returns QO_OK; QO_E_NULL; QO_E_STATE (not initialised); QO_E_ARG (either value negative, NaN,
+ * above QO_MOTION_DURATION_MAX, or a period in (0, QO_MOTION_PERIOD_MIN): rules unchanged).
+ */
+qo_status qo_motion_set_timing_f32(qo_motion_planner_f32 *pl, float min_duration, float period);
 
 /* The synchronisation the current plan really used (PHASE may have fallen back to TIME; a
  * safety stop reports NONE). NONE for NULL. */

@@ -1,0 +1,266 @@
+/* Independent minimum-time reference for one jerk-limited joint. See motion_ref.h. */
+#include "common/motion_ref.h"
+
+#include <math.h>
+
+/* One transfer: at most 3 phases of (duration, jerk). */
+typedef struct xph {
+    double d[3], j[3];
+    double t;
+} xph;
+
+/* Fastest (v0, a0) -> (v1, a1): a pulse up-then-down (peak ap >= max(a0, a1)) or
+ * down-then-up, the peak from the velocity balance (2 ap^2 - a0^2 - a1^2) / (2 J) = v1 - v0,
+ * clipped to the acceleration bound with a hold. Returns 0 if neither pulse exists. */
+static int xfer_dir(double s, double v0, double a0, double v1, double a1, double abound, double J, xph *x)
+{
+    /* s = +1: up-down with bound amax; s = -1: the mirror image (down-up, bound |amin|). */
+    double b0 = s * a0, b1 = s * a1, dv = s * (v1 - v0), m = fmax(b0, b1);
+    double X = J * dv + 0.5 * (b0 * b0 + b1 * b1), ap, h = 0.0;
+    if (X < 0.0) {
+        if (X < -1e-12 * (J * fabs(dv) + b0 * b0 + b1 * b1)) return 0;
+        X = 0.0;
+    }
+    if (-sqrt(X) >= m - 1e-12 * (fabs(m) + sqrt(X))) ap = -sqrt(X);
+    else if (sqrt(X) >= m - 1e-12 * (fabs(m) + sqrt(X))) ap = sqrt(X);
+    else return 0;
+    if (ap < m) ap = m;
+    if (m > abound * (1.0 + 1e-12)) return 0;
+    if (ap > abound) {
+        ap = abound;
+        h = (dv - (ap * ap - b0 * b0) / (2 * J) - (ap * ap - b1 * b1) / (2 * J)) / ap;
+        if (h < 0.0) h = 0.0;
+    }
+    x->d[0] = (ap - b0) / J;
+    x->j[0] = s * J;
+    x->d[1] = h;
+    x->j[1] = 0.0;
+    x->d[2] = (ap - b1) / J;
+    x->j[2] = -s * J;
+    x->t = x->d[0] + x->d[1] + x->d[2];
+    return 1;
+}
+
+static int xfer(const mref_lim *l, double v0, double a0, double v1, double a1, xph *x)
+{
+    xph u, w;
+    int ou = xfer_dir(1.0, v0, a0, v1, a1, l->amax, l->jmax, &u);
+    int ow = xfer_dir(-1.0, v0, a0, v1, a1, -l->amin, l->jmax, &w);
+    if (ou && (!ow || u.t <= w.t)) *x = u;
+    else if (ow) *x = w;
+    else return 0;
+    return 1;
+}
+
+typedef struct rstate {
+    double p, v, a;
+    int ok; /* 0 once the velocity leaves [vmin, vmax] */
+} rstate;
+
+/* Integrates one phase exactly, checking the velocity at its end and at an interior
+ * acceleration zero (the only place a velocity extremum can be). */
+static void run(const mref_lim *l, rstate *s, double d, double j)
+{
+    double tol = 1e-9 * (l->vmax - l->vmin);
+    if (d <= 0.0) return;
+    if (j != 0.0) {
+        double tz = -s->a / j;
+        if (tz > 0.0 && tz < d) {
+            double vz = s->v + s->a * tz + 0.5 * j * tz * tz;
+            if (vz > l->vmax + tol || vz < l->vmin - tol) s->ok = 0;
+        }
+    }
+    s->p += d * (s->v + d * (0.5 * s->a + d * j / 6.0));
+    s->v += d * (s->a + 0.5 * d * j);
+    s->a += d * j;
+    if (s->v > l->vmax + tol || s->v < l->vmin - tol) s->ok = 0;
+}
+
+typedef struct rprob {
+    const mref_lim *l;
+    double p0, v0, a0, pf, vf, af;
+    double tol; /* position residual accepted as a root */
+} rprob;
+
+/* Position residual of the profile through junction (vm, am) with a cruise of tc, its
+ * duration in *T and its validity (velocity bounds) in *ok. NaN if a transfer is missing. */
+static double eval(const rprob *q, double vm, double am, double tc, double *T, int *ok)
+{
+    xph x1, x2;
+    rstate s;
+    int k;
+    if (!xfer(q->l, q->v0, q->a0, vm, am, &x1) || !xfer(q->l, vm, am, q->vf, q->af, &x2)) {
+        *ok = 0;
+        *T = INFINITY;
+        return NAN;
+    }
+    s.p = q->p0;
+    s.v = q->v0;
+    s.a = q->a0;
+    s.ok = 1;
+    for (k = 0; k < 3; k++) run(q->l, &s, x1.d[k], x1.j[k]);
+    s.p += vm * tc;
+    for (k = 0; k < 3; k++) run(q->l, &s, x2.d[k], x2.j[k]);
+    *ok = s.ok;
+    *T = x1.t + tc + x2.t;
+    return s.p - q->pf;
+}
+
+/* Every vm root of the position residual at junction acceleration am; keeps the fastest valid
+ * profile in *best. */
+#define MREF_NV 48
+static void scan_am(const rprob *q, double am, double *best)
+{
+    const mref_lim *l = q->l;
+    double xs[MREF_NV + 1], fs[MREF_NV + 1], T, f;
+    int i, ok;
+    for (i = 0; i <= MREF_NV; i++) {
+        xs[i] = l->vmin + (l->vmax - l->vmin) * i / MREF_NV;
+        fs[i] = eval(q, xs[i], am, 0.0, &T, &ok);
+        if (fs[i] == 0.0 && ok && T < *best) *best = T;
+    }
+    for (i = 0; i < MREF_NV; i++) {
+        double lo = xs[i], hi = xs[i + 1], flo = fs[i], fhi = fs[i + 1];
+        int it;
+        if (!(flo * fhi < 0.0)) continue;
+        for (it = 0; it < 60; it++) {
+            double mid = 0.5 * (lo + hi), fm = eval(q, mid, am, 0.0, &T, &ok);
+            if (fm == 0.0 || mid == lo || mid == hi) {
+                lo = hi = mid;
+                break;
+            }
+            if ((fm < 0.0) == (flo < 0.0)) {
+                lo = mid;
+                flo = fm;
+            } else {
+                hi = mid;
+            }
+        }
+        /* A sign change can also be a jump (a transfer switching to another pulse): only a
+         * true root counts. */
+        f = eval(q, 0.5 * (lo + hi), am, 0.0, &T, &ok);
+        if (ok && fabs(f) <= q->tol && T < *best) *best = T;
+    }
+}
+
+/* Junction velocity that makes a transfer a single ramp: from (v0, a0) to acceleration am
+ * (side 0), or from am into (vf, af) (side 1). */
+static double ramp_vm(const rprob *q, int side, double am)
+{
+    double J = q->l->jmax;
+    if (side == 0) return q->v0 + (am * am - q->a0 * q->a0) / (2.0 * (am >= q->a0 ? J : -J));
+    return q->vf - (q->af * q->af - am * am) / (2.0 * (q->af >= am ? J : -J));
+}
+
+/* The profiles where one transfer is a single ramp lie where the fastest transfer jumps from a
+ * short pulse to a long one (e.g. raising v while a < 0 needs a pulse through a > 0), so the
+ * vm scan cannot bracket them: scan am along each ramp curve instead. */
+#define MREF_NR 400
+static void scan_ramps(const rprob *q, double *best)
+{
+    const mref_lim *l = q->l;
+    int side, i;
+    for (side = 0; side < 2; side++) {
+        double px = 0.0, pf = NAN, T, f;
+        int ok;
+        for (i = 0; i <= MREF_NR; i++) {
+            double am = l->amin + (l->amax - l->amin) * i / MREF_NR;
+            f = eval(q, ramp_vm(q, side, am), am, 0.0, &T, &ok);
+            if (ok && fabs(f) <= q->tol && T < *best) *best = T;
+            if (i > 0 && f * pf < 0.0) {
+                double lo = px, hi = am, flo = pf;
+                int it;
+                for (it = 0; it < 60; it++) {
+                    double mid = 0.5 * (lo + hi), fm = eval(q, ramp_vm(q, side, mid), mid, 0.0, &T, &ok);
+                    if ((fm < 0.0) == (flo < 0.0)) {
+                        lo = mid;
+                        flo = fm;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                f = eval(q, ramp_vm(q, side, 0.5 * (lo + hi)), 0.5 * (lo + hi), 0.0, &T, &ok);
+                if (ok && fabs(f) <= q->tol && T < *best) *best = T;
+                f = eval(q, ramp_vm(q, side, am), am, 0.0, &T, &ok);
+            }
+            px = am;
+            pf = f;
+        }
+    }
+}
+
+double mref_min_time(const mref_lim *l, double p0, double v0, double a0, double pf, double vf, double af)
+{
+    rprob q = { l, p0, v0, a0, pf, vf, af, 1e-9 * (1.0 + fabs(p0) + fabs(pf)) };
+    double best = INFINITY, bam = 0.0, T, f, h;
+    int i, ok, lev;
+    double special[5];
+    if (p0 == pf && v0 == vf && a0 == af) return 0.0;
+    /* Cruise on a velocity bound (junction (vmax, 0) or (vmin, 0)). */
+    f = eval(&q, l->vmax, 0.0, 0.0, &T, &ok);
+    if (ok && f <= 0.0) best = fmin(best, T - f / l->vmax);
+    f = eval(&q, l->vmin, 0.0, 0.0, &T, &ok);
+    if (ok && f >= 0.0) best = fmin(best, T - f / l->vmin);
+    scan_ramps(&q, &best);
+    special[0] = l->amin;
+    special[1] = l->amax;
+    special[2] = 0.0;
+    special[3] = a0;
+    special[4] = af;
+    for (i = 0; i < 5; i++) {
+        double b = best;
+        scan_am(&q, special[i], &best);
+        if (best < b) bam = special[i];
+    }
+    for (i = 0; i <= MREF_NV; i++) {
+        double am = l->amin + (l->amax - l->amin) * i / MREF_NV, b = best;
+        scan_am(&q, am, &best);
+        if (best < b) bam = am;
+    }
+    /* Refine the junction acceleration around the best so far. */
+    h = (l->amax - l->amin) / MREF_NV;
+    for (lev = 0; lev < 3; lev++) {
+        double c = bam;
+        for (i = -10; i <= 10; i++) {
+            double am = c + h * i / 10.0, b = best;
+            if (am < l->amin || am > l->amax || i == 0) continue;
+            scan_am(&q, am, &best);
+            if (best < b) bam = am;
+        }
+        h /= 10.0;
+    }
+    return best < INFINITY ? best : -1.0;
+}
+
+double mref_vel_time(const mref_lim *l, double v0, double a0, double v1, double a1)
+{
+    xph x;
+    return xfer(l, v0, a0, v1, a1, &x) ? x.t : -1.0;
+}
+
+double mref_rest_time(double D, double V, double A, double J)
+{
+    double d = fabs(D), ta, tj, tv;
+    if (d == 0.0) return 0.0;
+    /* Reaching A needs A/J of ramp; reaching V needs V/A + A/J (or 2 sqrt(V/J) without hold). */
+    if (V * J >= A * A) {
+        tj = A / J;
+        ta = V / A - A / J;
+    } else {
+        tj = sqrt(V / J);
+        ta = 0.0;
+    }
+    /* Distance of the full accelerate-decelerate to V with no cruise. */
+    if (d >= V * (2 * tj + ta)) {
+        tv = (d - V * (2 * tj + ta)) / V;
+        return 4 * tj + 2 * ta + tv;
+    }
+    /* No cruise: is the acceleration limit still reached? */
+    if (d >= 2 * A * A * A / (J * J)) {
+        tj = A / J;
+        ta = 0.5 * (-3 * tj + sqrt(tj * tj + 4 * d / A)); /* d = A (ta + tj)(ta + 2 tj) */
+        return 4 * tj + 2 * ta;
+    }
+    tj = cbrt(d / (2 * J));
+    return 4 * tj;
+}

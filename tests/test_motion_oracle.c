@@ -1,0 +1,610 @@
+/*
+ * qo_motion_*: the planner judged by an independent minimum-time reference
+ * (tests/common/motion_ref.c, double precision, exhaustive search over switching times).
+ *
+ * Random joints (fixed seed; limits as in issue 11: vmax U[0.5,5], amax U[1,20],
+ * jmax U[10,500], displacement U[-3,3], moving starts with |v0| <= vmax, |a0| <= amax and
+ * |v0 + a0|a0|/(2 jmax)| <= vmax) planned in 7-joint groups in every sync mode. Each plan is
+ * checked for: a joint (NONE) or plan (TIME) more than 0.1 % slower than the reference, or
+ * more than 0.1 % faster (the reference would be missing a profile); any limit exceeded by more
+ * than 1e-5 relative in the phase coefficients (jerk, acceleration at phase ends, velocity at
+ * phase ends and interior extrema) and in dense samples; continuity across a re-plan mid-way.
+ *
+ * The count is QO_MOTION_ORACLE_JOINTS (default 10,500 per sync mode); `make check-motion` and
+ * `make check-motion-long` build this program with larger counts.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <math.h>
+#include <cmocka.h>
+
+#include "qorient/motion.h"
+#include "qorient/motion_fx.h"
+#include "common/motion_ref.h"
+#include "common/ref.h"
+
+#define NJ 7
+#ifndef QO_MOTION_ORACLE_JOINTS
+#define QO_MOTION_ORACLE_JOINTS 10500
+#endif
+#define RELTIME 1e-3 /* 0.1 % */
+#define RELLIM 1e-5
+
+static mref_lim ref_lim_of(const qo_motion_limits_f32 *l)
+{
+    mref_lim r;
+    r.vmax = l->vmax;
+    r.vmin = -(double)l->vmax;
+    r.amax = l->amax;
+    r.amin = -(double)l->amax;
+    r.jmax = l->jmax;
+    return r;
+}
+
+/* Puts joint i into the moving state (p, v, a) at time 0: a synthetic plan of one long phase. */
+static void put_state(qo_motion_planner_f32 *pl, size_t i, float p, float v, float a)
+{
+    qo_motion_joint_f32 *jt = &pl->joints[i];
+    qo_motion_phase_f32 ph = { 0.0f, 1e6f, 0.0f, 0.0f, 0.0f, 0.0f };
+    ph.p = p;
+    ph.v = v;
+    ph.a = a;
+    jt->ph[0] = ph;
+    jt->nph = 1;
+    jt->duration = ph.d;
+    jt->final = p;
+}
+
+/* Worst relative limit excess of joint i's plan: phase coefficients (jerk; acceleration at
+ * phase ends; velocity at phase ends and where the acceleration crosses zero) and `ns` dense
+ * samples of the planner. Returns the excess ratio - 1 (<= 0 when within the limits). */
+static double limit_excess(const qo_motion_planner_f32 *pl, size_t i, int ns)
+{
+    const qo_motion_joint_f32 *jt = &pl->joints[i];
+    double V = jt->lim.vmax, A = jt->lim.amax, J = jt->lim.jmax, w = 0.0;
+    unsigned k;
+    int s;
+    for (k = 0; k < jt->nph; k++) {
+        const qo_motion_phase_f32 *ph = &jt->ph[k];
+        double d = ph->d, a1 = ph->a + d * ph->j, v1 = ph->v + d * (ph->a + 0.5 * d * ph->j);
+        w = fmax(w, fabs(ph->j) / J);
+        w = fmax(w, fmax(fabs(ph->a), fabs(a1)) / A);
+        w = fmax(w, fmax(fabs(ph->v), fabs(v1)) / V);
+        if (ph->j != 0.0f) {
+            double tz = -(double)ph->a / ph->j;
+            if (tz > 0.0 && tz < d) w = fmax(w, fabs(ph->v + tz * (ph->a + 0.5 * tz * ph->j)) / V);
+        }
+    }
+    for (s = 0; s <= ns; s++) {
+        float pos[NJ], vel[NJ], acc[NJ];
+        float t = pl->t0 + pl->duration * (float)s / (float)ns;
+        qo_motion_sample_f32(pl, t, pos, vel, acc);
+        w = fmax(w, fabs(vel[i]) / V);
+        w = fmax(w, fabs(acc[i]) / A);
+    }
+    return w - 1.0;
+}
+
+typedef struct jcase {
+    qo_motion_limits_f32 lim;
+    float p0, v0, a0, target;
+} jcase;
+
+static void print_case(const char *what, int cs, size_t i, const jcase *c, double got, double ref)
+{
+    print_error("%s case %d joint %zu: got %.9g ref %.9g | vmax %.9g amax %.9g jmax %.9g p0 %.9g v0 %.9g a0 %.9g "
+                "target %.9g\n",
+                what, cs, i, got, ref, (double)c->lim.vmax, (double)c->lim.amax, (double)c->lim.jmax,
+                (double)c->p0, (double)c->v0, (double)c->a0, (double)c->target);
+}
+
+/* Plans n joints from their cases with `sync`; returns the planner's status. */
+static qo_status plan_cases(qo_motion_planner_f32 *pl, qo_motion_joint_f32 *jts, const jcase *c, size_t n,
+                            qo_motion_sync sync)
+{
+    qo_motion_settings_f32 st = { QO_MOTION_SCURVE, QO_MOTION_SYNC_TIME };
+    qo_motion_limits_f32 l[NJ];
+    float p[NJ], tg[NJ];
+    size_t i;
+    st.sync = sync;
+    memset(l, 0, sizeof l);
+    memset(p, 0, sizeof p);
+    memset(tg, 0, sizeof tg);
+    for (i = 0; i < n; i++) {
+        l[i] = c[i].lim;
+        p[i] = c[i].p0;
+        tg[i] = c[i].target;
+    }
+    assert_int_equal(qo_motion_init_f32(pl, jts, n, l, p, 0.0f, &st), QO_OK);
+    for (i = 0; i < n; i++) put_state(pl, i, c[i].p0, c[i].v0, c[i].a0);
+    return qo_motion_set_target_f32(pl, 0.0f, tg, NULL);
+}
+
+static double ref_time(const jcase *c)
+{
+    mref_lim r = ref_lim_of(&c->lim);
+    return mref_min_time(&r, c->p0, c->v0, c->a0, c->target, 0.0, 0.0);
+}
+
+/* A random joint as in issue 11 (moving start with probability 3/4). */
+static void rand_case(ref_rng *g, jcase *c)
+{
+    c->lim = qo_motion_limits_default;
+    c->lim.vmax = (float)ref_rng_range(g, 0.5, 5.0);
+    c->lim.amax = (float)ref_rng_range(g, 1.0, 20.0);
+    c->lim.jmax = (float)ref_rng_range(g, 10.0, 500.0);
+    c->p0 = (float)ref_rng_range(g, -2.0, 2.0);
+    c->v0 = c->a0 = 0.0f;
+    if (ref_rng_unit(g) < 0.75) {
+        for (;;) {
+            double v = ref_rng_range(g, -1.0, 1.0) * c->lim.vmax, a = ref_rng_range(g, -1.0, 1.0) * c->lim.amax;
+            if (fabs(v + a * fabs(a) / (2.0 * c->lim.jmax)) <= c->lim.vmax) {
+                c->v0 = (float)v;
+                c->a0 = (float)a;
+                break;
+            }
+        }
+    }
+    c->target = (float)(c->p0 + ref_rng_range(g, -3.0, 3.0));
+}
+
+/* One 7-joint plan of random cases in mode `sync`, checked as the file header says.
+ * Returns the number of failures (each printed). */
+static int check_group(ref_rng *g, int cs, qo_motion_sync sync, double *tref_out)
+{
+    qo_motion_planner_f32 pl;
+    qo_motion_joint_f32 jts[NJ];
+    jcase c[NJ];
+    double tref[NJ], tmax = 0.0, T;
+    float pos[NJ], vel[NJ], acc[NJ], pos2[NJ], vel2[NJ], acc2[NJ], tg[NJ];
+    size_t i;
+    int bad = 0;
+    for (i = 0; i < NJ; i++) {
+        rand_case(g, &c[i]);
+        /* PHASE is judged on its limits only (the straight line may be slower than TIME) */
+        tref[i] = sync == QO_MOTION_SYNC_PHASE ? 0.0 : ref_time(&c[i]);
+        if (tref[i] < 0.0) {
+            print_case("reference found no profile", cs, i, &c[i], 0.0, tref[i]);
+            bad++;
+        }
+        tmax = fmax(tmax, tref[i]);
+    }
+    if (plan_cases(&pl, jts, c, NJ, sync) != QO_OK) {
+        print_error("case %d: plan refused\n", cs);
+        return bad + 1;
+    }
+    T = pl.duration;
+    for (i = 0; i < NJ; i++) {
+        double e = limit_excess(&pl, i, 64);
+        if (e > RELLIM) {
+            print_case("limit exceeded", cs, i, &c[i], e, 0.0);
+            bad++;
+        }
+        if (sync == QO_MOTION_SYNC_NONE) {
+            double t = jts[i].duration;
+            if (t > tref[i] * (1.0 + RELTIME) + 1e-6 || t < tref[i] * (1.0 - RELTIME) - 1e-6) {
+                print_case("joint time vs reference", cs, i, &c[i], t, tref[i]);
+                bad++;
+            }
+        }
+    }
+    if (sync == QO_MOTION_SYNC_TIME && (T > tmax * (1.0 + RELTIME) + 1e-6 || T < tmax * (1.0 - RELTIME) - 1e-6)) {
+        print_error("time sync case %d: T %.9g ref %.9g\n", cs, T, tmax);
+        bad++;
+    }
+    /* Re-plan mid-way to new targets: the state is continuous across the re-plan. */
+    {
+        float tm = 0.5f * T;
+        qo_motion_sample_f32(&pl, tm, pos, vel, acc);
+        for (i = 0; i < NJ; i++) tg[i] = (float)(c[i].target + ref_rng_range(g, -1.0, 1.0));
+        if (qo_motion_set_target_f32(&pl, tm, tg, NULL) != QO_OK) {
+            print_error("case %d: re-plan refused\n", cs);
+            return bad + 1;
+        }
+        qo_motion_sample_f32(&pl, tm, pos2, vel2, acc2);
+        for (i = 0; i < NJ; i++) {
+            if (fabs(pos2[i] - pos[i]) > 1e-6 * (1.0 + fabs(pos[i])) || fabs(vel2[i] - vel[i]) > 1e-6 * c[i].lim.vmax ||
+                fabs(acc2[i] - acc[i]) > 1e-6 * c[i].lim.amax) {
+                print_error("case %d joint %zu: re-plan jump p %g->%g v %g->%g a %g->%g\n", cs, i, (double)pos[i],
+                            (double)pos2[i], (double)vel[i], (double)vel2[i], (double)acc[i], (double)acc2[i]);
+                bad++;
+            }
+            if (limit_excess(&pl, i, 32) > RELLIM) {
+                print_error("case %d joint %zu: re-plan exceeds a limit\n", cs, i);
+                bad++;
+            }
+        }
+    }
+    if (tref_out) *tref_out = tmax;
+    return bad;
+}
+
+static void run_mode(qo_motion_sync sync, uint64_t seed)
+{
+    ref_rng g;
+    int cs, bad = 0, groups = (QO_MOTION_ORACLE_JOINTS + NJ - 1) / NJ;
+    g.s = seed;
+    for (cs = 0; cs < groups && bad < 20; cs++) bad += check_group(&g, cs, sync, NULL);
+    print_message("sync %d: %d groups of %d joints, %d failures\n", (int)sync, cs, NJ, bad);
+    assert_int_equal(bad, 0);
+}
+
+static void test_oracle_none(void **state)
+{
+    (void)state;
+    run_mode(QO_MOTION_SYNC_NONE, 1101);
+}
+
+static void test_oracle_time(void **state)
+{
+    (void)state;
+    run_mode(QO_MOTION_SYNC_TIME, 1102);
+}
+
+static void test_oracle_phase(void **state)
+{
+    (void)state;
+    run_mode(QO_MOTION_SYNC_PHASE, 1103);
+}
+
+/* 1 if T is a whole number of periods to float32 rounding of the phase sums. */
+static int on_tick(double T, double period)
+{
+    double k = floor(T / period + 0.5);
+    return fabs(T - k * period) <= 4e-7 * T + 1e-9;
+}
+
+/* qo_motion_set_timing_f32: minimum duration and durations rounded up to a control period, in
+ * every sync mode, from moving starts; the duration is the smallest allowed one above the
+ * reference minimum, limits hold, every synchronised joint ends on the tick. */
+static void test_timing(void **state)
+{
+    ref_rng g;
+    int cs, bad = 0;
+    (void)state;
+    g.s = 1104;
+    for (cs = 0; cs < 600 && bad < 10; cs++) {
+        qo_motion_planner_f32 pl;
+        qo_motion_joint_f32 jts[NJ];
+        jcase c[NJ];
+        qo_motion_sync sync = (qo_motion_sync)(cs % 3);
+        double period = cs % 4 == 0 ? 0.0 : ref_rng_range(&g, 1e-3, 0.2);
+        double mind = cs % 5 == 0 ? 0.0 : ref_rng_range(&g, 0.0, 3.0), tref[NJ], tmax = 0.0, T;
+        float pos[NJ];
+        size_t i;
+        for (i = 0; i < NJ; i++) {
+            rand_case(&g, &c[i]);
+            tref[i] = ref_time(&c[i]);
+            tmax = fmax(tmax, tref[i]);
+        }
+        assert_int_equal(plan_cases(&pl, jts, c, NJ, sync), QO_OK);
+        assert_int_equal(qo_motion_set_timing_f32(&pl, (float)mind, (float)period), QO_OK);
+        /* the rules apply from the next re-plan: re-plan the same targets at time 0 */
+        for (i = 0; i < NJ; i++) {
+            put_state(&pl, i, c[i].p0, c[i].v0, c[i].a0);
+            pos[i] = c[i].target;
+        }
+        assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, pos, NULL), QO_OK);
+        mind = (float)mind;
+        period = (float)period;
+        T = pl.duration;
+        for (i = 0; i < NJ; i++) {
+            double Ti = jts[i].duration, lo = fmax(sync == QO_MOTION_SYNC_NONE ? tref[i] : tmax, mind);
+            int synced = !(pl.unsynced >> i & 1u);
+            if (limit_excess(&pl, i, 64) > RELLIM) {
+                print_case("timing: limit exceeded", cs, i, &c[i], Ti, 0.0);
+                bad++;
+            }
+            if (sync != QO_MOTION_SYNC_NONE && synced && fabs(Ti - T) > 4e-7 * T + 1e-9) {
+                print_case("timing: joint not synchronised", cs, i, &c[i], Ti, T);
+                bad++;
+            }
+            if (sync == QO_MOTION_SYNC_NONE && synced && jts[i].nph > 0) {
+                if (Ti < lo * (1.0 - 1e-6) || (period > 0.0 && !on_tick(Ti, period)) ||
+                    Ti > (period > 0.0 ? lo + period : lo) * (1.0 + RELTIME) + 1e-6) {
+                    print_case("timing: joint duration", cs, i, &c[i], Ti, lo);
+                    bad++;
+                }
+            }
+        }
+        if (sync != QO_MOTION_SYNC_NONE) {
+            double lo = fmax(tmax, mind);
+            if (T < lo * (1.0 - 1e-6) || (period > 0.0 && pl.unsynced == 0 && !on_tick(T, period)) ||
+                T > (period > 0.0 ? lo + period : lo) * (1.0 + RELTIME) + 1e-6) {
+                print_error("timing case %d sync %d: T %.9g, min %.9g, period %g, min duration %g, used %d\n", cs,
+                            (int)sync, T, tmax, period, mind, (int)pl.sync_used);
+                bad++;
+            }
+        }
+    }
+    assert_int_equal(bad, 0);
+}
+
+static void test_timing_args(void **state)
+{
+    qo_motion_planner_f32 pl;
+    qo_motion_joint_f32 jts[1];
+    qo_motion_limits_f32 l = qo_motion_limits_default;
+    float p = 0.0f;
+    (void)state;
+    assert_int_equal(qo_motion_set_timing_f32(NULL, 0.0f, 0.0f), QO_E_NULL);
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 0, &l, &p, 0.0f, NULL), QO_E_TOO_FEW);
+    assert_int_equal(qo_motion_set_timing_f32(&pl, 0.0f, 0.0f), QO_E_STATE);
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, &p, 0.0f, NULL), QO_OK);
+    assert_true(pl.min_duration == 0.0f && pl.period == 0.0f);
+    assert_int_equal(qo_motion_set_timing_f32(&pl, 1.0f, 0.01f), QO_OK);
+    assert_int_equal(qo_motion_set_timing_f32(&pl, -1.0f, 0.0f), QO_E_ARG);
+    assert_int_equal(qo_motion_set_timing_f32(&pl, NAN, 0.0f), QO_E_ARG);
+    assert_int_equal(qo_motion_set_timing_f32(&pl, INFINITY, 0.0f), QO_E_ARG);
+    assert_int_equal(qo_motion_set_timing_f32(&pl, 0.0f, -0.01f), QO_E_ARG);
+    assert_int_equal(qo_motion_set_timing_f32(&pl, 0.0f, NAN), QO_E_ARG);
+    assert_int_equal(qo_motion_set_timing_f32(&pl, 0.0f, 1e-9f), QO_E_ARG);
+    assert_int_equal(qo_motion_set_timing_f32(&pl, 0.0f, 1e5f), QO_E_ARG);
+    /* rules unchanged by the refused calls */
+    assert_true(pl.min_duration == 1.0f && pl.period == 0.01f);
+    /* a move of 0.01 u (minimum 0.684 s) takes the minimum duration, 1 s = 100 periods */
+    p = 0.01f;
+    assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, &p, NULL), QO_OK);
+    assert_true(fabs(pl.duration - 1.0) < 1e-6);
+    assert_int_equal(qo_motion_brake_f32(&pl, 0.5f), QO_OK);
+    assert_true(pl.joints[0].duration < 0.5f); /* a safety stop ignores the rules */
+}
+
+/* Velocity interface: from random moving states to random target velocities in the minimum
+ * time of the velocity change (reference), within the limits, continuous at the call, then on at
+ * the target velocity; a later set_target leaves velocity mode without a jump; bad input. */
+static void test_velocity(void **state)
+{
+    ref_rng g;
+    int cs, bad = 0;
+    (void)state;
+    g.s = 1105;
+    for (cs = 0; cs < 400 && bad < 10; cs++) {
+        qo_motion_planner_f32 pl;
+        qo_motion_joint_f32 jts[NJ];
+        jcase c[NJ];
+        float vt[NJ], p1[NJ], v1[NJ], a1[NJ], p2[NJ], v2[NJ], a2[NJ], tg[NJ];
+        float tm, te;
+        size_t i;
+        qo_motion_sync sync = (qo_motion_sync)(cs % 3);
+        for (i = 0; i < NJ; i++) {
+            rand_case(&g, &c[i]);
+            vt[i] = (float)(ref_rng_range(&g, -1.0, 1.0) * c[i].lim.vmax);
+            if (cs % 7 == 0) vt[i] = 0.0f;
+        }
+        assert_int_equal(plan_cases(&pl, jts, c, NJ, sync), QO_OK);
+        tm = 0.3f * pl.duration;
+        qo_motion_sample_f32(&pl, tm, p1, v1, a1);
+        assert_int_equal(qo_motion_set_velocity_f32(&pl, tm, vt), QO_OK);
+        assert_int_equal(pl.vel_mode, 1);
+        qo_motion_sample_f32(&pl, tm, p2, v2, a2);
+        for (i = 0; i < NJ; i++) {
+            mref_lim r = ref_lim_of(&c[i].lim);
+            /* the sampled a may exceed amax by float32 rounding: the reference takes it at amax */
+            double as = fmin(fmax(a1[i], r.amin), r.amax);
+            double tr = mref_vel_time(&r, v1[i], as, vt[i], 0.0), Ti = jts[i].duration;
+            if (fabs(p2[i] - p1[i]) > 1e-6 * (1.0 + fabs(p1[i])) || fabs(v2[i] - v1[i]) > 1e-6 * c[i].lim.vmax ||
+                fabs(a2[i] - a1[i]) > 1e-6 * c[i].lim.amax) {
+                print_case("velocity: jump at the call", cs, i, &c[i], v2[i], v1[i]);
+                bad++;
+            }
+            if (fabs(Ti - tr) > RELTIME * tr + 1e-6) {
+                print_case("velocity: time of the velocity change", cs, i, &c[i], Ti, tr);
+                bad++;
+            }
+            if (limit_excess(&pl, i, 64) > RELLIM) {
+                print_case("velocity: limit exceeded", cs, i, &c[i], Ti, 0.0);
+                bad++;
+            }
+        }
+        /* after the end: on at the target velocity, on a straight line */
+        te = qo_motion_end_time_f32(&pl);
+        qo_motion_sample_f32(&pl, te + 0.5f, p1, v1, a1);
+        qo_motion_sample_f32(&pl, te + 1.5f, p2, v2, a2);
+        for (i = 0; i < NJ; i++) {
+            if (v1[i] != vt[i] || v2[i] != vt[i] || a1[i] != 0.0f || a2[i] != 0.0f ||
+                fabs((p2[i] - p1[i]) - vt[i]) > 1e-5 * (1.0 + fabs(p1[i]))) {
+                print_case("velocity: not moving on at the target", cs, i, &c[i], v2[i], vt[i]);
+                bad++;
+            }
+            tg[i] = c[i].target;
+        }
+        /* back to a position target: continuous, ends at rest */
+        qo_motion_sample_f32(&pl, te + 1.5f, p1, v1, a1);
+        assert_int_equal(qo_motion_set_target_f32(&pl, te + 1.5f, tg, NULL), QO_OK);
+        assert_int_equal(pl.vel_mode, 0);
+        qo_motion_sample_f32(&pl, te + 1.5f, p2, v2, a2);
+        for (i = 0; i < NJ; i++) {
+            if (fabs(p2[i] - p1[i]) > 1e-6 * (1.0 + fabs(p1[i])) || fabs(v2[i] - v1[i]) > 1e-6 * c[i].lim.vmax ||
+                jts[i].vend != 0.0f) {
+                print_case("velocity: jump back to position mode", cs, i, &c[i], v2[i], v1[i]);
+                bad++;
+            }
+        }
+        qo_motion_sample_f32(&pl, qo_motion_end_time_f32(&pl) + 1.0f, p2, v2, a2);
+        for (i = 0; i < NJ; i++)
+            /* final = start + (goal - start) in float32: the goal to an ulp of the positions */
+            if (fabs(p2[i] - tg[i]) > 2.4e-7 * (fabs(tg[i]) + fabs(p1[i])) || v2[i] != 0.0f) {
+                print_case("velocity: position target not reached", cs, i, &c[i], p2[i], tg[i]);
+                bad++;
+            }
+    }
+    assert_int_equal(bad, 0);
+}
+
+static void test_velocity_args(void **state)
+{
+    qo_motion_planner_f32 pl;
+    qo_motion_joint_f32 jts[2];
+    qo_motion_limits_f32 l[2];
+    qo_motion_table_q16 tab;
+    qo_motion_seg_q16 segs[2 * QO_MOTION_Q16_SEGS];
+    qo_q16 qp[2], qv[2];
+    float p[2] = { 0.0f, 1.0f }, v[2] = { 0.5f, -0.25f }, d0, pos[2], vel[2];
+    (void)state;
+    l[0] = l[1] = qo_motion_limits_default;
+    l[0].pmax = 0.5f; /* the range does not stop a joint in velocity mode */
+    assert_int_equal(qo_motion_set_velocity_f32(NULL, 0.0f, v), QO_E_NULL);
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 0, l, p, 0.0f, NULL), QO_E_TOO_FEW);
+    assert_int_equal(qo_motion_set_velocity_f32(&pl, 0.0f, v), QO_E_STATE);
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 2, l, p, 1.0f, NULL), QO_OK);
+    assert_int_equal(qo_motion_set_velocity_f32(&pl, 1.0f, NULL), QO_E_NULL);
+    assert_int_equal(qo_motion_set_velocity_f32(&pl, 0.5f, v), QO_E_ORDER);
+    assert_int_equal(qo_motion_set_velocity_f32(&pl, NAN, v), QO_E_NONFINITE);
+    v[1] = -1.5f; /* beyond vmax: refused, nothing moves */
+    assert_int_equal(qo_motion_set_velocity_f32(&pl, 1.0f, v), QO_E_RANGE);
+    assert_int_equal(pl.vel_mode, 0);
+    assert_true(pl.duration == 0.0f);
+    v[1] = -0.25f;
+    assert_int_equal(qo_motion_set_velocity_f32(&pl, 1.0f, v), QO_OK);
+    d0 = pl.duration;
+    assert_true(d0 > 0.0f);
+    /* ten seconds later joint 0 is far past its pmax, moving on */
+    assert_int_equal(qo_motion_sample_f32(&pl, 11.0f, pos, vel, NULL), QO_OK);
+    assert_true(pos[0] > 4.0f && vel[0] == 0.5f && vel[1] == -0.25f);
+    /* the Q16.16 export moves on the same way */
+    assert_int_equal(qo_motion_export_q16(&pl, &tab, segs, 2 * QO_MOTION_Q16_SEGS), QO_OK);
+    assert_int_equal(qo_motion_sample_q16(&tab, 10 << 16, qp, qv, NULL), QO_OK);
+    assert_true(fabs(qp[0] / 65536.0 - pos[0]) < 1e-3 && qv[0] == 32768 && qv[1] == -16384);
+    /* set_limits keeps velocity mode, clamped to the new vmax */
+    l[1].vmax = 0.1f;
+    assert_int_equal(qo_motion_set_limits_f32(&pl, 11.0f, 1, &l[1]), QO_OK);
+    assert_int_equal(pl.vel_mode, 1);
+    assert_true(jts[1].vend == -0.1f);
+    /* a NaN velocity brakes every joint to rest */
+    v[0] = NAN;
+    assert_int_equal(qo_motion_set_velocity_f32(&pl, 12.0f, v), QO_E_NONFINITE);
+    assert_int_equal(pl.braking, 1);
+    assert_int_equal(pl.vel_mode, 0);
+    assert_int_equal(qo_motion_sample_f32(&pl, 100.0f, pos, vel, NULL), QO_OK);
+    assert_true(vel[0] == 0.0f && vel[1] == 0.0f);
+}
+
+/* The reference itself against the closed form, rest to rest (symmetric limits). */
+static void test_reference_closed_form(void **state)
+{
+    ref_rng g;
+    int cs;
+    (void)state;
+    g.s = 1100;
+    for (cs = 0; cs < 300; cs++) {
+        mref_lim l;
+        double D = ref_rng_range(&g, -3.0, 3.0), t, tc;
+        l.vmax = ref_rng_range(&g, 0.5, 5.0);
+        l.vmin = -l.vmax;
+        l.amax = ref_rng_range(&g, 1.0, 20.0);
+        l.amin = -l.amax;
+        l.jmax = ref_rng_range(&g, 10.0, 500.0);
+        t = mref_min_time(&l, 0.3, 0.0, 0.0, 0.3 + D, 0.0, 0.0);
+        tc = mref_rest_time(D, l.vmax, l.amax, l.jmax);
+        if (fabs(t - tc) > 1e-6 * tc) {
+            print_error("case %d: D %g V %g A %g J %g: search %.12g closed form %.12g\n", cs, D, l.vmax, l.amax, l.jmax,
+                        t, tc);
+            fail();
+        }
+    }
+}
+
+/* Issue 11, defect 1: phase sync from a moving start broke vmax by up to 3.84x. */
+static void test_issue_phase_sync_moving(void **state)
+{
+    static const float vmax[NJ] = { 1.72672474f, 3.19527483f, 0.540558755f, 1.56946921f, 2.55408978f, 3.71123886f, 2.81213045f };
+    static const float amax[NJ] = { 15.9911842f, 17.6804562f, 14.7866173f, 14.8234911f, 19.4377403f, 15.7666721f, 11.1936378f };
+    static const float jmax[NJ] = { 259.182587f, 153.709946f, 254.415833f, 377.374084f, 63.1564674f, 238.2733f, 183.108002f };
+    static const float tgt[NJ] = { -2.91880322f, 1.05259836f, -2.57023644f, 2.06626081f, -1.94207144f, 0.61733216f, 1.32804322f };
+    qo_motion_planner_f32 pl;
+    qo_motion_joint_f32 jts[NJ];
+    jcase c[NJ];
+    size_t i;
+    (void)state;
+    for (i = 0; i < NJ; i++) {
+        c[i].lim = qo_motion_limits_default;
+        c[i].lim.vmax = vmax[i];
+        c[i].lim.amax = amax[i];
+        c[i].lim.jmax = jmax[i];
+        c[i].p0 = 0.0f;
+        c[i].v0 = 0.125f * tgt[i];
+        c[i].a0 = 4.0f * tgt[i];
+        c[i].target = tgt[i];
+    }
+    assert_int_equal(plan_cases(&pl, jts, c, NJ, QO_MOTION_SYNC_PHASE), QO_OK);
+    for (i = 0; i < NJ; i++) {
+        double e = limit_excess(&pl, i, 2000);
+        if (e > RELLIM) {
+            print_case("phase sync limit", 0, i, &c[i], e, 0.0);
+            fail();
+        }
+    }
+    /* Not feasible as a straight line: TIME, at the optimum 4.8065 s. */
+    assert_int_equal(qo_motion_sync_used(&pl), QO_MOTION_SYNC_TIME);
+    assert_true(fabs(pl.duration - 4.8065) < 1e-3);
+}
+
+/* Issue 11, defect 2: the profile "acceleration ramps down, then up to amax, holds, ramps to
+ * zero" was missing (0.3363 s instead of 0.2627 s); also in a TIME plan (1.3925 s for 1.3231 s).
+ * Third: the other orientation (a0 ramps briefly further away from zero, then up to amax),
+ * found by make check-motion (0.5281 s instead of 0.5184 s). */
+static void test_issue_missing_shape(void **state)
+{
+    jcase c[3];
+    qo_motion_planner_f32 pl;
+    qo_motion_joint_f32 jts[NJ];
+    int k;
+    (void)state;
+    c[0].lim = c[1].lim = qo_motion_limits_default;
+    c[0].lim.vmax = 4.41488028f;
+    c[0].lim.amax = 19.952261f;
+    c[0].lim.jmax = 108.015678f;
+    c[0].p0 = -0.088470608f;
+    c[0].v0 = -2.58858132f;
+    c[0].a0 = 11.5556173f;
+    c[0].target = -0.371979445f;
+    c[1].lim.vmax = 3.34469533f;
+    c[1].lim.amax = 2.34070969f;
+    c[1].lim.jmax = 29.4899502f;
+    c[1].p0 = 1.28110254f;
+    c[1].v0 = -2.97041011f;
+    c[1].a0 = 1.55960763f;
+    c[1].target = -0.646739721f;
+    c[2].lim = qo_motion_limits_default;
+    c[2].lim.vmax = 4.1246357f;
+    c[2].lim.amax = 3.74037433f;
+    c[2].lim.jmax = 19.2452679f;
+    c[2].p0 = 0.384773493f;
+    c[2].v0 = -0.953012407f;
+    c[2].a0 = -1.15454602f;
+    c[2].target = 0.0998001546f;
+    for (k = 0; k < 3; k++) {
+        double tr = ref_time(&c[k]);
+        assert_int_equal(plan_cases(&pl, jts, &c[k], 1, QO_MOTION_SYNC_TIME), QO_OK);
+        if (!(pl.duration <= tr * (1.0 + RELTIME)) || limit_excess(&pl, 0, 2000) > RELLIM) {
+            print_case("missing shape", k, 0, &c[k], pl.duration, tr);
+            fail();
+        }
+    }
+    assert_true(fabs(ref_time(&c[0]) - 0.2627) < 1e-3);
+    assert_true(fabs(ref_time(&c[1]) - 1.3231) < 1e-3);
+    assert_true(fabs(ref_time(&c[2]) - 0.5184) < 1e-3);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_reference_closed_form),
+        cmocka_unit_test(test_issue_phase_sync_moving),
+        cmocka_unit_test(test_issue_missing_shape),
+        cmocka_unit_test(test_oracle_none),
+        cmocka_unit_test(test_oracle_time),
+        cmocka_unit_test(test_oracle_phase),
+        cmocka_unit_test(test_timing),
+        cmocka_unit_test(test_timing_args),
+        cmocka_unit_test(test_velocity),
+        cmocka_unit_test(test_velocity_args),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
