@@ -31,8 +31,16 @@ skip() { say "SKIP: $*"; echo "0 passed, 0 failed"; exit 77; }
 APT="apt-get -o DPkg::Lock::Timeout=900"
 export DEBIAN_FRONTEND=noninteractive
 
-KPKG=$(apt-cache depends linux-image-amd64 2>/dev/null |
-       sed -n 's/.*Depends: \(linux-image-[0-9].*-amd64\).*/\1/p' | head -n1)
+kernel_pkg() {
+    apt-cache depends linux-image-amd64 2>/dev/null |
+        sed -n 's/.*Depends: \(linux-image-[0-9].*-amd64\).*/\1/p' | head -n1
+}
+KPKG=$(kernel_pkg)
+# A fresh root may have no package lists yet.
+if [ -z "$KPKG" ] && [ "${QO_VM_INSTALL:-1}" = 1 ] && [ "$(id -u)" = 0 ]; then
+    $APT update -q >/dev/null 2>&1 || true
+    KPKG=$(kernel_pkg)
+fi
 [ -n "$KPKG" ] || skip "no linux-image-amd64 in apt (not Debian amd64?)"
 KVER=${KPKG#linux-image-}                                        # 6.1.0-56-amd64, 6.12.48+deb13-amd64
 PVER=$(apt-cache policy "$KPKG" | sed -n 's/ *Candidate: //p')   # 6.1.192-2
@@ -63,13 +71,16 @@ need_pkgs() {
 need_pkgs qemu-system-x86 busybox-static cpio xz-utils zstd gcc libc6-dev pkg-config libgpiod-dev
 command -v qemu-system-x86_64 >/dev/null || skip "no qemu-system-x86_64 after install"
 
-# ---- kernel image and the modules gpio-sim needs (cached per kernel version) ----
-K=$W/$KVER
+# ---- kernel image and the modules gpio-sim needs (cached per kernel package version: the
+# sources must be the very version the image was built from) ----
+K=$W/$KVER-$PVER
+KDEB=$W/debs/${KPKG}_${PVER}_amd64.deb
+SDEB=$W/debs/${SRCPKG}_${PVER}_all.deb
 if [ ! -f "$K/ready" ]; then
     rm -rf "$K"; mkdir -p "$K/mods"
-    (cd "$W/debs" && { ls ${KPKG}_*.deb >/dev/null 2>&1 || $APT download "$KPKG" >/dev/null 2>&1; }) ||
-        skip "cannot download $KPKG"
-    dpkg-deb -x "$W/debs/${KPKG}"_*.deb "$K/kroot" || skip "cannot unpack $KPKG"
+    [ -f "$KDEB" ] || (cd "$W/debs" && $APT download "$KPKG=$PVER" >/dev/null 2>&1) ||
+        skip "cannot download $KPKG=$PVER"
+    dpkg-deb -x "$KDEB" "$K/kroot" || skip "cannot unpack $KDEB"
     cp "$K/kroot/boot/vmlinuz-$KVER" "$K/vmlinuz" || skip "no /boot/vmlinuz-$KVER in $KPKG"
     MD=""
     for d in "$K/kroot/lib/modules/$KVER" "$K/kroot/usr/lib/modules/$KVER"; do
@@ -102,10 +113,10 @@ if [ ! -f "$K/ready" ]; then
         # built from the same kernel version's sources.
         add_mod configfs || skip "no configfs module in $KPKG"
         need_pkgs make "linux-headers-$KVER"
-        (cd "$W/debs" && { ls ${SRCPKG}_*.deb >/dev/null 2>&1 || $APT download "$SRCPKG=$PVER" >/dev/null 2>&1; }) ||
+        [ -f "$SDEB" ] || (cd "$W/debs" && $APT download "$SRCPKG=$PVER" >/dev/null 2>&1) ||
             skip "cannot download $SRCPKG=$PVER"
         mkdir -p "$K/kmod" "$K/src"
-        dpkg-deb --fsys-tarfile "$W/debs/${SRCPKG}"_*.deb | tar -xO "./usr/src/$SRCPKG.tar.xz" | xz -dc |
+        dpkg-deb --fsys-tarfile "$SDEB" | tar -xO "./usr/src/$SRCPKG.tar.xz" | xz -dc |
             tar -x -C "$K/src" --strip-components=1 --wildcards '*/drivers/gpio/gpio-sim.c' \
                 '*/drivers/gpio/gpiolib.h' '*/kernel/irq/irq_sim.c' || skip "cannot unpack $SRCPKG"
         cp "$K/src/drivers/gpio/gpio-sim.c" "$K/src/drivers/gpio/gpiolib.h" "$K/src/kernel/irq/irq_sim.c" "$K/kmod/"
