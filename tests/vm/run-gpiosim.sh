@@ -8,8 +8,9 @@
 # The kernel is Debian's (linux-image-amd64 of this machine's apt). Its modules are under
 # /lib/modules (Debian 12) or /usr/lib/modules (Debian 13), plain or compressed (.ko.xz,
 # .ko.zst): they are decompressed here, because busybox insmod in the initramfs takes plain .ko.
-# When the kernel ships gpio-sim (CONFIG_GPIO_SIM=m) that module and its dependencies are used;
-# else (Debian 12) irq_sim and gpio-sim are built out of tree from the matching linux-source
+# When the kernel ships gpio-sim (CONFIG_GPIO_SIM=m) that module and its dependencies are used
+# (no Debian kernel does yet, so that branch is not exercised here); else (Debian 12 and 13)
+# irq_sim and gpio-sim are built out of tree from the matching linux-source
 # (see /work/shared/research/feasibility-gpiosim.md for why and for the one-line irq_sim patch).
 #
 # Env: QO_VM_DIR (cache, default build/vm), QO_VM_INSTALL=0 to never apt-get install,
