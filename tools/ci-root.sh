@@ -65,7 +65,8 @@ if [ ! -f "$R/.qorient-ci-ready" ]; then
     say "debootstrap --variant=minbase $SUITE from $MIRROR"
     debootstrap --variant=minbase "$SUITE" "$R" "$MIRROR" >"$BASE/$SUITE.debootstrap.log" 2>&1 ||
         { tail -n 20 "$BASE/$SUITE.debootstrap.log" >&2; skip "debootstrap failed (log: $BASE/$SUITE.debootstrap.log)"; }
-    # The security suite too, as on an installed machine (its name changed with bookworm).
+    # The updates suite too, as on an installed machine (security updates come from another
+    # archive, debian-security, that a mirror of the main archive need not carry: not added).
     printf 'deb %s %s main\ndeb %s %s-updates main\n' "$MIRROR" "$SUITE" "$MIRROR" "$SUITE" \
         >"$R/etc/apt/sources.list"
     touch "$R/.qorient-ci-ready"

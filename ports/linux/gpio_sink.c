@@ -357,7 +357,8 @@ static int lg_slot(qo_gpio_libgpiod *b)
 }
 
 #if defined(QO_GPIOD_V2)
-/* ==== libgpiod 2.x: UNTESTED in this repository's CI (Debian bookworm ships 1.6.3) ==== */
+/* ==== libgpiod 2.x (Debian 13, Raspberry Pi OS trixie). Tested against the kernel's gpio-sim by
+ * `make test-vm` in CI's trixie stage (tools/ci-trixie.sh); Debian 12 ships 1.6.3 (v1 below). ==== */
 
 /* Opens a chip by path, by name under /dev, or by label (scanning /dev/gpiochip*). */
 static struct gpiod_chip *lg2_open_chip(const char *desc)
