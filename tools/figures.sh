@@ -2,6 +2,7 @@
 # tools/figures.sh [--check] - every table of docs/FIGURES.md, regenerated from the code.
 #
 #   sh tools/figures.sh          (make figures)        rewrites every section in place
+#   FIGURES_ONLY="sizes" sh tools/figures.sh                 only the sections named
 #   sh tools/figures.sh --check  (make figures-check)  regenerates the deterministic sections and
 #                                                      fails (exit 1, with a diff) when they differ
 #                                                      from what is committed
@@ -20,6 +21,8 @@ ir check
 sizes check
 m0 check
 timing live
+motion live
+stream live
 "
 DOC=docs/FIGURES.md
 BUILD=${BUILD:-build}
@@ -47,6 +50,8 @@ cp "$DOC" "$W/FIGURES.md"
 echo "$SECTIONS" | while read -r name kind; do
     [ -n "$name" ] || continue
     [ $check = 1 ] && [ "$kind" != check ] && continue
+    # FIGURES_ONLY="sizes m0": only those sections (the others are kept as they are)
+    [ -n "${FIGURES_ONLY:-}" ] && case " $FIGURES_ONLY " in *" $name "*) ;; *) continue;; esac
     echo "figures: $name" >&2
     sh "tools/figures/$name.sh" > "$W/$name.md"
     b="<!-- figures:$name begin -->"; e="<!-- figures:$name end -->"

@@ -173,7 +173,7 @@ int main(void)
 }
 EOF
 
-FX_SRC="lib/src/fxmath_fx.c lib/src/quat_fx.c lib/src/convert_fx.c lib/src/euler_fx.c"
+FX_SRC="lib/src/fxmath_fx.c lib/src/quat_fx.c lib/src/convert_fx.c lib/src/euler_fx.c lib/src/euler_seq.c"
 F32_SRC="lib/src/quat.c lib/src/euler.c lib/src/interp.c lib/src/fmath.c lib/src/status.c"
 HAVE_INTERP_FX=0
 if [ -f lib/src/interp_fx.c ]; then FX_SRC="$FX_SRC lib/src/interp_fx.c"; HAVE_INTERP_FX=1; fi

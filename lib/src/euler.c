@@ -13,6 +13,7 @@
 #include <math.h>
 
 #include "qorient/fmath.h"
+#include "euler_seq_internal.h"
 
 #define HALF_PI_F 1.57079632679490f
 /* 2*pi split for Cody-Waite reduction: HI has 8 significant bits, so k*HI is exact for
@@ -23,63 +24,6 @@
 /* pi split the same way, for the second solution's a + pi. */
 #define PI_HI 3.140625f
 #define PI_LO 0.000967653589793116f
-
-/* Axes of the 12 base sequences (enum order); 0 = x, 1 = y, 2 = z. */
-static const unsigned char seq_axes[12][3] = {
-    {0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0},
-    {0, 1, 0}, {0, 2, 0}, {1, 0, 1}, {1, 2, 1}, {2, 0, 2}, {2, 1, 2},
-};
-
-static const char *const seq_names[QO_EULER_SEQ_COUNT_] = {
-    "xyz", "xzy", "yxz", "yzx", "zxy", "zyx", "xyx", "xzx", "yxy", "yzy", "zxz", "zyz",
-    "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX", "XYX", "XZX", "YXY", "YZY", "ZXZ", "ZYZ",
-};
-
-static int seq_valid(qo_euler_seq seq)
-{
-    /* unsigned compare: also right where enums are unsigned chars (-fshort-enums on ARM EABI) */
-    return (unsigned)seq < (unsigned)QO_EULER_SEQ_COUNT_;
-}
-
-qo_status qo_euler_seq_parse(const char *s, qo_euler_seq *out)
-{
-    int ax[3], i, upper = 0;
-    if (out == NULL) return QO_E_NULL;
-    *out = QO_EULER_SEQ_COUNT_;
-    if (s == NULL) return QO_E_NULL;
-    for (i = 0; i < 3; i++) {
-        char c = s[i];
-        int up;
-        if (c >= 'x' && c <= 'z') { ax[i] = c - 'x'; up = 0; }
-        else if (c >= 'X' && c <= 'Z') { ax[i] = c - 'X'; up = 1; }
-        else return QO_E_ARG; /* also stops at the terminator of a short string */
-        if (i == 0) upper = up;
-        else if (up != upper) return QO_E_ARG;
-    }
-    if (s[3] != '\0') return QO_E_ARG;
-    for (i = 0; i < 12; i++) {
-        if (seq_axes[i][0] == ax[0] && seq_axes[i][1] == ax[1] && seq_axes[i][2] == ax[2]) {
-            *out = (qo_euler_seq)(i + (upper ? 12 : 0));
-            return QO_OK;
-        }
-    }
-    return QO_E_ARG; /* two consecutive equal axes */
-}
-
-const char *qo_euler_seq_name(qo_euler_seq seq)
-{
-    return seq_valid(seq) ? seq_names[seq] : "invalid";
-}
-
-int qo_euler_seq_is_intrinsic(qo_euler_seq seq)
-{
-    return seq_valid(seq) && (int)seq >= 12;
-}
-
-int qo_euler_seq_is_proper(qo_euler_seq seq)
-{
-    return seq_valid(seq) && ((int)seq % 12) >= 6;
-}
 
 /* Rotation by angle t (rad) about coordinate axis `axis`. */
 static qo_quat_f32 elem_quat(int axis, float t)
@@ -106,9 +50,9 @@ qo_status qo_quat_from_euler_f32(qo_euler_seq seq, qo_euler_f32 e, qo_quat_f32 *
     qo_quat_f32 q1, q2, q3;
     if (out == NULL) return QO_E_NULL;
     *out = qo_quat_identity_f32();
-    if (!seq_valid(seq)) return QO_E_ARG;
+    if (!qo_euler_seq_valid(seq)) return QO_E_ARG;
     if (!isfinite(e.a1) || !isfinite(e.a2) || !isfinite(e.a3)) return QO_E_NONFINITE;
-    ax = seq_axes[(int)seq % 12];
+    ax = qo_euler_seq_axes[(int)seq % 12];
     q1 = elem_quat(ax[0], e.a1);
     q2 = elem_quat(ax[1], e.a2);
     q3 = elem_quat(ax[2], e.a3);
@@ -170,7 +114,7 @@ static qo_quat_f32 scale_pow2(qo_quat_f32 q)
  * atan2 is skipped when it is certainly larger (margin is then reported as pi/2). */
 static decomp decompose(qo_quat_f32 q, qo_euler_seq seq, float skip_band)
 {
-    const unsigned char *ax = seq_axes[(int)seq % 12];
+    const unsigned char *ax = qo_euler_seq_axes[(int)seq % 12];
     int intrinsic = (int)seq >= 12;
     int i = intrinsic ? ax[0] : ax[2];
     int j = ax[1];
@@ -234,7 +178,7 @@ static decomp decompose(qo_quat_f32 q, qo_euler_seq seq, float skip_band)
  * maximises |<q_axis(a1), p>|. Result in [-pi, pi]. */
 static float fit_a1(qo_quat_f32 q, qo_euler_seq seq, float a2, float a3)
 {
-    const unsigned char *ax = seq_axes[(int)seq % 12];
+    const unsigned char *ax = qo_euler_seq_axes[(int)seq % 12];
     qo_quat_f32 c2 = qo_quat_conj_f32(elem_quat(ax[1], a2));
     qo_quat_f32 c3 = qo_quat_conj_f32(elem_quat(ax[2], a3));
     qo_quat_f32 p;
@@ -253,7 +197,7 @@ static void set_error_outputs(qo_euler_f32 *out, qo_euler_info_f32 *info)
 static qo_status check_args(qo_quat_f32 q, qo_euler_seq seq, float band, qo_quat_f32 *qn)
 {
     *qn = q;
-    if (!seq_valid(seq)) return QO_E_ARG;
+    if (!qo_euler_seq_valid(seq)) return QO_E_ARG;
     if (!isfinite(band)) return QO_E_NONFINITE;
     if (!qo_quat_is_finite_f32(q)) return QO_E_NONFINITE;
     if (q.w == 0.0f && q.x == 0.0f && q.y == 0.0f && q.z == 0.0f) return QO_E_DEGENERATE;
@@ -302,7 +246,7 @@ qo_status qo_quat_to_euler_near_f32(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f3
     int prev_ok = isfinite(prev.a1) && isfinite(prev.a2) && isfinite(prev.a3);
     if (out == NULL) return QO_E_NULL;
     set_error_outputs(out, info);
-    if (!prev_ok) return seq_valid(seq) ? QO_E_NONFINITE : QO_E_ARG;
+    if (!prev_ok) return qo_euler_seq_valid(seq) ? QO_E_NONFINITE : QO_E_ARG;
     st = check_args(q, seq, band, &qn);
     if (st != QO_OK) {
         *out = prev; /* hold the joint */

@@ -18,26 +18,12 @@
 #include "qorient/fxmath.h"
 
 #include "fx_internal.h"
+#include "euler_seq_internal.h"
 
 /* pi and 2pi in Q8.56 (int64, rounded): the angle arithmetic of the nearest-solution variant
  * is done at 2^-56 and rounded to Q3.28 once. */
 #define PI_Q56     ((int64_t)226375608064910089LL)
 #define TWO_PI_Q56 ((int64_t)452751216129820178LL)
-
-/* Axes of the 12 base sequences in enum order (0 = x, 1 = y, 2 = z): the same table as the
- * _f32 core's, kept private here so the fixed core links nothing from euler.c. */
-static const unsigned char seq_axes[12][3] = {
-    {0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0},
-    {0, 1, 0}, {0, 2, 0}, {1, 0, 1}, {1, 2, 1}, {2, 0, 2}, {2, 1, 2},
-};
-
-static int seq_valid(qo_euler_seq seq)
-{
-    /* unsigned compare: also right where enums are unsigned chars (-fshort-enums on ARM EABI) */
-    return (unsigned)seq < (unsigned)QO_EULER_SEQ_COUNT_;
-}
-
-static int seq_proper(qo_euler_seq seq) { return ((int)seq % 12) >= 6; }
 
 /* A quaternion held in int64 components, w x y z = v[0..3]. */
 typedef struct q64 { int64_t v[4]; } q64;
@@ -138,8 +124,8 @@ qo_status qo_quat_from_euler_q30(qo_euler_seq seq, qo_euler_q28 e, qo_quat_q30 *
     q64 q1, q2, q3, p;
     if (out == NULL) return QO_E_NULL;
     *out = identity_q30();
-    if (!seq_valid(seq)) return QO_E_ARG;
-    ax = seq_axes[(int)seq % 12];
+    if (!qo_euler_seq_valid(seq)) return QO_E_ARG;
+    ax = qo_euler_seq_axes[(int)seq % 12];
     q1 = elem_quat(ax[0], e.a1, 1);
     q2 = elem_quat(ax[1], e.a2, 1);
     q3 = elem_quat(ax[2], e.a3, 1);
@@ -194,7 +180,7 @@ static int64_t half_diff(uint64_t s1, uint64_t s2)
 
 static decomp decompose(q64 q, qo_euler_seq seq)
 {
-    const unsigned char *ax = seq_axes[(int)seq % 12];
+    const unsigned char *ax = qo_euler_seq_axes[(int)seq % 12];
     int intrinsic = (int)seq >= 12;
     int i = intrinsic ? ax[0] : ax[2];
     int j = ax[1];
@@ -257,7 +243,7 @@ static decomp decompose(q64 q, qo_euler_seq seq)
  * (2uv, u^2 - v^2), already in [-pi, pi] and independent of the sign of p. */
 static qo_q28 fit_a1(q64 q, qo_euler_seq seq, qo_q28 a2, qo_q28 a3)
 {
-    const unsigned char *ax = seq_axes[(int)seq % 12];
+    const unsigned char *ax = qo_euler_seq_axes[(int)seq % 12];
     q64 c2 = elem_quat(ax[1], a2, -1);
     q64 c3 = elem_quat(ax[2], a3, -1);
     q64 p;
@@ -280,7 +266,7 @@ static void set_error_outputs(qo_euler_q28 *out, qo_euler_info_q28 *info)
 /* Shared argument checks (the order of the _f32 core); on success *qs is q scaled. */
 static qo_status check_args(qo_quat_q30 q, qo_euler_seq seq, qo_q28 band, q64 *qs)
 {
-    if (!seq_valid(seq)) return QO_E_ARG;
+    if (!qo_euler_seq_valid(seq)) return QO_E_ARG;
     if (q.w == 0 && q.x == 0 && q.y == 0 && q.z == 0) return QO_E_DEGENERATE;
     if (band < 0 || band > QO_Q28_HALF_PI) return QO_E_RANGE;
     *qs = scale_pow2(q);
@@ -366,7 +352,7 @@ qo_status qo_quat_to_euler_near_q30(qo_quat_q30 q, qo_euler_seq seq, qo_euler_q2
     r = decompose(qs, seq);
     /* The second solution: (a1 + pi, pi - a2, a3 + pi) Tait-Bryan, (a1 + pi, -a2, a3 + pi)
      * proper; pi added exactly at 2^-56. */
-    alt2 = seq_proper(seq) ? -q56_from_q28(r.e.a2) : PI_Q56 - q56_from_q28(r.e.a2);
+    alt2 = qo_euler_seq_is_proper(seq) ? -q56_from_q28(r.e.a2) : PI_Q56 - q56_from_q28(r.e.a2);
     p2 = unwrap_toward(q56_from_q28(r.e.a2), prev.a2);
     alt2 = unwrap_toward(alt2, prev.a2);
     dp2 = diff_q28(p2, prev.a2);
@@ -377,7 +363,7 @@ qo_status qo_quat_to_euler_near_q30(qo_quat_q30 q, qo_euler_seq seq, qo_euler_q2
          * flips the sign of its quaternion, which the fit ignores). */
         if ((da2 < 0 ? -da2 : da2) < (dp2 < 0 ? -dp2 : dp2)) {
             p2 = alt2;
-            a2_in_range = seq_proper(seq) ? -r.e.a2 : (qo_q28)qo_fx_rshift_round_up(PI_Q56 - q56_from_q28(r.e.a2), 28);
+            a2_in_range = qo_euler_seq_is_proper(seq) ? -r.e.a2 : (qo_q28)qo_fx_rshift_round_up(PI_Q56 - q56_from_q28(r.e.a2), 28);
         } else {
             a2_in_range = r.e.a2;
         }

@@ -1,6 +1,7 @@
 /* Online point-to-point motion, float32. See qorient/motion.h for the contract and the design. */
 #include "qorient/motion.h"
 
+#include <float.h>
 #include <math.h>
 
 const qo_motion_settings_f32 qo_motion_settings_default = { QO_MOTION_SCURVE, QO_MOTION_SYNC_TIME };
@@ -261,6 +262,23 @@ static void consider(float vc, float tc, float dur, float *bv, float *bt, float 
     }
 }
 
+/* Cube root of a >= 0 (0 for a <= 0 or NaN): a first guess from the exponent bits (Kahan's
+ * division of the biased exponent by 3), then Newton steps y <- (2y + a/y^2)/3, quadratic from
+ * within a few percent. Not libm's cbrtf, so every target gives the same bits (the caller
+ * checks the closed form's residual and falls back to the root search on any doubt). */
+static float cbrt_pos(float a)
+{
+    union { float f; uint32_t u; } b;
+    float y;
+    int k;
+    if (!(a > 0.0f) || a > FLT_MAX) return a > FLT_MAX ? a : 0.0f;
+    b.f = a;
+    b.u = b.u / 3u + 709921077u;
+    y = b.f;
+    for (k = 0; k < 4; k++) y = (2.0f * y + a / (y * y)) / 3.0f;
+    return y;
+}
+
 /* Rest-to-rest SCURVE in closed form (the common case: a joint that has arrived). Peak velocity
  * x >= 0 of the symmetric profile covering distance D: with the acceleration limit reached
  * (x >= A^2/J) D = x (x/A + A/J), else D = 2 x sqrt(x/J). Used as a fast path: the profile's
@@ -272,7 +290,7 @@ static float rest_peak(float D, const qo_motion_limits_f32 *l, float *slope)
         x = 0.5f * A * (sqrtf(aj * aj + 4.0f * D / A) - aj);
         *slope = 2.0f * x / A + aj;
     } else {
-        t = cbrtf(0.5f * D * sqrtf(J));
+        t = cbrt_pos(0.5f * D * sqrtf(J));
         x = t * t;
         *slope = 3.0f * sqrtf(x / J);
     }

@@ -13,9 +13,8 @@
  *   qo_quat_to_euler_band_q30()  the same with a caller-chosen lock band
  *   qo_quat_to_euler_near_q30()  quaternion -> the solution nearest previous angles (joints)
  * The sequence type qo_euler_seq and its helpers (qo_euler_seq_parse, _name, _is_intrinsic,
- * _is_proper) are euler.h's: they are shared by both cores. (They are compiled in the float32
- * source; firmware that must link nothing of it uses the QO_EULER_* constants directly - the
- * functions below never call those helpers.)
+ * _is_proper) are qorient/euler_seq.h's, shared by both cores (lib/src/euler_seq.c: no float,
+ * part of the fixed-only build too).
  *
  * Conventions: exactly those of qorient/euler.h (scipy's names: lower case extrinsic, upper
  * case intrinsic; a1, a2, a3 belong to the axes in the order written; extrinsic "xyz" is
@@ -77,7 +76,7 @@
 #ifndef QORIENT_EULER_FX_H
 #define QORIENT_EULER_FX_H
 
-#include "qorient/euler.h"
+#include "qorient/euler_seq.h"
 #include "qorient/status.h"
 #include "qorient/types.h"
 
