@@ -164,6 +164,8 @@ static qo_status push_target(qo_traj *tr, qo_traj_ns t, const float *pos)
         qo_status st = qo_motion_init_f32(&tr->planner, tr->joints, n, tr->limits, pos, 0.0f,
                                           &tr->motion_set);
         if (st != QO_OK) return st;
+        /* The init reset the planner's duration rules: the caller's rules come back. */
+        (void)qo_motion_set_timing_f32(&tr->planner, tr->min_duration, tr->period);
         tr->started = 1;
         tr->start_ns = tr->origin = tr->last_push = tr->last_sample = t;
         return QO_OK;
@@ -175,6 +177,20 @@ static qo_status push_target(qo_traj *tr, qo_traj_ns t, const float *pos)
     memcpy(tr->queue_p + slot * n, pos, n * sizeof *pos);
     tr->count++;
     tr->last_push = t;
+    return QO_OK;
+}
+
+qo_status qo_traj_set_timing(qo_traj *tr, float min_duration, float period)
+{
+    qo_status st;
+    if (tr == NULL) return QO_E_NULL;
+    if (tr->kind != QO_TRAJ_TARGETS || tr->n == 0) return QO_E_STATE;
+    /* The planner is initialised from qo_traj_init_targets on (a trial start before the first
+     * push), so its own checks decide; stored too for the start's re-init. */
+    st = qo_motion_set_timing_f32(&tr->planner, min_duration, period);
+    if (st != QO_OK) return st;
+    tr->min_duration = min_duration;
+    tr->period = period;
     return QO_OK;
 }
 
