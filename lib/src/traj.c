@@ -345,16 +345,25 @@ size_t qo_traj_joints(const qo_traj *tr)
     return (tr == NULL || tr->kind == QO_TRAJ_NONE) ? 0 : tr->n;
 }
 
-/* Seconds (finite, >= 0, float32) to ns, rounded up so "done at end" holds at the end. */
+/* Seconds (finite, >= 0, float32) to ns, rounded up exactly (from the float's bits: s =
+ * m * 2^e, so s * 1e9 = m * 1e9 * 2^e with m * 1e9 < 2^54), so "done at end" holds at the end
+ * and a duration of whole ns (a plan ending on a control tick) gets no extra ns. */
 static qo_traj_ns ns_up(float s)
 {
-    float whole;
-    qo_traj_ns ns;
+    uint32_t bits;
+    int e;
+    qo_traj_ns m;
     if (!(s > 0.0f)) return 0;
     if (s > 4.0e9f) return QO_TRAJ_TIME_MAX; /* not reachable for checked plans */
-    whole = (float)(qo_traj_ns)s;
-    ns = (qo_traj_ns)whole * QO_TRAJ_NS_PER_S;
-    return ns + (qo_traj_ns)((s - whole) * 1e9f) + 1;
+    memcpy(&bits, &s, sizeof bits);
+    e = (int)((bits >> 23) & 0xffu);
+    m = (qo_traj_ns)(bits & 0x7fffffu);
+    if (e == 0) return 1; /* subnormal: below 1 ns */
+    m = (m | 0x800000) * QO_TRAJ_NS_PER_S;
+    e -= 150;
+    if (e >= 0) return m << e;
+    if (-e > 54) return 1;
+    return (m + (((qo_traj_ns)1 << -e) - 1)) >> -e;
 }
 
 qo_status qo_traj_end_time(const qo_traj *tr, qo_traj_ns *end)
