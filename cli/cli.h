@@ -57,7 +57,7 @@ enum qo_cli_plan_optid {
     QO_CLI_OPT_PROFILE = 256, QO_CLI_OPT_RATE, QO_CLI_OPT_END, QO_CLI_OPT_COLUMNS, QO_CLI_OPT_DERIVS,
     QO_CLI_OPT_MIN, QO_CLI_OPT_MAX, QO_CLI_OPT_WRAP, QO_CLI_OPT_UNWRAPPED, QO_CLI_OPT_DEGREES,
     QO_CLI_OPT_FIXED, QO_CLI_OPT_VMAX, QO_CLI_OPT_AMAX, QO_CLI_OPT_JMAX, QO_CLI_OPT_SYNC,
-    QO_CLI_OPT_MAX_SAMPLES, QO_CLI_OPT_LAST_
+    QO_CLI_OPT_MAX_SAMPLES, QO_CLI_OPT_MIN_DURATION, QO_CLI_OPT_DISCRETE, QO_CLI_OPT_LAST_
 };
 /* The getopt_long entries of the planning options (one table for plan and stream). */
 #define QO_CLI_PLAN_OPTIONS                                                                       \
@@ -76,7 +76,9 @@ enum qo_cli_plan_optid {
     { "amax", required_argument, NULL, QO_CLI_OPT_AMAX },                                         \
     { "jmax", required_argument, NULL, QO_CLI_OPT_JMAX },                                         \
     { "sync", required_argument, NULL, QO_CLI_OPT_SYNC },                                         \
-    { "max-samples", required_argument, NULL, QO_CLI_OPT_MAX_SAMPLES }
+    { "max-samples", required_argument, NULL, QO_CLI_OPT_MAX_SAMPLES },                           \
+    { "min-duration", required_argument, NULL, QO_CLI_OPT_MIN_DURATION },                         \
+    { "discrete", no_argument, NULL, QO_CLI_OPT_DISCRETE }
 
 /* The planning options as given. Lists stay text until the joint count is known. */
 struct qo_cli_plan_opts {
@@ -89,6 +91,8 @@ struct qo_cli_plan_opts {
     qo_motion_sync sync;
     const char *vmax, *amax, *jmax, *min, *max, *wrap;
     double rate, max_samples;
+    double min_duration;        /* --min-duration S (0 = none) */
+    int discrete;               /* --discrete: durations in whole periods of --rate */
     int degrees, unwrapped, fixed;
     const char *key_opt, *motion_opt; /* an option of the other mode, to refuse by name */
 };

@@ -80,6 +80,12 @@ int qo_cli_plan_opt(const char *who, struct qo_cli_plan_opts *o, int opt, const 
         o->sync = (qo_motion_sync)k;
         if (!o->motion_opt) o->motion_opt = "--sync";
         return 0;
+    case QO_CLI_OPT_MIN_DURATION:
+        if (qo_cli_number(who, "--min-duration", arg, 0.0, QO_MOTION_DURATION_MAX, "s", &o->min_duration))
+            return 2;
+        if (!o->motion_opt) o->motion_opt = "--min-duration";
+        return 0;
+    case QO_CLI_OPT_DISCRETE: o->discrete = 1; if (!o->motion_opt) o->motion_opt = "--discrete"; return 0;
     case QO_CLI_OPT_VMAX: o->vmax = arg; if (!o->motion_opt) o->motion_opt = "--vmax"; return 0;
     case QO_CLI_OPT_AMAX: o->amax = arg; if (!o->motion_opt) o->motion_opt = "--amax"; return 0;
     case QO_CLI_OPT_JMAX: o->jmax = arg; if (!o->motion_opt) o->motion_opt = "--jmax"; return 0;
@@ -331,6 +337,10 @@ int qo_cli_plan_build(const char *who, const struct qo_cli_plan_opts *o, size_t 
         p->store = len ? malloc(len * sizeof *p->store) : NULL;
         if (!p->t || !p->store) goto oom;
         st = qo_traj_init_targets(&p->tr, n, p->lim, &ms, p->joints, p->t, cap, p->store, len);
+        /* --discrete: the sample period is the control period, so a move issued on a sample
+         * ends on one (1/rate is within the planner's period range for every --rate). */
+        if (st == QO_OK)
+            st = qo_traj_set_timing(&p->tr, (float)o->min_duration, o->discrete ? (float)(1.0 / o->rate) : 0.0f);
     }
     if (st != QO_OK) {
         fprintf(stderr, "qorient %s: cannot set up the plan: %s\n", who, qo_status_str(st));

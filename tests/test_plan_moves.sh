@@ -16,7 +16,7 @@ P() { "$Q" plan "$@"; }
 # --help documents every option
 P --profile scurve --help >"$tmp.h" 2>&1; rc=$?
 check "help exit 0" [ $rc -eq 0 ]
-for o in --profile --vmax --amax --jmax --rate --sync --min --max --wrap --degrees --fixed --help; do
+for o in --profile --vmax --amax --jmax --rate --sync --min --max --wrap --degrees --fixed --min-duration --discrete --help; do
     check "help mentions $o" grep -q -- "$o" "$tmp.h"
 done
 
@@ -115,6 +115,62 @@ done
 P --profile trapezoid --vmax 1 --amax 1 /nonexistent/file >"$tmp.o" 2>"$tmp.e"; rc=$?
 check "missing file exit 1" [ $rc -eq 1 ]
 check "missing file named" grep -q "/nonexistent/file: No such file" "$tmp.e"
+
+# --discrete: durations in whole periods of --rate, so a move issued on a row ends on a row.
+# Trapezoid, amax 4 at 100 Hz: the last moving row is one period before the end, so its speed
+# is amax/rate = 0.04 exactly when the stop lands on a row (without --discrete it is less);
+# the next row is at rest (|v| <= 1e-6: float32 rounding of the phase sums) and the plan ends
+# there, all velocities 0. The last moving row's time is on the 0.01 grid.
+for d in 0.37 1.234 -2.5 7.77; do
+    printf '0,0\n0.2,%s\n' "$d" | P --profile trapezoid --vmax 2 --amax 4 --rate 100 --discrete >"$tmp.o" 2>"$tmp.e"; rc=$?
+    check "discrete $d exit 0" [ $rc -eq 0 ]
+    check "discrete $d: last moving row on the grid, stopping at amax/rate" awk -F, -v d="$d" '
+        { v = $3 < 0 ? -$3 : $3 }
+        v > 1e-6 { lt = $1; lv = v; mov = NR }
+        END {
+            k = lt * 100; if (k - int(k + 0.5) > 1e-6 || int(k + 0.5) - k > 1e-6) exit 1
+            if (lv < 0.04 * (1 - 1e-4) || lv > 0.04 * (1 + 1e-4)) exit 1
+            if (NR != mov + 1 && NR != mov + 2) exit 1
+        }' "$tmp.o"
+    check "discrete $d: ends at rest on target" awk -F, -v d="$d" 'END { e = $2 - d; if ($3 != 0 || $4 != 0 || e > 1e-6 || e < -1e-6) exit 1 }' "$tmp.o"
+    check "discrete $d: the row after the last moving one is at rest" awk -F, '
+        { v = $3 < 0 ? -$3 : $3 } v > 1e-6 { mov = NR; next } NR == mov + 1 { ok = (v <= 1e-6) } END { exit !ok }' "$tmp.o"
+done
+# the same move without --discrete: the stop falls between rows (the check above is not vacuous)
+printf '0,0\n0.2,0.37\n' | P --profile trapezoid --vmax 2 --amax 4 --rate 100 >"$tmp.o" 2>"$tmp.e"
+check "not discrete: last moving row slower than amax/rate" awk -F, '
+    { v = $3 < 0 ? -$3 : $3 } v > 1e-6 { lv = v } END { exit !(lv < 0.04 * (1 - 1e-3)) }' "$tmp.o"
+# scurve, 2 joints: the last moving row has |a| = jmax/rate on the moving joint, then rest
+printf '0,0,1\n0.2,0.37,-1\n' | P --profile scurve --vmax 2 --amax 4 --jmax 10 --rate 100 --discrete >"$tmp.o" 2>"$tmp.e"; rc=$?
+check "discrete scurve exit 0" [ $rc -eq 0 ]
+check "discrete scurve: stop lands on a row" awk -F, '
+    { v = $4 < 0 ? -$4 : $4; a = $6 < 0 ? -$6 : $6 } v > 1e-6 { la = a } END { exit !(la > 0.1 * 0.999 && la < 0.1 * 1.001) }' "$tmp.o"
+check "discrete scurve: ends at rest" awk -F, 'END { if ($4 != 0 || $5 != 0 || $6 != 0 || $7 != 0) exit 1 }' "$tmp.o"
+
+# --min-duration 2: a tiny move issued at 0.5 s lasts 2 s: the last sample is at 2.5 s
+printf '0,0\n0.5,0.001\n' | P --profile scurve --vmax 2 --amax 4 --jmax 10 --min-duration 2 >"$tmp.o" 2>"$tmp.e"; rc=$?
+check "min-duration exit 0" [ $rc -eq 0 ]
+check "min-duration: last sample 2 s after the target" awk -F, 'END { if ($1 != 2.5 || $3 != 0) exit 1 }' "$tmp.o"
+printf '0,0\n0.5,0.001\n' | P --profile scurve --vmax 2 --amax 4 --jmax 10 >"$tmp.o" 2>"$tmp.e"
+check "without min-duration the tiny move is short" awk -F, 'END { if ($1 > 1.0) exit 1 }' "$tmp.o"
+# bad values, and both options with a keyframe profile: exit 2 naming the option
+for args in "--min-duration -1" "--min-duration nan" "--min-duration abc" "--min-duration inf" \
+    "--min-duration 1e5" "--min-duration="; do
+    # shellcheck disable=SC2086
+    printf '0,0\n0.5,1\n' | P --profile scurve --vmax 1 --amax 1 --jmax 1 $args >"$tmp.o" 2>"$tmp.e"; rc=$?
+    check "refused exit 2: $args" [ $rc -eq 2 ]
+    check "refused names the option: $args" grep -q -- "--min-duration" "$tmp.e"
+    check "refused prints nothing: $args" [ ! -s "$tmp.o" ]
+done
+for args in "--discrete" "--min-duration 1" "--profile linear --discrete"; do
+    # shellcheck disable=SC2086
+    printf '0,0\n1,1\n' | P $args >"$tmp.o" 2>"$tmp.e"; rc=$?
+    check "keyframes refuse: $args" [ $rc -eq 2 ]
+    case $args in *discrete) o=--discrete ;; *) o=--min-duration ;; esac
+    check "keyframes refuse names it: $args" grep -q -- "$o applies to --profile trapezoid|scurve only" "$tmp.e"
+done
+printf '0,0\n0.5,1\n' | P --profile trapezoid --vmax 1 --amax 1 --discrete=1 >"$tmp.o" 2>"$tmp.e"; rc=$?
+check "--discrete takes no value" [ $rc -eq 2 ]
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

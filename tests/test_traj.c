@@ -4,7 +4,8 @@
  * driven by hand at small float32 times, and both against themselves shifted to t = 1e7 s
  * (the integer time scheme must make the absolute offset invisible). Fixed seeds; edges:
  * empty, one key, full storage, NaN/Inf, times not increasing, before start / after end,
- * times beyond the documented range, NULL and uninitialised objects.
+ * times beyond the documented range, NULL and uninitialised objects. Duration rules
+ * (qo_traj_set_timing): whole periods, minimum duration, refused values.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -512,6 +513,133 @@ static void test_targets_edges(void **state)
     assert_int_equal(qo_traj_store_len(QO_TRAJ_KEYS, (size_t)-1 / 2, 4, 1), 0);
 }
 
+/* Duration (ns) of the plan made by the re-plan just applied: end time minus re-plan time. */
+static qo_traj_ns plan_ns(const qo_traj *tr)
+{
+    qo_traj_ns end;
+    assert_int_equal(qo_traj_end_time(tr, &end), QO_OK);
+    return end - tr->origin;
+}
+
+/* qo_traj_set_timing with a period: every re-planned move lasts a whole number of periods (the
+ * end time rounds up by at most 1 ns) and never less than without the rule (same targets from
+ * rest); re-plans in mid-motion too. Set before the first push (it must survive the start's
+ * planner init) or after it. */
+static void check_timing_period(qo_motion_profile prof, float P, int set_before, uint64_t seed)
+{
+    static struct tgt_fix f, g;
+    float start[NJ], tg[NJ], o[NJ];
+    qo_traj_ns t = BIG;
+    int c;
+    size_t j;
+    rng.s = seed;
+    init_targets(&f, prof);
+    init_targets(&g, prof);
+    for (j = 0; j < NJ; j++) start[j] = (float)urand(-5, 5);
+    if (set_before) assert_int_equal(qo_traj_set_timing(&f.tr, 0.0f, P), QO_OK);
+    assert_int_equal(qo_traj_push(&f.tr, t, start, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_push(&g.tr, t, start, NULL, NULL), QO_OK);
+    if (!set_before) assert_int_equal(qo_traj_set_timing(&f.tr, 0.0f, P), QO_OK);
+    for (c = 0; c < 40; c++) {
+        qo_traj_ns d, dg, end, mid;
+        double k;
+        for (j = 0; j < NJ; j++) tg[j] = (float)urand(-10, 10);
+        if (c % 4 == 3) tg[c % NJ] = o[c % NJ] + 1e-3f; /* a tiny move of one joint */
+        /* from rest: both trajectories start from the same state */
+        assert_int_equal(qo_traj_push(&f.tr, t, tg, NULL, NULL), QO_OK);
+        assert_int_equal(qo_traj_push(&g.tr, t, tg, NULL, NULL), QO_OK);
+        assert_int_equal(qo_traj_sample(&f.tr, t, o, NULL, NULL, NULL), QO_OK);
+        assert_int_equal(qo_traj_sample(&g.tr, t, o, NULL, NULL, NULL), QO_OK);
+        d = plan_ns(&f.tr);
+        dg = plan_ns(&g.tr);
+        k = floor((double)d / (P * 1e9) + 0.5);
+        if (!(k >= 1.0 && fabs((double)d - k * (double)P * 1e9) <= 1e-6 * (double)d + 2.0 && d >= dg - 1)) {
+            fprintf(stderr, "timing case %d seed %llu P %g: duration %lld ns, without the rule %lld ns\n", c,
+                    (unsigned long long)seed, (double)P, (long long)d, (long long)dg);
+            fail();
+        }
+        /* a re-plan in mid-motion (a third of the way), from a moving state */
+        mid = t + d / 3;
+        for (j = 0; j < NJ; j++) tg[j] = (float)urand(-10, 10);
+        assert_int_equal(qo_traj_push(&f.tr, mid, tg, NULL, NULL), QO_OK);
+        assert_int_equal(qo_traj_sample(&f.tr, mid, o, NULL, NULL, NULL), QO_OK);
+        d = plan_ns(&f.tr);
+        k = floor((double)d / (P * 1e9) + 0.5);
+        if (!(k >= 1.0 && fabs((double)d - k * (double)P * 1e9) <= 1e-6 * (double)d + 2.0)) {
+            fprintf(stderr, "timing case %d seed %llu P %g: mid-motion duration %lld ns\n", c,
+                    (unsigned long long)seed, (double)P, (long long)d);
+            fail();
+        }
+        /* on to rest at that target, for both (g goes there from rest too) */
+        assert_int_equal(qo_traj_end_time(&f.tr, &end), QO_OK);
+        t = end + S;
+        assert_int_equal(qo_traj_sample(&f.tr, t, o, NULL, NULL, NULL), QO_OK);
+        for (j = 0; j < NJ; j++) assert_float_equal(o[j], tg[j], 1e-4 * (1.0 + fabs(tg[j])));
+        assert_int_equal(qo_traj_push(&g.tr, t, tg, NULL, NULL), QO_OK);
+        assert_int_equal(qo_traj_sample(&g.tr, t, o, NULL, NULL, NULL), QO_OK);
+        assert_int_equal(qo_traj_end_time(&g.tr, &end), QO_OK);
+        t = (end > t ? end : t) + S;
+        assert_int_equal(qo_traj_sample(&g.tr, t, o, NULL, NULL, NULL), QO_OK);
+        assert_int_equal(qo_traj_sample(&f.tr, t, o, NULL, NULL, NULL), QO_OK);
+    }
+}
+
+static void test_targets_timing_period(void **state)
+{
+    (void)state;
+    check_timing_period(QO_MOTION_SCURVE, 0.01f, 1, 51);
+    check_timing_period(QO_MOTION_TRAPEZOID, 0.01f, 0, 52);
+    check_timing_period(QO_MOTION_SCURVE, 0.001f, 0, 53);
+    check_timing_period(QO_MOTION_TRAPEZOID, 1.0f / 30.0f, 1, 54);
+}
+
+/* min_duration: a short move lasts exactly min_duration; a long one keeps its own time. Bad
+ * values are refused and change nothing; KEYS and uninitialised objects are QO_E_STATE. */
+static void test_targets_timing_min_and_edges(void **state)
+{
+    static struct tgt_fix f;
+    static struct keys_fix k;
+    float p0[NJ] = { 0, 0, 0 }, small[NJ] = { 1e-3f, 0, -1e-3f }, far[NJ] = { 30, -30, 30 }, o[NJ];
+    float bad[][2] = { { -1.0f, 0.0f }, { 0.0f, -0.01f }, { NAN, 0.0f }, { 0.0f, NAN }, { INFINITY, 0.0f },
+                       { 0.0f, 1e-7f }, { 2e4f, 0.0f }, { 0.0f, 2e4f } };
+    qo_traj_ns d;
+    size_t i;
+    qo_traj z;
+    (void)state;
+    init_targets(&f, QO_MOTION_SCURVE);
+    assert_int_equal(qo_traj_set_timing(&f.tr, 2.0f, 0.0f), QO_OK);
+    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        assert_int_equal(qo_traj_set_timing(&f.tr, bad[i][0], bad[i][1]), QO_E_ARG);
+        assert_true(f.tr.min_duration == 2.0f && f.tr.period == 0.0f);
+        assert_true(f.tr.planner.min_duration == 2.0f && f.tr.planner.period == 0.0f);
+    }
+    assert_int_equal(qo_traj_push(&f.tr, BIG, p0, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_push(&f.tr, BIG + S, small, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_sample(&f.tr, BIG + S, o, NULL, NULL, NULL), QO_OK);
+    d = plan_ns(&f.tr);
+    /* exactly 2 s up to the float32 rounding of the planner's phase sums (1e-6 relative) */
+    assert_true(d >= 2 * S - 2000 && d <= 2 * S + 2000);
+    /* refused after the start too: the rules stay */
+    assert_int_equal(qo_traj_set_timing(&f.tr, -0.5f, 0.0f), QO_E_ARG);
+    assert_true(f.tr.planner.min_duration == 2.0f);
+    /* a long move is not shortened to min_duration */
+    assert_int_equal(qo_traj_push(&f.tr, BIG + 10 * S, far, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_sample(&f.tr, BIG + 10 * S, o, NULL, NULL, NULL), QO_OK);
+    assert_true(plan_ns(&f.tr) > 3 * S);
+    /* back to off: the tiny move is fast again */
+    assert_int_equal(qo_traj_set_timing(&f.tr, 0.0f, 0.0f), QO_OK);
+    assert_int_equal(qo_traj_push(&f.tr, BIG + 100 * S, p0, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_push(&f.tr, BIG + 200 * S, small, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_sample(&f.tr, BIG + 200 * S, o, NULL, NULL, NULL), QO_OK);
+    assert_true(plan_ns(&f.tr) < S);
+    /* state and NULL */
+    init_keys(&k, QO_SPLINE_LINEAR, 1);
+    assert_int_equal(qo_traj_set_timing(&k.tr, 1.0f, 0.01f), QO_E_STATE);
+    memset(&z, 0, sizeof z);
+    assert_int_equal(qo_traj_set_timing(&z, 1.0f, 0.01f), QO_E_STATE);
+    assert_int_equal(qo_traj_set_timing(NULL, 1.0f, 0.01f), QO_E_NULL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -526,6 +654,8 @@ int main(void)
         cmocka_unit_test(test_targets_vs_planner_1e7),
         cmocka_unit_test(test_targets_queue_continuity),
         cmocka_unit_test(test_targets_edges),
+        cmocka_unit_test(test_targets_timing_period),
+        cmocka_unit_test(test_targets_timing_min_and_edges),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

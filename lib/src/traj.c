@@ -164,6 +164,8 @@ static qo_status push_target(qo_traj *tr, qo_traj_ns t, const float *pos)
         qo_status st = qo_motion_init_f32(&tr->planner, tr->joints, n, tr->limits, pos, 0.0f,
                                           &tr->motion_set);
         if (st != QO_OK) return st;
+        /* The init reset the planner's duration rules: the caller's rules come back. */
+        (void)qo_motion_set_timing_f32(&tr->planner, tr->min_duration, tr->period);
         tr->started = 1;
         tr->start_ns = tr->origin = tr->last_push = tr->last_sample = t;
         return QO_OK;
@@ -175,6 +177,20 @@ static qo_status push_target(qo_traj *tr, qo_traj_ns t, const float *pos)
     memcpy(tr->queue_p + slot * n, pos, n * sizeof *pos);
     tr->count++;
     tr->last_push = t;
+    return QO_OK;
+}
+
+qo_status qo_traj_set_timing(qo_traj *tr, float min_duration, float period)
+{
+    qo_status st;
+    if (tr == NULL) return QO_E_NULL;
+    if (tr->kind != QO_TRAJ_TARGETS || tr->n == 0) return QO_E_STATE;
+    /* The planner is initialised from qo_traj_init_targets on (a trial start before the first
+     * push), so its own checks decide; stored too for the start's re-init. */
+    st = qo_motion_set_timing_f32(&tr->planner, min_duration, period);
+    if (st != QO_OK) return st;
+    tr->min_duration = min_duration;
+    tr->period = period;
     return QO_OK;
 }
 
@@ -329,16 +345,25 @@ size_t qo_traj_joints(const qo_traj *tr)
     return (tr == NULL || tr->kind == QO_TRAJ_NONE) ? 0 : tr->n;
 }
 
-/* Seconds (finite, >= 0, float32) to ns, rounded up so "done at end" holds at the end. */
+/* Seconds (finite, >= 0, float32) to ns, rounded up exactly (from the float's bits: s =
+ * m * 2^e, so s * 1e9 = m * 1e9 * 2^e with m * 1e9 < 2^54), so "done at end" holds at the end
+ * and a duration of whole ns (a plan ending on a control tick) gets no extra ns. */
 static qo_traj_ns ns_up(float s)
 {
-    float whole;
-    qo_traj_ns ns;
+    uint32_t bits;
+    int e;
+    qo_traj_ns m;
     if (!(s > 0.0f)) return 0;
     if (s > 4.0e9f) return QO_TRAJ_TIME_MAX; /* not reachable for checked plans */
-    whole = (float)(qo_traj_ns)s;
-    ns = (qo_traj_ns)whole * QO_TRAJ_NS_PER_S;
-    return ns + (qo_traj_ns)((s - whole) * 1e9f) + 1;
+    memcpy(&bits, &s, sizeof bits);
+    e = (int)((bits >> 23) & 0xffu);
+    m = (qo_traj_ns)(bits & 0x7fffffu);
+    if (e == 0) return 1; /* subnormal: below 1 ns */
+    m = (m | 0x800000) * QO_TRAJ_NS_PER_S;
+    e -= 150;
+    if (e >= 0) return m << e;
+    if (-e > 54) return 1;
+    return (m + (((qo_traj_ns)1 << -e) - 1)) >> -e;
 }
 
 qo_status qo_traj_end_time(const qo_traj *tr, qo_traj_ns *end)

@@ -7,6 +7,7 @@
  *   qo_traj_store_len()         floats of storage a trajectory of N joints and capacity C needs
  *   qo_traj_init_keys()         set up a keyframe trajectory (qorient/spline.h profiles)
  *   qo_traj_init_targets()      set up a target queue (qorient/motion.h profiles)
+ *   qo_traj_set_timing()        TARGETS: minimum move duration, durations in whole control periods
  *   qo_traj_push()              add a keyframe / a timed target (also between samples: live)
  *   qo_traj_prepare()           plan what the pushes left pending (optional: sample does it)
  *   qo_traj_sample()            position, velocity, acceleration of every joint at a time
@@ -105,6 +106,7 @@ typedef struct qo_traj {
     qo_motion_joint_f32 *joints;
     const qo_motion_limits_f32 *limits; /* read by the first push */
     qo_motion_settings_f32 motion_set;
+    float min_duration, period;    /* qo_traj_set_timing's rules (0 = off), re-applied at the start */
     float *queue_p;                /* cap*N queued target positions */
     size_t head, count;            /* ring of queued targets */
     int started;                   /* the start (first push) is in */
@@ -155,6 +157,19 @@ qo_status qo_traj_init_keys(qo_traj *tr, size_t n_joints, const qo_spline_settin
 qo_status qo_traj_init_targets(qo_traj *tr, size_t n_joints, const qo_motion_limits_f32 *limits,
                                const qo_motion_settings_f32 *set, qo_motion_joint_f32 *joints,
                                qo_traj_ns *t_ns, size_t cap, float *store, size_t store_len);
+
+/*
+ * TARGETS: duration rules of every re-plan from now on (qo_motion_set_timing_f32): a move lasts
+ * at least min_duration seconds, and with period > 0 (the caller's control or sample period, s)
+ * its duration is rounded up to a whole number of periods, so a move issued on a tick ends on a
+ * tick. 0 = off (the default). Callable before or after the first push (the rules survive the
+ * planner's set-up at the start); a plan already running keeps its duration until the next
+ * re-plan. Braking (a refused target) still stops as fast as possible.
+ * Returns QO_OK; QO_E_NULL (tr NULL); QO_E_STATE (not initialised, or a KEYS trajectory);
+ * QO_E_ARG (either value negative, NaN or above QO_MOTION_DURATION_MAX, or a period in
+ * (0, QO_MOTION_PERIOD_MIN)): nothing changed.
+ */
+qo_status qo_traj_set_timing(qo_traj *tr, float min_duration, float period);
 
 /*
  * Adds a keyframe (KEYS) or a target (TARGETS; the first one is the start) at absolute time
