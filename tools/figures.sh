@@ -31,7 +31,7 @@ check=0
 [ "${1:-}" = --check ] && check=1
 
 # What the sections need beyond the CI base packages: installed when root, else named.
-need="valgrind g++ libcglm-dev libeigen3-dev libfixmath-dev gcc-arm-none-eabi"
+need="valgrind g++ libcglm-dev libeigen3-dev libfixmath-dev gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm"
 missing=""
 for p in $need; do dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"; done
 if [ -n "$missing" ]; then
