@@ -32,6 +32,10 @@
 #ifndef QO_MOTION_ORACLE_JOINTS
 #define QO_MOTION_ORACLE_JOINTS 10500
 #endif
+/* The other random loops scale with the count: n groups at the default 10,500, at least 1 (the
+ * emulated Cortex-M targets run a small sample: tests/qemu/cortexm.mk). */
+#define ORACLE_GROUPS(n) \
+    ((n) * QO_MOTION_ORACLE_JOINTS / 10500 > 0 ? (n) * QO_MOTION_ORACLE_JOINTS / 10500 : 1)
 #define RELTIME 1e-3 /* 0.1 % */
 #define RELLIM 1e-5
 
@@ -268,7 +272,7 @@ static void test_timing(void **state)
     int cs, bad = 0;
     (void)state;
     g.s = 1104;
-    for (cs = 0; cs < 600 && bad < 10; cs++) {
+    for (cs = 0; cs < ORACLE_GROUPS(600) && bad < 10; cs++) {
         qo_motion_planner_f32 pl;
         qo_motion_joint_f32 jts[NJ];
         jcase c[NJ];
@@ -364,7 +368,7 @@ static void test_velocity(void **state)
     int cs, bad = 0;
     (void)state;
     g.s = 1105;
-    for (cs = 0; cs < 400 && bad < 10; cs++) {
+    for (cs = 0; cs < ORACLE_GROUPS(400) && bad < 10; cs++) {
         qo_motion_planner_f32 pl;
         qo_motion_joint_f32 jts[NJ];
         jcase c[NJ];
@@ -492,7 +496,7 @@ static void test_reference_closed_form(void **state)
     int cs;
     (void)state;
     g.s = 1100;
-    for (cs = 0; cs < 300; cs++) {
+    for (cs = 0; cs < ORACLE_GROUPS(300); cs++) {
         mref_lim l;
         double D = ref_rng_range(&g, -3.0, 3.0), t, tc;
         l.vmax = ref_rng_range(&g, 0.5, 5.0);
