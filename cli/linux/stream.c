@@ -137,6 +137,13 @@ struct stream_ctx {
     long lineno;
 };
 
+/* A sample status that still gives a defined motion: a target the planner refused makes it
+ * brake (QO_E_NONFINITE, QO_E_RANGE, QO_E_LIMIT) and its samples are streamed as usual. */
+static qo_status traj_sample_ok(qo_status s)
+{
+    return s == QO_E_NONFINITE || s == QO_E_RANGE || s == QO_E_LIMIT ? QO_OK : s;
+}
+
 static qo_status sample_traj(void *vctx, double t, float *targets, size_t n)
 {
     struct stream_ctx *c = vctx;
@@ -154,8 +161,7 @@ static qo_status sample_traj(void *vctx, double t, float *targets, size_t n)
         c->ended = 1;
         qo_streamer_request_stop(c->st);
     }
-    /* A target the planner refused makes it brake (a defined motion): keep streaming it. */
-    return s == QO_E_NONFINITE || s == QO_E_RANGE || s == QO_E_LIMIT ? QO_OK : s;
+    return traj_sample_ok(s);
 }
 
 /* Reads one live line into buf (NUL bytes kept: the parser refuses them); returns its length,
@@ -284,8 +290,8 @@ static int stream_settle(qo_modbus_sink *ms, const qo_regmap *map, qo_traj *tr, 
     size_t j;
     *elapsed = 0.0;
     (void)qo_traj_end_time(tr, &end);
-    s = qo_traj_sample(tr, end, final, NULL, NULL, NULL);
-    if (s != QO_OK && s != QO_E_NONFINITE && s != QO_E_RANGE && s != QO_E_LIMIT) {
+    s = traj_sample_ok(qo_traj_sample(tr, end, final, NULL, NULL, NULL));
+    if (s != QO_OK) {
         fprintf(stderr, "qorient stream: cannot sample the final target: %s\n", qo_status_str(s));
         return 1;
     }
