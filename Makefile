@@ -107,12 +107,20 @@ $(BUILD)/tests/%: $(BUILD)/san/tests/%.o $(SCOMMON_OBJ) $(SPORT_OBJ) $(SCORE_OBJ
 	$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(PKG_LIBS) -lm -pthread -lutil
 
 # ---- figures: accuracy and speed programs in bench/ (optimised, no sanitizers) ----
+# The bench programs link tests/common (the double references, the port harness) as an archive,
+# optimised like them, so a program pulls only the objects it uses.
 BENCH_SRC := $(sort $(wildcard bench/*.c))
 BENCH_BIN := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
-$(BUILD)/bench/%: bench/%.c $(BUILD)/libqorient_ports.a $(BUILD)/libqorient.a
+BCOMMON_OBJ := $(TEST_COMMON:%.c=$(BUILD)/bench-obj/%.o)
+$(BUILD)/bench-obj/tests/%.o: tests/%.c
+	@mkdir -p $(@D)
+	$(CC) -MMD -MP $(STD) $(WARN) -Wno-double-promotion $(FPFLAGS) -O2 -g $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports -Itests $(PKG_CFLAGS) -c $< -o $@
+$(BUILD)/libqorient_testcommon.a: $(BCOMMON_OBJ)
+	rm -f $@ && ar rcs $@ $^
+$(BUILD)/bench/%: bench/%.c $(BUILD)/libqorient_testcommon.a $(BUILD)/libqorient_ports.a $(BUILD)/libqorient.a
 	@mkdir -p $(@D)
 	$(CC) $(STD) $(WARN) $(FPFLAGS) -O2 -g $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports -Itests $(PKG_CFLAGS) $< \
-	    $(BUILD)/libqorient_ports.a $(BUILD)/libqorient.a $(PKG_LIBS) -lm -pthread -lutil -o $@
+	    $(BUILD)/libqorient_testcommon.a $(BUILD)/libqorient_ports.a $(BUILD)/libqorient.a $(PKG_LIBS) -lm -pthread -lutil -o $@
 
 # docs/FIGURES.md regenerated from the code (tools/figures.sh: one script per section in
 # tools/figures/); figures-check regenerates the deterministic sections and fails when the

@@ -27,6 +27,7 @@
 #include <stdlib.h>
 #include <time.h>
 
+#include "common/dq.h"
 #include "qorient/euler.h"
 #include "qorient/quat.h"
 
@@ -37,73 +38,12 @@ static const char *const k_names[24] = {
     "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX", "XYX", "XZX", "YXY", "YZY", "ZXZ", "ZYZ",
 };
 
-static uint64_t rng_state = 0x5EED0E17ull;
-static uint64_t rng_next(void)
-{
-    uint64_t z = (rng_state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-static double uni(double lo, double hi)
-{
-    return lo + (hi - lo) * ((double)(rng_next() >> 11) * (1.0 / 9007199254740992.0));
-}
-
-typedef struct dq { double w, x, y, z; } dq;
-
-static dq dq_mul(dq a, dq b)
-{
-    dq r;
-    r.w = a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z;
-    r.x = a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y;
-    r.y = a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x;
-    r.z = a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w;
-    return r;
-}
-
-static dq dq_axis(char c, double t)
-{
-    dq q = { cos(t / 2), 0, 0, 0 };
-    double s = sin(t / 2);
-    if (c == 'x' || c == 'X') q.x = s;
-    else if (c == 'y' || c == 'Y') q.y = s;
-    else q.z = s;
-    return q;
-}
-
-static dq ref_quat(int seq, double a1, double a2, double a3)
-{
-    const char *n = k_names[seq];
-    dq q1 = dq_axis(n[0], a1), q2 = dq_axis(n[1], a2), q3 = dq_axis(n[2], a3);
-    if (n[0] >= 'X' && n[0] <= 'Z') return dq_mul(dq_mul(q1, q2), q3);
-    return dq_mul(q3, dq_mul(q2, q1));
-}
-
-static dq dq_from_f(qo_quat_f32 q)
-{
-    dq r = { q.w, q.x, q.y, q.z };
-    double n = sqrt(r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z);
-    r.w /= n; r.x /= n; r.y /= n; r.z /= n;
-    return r;
-}
-
-static qo_quat_f32 f_from_dq(dq q)
-{
-    qo_quat_f32 r = { (float)q.w, (float)q.x, (float)q.y, (float)q.z };
-    return r;
-}
-
-static double dq_angle(dq a, dq b)
-{
-    dq c = { a.w, -a.x, -a.y, -a.z };
-    dq d = dq_mul(c, b);
-    return 2.0 * atan2(sqrt(d.x * d.x + d.y * d.y + d.z * d.z), fabs(d.w));
-}
+/* double reference and fixed-seed PRNG: tests/common/ref.c */
+static ref_rng rng = { 0x5EED0E17ull };
 
 static double recomp(int seq, qo_euler_f32 e, dq q)
 {
-    return dq_angle(ref_quat(seq, e.a1, e.a2, e.a3), q);
+    return dq_angle(ref_quat_from_euler(k_names[seq], e.a1, e.a2, e.a3), q);
 }
 
 static int proper(int seq) { return k_names[seq][0] == k_names[seq][2]; }
@@ -145,17 +85,17 @@ int main(int argc, char **argv)
             int k, which, side;
 
             /* from_euler */
-            e.a1 = (float)uni(-PI_D, PI_D); e.a2 = (float)uni(-PI_D, PI_D); e.a3 = (float)uni(-PI_D, PI_D);
+            e.a1 = (float)ref_rng_range(&rng, -PI_D, PI_D); e.a2 = (float)ref_rng_range(&rng, -PI_D, PI_D); e.a3 = (float)ref_rng_range(&rng, -PI_D, PI_D);
             qo_quat_from_euler_f32((qo_euler_seq)seq, e, &qf);
-            upd(&w_from, dq_angle(dq_from_f(qf), ref_quat(seq, e.a1, e.a2, e.a3)), seq, &s_from);
+            upd(&w_from, dq_angle(dq_unit_from_f(qf), ref_quat_from_euler(k_names[seq], e.a1, e.a2, e.a3)), seq, &s_from);
 
             /* generic: uniform random rotation */
             do {
-                r.w = uni(-1, 1); r.x = uni(-1, 1); r.y = uni(-1, 1); r.z = uni(-1, 1);
+                r.w = ref_rng_range(&rng, -1, 1); r.x = ref_rng_range(&rng, -1, 1); r.y = ref_rng_range(&rng, -1, 1); r.z = ref_rng_range(&rng, -1, 1);
                 nn = r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z;
             } while (nn > 1.0 || nn < 1e-4);
-            qf = f_from_dq(r);
-            r = dq_from_f(qf);
+            qf = f_from(r);
+            r = dq_unit_from_f(qf);
             qo_quat_to_euler_f32(qf, (qo_euler_seq)seq, &o, &info);
             n_cases++;
             if (info.locked) { n_flagged_total++; upd(&max_flag_margin, info.margin, 0, NULL); }
@@ -164,18 +104,18 @@ int main(int argc, char **argv)
             /* nearest-solution variant, generic, prev a random nearby-ish triple */
             {
                 qo_euler_f32 prev;
-                prev.a1 = o.a1 + (float)uni(-2, 2); prev.a2 = o.a2 + (float)uni(-2, 2);
-                prev.a3 = o.a3 + (float)uni(-2, 2);
+                prev.a1 = o.a1 + (float)ref_rng_range(&rng, -2, 2); prev.a2 = o.a2 + (float)ref_rng_range(&rng, -2, 2);
+                prev.a3 = o.a3 + (float)ref_rng_range(&rng, -2, 2);
                 qo_quat_to_euler_near_f32(qf, (qo_euler_seq)seq, prev, QO_EULER_LOCK_BAND_F32, &o, &info);
                 upd(&w_nearfn, recomp(seq, o, r), seq, NULL);
             }
 
             /* exactly singular */
-            a1 = uni(-PI_D, PI_D); a3 = uni(-PI_D, PI_D);
-            which = (int)(rng_next() & 1);
+            a1 = ref_rng_range(&rng, -PI_D, PI_D); a3 = ref_rng_range(&rng, -PI_D, PI_D);
+            which = (int)(ref_rng_next(&rng) & 1);
             s = proper(seq) ? (which ? PI_D : 0.0) : (which ? PI_D / 2 : -PI_D / 2);
-            qf = f_from_dq(ref_quat(seq, a1, s, a3));
-            r = dq_from_f(qf);
+            qf = f_from(ref_quat_from_euler(k_names[seq], a1, s, a3));
+            r = dq_unit_from_f(qf);
             qo_quat_to_euler_f32(qf, (qo_euler_seq)seq, &o, &info);
             n_exact++; n_cases++;
             if (info.locked) { n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin, 0, NULL); }
@@ -186,9 +126,9 @@ int main(int argc, char **argv)
              * nearest the singular middle angle (pi/2 itself is not a float) */
             {
                 qo_euler_f32 se;
-                se.a1 = (float)uni(-PI_D, PI_D); se.a2 = (float)s; se.a3 = (float)uni(-PI_D, PI_D);
+                se.a1 = (float)ref_rng_range(&rng, -PI_D, PI_D); se.a2 = (float)s; se.a3 = (float)ref_rng_range(&rng, -PI_D, PI_D);
                 qo_quat_from_euler_f32((qo_euler_seq)seq, se, &qf);
-                r = ref_quat(seq, se.a1, s, se.a3);
+                r = ref_quat_from_euler(k_names[seq], se.a1, s, se.a3);
                 qo_quat_to_euler_f32(qf, (qo_euler_seq)seq, &o, &info);
                 n_exact++; n_cases++;
                 if (info.locked) { n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin, 0, NULL); }
@@ -201,14 +141,14 @@ int main(int argc, char **argv)
             {
                 int c;
                 float *comp[4];
-                qf = f_from_dq(ref_quat(seq, uni(-PI_D, PI_D), s, uni(-PI_D, PI_D)));
+                qf = f_from(ref_quat_from_euler(k_names[seq], ref_rng_range(&rng, -PI_D, PI_D), s, ref_rng_range(&rng, -PI_D, PI_D)));
                 comp[0] = &qf.w; comp[1] = &qf.x; comp[2] = &qf.y; comp[3] = &qf.z;
                 for (c = 0; c < 4; c++) {
-                    int u = (int)(rng_next() % 5) - 2;
+                    int u = (int)(ref_rng_next(&rng) % 5) - 2;
                     while (u > 0) { *comp[c] = nextafterf(*comp[c], INFINITY); u--; }
                     while (u < 0) { *comp[c] = nextafterf(*comp[c], -INFINITY); u++; }
                 }
-                r = dq_from_f(qf);
+                r = dq_unit_from_f(qf);
                 qo_quat_to_euler_f32(qf, (qo_euler_seq)seq, &o, &info);
                 n_noisy++; n_cases++;
                 if (info.locked) { n_noisy_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin, 0, NULL); }
@@ -217,12 +157,12 @@ int main(int argc, char **argv)
             }
 
             /* near lock */
-            k = (int)(rng_next() % (sizeof offs / sizeof offs[0]));
-            side = (int)(rng_next() & 1);
+            k = (int)(ref_rng_next(&rng) % (sizeof offs / sizeof offs[0]));
+            side = (int)(ref_rng_next(&rng) & 1);
             a2 = s + ((s > 0) ? -1.0 : 1.0) * (side ? -offs[k] : offs[k]);
-            a1 = uni(-PI_D, PI_D); a3 = uni(-PI_D, PI_D);
-            qf = f_from_dq(ref_quat(seq, a1, a2, a3));
-            r = dq_from_f(qf);
+            a1 = ref_rng_range(&rng, -PI_D, PI_D); a3 = ref_rng_range(&rng, -PI_D, PI_D);
+            qf = f_from(ref_quat_from_euler(k_names[seq], a1, a2, a3));
+            r = dq_unit_from_f(qf);
             qo_quat_to_euler_f32(qf, (qo_euler_seq)seq, &o, &info);
             n_cases++;
             if (info.locked) {

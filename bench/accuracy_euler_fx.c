@@ -29,6 +29,7 @@
 #include <stdlib.h>
 #include <time.h>
 
+#include "common/dq.h"
 #include "qorient/euler_fx.h"
 #include "qorient/fxmath.h"
 
@@ -41,83 +42,12 @@ static const char *const k_names[24] = {
     "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX", "XYX", "XZX", "YXY", "YZY", "ZXZ", "ZYZ",
 };
 
-static uint64_t rng_state = 0x5EED0E17ull;
-static uint64_t rng_next(void)
-{
-    uint64_t z = (rng_state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-static double uni(double lo, double hi)
-{
-    return lo + (hi - lo) * ((double)(rng_next() >> 11) * (1.0 / 9007199254740992.0));
-}
-
-typedef struct dq { double w, x, y, z; } dq;
-
-static dq dq_mul(dq a, dq b)
-{
-    dq r;
-    r.w = a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z;
-    r.x = a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y;
-    r.y = a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x;
-    r.z = a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w;
-    return r;
-}
-
-static dq dq_axis(char c, double t)
-{
-    dq q = { cos(t / 2), 0, 0, 0 };
-    double s = sin(t / 2);
-    if (c == 'x' || c == 'X') q.x = s;
-    else if (c == 'y' || c == 'Y') q.y = s;
-    else q.z = s;
-    return q;
-}
-
-static dq ref_quat(int seq, double a1, double a2, double a3)
-{
-    const char *n = k_names[seq];
-    dq q1 = dq_axis(n[0], a1), q2 = dq_axis(n[1], a2), q3 = dq_axis(n[2], a3);
-    if (n[0] >= 'X' && n[0] <= 'Z') return dq_mul(dq_mul(q1, q2), q3);
-    return dq_mul(q3, dq_mul(q2, q1));
-}
-
-static int32_t fx(double v, double scale)
-{
-    double r = floor(v * scale + 0.5);
-    if (r > 2147483647.0) r = 2147483647.0;
-    if (r < -2147483648.0) r = -2147483648.0;
-    return (int32_t)r;
-}
-
-/* The exact rotation of a Q1.30 quaternion, normalised in double. */
-static dq dq_from_fx(qo_quat_q30 q)
-{
-    dq r = { q.w / Q30, q.x / Q30, q.y / Q30, q.z / Q30 };
-    double n = sqrt(r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z);
-    r.w /= n; r.x /= n; r.y /= n; r.z /= n;
-    return r;
-}
-
-static qo_quat_q30 fx_from_dq(dq q)
-{
-    qo_quat_q30 r;
-    r.w = fx(q.w, Q30); r.x = fx(q.x, Q30); r.y = fx(q.y, Q30); r.z = fx(q.z, Q30);
-    return r;
-}
-
-static double dq_angle(dq a, dq b)
-{
-    dq c = { a.w, -a.x, -a.y, -a.z };
-    dq d = dq_mul(c, b);
-    return 2.0 * atan2(sqrt(d.x * d.x + d.y * d.y + d.z * d.z), fabs(d.w));
-}
+/* double reference and fixed-seed PRNG: tests/common/ref.c */
+static ref_rng rng = { 0x5EED0E17ull };
 
 static double recomp(int seq, qo_euler_q28 e, dq q)
 {
-    return dq_angle(ref_quat(seq, e.a1 / Q28, e.a2 / Q28, e.a3 / Q28), q);
+    return dq_angle(ref_quat_from_euler(k_names[seq], e.a1 / Q28, e.a2 / Q28, e.a3 / Q28), q);
 }
 
 static int proper(int seq) { return k_names[seq][0] == k_names[seq][2]; }
@@ -163,11 +93,11 @@ int main(int argc, char **argv)
             /* from_euler (every tenth case over the whole Q3.28 range, [-8, 8) rad) */
             {
                 double span = (i % 10 == 0) ? 7.999 : PI_D;
-                e.a1 = fx(uni(-span, span), Q28); e.a2 = fx(uni(-span, span), Q28);
-                e.a3 = fx(uni(-span, span), Q28);
+                e.a1 = ref_to_fixed(ref_rng_range(&rng, -span, span), Q28); e.a2 = ref_to_fixed(ref_rng_range(&rng, -span, span), Q28);
+                e.a3 = ref_to_fixed(ref_rng_range(&rng, -span, span), Q28);
                 if (qo_quat_from_euler_q30(sq, e, &qf) != QO_OK) n_bad_status++;
-                r = ref_quat(seq, e.a1 / Q28, e.a2 / Q28, e.a3 / Q28);
-                upd(&w_from, dq_angle(dq_from_fx(qf), r), seq, &s_from);
+                r = ref_quat_from_euler(k_names[seq], e.a1 / Q28, e.a2 / Q28, e.a3 / Q28);
+                upd(&w_from, dq_angle(ref_quat_normalize(ref_quat_from_q30(qf)), r), seq, &s_from);
                 d = fabs(qf.w - r.w * Q30);
                 if (fabs(qf.x - r.x * Q30) > d) d = fabs(qf.x - r.x * Q30);
                 if (fabs(qf.y - r.y * Q30) > d) d = fabs(qf.y - r.y * Q30);
@@ -177,13 +107,13 @@ int main(int argc, char **argv)
 
             /* generic: uniform random rotation */
             do {
-                r.w = uni(-1, 1); r.x = uni(-1, 1); r.y = uni(-1, 1); r.z = uni(-1, 1);
+                r.w = ref_rng_range(&rng, -1, 1); r.x = ref_rng_range(&rng, -1, 1); r.y = ref_rng_range(&rng, -1, 1); r.z = ref_rng_range(&rng, -1, 1);
                 nn = r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z;
             } while (nn > 1.0 || nn < 1e-4);
             nn = sqrt(nn);
             r.w /= nn; r.x /= nn; r.y /= nn; r.z /= nn;
-            qf = fx_from_dq(r);
-            r = dq_from_fx(qf);
+            qf = ref_quat_to_q30(r);
+            r = ref_quat_normalize(ref_quat_from_q30(qf));
             if (qo_quat_to_euler_q30(qf, sq, &o, &info) != QO_OK) n_bad_status++;
             n_cases++;
             if (info.locked) { n_flagged_total++; upd(&max_flag_margin, info.margin / Q28, 0, NULL); }
@@ -192,19 +122,19 @@ int main(int argc, char **argv)
             /* nearest-solution variant, generic, prev a random nearby-ish triple */
             {
                 qo_euler_q28 prev;
-                prev.a1 = o.a1 + fx(uni(-2, 2), Q28); prev.a2 = o.a2 + fx(uni(-2, 2), Q28);
-                prev.a3 = o.a3 + fx(uni(-2, 2), Q28);
+                prev.a1 = o.a1 + ref_to_fixed(ref_rng_range(&rng, -2, 2), Q28); prev.a2 = o.a2 + ref_to_fixed(ref_rng_range(&rng, -2, 2), Q28);
+                prev.a3 = o.a3 + ref_to_fixed(ref_rng_range(&rng, -2, 2), Q28);
                 if (qo_quat_to_euler_near_q30(qf, sq, prev, QO_EULER_LOCK_BAND_Q28, &o, &info) != QO_OK)
                     n_bad_status++;
                 upd(&w_nearfn, recomp(seq, o, r), seq, NULL);
             }
 
             /* exactly singular, built in double and rounded to Q1.30 */
-            a1 = uni(-PI_D, PI_D); a3 = uni(-PI_D, PI_D);
-            which = (int)(rng_next() & 1);
+            a1 = ref_rng_range(&rng, -PI_D, PI_D); a3 = ref_rng_range(&rng, -PI_D, PI_D);
+            which = (int)(ref_rng_next(&rng) & 1);
             s = proper(seq) ? (which ? PI_D : 0.0) : (which ? PI_D / 2 : -PI_D / 2);
-            qf = fx_from_dq(ref_quat(seq, a1, s, a3));
-            r = dq_from_fx(qf);
+            qf = ref_quat_to_q30(ref_quat_from_euler(k_names[seq], a1, s, a3));
+            r = ref_quat_normalize(ref_quat_from_q30(qf));
             qo_quat_to_euler_q30(qf, sq, &o, &info);
             n_exact++; n_cases++;
             if (info.locked) { n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin / Q28, 0, NULL); }
@@ -215,9 +145,9 @@ int main(int argc, char **argv)
              * nearest the singular middle angle */
             {
                 qo_euler_q28 se;
-                se.a1 = fx(uni(-PI_D, PI_D), Q28); se.a2 = fx(s, Q28); se.a3 = fx(uni(-PI_D, PI_D), Q28);
+                se.a1 = ref_to_fixed(ref_rng_range(&rng, -PI_D, PI_D), Q28); se.a2 = ref_to_fixed(s, Q28); se.a3 = ref_to_fixed(ref_rng_range(&rng, -PI_D, PI_D), Q28);
                 qo_quat_from_euler_q30(sq, se, &qf);
-                rr = ref_quat(seq, se.a1 / Q28, s, se.a3 / Q28);
+                rr = ref_quat_from_euler(k_names[seq], se.a1 / Q28, s, se.a3 / Q28);
                 qo_quat_to_euler_q30(qf, sq, &o, &info);
                 n_exact++; n_cases++;
                 if (info.locked) { n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin / Q28, 0, NULL); }
@@ -228,10 +158,10 @@ int main(int argc, char **argv)
             /* exactly singular rotation with every component then moved by up to 2 LSB
              * (noise from an upstream fixed-point computation, e.g. a filter's output) */
             {
-                qf = fx_from_dq(ref_quat(seq, uni(-PI_D, PI_D), s, uni(-PI_D, PI_D)));
-                qf.w += (int32_t)(rng_next() % 5) - 2; qf.x += (int32_t)(rng_next() % 5) - 2;
-                qf.y += (int32_t)(rng_next() % 5) - 2; qf.z += (int32_t)(rng_next() % 5) - 2;
-                r = dq_from_fx(qf);
+                qf = ref_quat_to_q30(ref_quat_from_euler(k_names[seq], ref_rng_range(&rng, -PI_D, PI_D), s, ref_rng_range(&rng, -PI_D, PI_D)));
+                qf.w += (int32_t)(ref_rng_next(&rng) % 5) - 2; qf.x += (int32_t)(ref_rng_next(&rng) % 5) - 2;
+                qf.y += (int32_t)(ref_rng_next(&rng) % 5) - 2; qf.z += (int32_t)(ref_rng_next(&rng) % 5) - 2;
+                r = ref_quat_normalize(ref_quat_from_q30(qf));
                 qo_quat_to_euler_q30(qf, sq, &o, &info);
                 n_noisy++; n_exact++; n_cases++;
                 if (info.locked) { n_noisy_flagged++; n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin / Q28, 0, NULL); }
@@ -240,12 +170,12 @@ int main(int argc, char **argv)
             }
 
             /* near lock */
-            k = (int)(rng_next() % (sizeof offs / sizeof offs[0]));
-            side = (int)(rng_next() & 1);
+            k = (int)(ref_rng_next(&rng) % (sizeof offs / sizeof offs[0]));
+            side = (int)(ref_rng_next(&rng) & 1);
             a2 = s + ((s > 0) ? -1.0 : 1.0) * (side ? -offs[k] : offs[k]);
-            a1 = uni(-PI_D, PI_D); a3 = uni(-PI_D, PI_D);
-            qf = fx_from_dq(ref_quat(seq, a1, a2, a3));
-            r = dq_from_fx(qf);
+            a1 = ref_rng_range(&rng, -PI_D, PI_D); a3 = ref_rng_range(&rng, -PI_D, PI_D);
+            qf = ref_quat_to_q30(ref_quat_from_euler(k_names[seq], a1, a2, a3));
+            r = ref_quat_normalize(ref_quat_from_q30(qf));
             qo_quat_to_euler_q30(qf, sq, &o, &info);
             n_cases++;
             if (info.locked) {

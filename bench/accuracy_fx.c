@@ -14,6 +14,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "common/dq.h"
 #include "qorient/convert_fx.h"
 #include "qorient/fxmath.h"
 #include "qorient/quat_fx.h"
@@ -23,22 +24,12 @@
 #define NROT 100000
 #define GOAL_RAD 1e-6
 
-typedef struct { double w, x, y, z; } dq;
-
-static uint64_t rng_state = 0x5EEDULL;
-static uint64_t rnd(void)
-{
-    uint64_t z = (rng_state += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-}
-static double urand(void) { return (double)(rnd() >> 11) * (1.0 / 9007199254740992.0); }
-static double srand1(void) { return 2.0 * urand() - 1.0; }
+/* double reference and fixed-seed PRNG: tests/common/ref.c (dq.h) */
+static ref_rng rng = { 0x5EEDULL };
 static int32_t rnd_i32_mag(void)
 {
-    int32_t v = (int32_t)(uint32_t)rnd();
-    return (int32_t)(v / ((int64_t)1 << (rnd() % 32u)));
+    int32_t v = (int32_t)(uint32_t)ref_rng_next(&rng);
+    return (int32_t)(v / ((int64_t)1 << (ref_rng_next(&rng) % 32u)));
 }
 
 static int failures;
@@ -54,52 +45,12 @@ static void report_rad(const char *name, double worst)
 }
 static void upd(double *w, double e) { if (e > *w) *w = e; }
 
-static int32_t q30(double v) { double r = floor(v * TWO30 + 0.5); return (int32_t)(r > 2147483647.0 ? 2147483647.0 : r); }
-static int32_t q28(double v) { return (int32_t)floor(v * TWO28 + 0.5); }
-
-static dq rand_unit(void)
-{
-    double u1 = urand(), u2 = 2.0 * M_PI * urand(), u3 = 2.0 * M_PI * urand();
-    double a = sqrt(1.0 - u1), b = sqrt(u1);
-    dq q;
-    q.w = a * sin(u2); q.x = a * cos(u2); q.y = b * sin(u3); q.z = b * cos(u3);
-    return q;
-}
-static qo_quat_q30 fx(dq q) { qo_quat_q30 r; r.w = q30(q.w); r.x = q30(q.x); r.y = q30(q.y); r.z = q30(q.z); return r; }
-static dq dbl(qo_quat_q30 q) { dq r; r.w = q.w / TWO30; r.x = q.x / TWO30; r.y = q.y / TWO30; r.z = q.z / TWO30; return r; }
-static dq dmul(dq a, dq b)
-{
-    dq r;
-    r.w = a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z;
-    r.x = a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y;
-    r.y = a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x;
-    r.z = a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w;
-    return r;
-}
-static dq dnorm(dq q)
-{
-    double n = sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
-    q.w /= n; q.x /= n; q.y /= n; q.z /= n;
-    return q;
-}
-/* Rotation angle between two (normalised) quaternions, sign-insensitive. */
-static double qangle(dq a, dq b)
-{
-    dq r = dmul((dq){ a.w, -a.x, -a.y, -a.z }, b);
-    return 2.0 * atan2(sqrt(r.x * r.x + r.y * r.y + r.z * r.z), fabs(r.w));
-}
-static void dmat(dq q, double m[3][3])
-{
-    m[0][0] = 1 - 2 * (q.y * q.y + q.z * q.z); m[0][1] = 2 * (q.x * q.y - q.w * q.z); m[0][2] = 2 * (q.x * q.z + q.w * q.y);
-    m[1][0] = 2 * (q.x * q.y + q.w * q.z); m[1][1] = 1 - 2 * (q.x * q.x + q.z * q.z); m[1][2] = 2 * (q.y * q.z - q.w * q.x);
-    m[2][0] = 2 * (q.x * q.z - q.w * q.y); m[2][1] = 2 * (q.y * q.z + q.w * q.x); m[2][2] = 1 - 2 * (q.x * q.x + q.y * q.y);
-}
+static int32_t q30(double v) { return ref_to_fixed(v, TWO30); }
+static int32_t q28(double v) { return ref_to_fixed(v, TWO28); }
 static void drot(dq q, const double v[3], double o[3])
 {
-    double m[3][3];
-    int i;
-    dmat(q, m);
-    for (i = 0; i < 3; i++) o[i] = m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2];
+    ref_vec3 r = ref_quat_rotate(q, (ref_vec3){ v[0], v[1], v[2] });
+    o[0] = r.x; o[1] = r.y; o[2] = r.z;
 }
 
 static void primitives(void)
@@ -174,7 +125,7 @@ static void primitives(void)
     }
     w = 0;
     for (k = 0; k < 2000000; k++) {
-        int32_t a = (int32_t)(uint32_t)rnd();
+        int32_t a = (int32_t)(uint32_t)ref_rng_next(&rng);
         upd(&w, fabs(qo_fx_wrap_pi_q28(a) - remainder((double)a / TWO28, 2 * M_PI) * TWO28));
     }
     report_lsb("qo_fx_wrap_pi_q28", w, 0.5 + 1e-3);
@@ -194,8 +145,8 @@ static void rotations(void)
     int k, i, j;
     printf("Part 2: rotation error vs double over %d fixed-seed random rotations (end to end)\n", NROT);
     for (k = 0; k < NROT; k++) {
-        dq a = rand_unit(), b = rand_unit(), r;
-        qo_quat_q30 fa = fx(a), fb = fx(b), fr;
+        dq a = ref_rng_quat(&rng), b = ref_rng_quat(&rng), r;
+        qo_quat_q30 fa = ref_quat_to_q30(a), fb = ref_quat_to_q30(b), fr;
         double v[3], vr[3], e;
         qo_vec3_q30 fv, fo;
         qo_vec3_q28 rv;
@@ -206,9 +157,9 @@ static void rotations(void)
 
         /* multiply */
         fr = qo_quat_mul_q30(fa, fb);
-        upd(&wmul, qangle(dnorm(dbl(fr)), dmul(a, b)));
+        upd(&wmul, dq_angle(ref_quat_normalize(ref_quat_from_q30(fr)), dq_mul(a, b)));
         /* rotate a unit vector: angle between the rotated vectors */
-        v[0] = srand1(); v[1] = srand1(); v[2] = srand1();
+        v[0] = ref_rng_range(&rng, -1.0, 1.0); v[1] = ref_rng_range(&rng, -1.0, 1.0); v[2] = ref_rng_range(&rng, -1.0, 1.0);
         e = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
         for (i = 0; i < 3; i++) v[i] /= e;
         fv.x = q30(v[0]); fv.y = q30(v[1]); fv.z = q30(v[2]);
@@ -217,41 +168,41 @@ static void rotations(void)
         upd(&wrot, sqrt(pow(fo.x / TWO30 - vr[0], 2) + pow(fo.y / TWO30 - vr[1], 2) + pow(fo.z / TWO30 - vr[2], 2)));
         /* normalise a scaled copy (scale 2^-20 .. 1.9): direction and |1 - |out|| */
         {
-            double s = ldexp(1.0, -(int)(rnd() % 21u)) * (1.0 + 0.9 * urand());
+            double s = ldexp(1.0, -(int)(ref_rng_next(&rng) % 21u)) * (1.0 + 0.9 * ref_rng_unit(&rng));
             dq sa = { a.w * s, a.x * s, a.y * s, a.z * s };
-            qo_quat_q30 in = fx(sa);
+            qo_quat_q30 in = ref_quat_to_q30(sa);
             (void)qo_quat_normalize_q30(in, &fr);
             /* Against the double normalisation of the exact fixed input: a short quaternion
              * has only a few significant bits, which no normalisation can restore. */
-            upd(&wnorm, qangle(dbl(fr), dnorm(dbl(in))));
+            upd(&wnorm, dq_angle(ref_quat_from_q30(fr), ref_quat_normalize(ref_quat_from_q30(in))));
             /* and the unit-ness of the output */
-            upd(&wnorm, fabs(sqrt(dbl(fr).w * dbl(fr).w + dbl(fr).x * dbl(fr).x + dbl(fr).y * dbl(fr).y + dbl(fr).z * dbl(fr).z) - 1.0));
+            upd(&wnorm, fabs(sqrt(ref_quat_from_q30(fr).w * ref_quat_from_q30(fr).w + ref_quat_from_q30(fr).x * ref_quat_from_q30(fr).x + ref_quat_from_q30(fr).y * ref_quat_from_q30(fr).y + ref_quat_from_q30(fr).z * ref_quat_from_q30(fr).z) - 1.0));
             /* the fast tier, same input, same two measures */
             (void)qo_quat_normalize_fast_q30(in, &fr);
-            upd(&wnormf, qangle(dbl(fr), dnorm(dbl(in))));
-            upd(&wnormf, fabs(sqrt(dbl(fr).w * dbl(fr).w + dbl(fr).x * dbl(fr).x + dbl(fr).y * dbl(fr).y + dbl(fr).z * dbl(fr).z) - 1.0));
+            upd(&wnormf, dq_angle(ref_quat_from_q30(fr), ref_quat_normalize(ref_quat_from_q30(in))));
+            upd(&wnormf, fabs(sqrt(ref_quat_from_q30(fr).w * ref_quat_from_q30(fr).w + ref_quat_from_q30(fr).x * ref_quat_from_q30(fr).x + ref_quat_from_q30(fr).y * ref_quat_from_q30(fr).y + ref_quat_from_q30(fr).z * ref_quat_from_q30(fr).z) - 1.0));
         }
         /* axis-angle from / to */
         {
-            double ang = 2 * M_PI * srand1(), s = sin(ang / 2);
+            double ang = 2 * M_PI * ref_rng_range(&rng, -1.0, 1.0), s = sin(ang / 2);
             dq ref = { cos(ang / 2), s * v[0], s * v[1], s * v[2] };
             (void)qo_quat_from_axis_angle_q30(fv, q28(ang), &fr);
-            upd(&waa_from, qangle(dnorm(dbl(fr)), ref));
+            upd(&waa_from, dq_angle(ref_quat_normalize(ref_quat_from_q30(fr)), ref));
             (void)qo_quat_to_axis_angle_q30(fa, &ax, &an);
             /* rebuild in double and compare rotations */
             s = sin(an / TWO28 / 2);
             ref.w = cos(an / TWO28 / 2); ref.x = s * ax.x / TWO30; ref.y = s * ax.y / TWO30; ref.z = s * ax.z / TWO30;
-            upd(&waa_to, qangle(ref, a));
+            upd(&waa_to, dq_angle(ref, a));
         }
         /* rotation vector from / to */
         {
-            double ang = M_PI * urand(), s;
+            double ang = M_PI * ref_rng_unit(&rng), s;
             dq ref;
             rv.x = q28(v[0] * ang); rv.y = q28(v[1] * ang); rv.z = q28(v[2] * ang);
             (void)qo_quat_from_rotvec_q30(rv, &fr);
             s = sin(ang / 2);
             ref.w = cos(ang / 2); ref.x = s * v[0]; ref.y = s * v[1]; ref.z = s * v[2];
-            upd(&wrv_from, qangle(dnorm(dbl(fr)), ref));
+            upd(&wrv_from, dq_angle(ref_quat_normalize(ref_quat_from_q30(fr)), ref));
             (void)qo_quat_to_rotvec_q30(fr, &rv);
             r = a.w < 0 ? (dq){ -a.w, -a.x, -a.y, -a.z } : a;
             (void)qo_quat_to_rotvec_q30(fa, &rv);
@@ -261,36 +212,36 @@ static void rotations(void)
         }
         /* matrix to / from (to: largest entry error, which bounds the rotation error) */
         (void)qo_quat_to_mat3_q30(fa, &m);
-        dmat(a, dm);
+        dq_to_mat(a, dm);
         for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) upd(&wm_to, fabs(m.m[i][j] / TWO30 - dm[i][j]));
-        dmat(b, dm);
+        dq_to_mat(b, dm);
         for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) m.m[i][j] = q30(dm[i][j]);
         (void)qo_quat_from_mat3_q30(&m, &fr);
-        upd(&wm_from, qangle(dbl(fr), b));
+        upd(&wm_from, dq_angle(ref_quat_from_q30(fr), b));
         /* exp / log of the half-angle vector */
         {
-            double ang = M_PI * urand(), s;
+            double ang = M_PI * ref_rng_unit(&rng), s;
             dq ref;
             rv.x = q28(v[0] * ang / 2); rv.y = q28(v[1] * ang / 2); rv.z = q28(v[2] * ang / 2);
             (void)qo_quat_exp_q30(rv, &fr);
             s = sin(ang / 2);
             ref.w = cos(ang / 2); ref.x = s * v[0]; ref.y = s * v[1]; ref.z = s * v[2];
-            upd(&wexp, qangle(dnorm(dbl(fr)), ref));
-            (void)qo_quat_log_q30(fx(ref), &rv);
+            upd(&wexp, dq_angle(ref_quat_normalize(ref_quat_from_q30(fr)), ref));
+            (void)qo_quat_log_q30(ref_quat_to_q30(ref), &rv);
             upd(&wlog, 2 * sqrt(pow(rv.x / TWO28 - v[0] * ang / 2, 2) + pow(rv.y / TWO28 - v[1] * ang / 2, 2) + pow(rv.z / TWO28 - v[2] * ang / 2, 2)));
         }
         /* integrate one step of a body rate: q * exp(dtheta/2) */
         {
-            double step = 0.1 * urand(), s;
+            double step = 0.1 * ref_rng_unit(&rng), s;
             dq inc;
             rv.x = q28(v[0] * step); rv.y = q28(v[1] * step); rv.z = q28(v[2] * step);
             (void)qo_quat_integrate_q30(fa, rv, &fr);
             s = sin(step / 2);
             inc.w = cos(step / 2); inc.x = s * v[0]; inc.y = s * v[1]; inc.z = s * v[2];
-            upd(&wint, qangle(dbl(fr), dmul(a, inc)));
+            upd(&wint, dq_angle(ref_quat_from_q30(fr), dq_mul(a, inc)));
         }
         /* angle between */
-        upd(&wang, fabs(qo_quat_angle_between_q30(fa, fb) / TWO28 - qangle(a, b)));
+        upd(&wang, fabs(qo_quat_angle_between_q30(fa, fb) / TWO28 - dq_angle(a, b)));
     }
     report_rad("qo_quat_mul_q30", wmul);
     report_rad("qo_quat_rotate_q30 (|v| = 1)", wrot);

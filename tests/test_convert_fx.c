@@ -7,6 +7,7 @@
 #include <math.h>
 #include <cmocka.h>
 
+#include "common/dq.h"
 #include "qorient/convert_fx.h"
 #include "qorient/fxconv.h"
 #include "qorient/fxmath.h"
@@ -15,83 +16,10 @@
 #define TWO30 1073741824.0
 #define TWO28 268435456.0
 
-typedef struct { double w, x, y, z; } dq;
-
-static uint64_t rng_state;
-static uint64_t rnd(void)
-{
-    uint64_t z = (rng_state += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-}
-static double urand(void) { return (double)(rnd() >> 11) * (1.0 / 9007199254740992.0); }
-static double srand1(void) { return 2.0 * urand() - 1.0; }
-
-static dq rand_unit(void)
-{
-    double u1 = urand(), u2 = 2.0 * M_PI * urand(), u3 = 2.0 * M_PI * urand();
-    double a = sqrt(1.0 - u1), b = sqrt(u1);
-    dq q;
-    q.w = a * sin(u2); q.x = a * cos(u2); q.y = b * sin(u3); q.z = b * cos(u3);
-    return q;
-}
-static qo_quat_q30 to_fx(dq q)
-{
-    qo_quat_f32 f;
-    f.w = (float)q.w; f.x = (float)q.x; f.y = (float)q.y; f.z = (float)q.z;
-    return qo_quat_q30_from_f32(f);
-}
-static dq from_fx(qo_quat_q30 q)
-{
-    dq r;
-    r.w = q.w / TWO30; r.x = q.x / TWO30; r.y = q.y / TWO30; r.z = q.z / TWO30;
-    return r;
-}
-static dq dnormalize(dq q)
-{
-    double n = sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
-    q.w /= n; q.x /= n; q.y /= n; q.z /= n;
-    return q;
-}
-static dq dcanonical(dq q)
-{
-    int neg = q.w != 0 ? q.w < 0 : q.x != 0 ? q.x < 0 : q.y != 0 ? q.y < 0 : q.z < 0;
-    if (neg) { q.w = -q.w; q.x = -q.x; q.y = -q.y; q.z = -q.z; }
-    return q;
-}
-static double err_lsb(qo_quat_q30 got, dq want)
-{
-    double e = fabs(got.w - want.w * TWO30), t;
-    t = fabs(got.x - want.x * TWO30); if (t > e) e = t;
-    t = fabs(got.y - want.y * TWO30); if (t > e) e = t;
-    t = fabs(got.z - want.z * TWO30); if (t > e) e = t;
-    return e;
-}
-/* Rotation matrix of a unit double quaternion (the textbook formula). */
-static void dmat(dq q, double m[3][3])
-{
-    m[0][0] = 1 - 2 * (q.y * q.y + q.z * q.z); m[0][1] = 2 * (q.x * q.y - q.w * q.z); m[0][2] = 2 * (q.x * q.z + q.w * q.y);
-    m[1][0] = 2 * (q.x * q.y + q.w * q.z); m[1][1] = 1 - 2 * (q.x * q.x + q.z * q.z); m[1][2] = 2 * (q.y * q.z - q.w * q.x);
-    m[2][0] = 2 * (q.x * q.z - q.w * q.y); m[2][1] = 2 * (q.y * q.z + q.w * q.x); m[2][2] = 1 - 2 * (q.x * q.x + q.y * q.y);
-}
-/* Quaternion of a double rotation matrix: Markley's method (the largest of the four candidate
- * columns of the symmetric K matrix), normalised, canonical sign. */
-static dq dquat_of_mat(double m[3][3])
-{
-    double tr = m[0][0] + m[1][1] + m[2][2];
-    double c[4][4] = {
-        { 1 + tr, m[2][1] - m[1][2], m[0][2] - m[2][0], m[1][0] - m[0][1] },
-        { m[2][1] - m[1][2], 1 + 2 * m[0][0] - tr, m[0][1] + m[1][0], m[0][2] + m[2][0] },
-        { m[0][2] - m[2][0], m[0][1] + m[1][0], 1 + 2 * m[1][1] - tr, m[1][2] + m[2][1] },
-        { m[1][0] - m[0][1], m[0][2] + m[2][0], m[1][2] + m[2][1], 1 + 2 * m[2][2] - tr },
-    };
-    int i, b = 0;
-    dq q;
-    for (i = 1; i < 4; i++) if (c[i][i] > c[b][b]) b = i;
-    q.w = c[b][0]; q.x = c[b][1]; q.y = c[b][2]; q.z = c[b][3];
-    return dcanonical(dnormalize(q));
-}
+/* The double-precision reference and the fixed-seed PRNG are tests/common/ref.c (dq.h). */
+static ref_rng rng;
+/* A double rotation as the fixed core receives it: rounded to float32, then fxconv.h. */
+static qo_quat_q30 to_fx(dq q) { return qo_quat_q30_from_f32(ref_quat_to_f32(q)); }
 
 #define QFMT "(%ld %ld %ld %ld)"
 #define QARG(q) (long)(q).w, (long)(q).x, (long)(q).y, (long)(q).z
@@ -122,10 +50,10 @@ static void test_axis_angle(void **state)
     /* A 1-LSB axis keeps its direction. */
     assert_int_equal(qo_quat_from_axis_angle_q30((qo_vec3_q30){ 0, -1, 0 }, QO_Q28_PI, &r), QO_OK);
     assert_true(r.y <= -QO_Q30_ONE + 1 && r.x == 0 && r.z == 0 && r.w >= -1 && r.w <= 1);
-    rng_state = 21;
+    rng.s = 21;
     for (k = 0; k < 20000; k++) {
-        double axd[3] = { srand1(), srand1(), srand1() }, sc = ldexp(1.0, -(int)(rnd() % 29u));
-        double angle = 7.99 * srand1(), n, s, e;
+        double axd[3] = { ref_rng_range(&rng, -1.0, 1.0), ref_rng_range(&rng, -1.0, 1.0), ref_rng_range(&rng, -1.0, 1.0) }, sc = ldexp(1.0, -(int)(ref_rng_next(&rng) % 29u));
+        double angle = 7.99 * ref_rng_range(&rng, -1.0, 1.0), n, s, e;
         qo_vec3_f32 f;
         qo_vec3_q30 a;
         qo_q28 ang;
@@ -138,11 +66,11 @@ static void test_axis_angle(void **state)
         s = sin(ang / TWO28 / 2);
         want.w = cos(ang / TWO28 / 2); want.x = s * a.x / n; want.y = s * a.y / n; want.z = s * a.z / n;
         assert_int_equal(qo_quat_from_axis_angle_q30(a, ang, &r), QO_OK);
-        e = err_lsb(r, want);
+        e = ref_quat_err_lsb_q30(r, want);
         if (e > 1.5) fail_msg("from_axis_angle (%ld %ld %ld) %ld = " QFMT ": %.3f LSB", (long)a.x, (long)a.y, (long)a.z, (long)ang, QARG(r), e);
         /* Back: axis and angle of a random quaternion against the double formula. */
-        r = to_fx(rand_unit());
-        back = dcanonical(dnormalize(from_fx(r)));
+        r = to_fx(ref_rng_quat(&rng));
+        back = ref_quat_canonical(ref_quat_normalize(ref_quat_from_q30(r)));
         n = sqrt(back.x * back.x + back.y * back.y + back.z * back.z);
         assert_int_equal(qo_quat_to_axis_angle_q30(r, &ax, &an), QO_OK);
         e = fabs(an - 2 * atan2(n, back.w) * TWO28);
@@ -176,27 +104,27 @@ static void test_rotvec(void **state)
     /* Exactly pi about -z: canonical sign makes it +z. */
     assert_int_equal(qo_quat_to_rotvec_q30((qo_quat_q30){ 0, 0, 0, -QO_Q30_ONE }, &v), QO_OK);
     assert_true(v.z >= QO_Q28_PI - 2 && v.z <= QO_Q28_PI && v.x == 0 && v.y == 0);
-    rng_state = 22;
+    rng.s = 22;
     for (k = 0; k < 20000; k++) {
         double sc = k % 3 == 0 ? 1e-6 : k % 3 == 1 ? 3.1 : 7.9, n, s, e, a[3];
         qo_vec3_f32 f;
         qo_vec3_q28 rv;
         dq want, q;
-        f.x = (float)(sc * srand1()); f.y = (float)(sc * srand1()); f.z = (float)(sc * srand1());
+        f.x = (float)(sc * ref_rng_range(&rng, -1.0, 1.0)); f.y = (float)(sc * ref_rng_range(&rng, -1.0, 1.0)); f.z = (float)(sc * ref_rng_range(&rng, -1.0, 1.0));
         rv = qo_vec3_q28_from_f32(f);
         a[0] = rv.x / TWO28; a[1] = rv.y / TWO28; a[2] = rv.z / TWO28;
         n = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
         s = n > 0 ? sin(n / 2) / n : 0.5;
         want.w = cos(n / 2); want.x = s * a[0]; want.y = s * a[1]; want.z = s * a[2];
         assert_int_equal(qo_quat_from_rotvec_q30(rv, &r), QO_OK);
-        e = err_lsb(r, want);
+        e = ref_quat_err_lsb_q30(r, want);
         if (e > 2.0) fail_msg("from_rotvec (%ld %ld %ld) = " QFMT ": %.3f LSB", (long)rv.x, (long)rv.y, (long)rv.z, QARG(r), e);
         /* to_rotvec of random rotations, including near-identity and near-pi ones. */
-        q = rand_unit();
+        q = ref_rng_quat(&rng);
         if (k % 4 == 1) { q.w = 1.0; q.x *= 1e-6; q.y *= 1e-6; q.z *= 1e-6; }
         if (k % 4 == 2) { q.w *= 1e-6; }
         r = to_fx(q);
-        q = dcanonical(from_fx(r));
+        q = ref_quat_canonical(ref_quat_from_q30(r));
         n = sqrt(q.x * q.x + q.y * q.y + q.z * q.z);
         s = n > 0 ? 2 * atan2(n, q.w) / n : 2.0 / q.w;
         assert_int_equal(qo_quat_to_rotvec_q30(r, &v), QO_OK);
@@ -218,21 +146,21 @@ static void test_to_mat3_and_mul_vec3(void **state)
     assert_int_equal(qo_quat_to_mat3_q30(qo_quat_identity_q30(), NULL), QO_E_NULL);
     r = qo_mat3_mul_vec3_q30(NULL, (qo_vec3_q30){ 1, 2, 3 });
     assert_int_equal(r.x, 0); assert_int_equal(r.y, 0); assert_int_equal(r.z, 0);
-    rng_state = 23;
+    rng.s = 23;
     for (k = 0; k < 20000; k++) {
-        qo_quat_q30 q = to_fx(rand_unit());
+        qo_quat_q30 q = to_fx(ref_rng_quat(&rng));
         double d[3][3], e = 0, vx, vy, vz;
         qo_vec3_q30 v, rq;
         qo_vec3_f32 f;
         long double ex, ey, ez;
         if (k % 5 == 0) { q.w /= 1000; q.x /= 1000; q.y /= 1000; q.z /= 1000; }   /* non-unit */
-        dmat(dnormalize(from_fx(q)), d);
+        dq_to_mat(ref_quat_normalize(ref_quat_from_q30(q)), d);
         assert_int_equal(qo_quat_to_mat3_q30(q, &m), QO_OK);
         for (i = 0; i < 3; i++) for (j = 0; j < 3; j++)
             if (fabs(m.m[i][j] - d[i][j] * TWO30) > e) e = fabs(m.m[i][j] - d[i][j] * TWO30);
         if (e > 3.0) fail_msg("to_mat3 " QFMT ": %.3f LSB", QARG(q), e);
         /* M v against long double, and against rotate (same rotation). */
-        f.x = (float)(0.57 * srand1()); f.y = (float)(0.57 * srand1()); f.z = (float)(0.57 * srand1());
+        f.x = (float)(0.57 * ref_rng_range(&rng, -1.0, 1.0)); f.y = (float)(0.57 * ref_rng_range(&rng, -1.0, 1.0)); f.z = (float)(0.57 * ref_rng_range(&rng, -1.0, 1.0));
         v = qo_vec3_q30_from_f32(f);
         r = qo_mat3_mul_vec3_q30(&m, v);
         ex = ((long double)m.m[0][0] * v.x + (long double)m.m[0][1] * v.y + (long double)m.m[0][2] * v.z) / TWO30;
@@ -259,14 +187,14 @@ static void check_from_mat3(const qo_mat3_q30 *m, const char *what)
     dq want;
     qo_status st = qo_quat_from_mat3_q30(m, &r);
     for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) d[i][j] = m->m[i][j] / TWO30;
-    want = dquat_of_mat(d);
+    want = dq_from_mat(d);
     if (st != QO_OK) fail_msg("from_mat3 %s: status %d", what, st);
     if (r.w < 0) fail_msg("from_mat3 %s: not canonical " QFMT, what, QARG(r));
-    e = err_lsb(r, want);
+    e = ref_quat_err_lsb_q30(r, want);
     /* At w == 0 (exact half turns) both signs are canonical candidates: compare either. */
     if (e > 3.0) {
         dq nw = { -want.w, -want.x, -want.y, -want.z };
-        if (!(fabs(want.w) < 1e-8 && err_lsb(r, nw) <= 3.0)) fail_msg("from_mat3 %s = " QFMT ": %.3f LSB", what, QARG(r), e);
+        if (!(fabs(want.w) < 1e-8 && ref_quat_err_lsb_q30(r, nw) <= 3.0)) fail_msg("from_mat3 %s = " QFMT ": %.3f LSB", what, QARG(r), e);
     }
 }
 
@@ -287,15 +215,15 @@ static void test_from_mat3(void **state)
     assert_int_equal(r.w, QO_Q30_ONE);
     assert_int_equal(qo_quat_from_mat3_q30(&m, NULL), QO_E_NULL);
     for (c = 0; c < sizeof half_turns / sizeof half_turns[0]; c++) {
-        dq q = dnormalize((dq){ half_turns[c][0], half_turns[c][1], half_turns[c][2], half_turns[c][3] });
+        dq q = ref_quat_normalize((dq){ half_turns[c][0], half_turns[c][1], half_turns[c][2], half_turns[c][3] });
         qo_mat3_f32 f;
-        dmat(q, d);
+        dq_to_mat(q, d);
         for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) f.m[i][j] = (float)d[i][j];
         m = qo_mat3_q30_from_f32(&f);
         check_from_mat3(&m, "edge");
     }
     /* Rejections: reflection, scale, shear, singular, and a just-inside / just-outside pair. */
-    dmat(dnormalize((dq){ 0.3, 0.5, -0.2, 0.7 }), d);
+    dq_to_mat(ref_quat_normalize((dq){ 0.3, 0.5, -0.2, 0.7 }), d);
     for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) m.m[i][j] = qo_q30_from_f32((float)d[i][j]);
     bad = m;
     for (j = 0; j < 3; j++) bad.m[0][j] = -bad.m[0][j];
@@ -317,13 +245,13 @@ static void test_from_mat3(void **state)
     assert_int_equal(r.w, QO_Q30_ONE);
     for (i = 0; i < 3; i++) bad.m[i][i] = QO_Q30_ONE + (QO_MAT3_ROTATION_TOL_Q30 * 11) / 20;
     assert_int_equal(qo_quat_from_mat3_q30(&bad, &r), QO_E_NOT_ROTATION);
-    rng_state = 24;
+    rng.s = 24;
     for (k = 0; k < 20000; k++) {
-        dq q = rand_unit();
+        dq q = ref_rng_quat(&rng);
         qo_mat3_f32 f;
-        if (k % 4 == 1) { q.w *= 1e-5; q = dnormalize(q); }            /* near half turn */
-        if (k % 4 == 2) { q.x *= 1e-5; q.y *= 1e-5; q.z *= 1e-5; q = dnormalize(q); }  /* near identity */
-        dmat(q, d);
+        if (k % 4 == 1) { q.w *= 1e-5; q = ref_quat_normalize(q); }            /* near half turn */
+        if (k % 4 == 2) { q.x *= 1e-5; q.y *= 1e-5; q.z *= 1e-5; q = ref_quat_normalize(q); }  /* near identity */
+        dq_to_mat(q, d);
         for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) f.m[i][j] = (float)d[i][j];
         m = qo_mat3_q30_from_f32(&f);
         check_from_mat3(&m, "random");
@@ -334,14 +262,14 @@ static void test_round_trips(void **state)
 {
     int k;
     (void)state;
-    rng_state = 25;
+    rng.s = 25;
     for (k = 0; k < 5000; k++) {
         qo_quat_q30 q, back;
         qo_mat3_q30 m;
         qo_vec3_q28 rv;
         qo_vec3_q30 ax;
         qo_q28 an;
-        assert_int_equal(qo_quat_normalize_q30(to_fx(rand_unit()), &q), QO_OK);
+        assert_int_equal(qo_quat_normalize_q30(to_fx(ref_rng_quat(&rng)), &q), QO_OK);
         q = qo_quat_canonical_q30(q);
         assert_int_equal(qo_quat_to_mat3_q30(q, &m), QO_OK);
         assert_int_equal(qo_quat_from_mat3_q30(&m, &back), QO_OK);

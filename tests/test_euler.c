@@ -10,6 +10,7 @@
 #include <math.h>
 #include <cmocka.h>
 
+#include "common/dq.h"
 #include "qorient/euler.h"
 #include "qorient/quat.h"
 
@@ -22,80 +23,14 @@ static const char *const k_names[24] = {
     "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX", "XYX", "XZX", "YXY", "YZY", "ZXZ", "ZYZ",
 };
 
-/* ---- fixed-seed PRNG (splitmix64) ---------------------------------------------------- */
-static uint64_t rng_state;
-static uint64_t rng_next(void)
-{
-    uint64_t z = (rng_state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-static double rng_uniform(double lo, double hi)
-{
-    return lo + (hi - lo) * ((double)(rng_next() >> 11) * (1.0 / 9007199254740992.0));
-}
-
-/* ---- double-precision reference -------------------------------------------------------- */
-typedef struct dq { double w, x, y, z; } dq;
-
-static dq dq_mul(dq a, dq b)
-{
-    dq r;
-    r.w = a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z;
-    r.x = a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y;
-    r.y = a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x;
-    r.z = a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w;
-    return r;
-}
-
-static dq dq_axis(char letter, double t)
-{
-    dq q = { cos(t / 2), 0, 0, 0 };
-    double s = sin(t / 2);
-    switch (letter) {
-    case 'x': case 'X': q.x = s; break;
-    case 'y': case 'Y': q.y = s; break;
-    default: q.z = s; break;
-    }
-    return q;
-}
-
-/* Extrinsic "abc": R = R_c(a3) R_b(a2) R_a(a1). Intrinsic "ABC": R = R_A(a1) R_B(a2) R_C(a3). */
-static dq ref_quat(int seq, double a1, double a2, double a3)
-{
-    const char *n = k_names[seq];
-    dq q1 = dq_axis(n[0], a1), q2 = dq_axis(n[1], a2), q3 = dq_axis(n[2], a3);
-    if (n[0] >= 'X' && n[0] <= 'Z') return dq_mul(dq_mul(q1, q2), q3);
-    return dq_mul(q3, dq_mul(q2, q1));
-}
-
-static dq dq_from_f(qo_quat_f32 q)
-{
-    dq r = { q.w, q.x, q.y, q.z };
-    double n = sqrt(r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z);
-    r.w /= n; r.x /= n; r.y /= n; r.z /= n;
-    return r;
-}
-
-static qo_quat_f32 f_from_dq(dq q)
-{
-    qo_quat_f32 r = { (float)q.w, (float)q.x, (float)q.y, (float)q.z };
-    return r;
-}
-
-/* Rotation angle (rad) between two unit quaternions, the same for b and -b. */
-static double dq_angle(dq a, dq b)
-{
-    dq c = { a.w, -a.x, -a.y, -a.z };
-    dq d = dq_mul(c, b);
-    return 2.0 * atan2(sqrt(d.x * d.x + d.y * d.y + d.z * d.z), fabs(d.w));
-}
+/* The double-precision reference (elementary rotations composed in double) and the fixed-seed
+ * PRNG are tests/common/ref.c, shared with bench/accuracy_euler*.c. */
+static ref_rng rng;
 
 /* How far the float angles, composed in double, are from the rotation q. */
 static double recompose_err(int seq, qo_euler_f32 e, dq q)
 {
-    return dq_angle(ref_quat(seq, e.a1, e.a2, e.a3), q);
+    return dq_angle(ref_quat_from_euler(k_names[seq], e.a1, e.a2, e.a3), q);
 }
 
 static int is_proper_name(int seq) { return k_names[seq][0] == k_names[seq][2]; }
@@ -160,7 +95,7 @@ static void test_from_euler_random_all24(void **state)
 {
     int seq, n;
     (void)state;
-    rng_state = 0x1234567ull;
+    rng.s = 0x1234567ull;
     for (seq = 0; seq < 24; seq++) {
         for (n = 0; n < 500; n++) {
             /* Most in one turn; some wider, as the angles are periodic. */
@@ -169,14 +104,14 @@ static void test_from_euler_random_all24(void **state)
             qo_quat_f32 q;
             dq r;
             double err;
-            e.a1 = (float)rng_uniform(-span, span);
-            e.a2 = (float)rng_uniform(-span, span);
-            e.a3 = (float)rng_uniform(-span, span);
+            e.a1 = (float)ref_rng_range(&rng, -span, span);
+            e.a2 = (float)ref_rng_range(&rng, -span, span);
+            e.a3 = (float)ref_rng_range(&rng, -span, span);
             assert_int_equal(qo_quat_from_euler_f32((qo_euler_seq)seq, e, &q), QO_OK);
-            r = ref_quat(seq, e.a1, e.a2, e.a3);
+            r = ref_quat_from_euler(k_names[seq], e.a1, e.a2, e.a3);
             /* Same sign as the product, not only the same rotation (scipy's as_quat). */
             err = fabs(q.w - r.w) + fabs(q.x - r.x) + fabs(q.y - r.y) + fabs(q.z - r.z);
-            if (err > 1e-6 || dq_angle(dq_from_f(q), r) > 1e-6)
+            if (err > 1e-6 || dq_angle(dq_unit_from_f(q), r) > 1e-6)
                 fail_msg("from_euler %s (%.9g %.9g %.9g): component error %.3g", k_names[seq],
                          e.a1, e.a2, e.a3, err);
         }
@@ -253,7 +188,7 @@ static void test_to_euler_random_rotations_all24(void **state)
 {
     int seq, n;
     (void)state;
-    rng_state = 42;
+    rng.s = 42;
     for (seq = 0; seq < 24; seq++) {
         for (n = 0; n < 500; n++) {
             /* Uniform random rotation (normalised Gaussian-ish via 4 uniforms + reject). */
@@ -263,14 +198,14 @@ static void test_to_euler_random_rotations_all24(void **state)
             qo_euler_f32 e;
             qo_euler_info_f32 info;
             do {
-                r.w = rng_uniform(-1, 1); r.x = rng_uniform(-1, 1);
-                r.y = rng_uniform(-1, 1); r.z = rng_uniform(-1, 1);
+                r.w = ref_rng_range(&rng, -1, 1); r.x = ref_rng_range(&rng, -1, 1);
+                r.y = ref_rng_range(&rng, -1, 1); r.z = ref_rng_range(&rng, -1, 1);
                 nn = r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z;
             } while (nn > 1.0 || nn < 1e-3);
             nn = sqrt(nn);
             r.w /= nn; r.x /= nn; r.y /= nn; r.z /= nn;
-            qf = f_from_dq(r);
-            r = dq_from_f(qf); /* the reference is the float input itself */
+            qf = f_from(r);
+            r = dq_unit_from_f(qf); /* the reference is the float input itself */
             assert_int_equal(qo_quat_to_euler_f32(qf, (qo_euler_seq)seq, &e, &info), QO_OK);
             check_ranges(seq, e, "random");
             if (recompose_err(seq, e, r) > 1e-6)
@@ -288,24 +223,24 @@ static void test_to_euler_recovers_angles_all24(void **state)
 {
     int seq, n;
     (void)state;
-    rng_state = 7;
+    rng.s = 7;
     for (seq = 0; seq < 24; seq++) {
         for (n = 0; n < 300; n++) {
-            double a1 = rng_uniform(-PI_D, PI_D), a3 = rng_uniform(-PI_D, PI_D), a2, margin;
+            double a1 = ref_rng_range(&rng, -PI_D, PI_D), a3 = ref_rng_range(&rng, -PI_D, PI_D), a2, margin;
             dq r;
             qo_quat_f32 qf;
             qo_euler_f32 e;
             qo_euler_info_f32 info;
             if (is_proper_name(seq)) {
-                a2 = rng_uniform(0.05, PI_D - 0.05);
+                a2 = ref_rng_range(&rng, 0.05, PI_D - 0.05);
                 margin = fmin(a2, PI_D - a2);
             } else {
-                a2 = rng_uniform(-PI_D / 2 + 0.05, PI_D / 2 - 0.05);
+                a2 = ref_rng_range(&rng, -PI_D / 2 + 0.05, PI_D / 2 - 0.05);
                 margin = PI_D / 2 - fabs(a2);
             }
-            r = ref_quat(seq, a1, a2, a3);
+            r = ref_quat_from_euler(k_names[seq], a1, a2, a3);
             if (n % 2) { r.w = -r.w; r.x = -r.x; r.y = -r.y; r.z = -r.z; } /* q and -q */
-            qf = f_from_dq(r);
+            qf = f_from(r);
             assert_int_equal(qo_quat_to_euler_f32(qf, (qo_euler_seq)seq, &e, &info), QO_OK);
             /* a1, a3 are conditioned like 1/margin near lock. */
             if (ang_diff(e.a1, a1) > 2e-5 || fabs(e.a2 - a2) > 2e-6 || ang_diff(e.a3, a3) > 2e-5 ||
@@ -374,19 +309,19 @@ static void test_exactly_singular_all24(void **state)
 {
     int seq, which, n;
     (void)state;
-    rng_state = 99;
+    rng.s = 99;
     for (seq = 0; seq < 24; seq++) {
         for (which = 0; which < 2; which++) {
             for (n = 0; n < 200; n++) {
-                double a1 = rng_uniform(-PI_D, PI_D), a3 = rng_uniform(-PI_D, PI_D);
+                double a1 = ref_rng_range(&rng, -PI_D, PI_D), a3 = ref_rng_range(&rng, -PI_D, PI_D);
                 double a2 = singular_value(seq, which);
-                dq r = ref_quat(seq, a1, a2, a3);
-                qo_quat_f32 qf = f_from_dq(r);
+                dq r = ref_quat_from_euler(k_names[seq], a1, a2, a3);
+                qo_quat_f32 qf = f_from(r);
                 qo_euler_f32 e;
                 qo_euler_info_f32 info;
                 double err;
                 assert_int_equal(qo_quat_to_euler_f32(qf, (qo_euler_seq)seq, &e, &info), QO_OK);
-                err = recompose_err(seq, e, dq_from_f(qf));
+                err = recompose_err(seq, e, dq_unit_from_f(qf));
                 if (!info.locked || e.a3 != 0.0f || err > 1e-5 || fabs(e.a2 - a2) > 1e-5)
                     fail_msg("singular %s (%.9g %.9g %.9g): locked %d margin %.3g -> "
                              "(%.9g %.9g %.9g) recomposes %.3g off", k_names[seq], a1, a2, a3,
@@ -404,19 +339,19 @@ static void test_exactly_singular_all24(void **state)
                     se.a1 = (float)a1; se.a2 = (float)a2; se.a3 = (float)a3;
                     assert_int_equal(qo_quat_from_euler_f32((qo_euler_seq)seq, se, &qs), QO_OK);
                     assert_int_equal(qo_quat_to_euler_f32(qs, (qo_euler_seq)seq, &e, &info), QO_OK);
-                    err = recompose_err(seq, e, ref_quat(seq, se.a1, a2, se.a3));
+                    err = recompose_err(seq, e, ref_quat_from_euler(k_names[seq], se.a1, a2, se.a3));
                     if (!info.locked || e.a3 != 0.0f || err > 1e-5)
                         fail_msg("singular via from_euler %s (%.9g %.9g %.9g): locked %d margin "
                                  "%.3g err %.3g", k_names[seq], se.a1, se.a2, se.a3, info.locked,
                                  info.margin, err);
                     comp[0] = &qs.w; comp[1] = &qs.x; comp[2] = &qs.y; comp[3] = &qs.z;
                     for (c = 0; c < 4; c++) {
-                        int u = (int)(rng_next() % 5) - 2;
+                        int u = (int)(ref_rng_next(&rng) % 5) - 2;
                         for (; u > 0; u--) *comp[c] = nextafterf(*comp[c], INFINITY);
                         for (; u < 0; u++) *comp[c] = nextafterf(*comp[c], -INFINITY);
                     }
                     assert_int_equal(qo_quat_to_euler_f32(qs, (qo_euler_seq)seq, &e, &info), QO_OK);
-                    err = recompose_err(seq, e, dq_from_f(qs));
+                    err = recompose_err(seq, e, dq_unit_from_f(qs));
                     if (!info.locked || err > 1e-5)
                         fail_msg("singular + 2 ulp noise %s q=(%.9g %.9g %.9g %.9g): locked %d "
                                  "margin %.3g err %.3g", k_names[seq], qs.w, qs.x, qs.y, qs.z,
@@ -438,27 +373,27 @@ static void test_singular_free_angle_choice(void **state)
     qo_euler_f32 e;
     qo_euler_info_f32 info;
     (void)state;
-    assert_int_equal(qo_quat_to_euler_f32(f_from_dq(ref_quat(17, y, PI_D / 2, r)), QO_EULER_ZYX,
+    assert_int_equal(qo_quat_to_euler_f32(f_from(ref_quat_from_euler(k_names[17], y, PI_D / 2, r)), QO_EULER_ZYX,
                                           &e, &info), QO_OK);
     assert_int_equal(info.locked, 1);
     assert_float_equal(e.a1, (float)(y - r), 2e-6f);
     assert_float_equal(e.a2, 1.57079633f, 1e-6f);
     assert_true(e.a3 == 0.0f);
-    assert_int_equal(qo_quat_to_euler_f32(f_from_dq(ref_quat(17, y, -PI_D / 2, r)), QO_EULER_ZYX,
+    assert_int_equal(qo_quat_to_euler_f32(f_from(ref_quat_from_euler(k_names[17], y, -PI_D / 2, r)), QO_EULER_ZYX,
                                           &e, &info), QO_OK);
     assert_int_equal(info.locked, 1);
     assert_float_equal(e.a1, (float)(y + r), 2e-6f);
     assert_true(e.a3 == 0.0f);
-    assert_int_equal(qo_quat_to_euler_f32(f_from_dq(ref_quat(22, 0.5, 0.0, 0.4)), QO_EULER_ZXZ,
+    assert_int_equal(qo_quat_to_euler_f32(f_from(ref_quat_from_euler(k_names[22], 0.5, 0.0, 0.4)), QO_EULER_ZXZ,
                                           &e, &info), QO_OK);
     assert_int_equal(info.locked, 1);
     assert_float_equal(e.a1, 0.9f, 2e-6f);
     assert_true(e.a3 == 0.0f);
-    assert_int_equal(qo_quat_to_euler_f32(f_from_dq(ref_quat(22, 0.5, PI_D, 0.4)), QO_EULER_ZXZ,
+    assert_int_equal(qo_quat_to_euler_f32(f_from(ref_quat_from_euler(k_names[22], 0.5, PI_D, 0.4)), QO_EULER_ZXZ,
                                           &e, &info), QO_OK);
     assert_int_equal(info.locked, 1);
     assert_float_equal(e.a1, 0.1f, 2e-6f);
-    assert_int_equal(qo_quat_to_euler_f32(f_from_dq(ref_quat(10, 0.5, PI_D, 0.4)), QO_EULER_zxz,
+    assert_int_equal(qo_quat_to_euler_f32(f_from(ref_quat_from_euler(k_names[10], 0.5, PI_D, 0.4)), QO_EULER_zxz,
                                           &e, &info), QO_OK);
     assert_int_equal(info.locked, 1);
     assert_float_equal(e.a1, 0.1f, 2e-6f);
@@ -475,7 +410,7 @@ static void test_singular_free_angle_choice(void **state)
         assert_int_equal(qo_quat_to_euler_f32(q, QO_EULER_ZXZ, &e, &info), QO_OK);
         assert_true(info.locked && info.margin == 0.0f);
         assert_float_equal(e.a2, 3.14159265f, 1e-6f);
-        assert_true(recompose_err(22, e, dq_from_f(q)) < 1e-6);
+        assert_true(recompose_err(22, e, dq_unit_from_f(q)) < 1e-6);
     }
 }
 
@@ -484,25 +419,25 @@ static void test_just_off_singular_all24(void **state)
     static const double offs[] = { 1e-5, 1e-4, 1e-3, 0.01, 0.035 };
     int seq, which, k, n, side;
     (void)state;
-    rng_state = 2024;
+    rng.s = 2024;
     for (seq = 0; seq < 24; seq++)
         for (which = 0; which < 2; which++)
             for (k = 0; k < 5; k++)
                 for (side = 0; side < 2; side++)
                     for (n = 0; n < 20; n++) {
-                        double a1 = rng_uniform(-PI_D, PI_D), a3 = rng_uniform(-PI_D, PI_D);
+                        double a1 = ref_rng_range(&rng, -PI_D, PI_D), a3 = ref_rng_range(&rng, -PI_D, PI_D);
                         double s = singular_value(seq, which);
                         /* Toward the inside of the range; past the end (side 1) is the other
                          * branch of a nearby rotation, equally valid input. */
                         double inward = (s > 0.0) ? -1.0 : 1.0;
                         double a2 = s + (side ? -inward : inward) * offs[k];
-                        dq r = ref_quat(seq, a1, a2, a3);
-                        qo_quat_f32 qf = f_from_dq(r);
+                        dq r = ref_quat_from_euler(k_names[seq], a1, a2, a3);
+                        qo_quat_f32 qf = f_from(r);
                         qo_euler_f32 e;
                         qo_euler_info_f32 info;
                         double err;
                         assert_int_equal(qo_quat_to_euler_f32(qf, (qo_euler_seq)seq, &e, &info), QO_OK);
-                        err = recompose_err(seq, e, dq_from_f(qf));
+                        err = recompose_err(seq, e, dq_unit_from_f(qf));
                         if (info.locked || err > 1e-5 ||
                             fabs(info.margin - offs[k]) > 1e-6 + 1e-4 * offs[k])
                             fail_msg("%s (%.9g %.9g %.9g), %.3g off lock: locked %d margin %.6g, "
@@ -515,7 +450,7 @@ static void test_just_off_singular_all24(void **state)
                             const float band = 0.0349f; /* just under 2 deg = 0.034907 */
                             assert_int_equal(qo_quat_to_euler_band_f32(qf, (qo_euler_seq)seq, band,
                                                                        &e, &info), QO_OK);
-                            err = recompose_err(seq, e, dq_from_f(qf));
+                            err = recompose_err(seq, e, dq_unit_from_f(qf));
                             if (info.locked != (info.margin <= band) ||
                                 (offs[k] > 0.0349 && info.locked) ||
                                 err > (info.locked ? 2.0 * info.margin + 1e-5 : 1e-5) ||
@@ -539,13 +474,13 @@ static void test_range_ends_all24(void **state)
                 for (i3 = 0; i3 < 5; i3++) {
                     double a2 = is_proper_name(seq) ? (i2 == 0 ? 0.0 : (i2 == 1 ? PI_D / 2 : PI_D))
                                                     : (i2 == 0 ? -PI_D / 2 : (i2 == 1 ? 0.0 : PI_D / 2));
-                    dq r = ref_quat(seq, e13[i1], a2, e13[i3]);
-                    qo_quat_f32 qf = f_from_dq(r);
+                    dq r = ref_quat_from_euler(k_names[seq], e13[i1], a2, e13[i3]);
+                    qo_quat_f32 qf = f_from(r);
                     qo_euler_f32 e;
                     qo_euler_info_f32 info;
                     double err;
                     assert_int_equal(qo_quat_to_euler_f32(qf, (qo_euler_seq)seq, &e, &info), QO_OK);
-                    err = recompose_err(seq, e, dq_from_f(qf));
+                    err = recompose_err(seq, e, dq_unit_from_f(qf));
                     check_ranges(seq, e, "range ends");
                     if (err > 1e-5 || info.locked != (i2 != 1))
                         fail_msg("range ends %s (%.9g %.9g %.9g) -> (%.9g %.9g %.9g) locked %d err %.3g",
@@ -624,7 +559,7 @@ static void test_to_euler_bad_inputs(void **state)
     assert_int_equal(qo_quat_to_euler_band_f32(ok, QO_EULER_XYZ, 0.0f, &e, &info), QO_OK);
     assert_int_equal(qo_quat_to_euler_band_f32(ok, QO_EULER_XYZ, 1.57079632679490f, &e, &info), QO_OK);
     assert_int_equal(info.locked, 1); /* pi/2 flags everything */
-    assert_true(recompose_err(12, e, dq_from_f(ok)) <= 2.0 * info.margin + 1e-5);
+    assert_true(recompose_err(12, e, dq_unit_from_f(ok)) <= 2.0 * info.margin + 1e-5);
 }
 
 /* ---- nearest solution ------------------------------------------------------------------- */
@@ -652,11 +587,11 @@ static void run_path(int seq, double a1_0, double a1_1, double a2_0, double a2_1
         qo_quat_f32 qf;
         double err, jump, dev;
         if (2 * k == steps) a2 = 0.5 * (a2_0 + a2_1); /* the midpoint exactly */
-        r = ref_quat(seq, a1, a2, a3);
-        qf = f_from_dq(r);
+        r = ref_quat_from_euler(k_names[seq], a1, a2, a3);
+        qf = f_from(r);
         assert_int_equal(qo_quat_to_euler_near_f32(qf, (qo_euler_seq)seq, prev, band, &out, &info),
                          QO_OK);
-        err = recompose_err(seq, out, dq_from_f(qf));
+        err = recompose_err(seq, out, dq_unit_from_f(qf));
         jump = dmax(fabs(out.a1 - prev.a1), dmax(fabs(out.a2 - prev.a2), fabs(out.a3 - prev.a3)));
         dev = dmax(fabs(out.a1 - a1), dmax(fabs(out.a2 - a2), fabs(out.a3 - a3)));
         if (err > (info.locked ? 2.0 * info.margin + 1e-5 : 1e-5) || jump > 0.06 ||
@@ -709,13 +644,13 @@ static void test_near_picks_branch_and_locks(void **state)
 {
     int seq;
     (void)state;
-    rng_state = 555;
+    rng.s = 555;
     for (seq = 0; seq < 24; seq++) {
-        double a1 = rng_uniform(-2.5, 2.5), a3 = rng_uniform(-2.5, 2.5);
+        double a1 = ref_rng_range(&rng, -2.5, 2.5), a3 = ref_rng_range(&rng, -2.5, 2.5);
         double a2 = is_proper_name(seq) ? 1.2 : 0.6;
         double alt2 = is_proper_name(seq) ? -a2 : PI_D - a2;
-        dq r = ref_quat(seq, a1, a2, a3);
-        qo_quat_f32 qf = f_from_dq(r);
+        dq r = ref_quat_from_euler(k_names[seq], a1, a2, a3);
+        qo_quat_f32 qf = f_from(r);
         qo_euler_f32 prev, out;
         qo_euler_info_f32 info;
         /* prev near the alternative branch, two turns up on a1. */
@@ -735,15 +670,15 @@ static void test_near_picks_branch_and_locks(void **state)
         if (fabs(out.a1 - a1) > 1e-5 || fabs(out.a2 - a2) > 1e-5 || fabs(out.a3 - a3) > 1e-5)
             fail_msg("near %s principal: got (%.7f %.7f %.7f)", k_names[seq], out.a1, out.a2, out.a3);
         /* Exactly singular: a3 stays at prev.a3 exactly and the result composes to q. */
-        r = ref_quat(seq, a1, singular_value(seq, 1), a3);
-        qf = f_from_dq(r);
+        r = ref_quat_from_euler(k_names[seq], a1, singular_value(seq, 1), a3);
+        qf = f_from(r);
         prev.a1 = 0.25f; prev.a2 = (float)singular_value(seq, 1); prev.a3 = 7.5f;
         assert_int_equal(qo_quat_to_euler_near_f32(qf, (qo_euler_seq)seq, prev,
                                                    QO_EULER_LOCK_BAND_F32, &out, &info), QO_OK);
-        if (!info.locked || out.a3 != 7.5f || recompose_err(seq, out, dq_from_f(qf)) > 1e-5 ||
+        if (!info.locked || out.a3 != 7.5f || recompose_err(seq, out, dq_unit_from_f(qf)) > 1e-5 ||
             fabs(out.a1 - prev.a1) > PI_D)
             fail_msg("near %s at lock: locked %d got (%.7f %.7f %.7f) err %.3g", k_names[seq],
-                     info.locked, out.a1, out.a2, out.a3, recompose_err(seq, out, dq_from_f(qf)));
+                     info.locked, out.a1, out.a2, out.a3, recompose_err(seq, out, dq_unit_from_f(qf)));
     }
 }
 

@@ -7,6 +7,7 @@
 #include <math.h>
 #include <cmocka.h>
 
+#include "common/dq.h"
 #include "qorient/fxconv.h"
 #include "qorient/fxmath.h"
 #include "qorient/quat_fx.h"
@@ -14,65 +15,10 @@
 #define TWO30 1073741824.0
 #define TWO28 268435456.0
 
-typedef struct { double w, x, y, z; } dq;
-
-static uint64_t rng_state;
-static uint64_t rnd(void)
-{
-    uint64_t z = (rng_state += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-}
-static double urand(void) { return (double)(rnd() >> 11) * (1.0 / 9007199254740992.0); }
-static double srand1(void) { return 2.0 * urand() - 1.0; }
-
-/* Uniform random unit quaternion (Shoemake), either sign. */
-static dq rand_unit(void)
-{
-    double u1 = urand(), u2 = 2.0 * M_PI * urand(), u3 = 2.0 * M_PI * urand();
-    double a = sqrt(1.0 - u1), b = sqrt(u1);
-    dq q;
-    q.w = a * sin(u2); q.x = a * cos(u2); q.y = b * sin(u3); q.z = b * cos(u3);
-    return q;
-}
-
-static qo_quat_q30 to_fx(dq q)
-{
-    qo_quat_f32 f;
-    f.w = (float)q.w; f.x = (float)q.x; f.y = (float)q.y; f.z = (float)q.z;
-    return qo_quat_q30_from_f32(f);
-}
-static dq from_fx(qo_quat_q30 q)
-{
-    dq r;
-    r.w = q.w / TWO30; r.x = q.x / TWO30; r.y = q.y / TWO30; r.z = q.z / TWO30;
-    return r;
-}
-static dq dmul(dq a, dq b)
-{
-    dq r;
-    r.w = a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z;
-    r.x = a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y;
-    r.y = a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x;
-    r.z = a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w;
-    return r;
-}
-static dq dnormalize(dq q)
-{
-    double n = sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
-    q.w /= n; q.x /= n; q.y /= n; q.z /= n;
-    return q;
-}
-/* Largest component error of a fixed quaternion against a double one, in Q1.30 LSB. */
-static double err_lsb(qo_quat_q30 got, dq want)
-{
-    double e = fabs(got.w - want.w * TWO30), t;
-    t = fabs(got.x - want.x * TWO30); if (t > e) e = t;
-    t = fabs(got.y - want.y * TWO30); if (t > e) e = t;
-    t = fabs(got.z - want.z * TWO30); if (t > e) e = t;
-    return e;
-}
+/* The double-precision reference and the fixed-seed PRNG are tests/common/ref.c (dq.h). */
+static ref_rng rng;
+/* A double rotation as the fixed core receives it: rounded to float32, then fxconv.h. */
+static qo_quat_q30 to_fx(dq q) { return qo_quat_q30_from_f32(ref_quat_to_f32(q)); }
 
 #define QFMT "(%ld %ld %ld %ld)"
 #define QARG(q) (long)(q).w, (long)(q).x, (long)(q).y, (long)(q).z
@@ -112,9 +58,9 @@ static void test_mul_dot_norm(void **state)
     qo_quat_q30 r;
     qo_quat_q30 big = { INT32_MIN, INT32_MIN, 0, 0 };
     (void)state;
-    rng_state = 11;
+    rng.s = 11;
     for (k = 0; k < 20000; k++) {
-        qo_quat_q30 a = to_fx(rand_unit()), b = to_fx(rand_unit());
+        qo_quat_q30 a = to_fx(ref_rng_quat(&rng)), b = to_fx(ref_rng_quat(&rng));
         long double w = (long double)a.w * b.w - (long double)a.x * b.x - (long double)a.y * b.y - (long double)a.z * b.z;
         long double x = (long double)a.w * b.x + (long double)a.x * b.w + (long double)a.y * b.z - (long double)a.z * b.y;
         long double y = (long double)a.w * b.y - (long double)a.x * b.z + (long double)a.y * b.w + (long double)a.z * b.x;
@@ -165,10 +111,10 @@ static const norm_impl norm_impls[] = {
 static void check_normalize(const norm_impl *f, qo_quat_q30 q)
 {
     qo_quat_q30 r;
-    dq want = dnormalize(from_fx(q));
+    dq want = ref_quat_normalize(ref_quat_from_q30(q));
     double e;
     assert_int_equal(f->fn(q, &r), QO_OK);
-    e = err_lsb(r, want);
+    e = ref_quat_err_lsb_q30(r, want);
     if (e > f->bound_lsb + 1e-6)
         fail_msg("%s " QFMT " = " QFMT ": %.3f LSB", f->name, QARG(q), QARG(r), e);
     if (r.w > QO_Q30_ONE || r.w < -QO_Q30_ONE || r.x > QO_Q30_ONE || r.x < -QO_Q30_ONE ||
@@ -202,11 +148,11 @@ static void test_normalize(void **state)
         assert_int_equal(n->fn(edges[6], &r), QO_OK);
         assert_true(r.w >= -QO_Q30_ONE && r.w <= -QO_Q30_ONE + (int32_t)n->bound_lsb);
         if (n->bound_lsb <= 1.0) assert_int_equal(r.w, -QO_Q30_ONE);
-        rng_state = 12;
+        rng.s = 12;
         for (k = 0; k < 20000; k++) {
             /* Random directions at random scales, from a few LSB to the end of the range. */
-            dq d = rand_unit();
-            double s = ldexp(1.0, -(int)(rnd() % 28u)) * (1.0 + urand());
+            dq d = ref_rng_quat(&rng);
+            double s = ldexp(1.0, -(int)(ref_rng_next(&rng) % 28u)) * (1.0 + ref_rng_unit(&rng));
             qo_quat_q30 q;
             q.w = qo_q30_from_f32((float)(d.w * s)); q.x = qo_q30_from_f32((float)(d.x * s));
             q.y = qo_q30_from_f32((float)(d.y * s)); q.z = qo_q30_from_f32((float)(d.z * s));
@@ -215,10 +161,10 @@ static void test_normalize(void **state)
         }
         /* Raw int32 components of random magnitude (every scaling branch). */
         for (k = 0; k < 200000; k++) {
-            unsigned sh = (unsigned)(rnd() % 32u);
+            unsigned sh = (unsigned)(ref_rng_next(&rng) % 32u);
             qo_quat_q30 q;
-            q.w = (int32_t)(uint32_t)rnd() >> sh; q.x = (int32_t)(uint32_t)rnd() >> sh;
-            q.y = (int32_t)(uint32_t)rnd() >> sh; q.z = (int32_t)(uint32_t)rnd() >> sh;
+            q.w = (int32_t)(uint32_t)ref_rng_next(&rng) >> sh; q.x = (int32_t)(uint32_t)ref_rng_next(&rng) >> sh;
+            q.y = (int32_t)(uint32_t)ref_rng_next(&rng) >> sh; q.z = (int32_t)(uint32_t)ref_rng_next(&rng) >> sh;
             if (q.w == 0 && q.x == 0 && q.y == 0 && q.z == 0) continue;
             check_normalize(n, q);
         }
@@ -230,22 +176,22 @@ static void test_rotate(void **state)
     int k;
     qo_vec3_q30 r;
     (void)state;
-    rng_state = 13;
+    rng.s = 13;
     for (k = 0; k < 20000; k++) {
         qo_quat_q30 q;
         qo_vec3_q30 v;
         qo_vec3_f32 vf;
         dq dqq, p, out;
         double e, ex, ey, ez, vn;
-        assert_int_equal(qo_quat_normalize_q30(to_fx(rand_unit()), &q), QO_OK);
-        vf.x = (float)srand1(); vf.y = (float)srand1(); vf.z = (float)srand1();
+        assert_int_equal(qo_quat_normalize_q30(to_fx(ref_rng_quat(&rng)), &q), QO_OK);
+        vf.x = (float)ref_rng_range(&rng, -1.0, 1.0); vf.y = (float)ref_rng_range(&rng, -1.0, 1.0); vf.z = (float)ref_rng_range(&rng, -1.0, 1.0);
         vn = sqrt((double)vf.x * vf.x + (double)vf.y * vf.y + (double)vf.z * vf.z);
         if (vn > 1.0) { vf.x = (float)(vf.x / vn); vf.y = (float)(vf.y / vn); vf.z = (float)(vf.z / vn); }
         v = qo_vec3_q30_from_f32(vf);
         /* Reference: the sandwich q (0, v) q* in double with the exact fixed inputs. */
-        dqq = from_fx(q);
+        dqq = ref_quat_from_q30(q);
         p.w = 0; p.x = v.x / TWO30; p.y = v.y / TWO30; p.z = v.z / TWO30;
-        out = dmul(dmul(dqq, p), (dq){ dqq.w, -dqq.x, -dqq.y, -dqq.z });
+        out = dq_mul(dq_mul(dqq, p), (dq){ dqq.w, -dqq.x, -dqq.y, -dqq.z });
         r = qo_quat_rotate_q30(q, v);
         ex = fabs(r.x - out.x * TWO30); ey = fabs(r.y - out.y * TWO30); ez = fabs(r.z - out.z * TWO30);
         e = ex > ey ? ex : ey; if (ez > e) e = ez;
@@ -274,30 +220,30 @@ static void test_angle_between(void **state)
     int k;
     qo_quat_q30 a, na;
     (void)state;
-    rng_state = 14;
+    rng.s = 14;
     for (k = 0; k < 20000; k++) {
-        dq da = rand_unit(), db, r;
+        dq da = ref_rng_quat(&rng), db, r;
         qo_quat_q30 b;
         double vn, want, e;
         qo_q28 got;
         a = to_fx(da);
         /* Half the pairs close together (small angles), some near antipodal. */
         if (k % 3 == 0) {
-            dq dd = { 1.0, 1e-5 * srand1(), 1e-5 * srand1(), 1e-5 * srand1() };
-            db = dmul(da, dnormalize(dd));
+            dq dd = { 1.0, 1e-5 * ref_rng_range(&rng, -1.0, 1.0), 1e-5 * ref_rng_range(&rng, -1.0, 1.0), 1e-5 * ref_rng_range(&rng, -1.0, 1.0) };
+            db = dq_mul(da, ref_quat_normalize(dd));
             if (k % 2) { db.w = -db.w; db.x = -db.x; db.y = -db.y; db.z = -db.z; }
         } else {
-            db = rand_unit();
+            db = ref_rng_quat(&rng);
         }
         b = to_fx(db);
-        r = dmul((dq){ a.w / TWO30, -a.x / TWO30, -a.y / TWO30, -a.z / TWO30 }, from_fx(b));
+        r = dq_mul((dq){ a.w / TWO30, -a.x / TWO30, -a.y / TWO30, -a.z / TWO30 }, ref_quat_from_q30(b));
         vn = sqrt(r.x * r.x + r.y * r.y + r.z * r.z);
         want = 2.0 * atan2(vn, fabs(r.w)) * TWO28;
         got = qo_quat_angle_between_q30(a, b);
         e = fabs(got - want);
         if (e > 2.0 || got < 0 || got > QO_Q28_PI) fail_msg("angle_between " QFMT " " QFMT " = %ld: %.3f LSB", QARG(a), QARG(b), (long)got, e);
     }
-    a = to_fx(rand_unit());
+    a = to_fx(ref_rng_quat(&rng));
     assert_int_equal(qo_quat_angle_between_q30(a, a), 0);
     na.w = -a.w; na.x = -a.x; na.y = -a.y; na.z = -a.z;
     assert_int_equal(qo_quat_angle_between_q30(a, na), 0);
@@ -328,9 +274,9 @@ static void test_exp_log(void **state)
     /* A tiny rotation: log (1, e) = (e) to the LSB. */
     assert_int_equal(qo_quat_log_q30((qo_quat_q30){ QO_Q30_ONE, 64, 0, 0 }, &v), QO_OK);
     assert_int_equal(v.x, 16);
-    rng_state = 15;
+    rng.s = 15;
     for (k = 0; k < 20000; k++) {
-        double vx = 3.9 * srand1() / (1 + (double)(k % 4) * 100), vy = 3.9 * srand1(), vz = 3.9 * srand1();
+        double vx = 3.9 * ref_rng_range(&rng, -1.0, 1.0) / (1 + (double)(k % 4) * 100), vy = 3.9 * ref_rng_range(&rng, -1.0, 1.0), vz = 3.9 * ref_rng_range(&rng, -1.0, 1.0);
         qo_vec3_f32 f;
         double n, s, e;
         dq want, lq;
@@ -343,11 +289,11 @@ static void test_exp_log(void **state)
         s = n > 0 ? sin(n) / n : 1.0;
         want.w = cos(n); want.x = s * vx; want.y = s * vy; want.z = s * vz;
         assert_int_equal(qo_quat_exp_q30(v, &r), QO_OK);
-        e = err_lsb(r, want);
+        e = ref_quat_err_lsb_q30(r, want);
         if (e > 2.0) fail_msg("exp(%ld %ld %ld) = " QFMT ": %.3f LSB", (long)v.x, (long)v.y, (long)v.z, QARG(r), e);
         /* log of a random (non-canonical too) quaternion. */
-        q = to_fx(rand_unit());
-        lq = from_fx(q);
+        q = to_fx(ref_rng_quat(&rng));
+        lq = ref_quat_from_q30(q);
         n = sqrt(lq.x * lq.x + lq.y * lq.y + lq.z * lq.z);
         s = atan2(n, lq.w) / n;
         assert_int_equal(qo_quat_log_q30(q, &v), QO_OK);
@@ -369,21 +315,21 @@ static void test_integrate(void **state)
     /* Zero increment: q normalised. */
     assert_int_equal(qo_quat_integrate_q30((qo_quat_q30){ 2 * 3, 0, 0, 0 }, (qo_vec3_q28){ 0, 0, 0 }, &r), QO_OK);
     assert_int_equal(r.w, QO_Q30_ONE);
-    rng_state = 16;
+    rng.s = 16;
     for (k = 0; k < 20000; k++) {
-        qo_quat_q30 q = to_fx(rand_unit());
+        qo_quat_q30 q = to_fx(ref_rng_quat(&rng));
         qo_vec3_f32 f;
         qo_vec3_q28 d;
         dq dd, want;
         double n, s, scale = k % 2 ? 1e-4 : 3.0;
-        f.x = (float)(scale * srand1()); f.y = (float)(scale * srand1()); f.z = (float)(scale * srand1());
+        f.x = (float)(scale * ref_rng_range(&rng, -1.0, 1.0)); f.y = (float)(scale * ref_rng_range(&rng, -1.0, 1.0)); f.z = (float)(scale * ref_rng_range(&rng, -1.0, 1.0));
         d = qo_vec3_q28_from_f32(f);
         n = sqrt((double)d.x * d.x + (double)d.y * d.y + (double)d.z * d.z) / TWO28;
         s = n > 0 ? sin(n / 2) / n : 0.5;
         dd.w = cos(n / 2); dd.x = s * d.x / TWO28; dd.y = s * d.y / TWO28; dd.z = s * d.z / TWO28;
-        want = dnormalize(dmul(dnormalize(from_fx(q)), dd));
+        want = ref_quat_normalize(dq_mul(ref_quat_normalize(ref_quat_from_q30(q)), dd));
         assert_int_equal(qo_quat_integrate_q30(q, d, &r), QO_OK);
-        if (err_lsb(r, want) > 4.0) fail_msg("integrate " QFMT " by (%ld %ld %ld): %.3f LSB", QARG(q), (long)d.x, (long)d.y, (long)d.z, err_lsb(r, want));
+        if (ref_quat_err_lsb_q30(r, want) > 4.0) fail_msg("integrate " QFMT " by (%ld %ld %ld): %.3f LSB", QARG(q), (long)d.x, (long)d.y, (long)d.z, ref_quat_err_lsb_q30(r, want));
     }
 }
 

@@ -287,3 +287,55 @@ ref_quat ref_rng_quat(ref_rng *r)
     q.z = b * cos(2.0 * REF_PI * u3);
     return q;
 }
+
+ref_quat ref_quat_axis(char axis, double angle)
+{
+    ref_quat q = { 0.0, 0.0, 0.0, 0.0 };
+    double s = sin(angle / 2);
+    q.w = cos(angle / 2);
+    if (axis == 'x' || axis == 'X') q.x = s;
+    else if (axis == 'y' || axis == 'Y') q.y = s;
+    else q.z = s;
+    return q;
+}
+
+ref_quat ref_quat_from_euler(const char *n, double a1, double a2, double a3)
+{
+    ref_quat q1 = ref_quat_axis(n[0], a1), q2 = ref_quat_axis(n[1], a2), q3 = ref_quat_axis(n[2], a3);
+    if (n[0] >= 'X' && n[0] <= 'Z') return ref_quat_mul(ref_quat_mul(q1, q2), q3);
+    return ref_quat_mul(q3, ref_quat_mul(q2, q1));
+}
+
+#define REF_TWO30 1073741824.0
+
+ref_quat ref_quat_from_q30(qo_quat_q30 q)
+{
+    ref_quat r;
+    r.w = q.w / REF_TWO30; r.x = q.x / REF_TWO30; r.y = q.y / REF_TWO30; r.z = q.z / REF_TWO30;
+    return r;
+}
+
+int32_t ref_to_fixed(double v, double scale)
+{
+    double r = floor(v * scale + 0.5);
+    if (r > 2147483647.0) r = 2147483647.0;
+    if (r < -2147483648.0) r = -2147483648.0;
+    return (int32_t)r;
+}
+
+qo_quat_q30 ref_quat_to_q30(ref_quat q)
+{
+    qo_quat_q30 r;
+    r.w = ref_to_fixed(q.w, REF_TWO30); r.x = ref_to_fixed(q.x, REF_TWO30);
+    r.y = ref_to_fixed(q.y, REF_TWO30); r.z = ref_to_fixed(q.z, REF_TWO30);
+    return r;
+}
+
+double ref_quat_err_lsb_q30(qo_quat_q30 got, ref_quat want)
+{
+    double e = fabs(got.w - want.w * REF_TWO30), t;
+    t = fabs(got.x - want.x * REF_TWO30); if (t > e) e = t;
+    t = fabs(got.y - want.y * REF_TWO30); if (t > e) e = t;
+    t = fabs(got.z - want.z * REF_TWO30); if (t > e) e = t;
+    return e;
+}

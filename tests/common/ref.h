@@ -20,6 +20,11 @@
  *   ref_mat3_rotation_distance            rotation angle of A^T B for two (near-)rotation matrices
  *   ref_mat3_mul, ref_mat3_det            matrix product, determinant
  *   ref_mat3_nearest_rotation             polar factor M (M^T M)^-1/2 via a Jacobi eigensolver
+ *   ref_quat_axis                         elementary rotation about x, y or z
+ *   ref_quat_from_euler                   Euler angles by products of elementary rotations
+ *   ref_quat_from_q30 / ref_quat_to_q30   exact value of a Q1.30 quaternion / rounded to Q1.30
+ *   ref_to_fixed                          a double rounded to a fixed-point format, saturating
+ *   ref_quat_err_lsb_q30                  largest component error of a Q1.30 result, in LSB
  *   ref_rng / ref_rng_next / ref_rng_unit / ref_rng_range   splitmix64 PRNG
  *   ref_rng_quat                          uniform random unit quaternion (Shoemake)
  */
@@ -66,6 +71,22 @@ double ref_mat3_det(const ref_mat3 *m);
  * M V diag(1/sqrt(l)) V^T from the Jacobi eigen-decomposition M^T M = V diag(l) V^T: an
  * algorithm independent of the library's Newton iteration. m must be non-singular. */
 ref_mat3 ref_mat3_nearest_rotation(const ref_mat3 *m);
+
+/* Rotation by angle (rad) about the axis named by a letter: 'x'/'X', 'y'/'Y', anything else z. */
+ref_quat ref_quat_axis(char axis, double angle);
+/* Rotation of the Euler angles (rad) a1, a2, a3 of the convention named by three letters, the
+ * library's names (qorient/euler.h): lower case extrinsic "abc", R = R_c(a3) R_b(a2) R_a(a1);
+ * upper case intrinsic "ABC", R = R_A(a1) R_B(a2) R_C(a3). Built from the letters, so it shares
+ * no table with the code under test. */
+ref_quat ref_quat_from_euler(const char *seq, double a1, double a2, double a3);
+/* Exact value of a Q1.30 quaternion (not normalised). */
+ref_quat ref_quat_from_q30(qo_quat_q30 q);
+/* v * scale rounded half up, saturated to int32 (scale 2^30 gives Q1.30, 2^28 Q3.28). */
+int32_t ref_to_fixed(double v, double scale);
+/* Each component through ref_to_fixed(., 2^30). */
+qo_quat_q30 ref_quat_to_q30(ref_quat q);
+/* Largest |got - want| over the four components, in LSB of Q1.30. */
+double ref_quat_err_lsb_q30(qo_quat_q30 got, ref_quat want);
 
 /* splitmix64 (Vigna): a 64-bit state, every seed is fine, identical on every platform. */
 typedef struct ref_rng { uint64_t s; } ref_rng;
