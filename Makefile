@@ -46,7 +46,8 @@ FX_SRC    := $(sort $(wildcard lib/src/*_fx.c))
 PORT_SRC  := $(sort $(wildcard ports/mock/*.c ports/linux/*.c))
 CLI_SRC   := $(sort $(wildcard cli/*.c cli/linux/*.c))
 TEST_SRC  := $(sort $(wildcard tests/test_*.c))
-TEST_COMMON := $(sort $(wildcard tests/common/*.c))
+# tests/common/linux/: the Linux-only harness (pty relay); tests/common/*.c also builds for Cortex-M
+TEST_COMMON := $(sort $(wildcard tests/common/*.c tests/common/linux/*.c))
 TEST_SH   := $(sort $(wildcard tests/test_*.sh))
 
 CORE_OBJ  := $(CORE_SRC:%.c=$(BUILD)/obj/%.o)

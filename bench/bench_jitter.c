@@ -57,7 +57,7 @@ static int run_stream(const char *label, int prio, int lock, double seconds)
     unsigned flags;
     struct timespec d;
     double t0;
-    qo_streamer_config_default(&c);
+    c = qo_streamer_config_default;
     c.rate_hz = 500.0;
     c.n_joints = 6;
     c.sample = sample_quintic;
@@ -104,7 +104,7 @@ static void tick_cost(size_t joints)
     const long N = 200000;
     double best = 1e9;
     int rep;
-    qo_streamer_config_default(&c);
+    c = qo_streamer_config_default;
     c.rate_hz = 500.0;
     c.n_joints = joints;
     c.sample = sample_quintic;

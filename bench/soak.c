@@ -177,7 +177,7 @@ static int soak_stream(unsigned long ticks, int short_mode)
         qo_sim_stop(sim);
         return 0;
     }
-    qo_streamer_config_default(&cfg);
+    cfg = qo_streamer_config_default;
     cfg.rate_hz = RATE_HZ;
     cfg.n_joints = NJ;
     cfg.sample = traj_sample;

@@ -13,18 +13,12 @@
 #include <math.h>
 #include <cmocka.h>
 
+#include "common/ref.h"
 #include "linux/gpio_sink.h"
 
-/* ---- deterministic PRNG (splitmix64) --------------------------------------------------- */
-static uint64_t sm_state;
-static uint64_t sm_next(void)
-{
-    uint64_t z = (sm_state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-static uint64_t sm_below(uint64_t n) { return sm_next() % n; }
+/* ---- deterministic PRNG: splitmix64 of tests/common/ref.c -------------------------------- */
+static ref_rng sm;
+static uint64_t sm_below(uint64_t n) { return ref_rng_next(&sm) % n; }
 
 /* ---- fake backend ---------------------------------------------------------------------- */
 #define MAXE 200000
@@ -109,7 +103,8 @@ static void make_config(size_t n, double rate, double setup_us, int invert)
 {
     qo_gpio_joint j;
     size_t i;
-    qo_gpio_sink_config_default(&C, &j);
+    C = qo_gpio_sink_config_default;
+    j = qo_gpio_joint_default;
     C.n_joints = n;
     for (i = 0; i < n; i++) {
         C.joint[i] = j;
@@ -287,7 +282,7 @@ static void test_no_burst_after_stall(void **state)
         int64_t prev;
         check_out o;
         reset_backend();
-        sm_state = 99;
+        sm.s = 99;
         B.max_lat = pass ? 300000u : 0u; /* up to 300 us late per sleep */
         B.set_cost = pass ? 2000u : 0u;
         ntick = 0;
@@ -386,7 +381,7 @@ static void test_random_invariants(void **state)
     uint64_t t = 5000000000ull;
     (void)state;
     reset_backend();
-    sm_state = 2024;
+    sm.s = 2024;
     B.max_lat = 150000u;
     B.set_cost = 1500u;
     ntick = 0;
@@ -425,7 +420,8 @@ static void test_servo_pwm(void **state)
     (void)state;
     reset_backend();
     ntick = 0;
-    qo_gpio_sink_config_default(&C, &j);
+    C = qo_gpio_sink_config_default;
+    j = qo_gpio_joint_default;
     C.period_s = 0.004; /* 250 Hz; window 3 ms > 2 ms pulse */
     C.n_joints = 1;
     C.joint[0] = j;
@@ -552,11 +548,41 @@ static void test_write_errors(void **state)
     assert_int_equal(qo_gpio_sink_position(&G, 2, &p1), QO_E_RANGE);
     assert_int_equal(qo_gpio_sink_position(&G, 0, NULL), QO_E_NULL);
     {
-        qo_sink s = qo_gpio_sink_as_sink(&G);
+        qo_sink s;
+        memset(&s, 0xA5, sizeof s);
+        assert_int_equal(qo_gpio_sink_as_sink(NULL, &s), QO_E_NULL);
+        assert_null(s.ctx); /* zeroed on error */
+        assert_null(s.write);
+        assert_int_equal(qo_gpio_sink_as_sink(&G, NULL), QO_E_NULL);
+        assert_int_equal(qo_gpio_sink_as_sink(&G, &s), QO_OK);
         assert_ptr_equal(s.ctx, &G);
         assert_null(s.service);
         assert_true(s.write == qo_gpio_sink_write);
     }
+}
+
+/* The defaults are constants (one idiom with the streamer and the Modbus sink): the documented
+ * values, and every one of the QO_GPIO_MAX_JOINTS joints equal to the default joint. */
+static void test_default_constants(void **state)
+{
+    const qo_gpio_sink_config *c = &qo_gpio_sink_config_default;
+    const qo_gpio_joint *j = &qo_gpio_joint_default;
+    size_t i;
+    (void)state;
+    assert_true(c->period_s == 0.002 && c->window == 0.75 && c->step_high_us == 5.0);
+    assert_true(c->servo_frame_us == 20000.0);
+    assert_int_equal(c->n_joints, 0);
+    assert_int_equal(j->kind, QO_GPIO_STEP_DIR);
+    assert_true(j->steps_per_unit == 200.0 && j->max_rate_hz == 1000.0 && j->dir_setup_us == 5.0);
+    assert_int_equal(j->invert_dir, 0);
+    assert_true(j->servo_center_us == 1500.0 && j->servo_us_per_unit == 500.0);
+    assert_true(j->servo_min_us == 1000.0 && j->servo_max_us == 2000.0);
+    assert_null(j->step.chip);
+    assert_null(j->step.name);
+    assert_null(j->dir.chip);
+    assert_null(j->dir.name);
+    for (i = 0; i < QO_GPIO_MAX_JOINTS; i++)
+        if (memcmp(&c->joint[i], j, sizeof *j) != 0) fail_msg("default joint %u differs", (unsigned)i);
 }
 
 /* No GPIO chips on this machine: the libgpiod backend reports a missing chip/line as a
@@ -596,6 +622,7 @@ int main(void)
         cmocka_unit_test(test_config_errors),
         cmocka_unit_test(test_write_errors),
         cmocka_unit_test(test_libgpiod_backend_without_chips),
+        cmocka_unit_test(test_default_constants),
     };
     return cmocka_run_group_tests_name("gpio_sink", tests, NULL, NULL);
 }

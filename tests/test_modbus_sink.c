@@ -21,6 +21,7 @@
 #include <unistd.h>
 #include <cmocka.h>
 
+#include "common/linux/relay.h"
 #include "linux/modbus_sink.h"
 #include "linux/sim.h"
 
@@ -647,78 +648,9 @@ static void test_sim_first_order_lag(void **state)
     qo_sim_stop(sim);
 }
 
-/* ---- RTU over two pty pairs joined by a relay thread ------------------------------------ */
+/* ---- RTU over two pty pairs joined by a relay thread (tests/common/linux/relay.c) ------ */
 
-struct relay {
-    int ma, mb;          /* masters: A = simulator side, B = sink side */
-    int sa, sb;          /* slaves kept open so the masters never read EIO */
-    char path_a[64], path_b[64];
-    pthread_t th;
-    pthread_mutex_t mu;
-    int stop;
-    int junk_to_sink, junk_to_sim; /* chunks still to prefix with garbage */
-};
-
-static void *relay_main(void *arg)
-{
-    struct relay *r = arg;
-    static const uint8_t junk[3] = { 0x5A, 0xA5, 0x11 };
-    for (;;) {
-        struct pollfd pf[2];
-        uint8_t buf[512];
-        int i, stop;
-        pthread_mutex_lock(&r->mu);
-        stop = r->stop;
-        pthread_mutex_unlock(&r->mu);
-        if (stop) break;
-        pf[0].fd = r->ma;
-        pf[1].fd = r->mb;
-        pf[0].events = pf[1].events = POLLIN;
-        pf[0].revents = pf[1].revents = 0;
-        if (poll(pf, 2, 10) <= 0) continue;
-        for (i = 0; i < 2; i++) {
-            ssize_t n;
-            int to = i == 0 ? r->mb : r->ma, inject = 0;
-            if (!(pf[i].revents & POLLIN)) continue;
-            n = read(pf[i].fd, buf, sizeof buf);
-            if (n <= 0) continue;
-            pthread_mutex_lock(&r->mu);
-            if (i == 0 && r->junk_to_sink > 0) { r->junk_to_sink--; inject = 1; }
-            if (i == 1 && r->junk_to_sim > 0) { r->junk_to_sim--; inject = 1; }
-            pthread_mutex_unlock(&r->mu);
-            if (inject && write(to, junk, sizeof junk) != (ssize_t)sizeof junk) continue;
-            if (write(to, buf, (size_t)n) != n) continue;
-        }
-    }
-    return NULL;
-}
-
-static void relay_open(struct relay *r)
-{
-    struct termios raw;
-    memset(r, 0, sizeof *r);
-    pthread_mutex_init(&r->mu, NULL);
-    assert_int_equal(openpty(&r->ma, &r->sa, r->path_a, NULL, NULL), 0);
-    assert_int_equal(openpty(&r->mb, &r->sb, r->path_b, NULL, NULL), 0);
-    assert_int_equal(tcgetattr(r->ma, &raw), 0);
-    cfmakeraw(&raw);
-    assert_int_equal(tcsetattr(r->ma, TCSANOW, &raw), 0);
-    assert_int_equal(tcsetattr(r->mb, TCSANOW, &raw), 0);
-    assert_int_equal(pthread_create(&r->th, NULL, relay_main, r), 0);
-}
-
-static void relay_close(struct relay *r)
-{
-    pthread_mutex_lock(&r->mu);
-    r->stop = 1;
-    pthread_mutex_unlock(&r->mu);
-    pthread_join(r->th, NULL);
-    close(r->ma);
-    close(r->mb);
-    close(r->sa);
-    close(r->sb);
-    pthread_mutex_destroy(&r->mu);
-}
+static const uint8_t k_junk[3] = { 0x5A, 0xA5, 0x11 };
 
 static void test_rtu_pty_with_garbage(void **state)
 {
@@ -736,7 +668,7 @@ static void test_rtu_pty_with_garbage(void **state)
     (void)state;
     load_six();
     assert_non_null(log);
-    relay_open(&r);
+    relay_open(&r, k_junk, sizeof k_junk);
     ss.log = log;
     ss.lag_s = 0.02;
     snprintf(spec, sizeof spec, "rtu:%s,115200,8N1", r.path_a);
@@ -748,14 +680,10 @@ static void test_rtu_pty_with_garbage(void **state)
     for (k = 0; k < NTICKS; k++) {
         float t[NJ];
         if (k == 50 || k == 51) {
-            pthread_mutex_lock(&r.mu);
-            r.junk_to_sink = 1; /* garbage before the next reply */
-            pthread_mutex_unlock(&r.mu);
+            relay_junk(&r, 1); /* garbage before the next reply */
         }
         if (k == 100 || k == 130) {
-            pthread_mutex_lock(&r.mu);
-            r.junk_to_sim = 1; /* garbage before the next request */
-            pthread_mutex_unlock(&r.mu);
+            relay_junk(&r, 0); /* garbage before the next request */
         }
         targets_at(k, t);
         if (qo_modbus_sink_write(s, t, NJ, k) != QO_OK) {
@@ -876,7 +804,7 @@ static void test_rtu_late_reply(void **state)
     memset(&tl, 0, sizeof tl);
     load_six();
     assert_non_null(log);
-    relay_open(&r);
+    relay_open(&r, k_junk, sizeof k_junk);
     ss.log = log;
     ss.lag_s = 0.0;
     snprintf(spec, sizeof spec, "rtu:%s,115200,8N1", r.path_a);

@@ -61,6 +61,7 @@
 #include <sys/socket.h>
 #include <cmocka.h>
 
+#include "common/linux/relay.h"
 #include "linux/modbus_sink.h"
 #include "linux/sim.h"
 #include "linux/streamer.h"
@@ -342,89 +343,10 @@ static void proxy_close(struct proxy *p)
     pthread_mutex_destroy(&p->mu);
 }
 
-/* ---- RTU over two pty pairs joined by a relay that can inject garbage (the approach of
- * test_modbus_sink.c) --------------------------------------------------------------------- */
+/* ---- RTU over two pty pairs joined by a relay that can inject garbage
+ * (tests/common/linux/relay.c, shared with test_modbus_sink.c) ----------------------------- */
 
-struct relay {
-    int ma, mb;          /* masters: A = simulator side, B = sink side */
-    int sa, sb;          /* slaves kept open so the masters never read EIO */
-    char path_a[64], path_b[64];
-    pthread_t th;
-    pthread_mutex_t mu;
-    int stop;
-    int junk_to_sink, junk_to_sim; /* chunks still to prefix with garbage */
-    uint64_t injected;
-};
-
-static void *relay_main(void *arg)
-{
-    struct relay *r = arg;
-    static const uint8_t junk[5] = { 0x5A, 0xA5, 0x11, 0xFF, 0x00 };
-    for (;;) {
-        struct pollfd pf[2];
-        uint8_t buf[512];
-        int i, stop;
-        pthread_mutex_lock(&r->mu);
-        stop = r->stop;
-        pthread_mutex_unlock(&r->mu);
-        if (stop) break;
-        pf[0].fd = r->ma;
-        pf[1].fd = r->mb;
-        pf[0].events = pf[1].events = POLLIN;
-        pf[0].revents = pf[1].revents = 0;
-        if (poll(pf, 2, 10) <= 0) continue;
-        for (i = 0; i < 2; i++) {
-            ssize_t n;
-            int to = i == 0 ? r->mb : r->ma, inject = 0;
-            if (!(pf[i].revents & POLLIN)) continue;
-            n = read(pf[i].fd, buf, sizeof buf);
-            if (n <= 0) continue;
-            pthread_mutex_lock(&r->mu);
-            if (i == 0 && r->junk_to_sink > 0) { r->junk_to_sink--; inject = 1; }
-            if (i == 1 && r->junk_to_sim > 0) { r->junk_to_sim--; inject = 1; }
-            if (inject) r->injected++;
-            pthread_mutex_unlock(&r->mu);
-            if (inject && write(to, junk, sizeof junk) != (ssize_t)sizeof junk) continue;
-            if (write(to, buf, (size_t)n) != n) continue;
-        }
-    }
-    return NULL;
-}
-
-static void relay_open(struct relay *r)
-{
-    struct termios raw;
-    memset(r, 0, sizeof *r);
-    pthread_mutex_init(&r->mu, NULL);
-    assert_int_equal(openpty(&r->ma, &r->sa, r->path_a, NULL, NULL), 0);
-    assert_int_equal(openpty(&r->mb, &r->sb, r->path_b, NULL, NULL), 0);
-    assert_int_equal(tcgetattr(r->ma, &raw), 0);
-    cfmakeraw(&raw);
-    assert_int_equal(tcsetattr(r->ma, TCSANOW, &raw), 0);
-    assert_int_equal(tcsetattr(r->mb, TCSANOW, &raw), 0);
-    assert_int_equal(pthread_create(&r->th, NULL, relay_main, r), 0);
-}
-
-static void relay_junk(struct relay *r, int to_sink)
-{
-    pthread_mutex_lock(&r->mu);
-    if (to_sink) r->junk_to_sink++;
-    else r->junk_to_sim++;
-    pthread_mutex_unlock(&r->mu);
-}
-
-static void relay_close(struct relay *r)
-{
-    pthread_mutex_lock(&r->mu);
-    r->stop = 1;
-    pthread_mutex_unlock(&r->mu);
-    pthread_join(r->th, NULL);
-    close(r->ma);
-    close(r->mb);
-    close(r->sa);
-    close(r->sb);
-    pthread_mutex_destroy(&r->mu);
-}
+static const uint8_t k_junk[5] = { 0x5A, 0xA5, 0x11, 0xFF, 0x00 };
 
 /* ---- simulator and its log -------------------------------------------------------------- */
 
@@ -521,7 +443,7 @@ static void run_scenario(enum scen sc)
 
     /* the drive side */
     if (sc == S_RTU_GARBAGE) {
-        relay_open(&rl);
+        relay_open(&rl, k_junk, sizeof k_junk);
         snprintf(sim_spec, sizeof sim_spec, "rtu:%s,115200,8N1", rl.path_a);
         sim = sim_start(sim_spec, log);
         snprintf(spec, sizeof spec, "rtu:%s,115200,8N1", rl.path_b);
@@ -552,7 +474,7 @@ static void run_scenario(enum scen sc)
      * no transaction id). It was a stress option (QO_STRESS_RTU) then; it is the default now. */
     if (sc == S_SIGINT) app.set.response_timeout_us = 20000; /* the final write must land */
 
-    qo_streamer_config_default(&cfg);
+    cfg = qo_streamer_config_default;
     cfg.rate_hz = rate;
     cfg.n_joints = NJ;
     cfg.sample = traj_sample;

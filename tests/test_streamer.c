@@ -14,18 +14,12 @@
 #include <time.h>
 #include <cmocka.h>
 
+#include "common/ref.h"
 #include "linux/streamer.h"
 
-/* ---- deterministic PRNG (splitmix64) --------------------------------------------------- */
-static uint64_t sm_state;
-static uint64_t sm_next(void)
-{
-    uint64_t z = (sm_state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-static uint64_t sm_below(uint64_t n) { return sm_next() % n; }
+/* ---- deterministic PRNG: splitmix64 of tests/common/ref.c -------------------------------- */
+static ref_rng sm;
+static uint64_t sm_below(uint64_t n) { return ref_rng_next(&sm) % n; }
 
 /* ---- fake clock, sampler and sink ------------------------------------------------------ */
 #define MAXT 4096
@@ -105,7 +99,7 @@ static void setup_streamer(qo_streamer *s, double rate)
     F.now = 1000000000ull; /* origin 1 s: the clock is not zero-based */
     F.fail_sample_from = -1;
     F.s = s;
-    qo_streamer_config_default(&c);
+    c = qo_streamer_config_default;
     c.rate_hz = rate;
     c.n_joints = 3;
     c.sample = fk_sample;
@@ -241,7 +235,7 @@ static void test_no_catch_up_burst_random(void **state)
     qo_streamer_stats st;
     size_t k;
     (void)state;
-    sm_state = 0x5eed1234u;
+    sm.s = 0x5eed1234u;
     setup_streamer(&S, 500.0);
     origin = F.now;
     for (k = 0; k < N; k++) {
@@ -347,7 +341,7 @@ static void test_hist_percentiles_vs_brute_force(void **state)
     size_t si, i, qi;
     uint64_t out;
     (void)state;
-    sm_state = 42;
+    sm.s = 42;
     for (si = 0; si < sizeof sizes / sizeof sizes[0]; si++) {
         size_t n = sizes[si];
         qo_jitter_hist_reset(&h);
@@ -388,7 +382,7 @@ static void test_streamer_stats_vs_brute_force(void **state)
     qo_streamer_stats st;
     size_t k;
     (void)state;
-    sm_state = 7;
+    sm.s = 7;
     setup_streamer(&S, 500.0);
     for (k = 0; k < N; k++) F.lat[k] = sm_below(10) ? sm_below(300000) : sm_below(1500000);
     for (k = 0; k < N; k++) (void)qo_streamer_tick(&S);
@@ -522,7 +516,7 @@ static void test_real_time_run_sane(void **state)
     int i;
     (void)state;
     memset(&sink, 0, sizeof sink);
-    qo_streamer_config_default(&c);
+    c = qo_streamer_config_default;
     c.rate_hz = 500.0;
     c.n_joints = 3;
     c.sample = rt_sample;
@@ -564,9 +558,25 @@ static void test_real_time_run_sane(void **state)
     assert_int_equal(qo_streamer_join(&rs), QO_E_STATE);
 }
 
+/* The defaults are a constant (the ports' one idiom): the documented values, nothing else set. */
+static void test_default_constant(void **state)
+{
+    const qo_streamer_config *c = &qo_streamer_config_default;
+    (void)state;
+    assert_true(c->rate_hz == 500.0);
+    assert_int_equal(c->rt_priority, 80);
+    assert_int_equal(c->lock_memory, 1);
+    assert_int_equal(c->n_joints, 0);
+    assert_null(c->sample);
+    assert_null(c->sink.write);
+    assert_null(c->now);
+    assert_null(c->sleep_until);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_default_constant),
         cmocka_unit_test(test_init_rejects_bad_config),
         cmocka_unit_test(test_period_accuracy),
         cmocka_unit_test(test_overrun_skips_and_counts),

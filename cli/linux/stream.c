@@ -497,7 +497,7 @@ int qo_cli_stream(int argc, char **argv)
         goto out;
     }
 
-    qo_streamer_config_default(&cfg);
+    cfg = qo_streamer_config_default;
     cfg.rate_hz = rate;
     cfg.n_joints = n_joints;
     cfg.sample = sample_traj;
@@ -536,7 +536,8 @@ int qo_cli_stream(int argc, char **argv)
             goto usage;
         nspu = spu_s ? n_joints : 0;
         nsr = step_rate_s ? n_joints : 0;
-        qo_gpio_sink_config_default(&gc, &jd);
+        gc = qo_gpio_sink_config_default;
+        jd = qo_gpio_joint_default;
         gc.period_s = 1.0 / rate;
         gc.n_joints = n_joints;
         for (j = 0; j < n_joints; j++) {
@@ -555,7 +556,7 @@ int qo_cli_stream(int argc, char **argv)
             goto out;
         }
         gpio_open = 1;
-        cfg.sink = qo_gpio_sink_as_sink(&gs);
+        (void)qo_gpio_sink_as_sink(&gs, &cfg.sink); /* QO_E_NULL only */
     }
 
     sc.plan = &plan;

@@ -207,7 +207,7 @@ int main(int argc, char **argv)
            (double)qo_motion_duration_f32(&mv.tr.planner), argc == 3 ? "first" : "final",
            EX_RATE_HZ);
 
-    qo_streamer_config_default(&cfg);
+    cfg = qo_streamer_config_default;
     cfg.rate_hz = EX_RATE_HZ;
     cfg.n_joints = n;
     cfg.sample = sample_move;

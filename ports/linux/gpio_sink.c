@@ -3,6 +3,7 @@
  * backend (v1 API by default, v2 API under QO_GPIOD_V2). See gpio_sink.h for the model.
  */
 #include "gpio_sink.h"
+#include "mono_clock.h"
 
 #include <errno.h>
 #include <math.h>
@@ -26,49 +27,23 @@
 #include <dirent.h>
 #endif
 
-/* ---- default clock ------------------------------------------------------------------------ */
-
-static uint64_t mono_now(void *ctx)
-{
-    struct timespec ts;
-    (void)ctx;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
-}
-
-static int mono_sleep_until(void *ctx, uint64_t abs_ns)
-{
-    struct timespec ts;
-    (void)ctx;
-    ts.tv_sec = (time_t)(abs_ns / 1000000000u);
-    ts.tv_nsec = (long)(abs_ns % 1000000000u);
-    return clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL);
-}
-
 /* ---- configuration --------------------------------------------------------------------- */
 
-void qo_gpio_sink_config_default(qo_gpio_sink_config *cfg, qo_gpio_joint *joint_out)
-{
-    qo_gpio_joint j;
-    size_t i;
-    memset(&j, 0, sizeof j);
-    j.kind = QO_GPIO_STEP_DIR;
-    j.steps_per_unit = 200.0;
-    j.max_rate_hz = 1000.0;
-    j.dir_setup_us = 5.0;
-    j.servo_center_us = 1500.0;
-    j.servo_us_per_unit = 500.0;
-    j.servo_min_us = 1000.0;
-    j.servo_max_us = 2000.0;
-    if (joint_out) *joint_out = j;
-    if (!cfg) return;
-    memset(cfg, 0, sizeof *cfg);
-    cfg->period_s = 0.002;
-    cfg->window = 0.75;
-    cfg->step_high_us = 5.0;
-    cfg->servo_frame_us = 20000.0;
-    for (i = 0; i < QO_GPIO_MAX_JOINTS; i++) cfg->joint[i] = j;
-}
+/* Every joint of the default config is the default joint: its initializer, 32 times. */
+#define QO_GPIO_JOINT_DEFAULT_INIT                                                          \
+    { .kind = QO_GPIO_STEP_DIR, .steps_per_unit = 200.0, .max_rate_hz = 1000.0,           \
+      .dir_setup_us = 5.0, .servo_center_us = 1500.0, .servo_us_per_unit = 500.0,         \
+      .servo_min_us = 1000.0, .servo_max_us = 2000.0 }
+#define QO_GPIO_J4 QO_GPIO_JOINT_DEFAULT_INIT, QO_GPIO_JOINT_DEFAULT_INIT, \
+                   QO_GPIO_JOINT_DEFAULT_INIT, QO_GPIO_JOINT_DEFAULT_INIT
+typedef char qo_gpio_default_covers_every_joint[QO_GPIO_MAX_JOINTS == 32u ? 1 : -1];
+
+const qo_gpio_joint qo_gpio_joint_default = QO_GPIO_JOINT_DEFAULT_INIT;
+
+const qo_gpio_sink_config qo_gpio_sink_config_default = {
+    .period_s = 0.002, .window = 0.75, .step_high_us = 5.0, .servo_frame_us = 20000.0,
+    .joint = { QO_GPIO_J4, QO_GPIO_J4, QO_GPIO_J4, QO_GPIO_J4, QO_GPIO_J4, QO_GPIO_J4, QO_GPIO_J4, QO_GPIO_J4 }
+};
 
 static int finite_in(double v, double lo, double hi) { return isfinite(v) && v >= lo && v <= hi; }
 static int line_given(const qo_gpio_line *l) { return l->chip != NULL || l->name != NULL; }
@@ -145,8 +120,8 @@ qo_status qo_gpio_sink_open(qo_gpio_sink *g, const qo_gpio_sink_config *cfg,
     if (st != QO_OK) return st;
     g->cfg = *cfg;
     g->be = *be;
-    if (!g->be.now_ns) g->be.now_ns = mono_now;
-    if (!g->be.sleep_until_ns) g->be.sleep_until_ns = mono_sleep_until;
+    if (!g->be.now_ns) g->be.now_ns = qo_mono_now_ns;
+    if (!g->be.sleep_until_ns) g->be.sleep_until_ns = qo_mono_sleep_until_ns;
     g->period_ns = (uint64_t)llround(cfg->period_s * 1e9);
     g->window_ns = (uint64_t)llround(cfg->period_s * cfg->window * 1e9);
     for (i = 0; i < cfg->n_joints; i++) { g->js[i].step_h = -1; g->js[i].dir_h = -1; }
@@ -320,13 +295,14 @@ qo_status qo_gpio_sink_write(void *ctx, const float *targets, size_t n, uint64_t
     return res;
 }
 
-qo_sink qo_gpio_sink_as_sink(qo_gpio_sink *g)
+qo_status qo_gpio_sink_as_sink(qo_gpio_sink *g, qo_sink *out)
 {
-    qo_sink s;
-    memset(&s, 0, sizeof s); /* flush, close, stats, service: none */
-    s.ctx = g;
-    s.write = qo_gpio_sink_write;
-    return s;
+    if (out == NULL) return QO_E_NULL;
+    memset(out, 0, sizeof *out); /* flush, close, stats, service: none */
+    if (g == NULL) return QO_E_NULL;
+    out->ctx = g;
+    out->write = qo_gpio_sink_write;
+    return QO_OK;
 }
 
 qo_status qo_gpio_sink_position(const qo_gpio_sink *g, size_t joint, int64_t *steps)
@@ -544,7 +520,7 @@ qo_status qo_gpio_libgpiod_backend(qo_gpio_libgpiod *store, const char *consumer
     be->open = lg_open;
     be->set_value = lg_set;
     be->close = lg_close;
-    be->now_ns = mono_now;
-    be->sleep_until_ns = mono_sleep_until;
+    be->now_ns = qo_mono_now_ns;
+    be->sleep_until_ns = qo_mono_sleep_until_ns;
     return QO_OK;
 }

@@ -7,10 +7,11 @@
  *   qo_gpio_joint                 per joint: kind, lines, steps per unit, max rate, dir setup, invert
  *   qo_gpio_sink_config           period, pulse window, step high time, joints
  *   qo_gpio_backend               pin toggling table: open, set_value, close (+ clock, sleep)
- *   qo_gpio_sink_config_default() defaults for the config and for one joint
+ *   qo_gpio_sink_config_default   const defaults of the config (every joint = qo_gpio_joint_default)
+ *   qo_gpio_joint_default         const defaults of one joint
  *   qo_gpio_sink_open()           check the config, open every line through the backend
  *   qo_gpio_sink_write()          one tick: emit the owed steps / servo frame (the qo_sink write)
- *   qo_gpio_sink_as_sink()        the qo_sink wrapping a sink (service = NULL)
+ *   qo_gpio_sink_as_sink()        fills the qo_sink view of a sink (service = NULL)
  *   qo_gpio_sink_position()       steps emitted so far for a step/dir joint
  *   qo_gpio_sink_close()          drive step lines low and close every line
  *   qo_gpio_libgpiod_backend()    the libgpiod backend (v1 API default, v2 when QO_GPIOD_V2)
@@ -53,7 +54,7 @@
 #include <stdint.h>
 
 #include "qorient/status.h"
-#include "linux/streamer.h" /* qo_sink */
+#include "qorient/sink.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -139,12 +140,14 @@ typedef struct qo_gpio_sink {
 } qo_gpio_sink;
 
 /*
- * Defaults: cfg with period 0.002 s (500 Hz), window 0.75, step_high_us 5, servo frame 20000,
- * n_joints 0 and every joint = *joint_out defaults; joint_out (may be NULL) gets a step/dir
- * joint with 200 steps/unit, 1000 Hz, dir setup 5 us, no invert, servo 1500 +- 500 us/unit
- * clamped to 1000..2000. Lines are left empty (chip NULL, name NULL). NULL cfg is ignored.
+ * Defaults, copied by value (cfg = qo_gpio_sink_config_default): period 0.002 s (500 Hz),
+ * window 0.75, step_high_us 5, servo frame 20000 us, n_joints 0 and every joint =
+ * qo_gpio_joint_default: a step/dir joint with 200 steps/unit, 1000 Hz, dir setup 5 us, no
+ * invert, servo 1500 +- 500 us/unit clamped to 1000..2000. Lines are left empty (chip NULL,
+ * name NULL): set n_joints and each joint's lines.
  */
-void qo_gpio_sink_config_default(qo_gpio_sink_config *cfg, qo_gpio_joint *joint_out);
+extern const qo_gpio_sink_config qo_gpio_sink_config_default;
+extern const qo_gpio_joint qo_gpio_joint_default;
 
 /*
  * Checks cfg, then opens every line through be (step lines low; dir lines at level 0, which
@@ -171,8 +174,10 @@ qo_status qo_gpio_sink_open(qo_gpio_sink *g, const qo_gpio_sink_config *cfg,
  */
 qo_status qo_gpio_sink_write(void *ctx, const float *targets, size_t n, uint64_t tick);
 
-/* The qo_sink of g (write = qo_gpio_sink_write, service = NULL). */
-qo_sink qo_gpio_sink_as_sink(qo_gpio_sink *g);
+/* Fills *out with the qo_sink of g (ctx = g, write = qo_gpio_sink_write; flush, close, stats
+ * and service NULL): the same shape as qo_modbus_sink_as_sink. Returns QO_OK; QO_E_NULL if g
+ * or out is NULL (*out zeroed when out is not NULL). */
+qo_status qo_gpio_sink_as_sink(qo_gpio_sink *g, qo_sink *out);
 
 /*
  * Steps emitted so far by a step/dir joint (signed, positive direction +1). Returns QO_OK;

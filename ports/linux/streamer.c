@@ -3,6 +3,7 @@
  * statistics readable while running. See streamer.h for the timing and locking model.
  */
 #include "streamer.h"
+#include "mono_clock.h"
 
 #include <errno.h>
 #include <math.h>
@@ -71,35 +72,11 @@ qo_status qo_jitter_hist_percentile(const qo_jitter_hist *h, double q, uint64_t 
     return QO_OK;
 }
 
-/* ---- clock ------------------------------------------------------------------------------ */
-
-static uint64_t real_now(void *ctx)
-{
-    struct timespec ts;
-    (void)ctx;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
-}
-
-static int real_sleep_until(void *ctx, uint64_t abs_ns)
-{
-    struct timespec ts;
-    (void)ctx;
-    ts.tv_sec = (time_t)(abs_ns / 1000000000u);
-    ts.tv_nsec = (long)(abs_ns % 1000000000u);
-    return clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL);
-}
-
 /* ---- streamer --------------------------------------------------------------------------- */
 
-void qo_streamer_config_default(qo_streamer_config *cfg)
-{
-    if (!cfg) return;
-    memset(cfg, 0, sizeof *cfg);
-    cfg->rate_hz = 500.0;
-    cfg->rt_priority = 80;
-    cfg->lock_memory = 1;
-}
+const qo_streamer_config qo_streamer_config_default = {
+    .rate_hz = 500.0, .rt_priority = 80, .lock_memory = 1
+};
 
 qo_status qo_streamer_init(qo_streamer *s, const qo_streamer_config *cfg)
 {
@@ -114,8 +91,8 @@ qo_status qo_streamer_init(qo_streamer *s, const qo_streamer_config *cfg)
     if (cfg->n_joints > QO_STREAMER_MAX_JOINTS) return QO_E_CAPACITY;
     if (cfg->rt_priority < 0 || cfg->rt_priority > 99) return QO_E_RANGE;
     s->cfg = *cfg;
-    if (!s->cfg.now) { s->cfg.now = real_now; }
-    if (!s->cfg.sleep_until) { s->cfg.sleep_until = real_sleep_until; }
+    if (!s->cfg.now) { s->cfg.now = qo_mono_now_ns; }
+    if (!s->cfg.sleep_until) { s->cfg.sleep_until = qo_mono_sleep_until_ns; }
     s->period_ns = (uint64_t)llround(1e9 / cfg->rate_hz);
     /* Priority inheritance: a low-priority reader holding the lock cannot be preempted for
      * long by mid-priority work while the RT thread wants the lock (it only try-locks anyway). */

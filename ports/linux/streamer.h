@@ -8,7 +8,7 @@
  *   qo_jitter_hist_reset()        empty a wake-latency histogram
  *   qo_jitter_hist_add()          add one latency sample (ns)
  *   qo_jitter_hist_percentile()   nearest-rank percentile of the histogram (ns, bin resolution)
- *   qo_streamer_config_default()  defaults: 500 Hz, SCHED_FIFO 80, mlockall, real clock
+ *   qo_streamer_config_default    const defaults: 500 Hz, SCHED_FIFO 80, mlockall, real clock
  *   qo_streamer_init()            check a config and prepare a streamer (no thread, no RT yet)
  *   qo_streamer_tick()            one period: wait for the deadline, sample, write, skip overruns
  *   qo_streamer_run()             the loop in the calling thread until stop, then the final write
@@ -186,10 +186,12 @@ typedef struct qo_streamer {
 } qo_streamer;
 
 /*
- * Fills *cfg with defaults: 500 Hz, SCHED_FIFO priority 80, mlockall on, real clock, no
- * sampler or sink (the caller must set sample, sink and n_joints). NULL ignored.
+ * Defaults, copied by value (cfg = qo_streamer_config_default): 500 Hz, SCHED_FIFO priority
+ * 80, mlockall on, real clock, no sampler or sink (the caller sets sample, sink and n_joints).
+ * The ports' one defaults idiom, as qo_modbus_sink_settings_default and the core's
+ * qo_motion_settings_default.
  */
-void qo_streamer_config_default(qo_streamer_config *cfg);
+extern const qo_streamer_config qo_streamer_config_default;
 
 /*
  * Checks cfg and prepares s: the time origin and the first deadline are set to now (the

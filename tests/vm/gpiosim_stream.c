@@ -187,7 +187,8 @@ static void make_config(void)
     qo_gpio_joint j;
     static char path1[80];
     int k;
-    qo_gpio_sink_config_default(&g_cfg, &j);
+    g_cfg = qo_gpio_sink_config_default;
+    j = qo_gpio_joint_default;
     g_cfg.period_s = 0.004;
     g_cfg.window = 0.75;
     g_cfg.step_high_us = 20.0;
@@ -346,11 +347,11 @@ int main(int argc, char **argv)
         if (neta[i] != pa[i]) return fail("part A kernel steps");
 
     /* Part B: the real streamer drives the sink. */
-    qo_streamer_config_default(&sc);
+    sc = qo_streamer_config_default;
     sc.rate_hz = 250.0;
     sc.n_joints = NJ;
     sc.sample = ramp;
-    sc.sink = qo_gpio_sink_as_sink(&sink);
+    if (qo_gpio_sink_as_sink(&sink, &sc.sink) != QO_OK) return fail("as_sink");
     sc.lock_memory = 0;
     if (qo_streamer_init(&str, &sc) != QO_OK || qo_streamer_start(&str) != QO_OK)
         return fail("streamer start");
