@@ -59,7 +59,7 @@ SPORT_OBJ := $(PORT_SRC:%.c=$(BUILD)/san/%.o)
 SCOMMON_OBJ := $(TEST_COMMON:%.c=$(BUILD)/san/%.o)
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all lib demo test test-run test-vm core-check clean tests-build figures figures-check
+.PHONY: all lib demo test test-run test-vm core-check clean tests-build figures figures-check parity parity-check
 # Keep the sanitizer objects between runs (they are intermediates of the test pattern rule).
 .SECONDARY:
 all: $(BUILD)/libqorient.a $(BUILD)/libqorient_ports.a $(BUILD)/qorient
@@ -128,8 +128,16 @@ $(BUILD)/bench/%: bench/%.c $(BUILD)/libqorient_testcommon.a $(BUILD)/libqorient
 # committed page differs (CI).
 figures: $(BENCH_BIN)
 	@BUILD=$(BUILD) sh tools/figures.sh
+	@sh tools/parity.sh
 figures-check: $(BENCH_BIN)
 	@BUILD=$(BUILD) sh tools/figures.sh --check
+
+# docs/PARITY.md (concept x core) from the "parity" blocks at the top of the public headers;
+# parity-check (CI) fails when the page is stale or a concept lacks a stated twin or gap.
+parity:
+	@sh tools/parity.sh
+parity-check:
+	@sh tools/parity.sh --check
 
 tests-build: $(TEST_BIN) $(BUILD)/qorient
 

@@ -1,3 +1,19 @@
+/* parity fixed (tools/parity.sh writes docs/PARITY.md from these blocks):
+ *   convert.from_axis_angle    qo_quat_from_axis_angle_q30
+ *   convert.to_axis_angle      qo_quat_to_axis_angle_q30
+ *   convert.from_rotvec        qo_quat_from_rotvec_q30
+ *   convert.to_rotvec          qo_quat_to_rotvec_q30
+ *   convert.to_mat3            qo_quat_to_mat3_q30
+ *   convert.from_mat3          qo_quat_from_mat3_q30
+ *   convert.from_mat3_trusted  - not yet (issue 16): the checked qo_quat_from_mat3_q30 only
+ *   convert.from_mat3_ortho    - not yet (issue 16): repair matrices in float32 first
+ *   mat3.identity              - not yet (issue 16): no fixed-point caller so far
+ *   mat3.transpose             - not yet (issue 16): no fixed-point caller so far
+ *   mat3.mul                   - not yet (issue 16): no fixed-point caller so far
+ *   mat3.mul_vec3              qo_mat3_mul_vec3_q30
+ *   mat3.det                   - not yet (issue 16): no fixed-point caller so far
+ *   mat3.orthonormalize        - not yet (issue 16): repair matrices in float32 first
+ */
 /*
  * qorient/convert_fx.h - conversions between rotation representations in fixed point.
  *

@@ -1,3 +1,9 @@
+/* parity float32 (tools/parity.sh writes docs/PARITY.md from these blocks):
+ *   euler.from_euler     qo_quat_from_euler_f32
+ *   euler.to_euler       qo_quat_to_euler_f32
+ *   euler.to_euler_near  qo_quat_to_euler_near_f32
+ *   euler.to_euler_band  qo_quat_to_euler_band_f32
+ */
 /*
  * qorient/euler.h - Euler angles, float32: all 12 axis sequences, intrinsic and extrinsic
  * (24 conventions), both directions, with gimbal lock reported as data.

@@ -1,3 +1,9 @@
+/* parity fixed (tools/parity.sh writes docs/PARITY.md from these blocks):
+ *   euler.from_euler     qo_quat_from_euler_q30
+ *   euler.to_euler       qo_quat_to_euler_q30
+ *   euler.to_euler_near  qo_quat_to_euler_near_q30
+ *   euler.to_euler_band  qo_quat_to_euler_band_q30
+ */
 /*
  * qorient/euler_fx.h - Euler angles, fixed point: Q1.30 quaternions <-> Q3.28 radians, all 12
  * axis sequences, intrinsic and extrinsic (24 conventions), both directions, gimbal lock

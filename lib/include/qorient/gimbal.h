@@ -1,3 +1,14 @@
+/* parity float32 (tools/parity.sh writes docs/PARITY.md from these blocks):
+ *   gimbal.track   qo_gimbal_init_f32
+ *   gimbal.track   qo_gimbal_reset_f32
+ *   gimbal.track   qo_gimbal_step_f32
+ *   gimbal.path    qo_orient_path_init_f32
+ *   gimbal.path    qo_orient_path_sample_f32
+ */
+/* parity fixed:
+ *   gimbal.track   - float32 only: a gimbal controller runs where the IMU fusion runs, in float
+ *   gimbal.path    - float32 only: sample its joint angles into a spline and export that to Q16
+ */
 /*
  * qorient/gimbal.h - orientation paths for 2- and 3-axis gimbals and spherical wrists, float32.
  *

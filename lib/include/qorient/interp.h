@@ -1,3 +1,18 @@
+/* parity float32 (tools/parity.sh writes docs/PARITY.md from these blocks):
+ *   interp.lerp             qo_quat_lerp_f32
+ *   interp.nlerp            qo_quat_nlerp_f32
+ *   interp.slerp            qo_quat_slerp_f32
+ *   interp.slerp_fast       - the fast tier is a fixed-point option (no divide on Cortex-M0)
+ *   interp.slerp_long       qo_quat_slerp_long_f32
+ *   interp.slerp_rate       qo_quat_slerp_rate_f32
+ *   interp.align_keys       qo_quat_align_keys_f32
+ *   interp.bezier           qo_quat_bezier_f32
+ *   interp.bezier3          qo_quat_bezier3_f32
+ *   interp.spline_controls  qo_quat_spline_controls_f32
+ *   interp.spline_eval      qo_quat_spline_eval_f32
+ *   interp.squad            qo_quat_squad_f32
+ *   interp.squad_controls   qo_quat_squad_controls_f32
+ */
 /*
  * qorient/interp.h - interpolation of orientations on the unit-quaternion sphere, float32.
  *

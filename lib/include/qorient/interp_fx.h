@@ -1,3 +1,18 @@
+/* parity fixed (tools/parity.sh writes docs/PARITY.md from these blocks):
+ *   interp.lerp             qo_quat_lerp_q30
+ *   interp.nlerp            qo_quat_nlerp_q30
+ *   interp.slerp            qo_quat_slerp_q30
+ *   interp.slerp_fast       qo_quat_slerp_fast_q30
+ *   interp.slerp_long       - not yet (issue 16)
+ *   interp.slerp_rate       - not yet (issue 16)
+ *   interp.align_keys       qo_quat_align_keys_q30
+ *   interp.bezier           qo_quat_bezier_q30
+ *   interp.bezier3          qo_quat_bezier3_q30
+ *   interp.spline_controls  qo_quat_spline_controls_q30
+ *   interp.spline_eval      qo_quat_spline_eval_q30
+ *   interp.squad            qo_quat_squad_q30
+ *   interp.squad_controls   qo_quat_squad_controls_q30
+ */
 /*
  * qorient/interp_fx.h - interpolation of orientations on the unit-quaternion sphere, fixed
  * point (Q1.30 quaternions). The fixed-point mirror of qorient/interp.h: same names with the

@@ -1,3 +1,17 @@
+/* parity float32 (tools/parity.sh writes docs/PARITY.md from these blocks):
+ *   motion.plan    qo_motion_init_f32
+ *   motion.plan    qo_motion_set_limits_f32
+ *   motion.plan    qo_motion_set_target_f32
+ *   motion.plan    qo_motion_set_velocity_f32
+ *   motion.plan    qo_motion_set_timing_f32
+ *   motion.plan    qo_motion_brake_f32
+ *   motion.plan    qo_motion_shift_time_f32
+ *   motion.query   qo_motion_done_f32
+ *   motion.query   qo_motion_duration_f32
+ *   motion.query   qo_motion_end_time_f32
+ *   motion.sample  qo_motion_sample_f32
+ *   motion.export  qo_motion_export_q16 (float32 code: writes the fixed core's table)
+ */
 /*
  * qorient/motion.h - online, limit-respecting point-to-point motion for N joints (float32).
  *

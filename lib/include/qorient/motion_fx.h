@@ -1,3 +1,9 @@
+/* parity fixed (tools/parity.sh writes docs/PARITY.md from these blocks):
+ *   motion.plan    - planned in float32 (host or main loop): the fixed core samples the export
+ *   motion.query   - the plan's times are in the float32 object that exported the table
+ *   motion.sample  qo_motion_sample_q16
+ *   motion.export  - qo_motion_sample_q16 reads the table qo_motion_export_q16 writes
+ */
 /*
  * qorient/motion_fx.h - per-tick sampling of a motion plan in fixed point (no float at all).
  *

@@ -1,3 +1,22 @@
+/* parity float32 (tools/parity.sh writes docs/PARITY.md from these blocks):
+ *   quat.identity        qo_quat_identity_f32
+ *   quat.conj            qo_quat_conj_f32
+ *   quat.dot             qo_quat_dot_f32
+ *   quat.norm            qo_quat_norm_f32
+ *   quat.normalize       qo_quat_normalize_f32
+ *   quat.normalize       qo_quat_normalize_full_f32 (its out-of-line path: tiny, huge, non-finite)
+ *   quat.normalize_fast  - the float32 normalize is already one square root and a multiply
+ *   quat.canonical       qo_quat_canonical_f32
+ *   quat.inverse         qo_quat_inverse_f32
+ *   quat.mul             qo_quat_mul_f32
+ *   quat.mul_checked     - float32 overflow gives Inf, which qo_quat_is_finite_f32 reports
+ *   quat.rotate          qo_quat_rotate_f32
+ *   quat.angle_between   qo_quat_angle_between_f32
+ *   quat.exp             qo_quat_exp_f32 (takes a quaternion)
+ *   quat.log             qo_quat_log_f32
+ *   quat.integrate       qo_quat_integrate_f32
+ *   quat.is_finite       qo_quat_is_finite_f32
+ */
 /*
  * qorient/quat.h - quaternion algebra, float32.
  *

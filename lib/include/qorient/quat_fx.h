@@ -1,3 +1,21 @@
+/* parity fixed (tools/parity.sh writes docs/PARITY.md from these blocks):
+ *   quat.identity        qo_quat_identity_q30
+ *   quat.conj            qo_quat_conj_q30
+ *   quat.dot             qo_quat_dot_q30
+ *   quat.norm            qo_quat_norm_q30
+ *   quat.normalize       qo_quat_normalize_q30
+ *   quat.normalize_fast  qo_quat_normalize_fast_q30 (within 16 LSB, no division: Cortex-M0)
+ *   quat.canonical       qo_quat_canonical_q30
+ *   quat.inverse         qo_quat_inverse_q30
+ *   quat.mul             qo_quat_mul_q30
+ *   quat.mul_checked     qo_quat_mul_q30_checked
+ *   quat.rotate          qo_quat_rotate_q30
+ *   quat.angle_between   qo_quat_angle_between_q30
+ *   quat.exp             qo_quat_exp_q30 (takes a Q3.28 rotation vector, not a quaternion)
+ *   quat.log             qo_quat_log_q30
+ *   quat.integrate       qo_quat_integrate_q30
+ *   quat.is_finite       - a fixed-point value is always finite
+ */
 /*
  * qorient/quat_fx.h - quaternion algebra in fixed point (Q1.30 components).
  *

@@ -1,3 +1,8 @@
+/* parity float32 (tools/parity.sh writes docs/PARITY.md from these blocks):
+ *   spline.plan    qo_spline_init_f32
+ *   spline.sample  qo_spline_sample_f32
+ *   spline.export  qo_spline_to_q16_f32 (float32 code: writes the fixed core's table)
+ */
 /*
  * qorient/spline.h - multi-joint trajectories through keyframes, float32.
  *

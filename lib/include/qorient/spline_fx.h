@@ -1,3 +1,8 @@
+/* parity fixed (tools/parity.sh writes docs/PARITY.md from these blocks):
+ *   spline.plan    - planned in float32 (host or main loop): the fixed core samples the export
+ *   spline.sample  qo_spline_sample_q16
+ *   spline.export  - qo_spline_sample_q16 reads the table qo_spline_to_q16_f32 writes
+ */
 /*
  * qorient/spline_fx.h - fixed-point (Q16.16) sampling of a keyframe trajectory, no float.
  *

@@ -1,3 +1,13 @@
+/* parity float32 (tools/parity.sh writes docs/PARITY.md from these blocks):
+ *   traj.plan      qo_traj_init_keys
+ *   traj.plan      qo_traj_init_targets
+ *   traj.plan      qo_traj_push
+ *   traj.sample    qo_traj_sample
+ */
+/* parity fixed:
+ *   traj.plan      - float32 only: one object over the spline and the motion planner
+ *   traj.sample    - sample the exported Q16 tables (spline_fx.h, motion_fx.h)
+ */
 /*
  * qorient/traj.h - one trajectory object over N joints: keyframes or timed targets, float32.
  *
