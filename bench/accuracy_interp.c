@@ -17,52 +17,9 @@
 
 #define PI 3.14159265358979323846
 
-static uint64_t rng_state;
-static uint64_t rng_next(void)
-{
-    uint64_t z = (rng_state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-static double rng_u(void) { return (double)(rng_next() >> 11) * (1.0 / 9007199254740992.0); }
-static double rng_range(double lo, double hi) { return lo + (hi - lo) * rng_u(); }
-
-#include "common/dq.h"
+#include "common/dq_interp.h"
 static dq dq_from(qo_quat_f32 q) { dq r = { q.w, q.x, q.y, q.z }; return r; }
-static double rot_err(dq a, dq b)
-{
-    dq d = dq_mul(dq_conj(dq_unit(a)), dq_unit(b));
-    return 2.0 * atan2(sqrt(d.x * d.x + d.y * d.y + d.z * d.z), fabs(d.w));
-}
-static double dist4(dq a, dq b) { return dq_norm(dq_add(a, dq_neg(b))); }
 static double norm_dev(qo_quat_f32 q) { return fabs(dq_norm(dq_from(q)) - 1.0); }
-static dq rand_unit(void)
-{
-    dq q;
-    double n;
-    do {
-        q.w = rng_range(-1, 1); q.x = rng_range(-1, 1);
-        q.y = rng_range(-1, 1); q.z = rng_range(-1, 1);
-        n = dq_norm(q);
-    } while (n > 1.0 || n < 1e-2);
-    return dq_scale(q, 1.0 / n);
-}
-static dq rand_axis_rot(double ang)
-{
-    dq a = rand_unit();
-    return dq_axis_angle(a.x, a.y, a.z + 1e-3, ang);
-}
-static dq d_slerp_raw(dq p, dq q, double u)
-{
-    double c = dq_dot(p, q), th, wa, wb;
-    if (c > 1) c = 1;
-    if (c < -1) c = -1;
-    th = acos(c);
-    if (th < 1e-12) { wa = 1 - u; wb = u; }
-    else { wa = sin((1 - u) * th) / sin(th); wb = sin(u * th) / sin(th); }
-    return dq_unit(dq_add(dq_scale(p, wa), dq_scale(q, wb)));
-}
 
 /* running maxima */
 static double slerp_rot, slerp_4d, norm_max, long_k, bez_err, key_err, spl_err, squad_err;
@@ -81,7 +38,7 @@ static void slerp_case(qo_quat_f32 a, qo_quat_f32 b, float t)
     dq ua = dq_unit(dq_from(a)), ub = dq_unit(dq_from(b)), ref;
     double e;
     if (dq_dot(ua, ub) < 0) ub = dq_neg(ub);
-    ref = d_slerp_raw(ua, ub, (double)t);
+    ref = d_slerp_unit(ua, ub, (double)t);
     if (qo_quat_slerp_f32(a, b, t, &out) != QO_OK) {
         printf("slerp failed\n");
         slerp_rot = INFINITY;
@@ -104,29 +61,6 @@ static void d_align(const qo_quat_f32 *k, size_t n, dq *q)
         q[i] = dq_unit(dq_from(k[i]));
         if (i && dq_dot(q[i - 1], q[i]) < 0) q[i] = dq_neg(q[i]);
     }
-}
-static void d_spline_controls(const dq *q, size_t n, dq *a, dq *b)
-{
-    size_t i;
-    if (n == 2) {
-        a[0] = d_slerp_raw(q[0], q[1], 1.0 / 3);
-        b[1] = d_slerp_raw(q[0], q[1], 2.0 / 3);
-        return;
-    }
-    a[0] = d_slerp_raw(q[0], d_slerp_raw(q[2], q[1], 2.0), 1.0 / 3);
-    b[n - 1] = d_slerp_raw(q[n - 1], d_slerp_raw(q[n - 3], q[n - 2], 2.0), 1.0 / 3);
-    for (i = 1; i + 1 < n; i++) {
-        dq abar = d_slerp_raw(d_slerp_raw(q[i - 1], q[i], 2.0), q[i + 1], 0.5);
-        a[i] = d_slerp_raw(q[i], abar, 1.0 / 3);
-        b[i] = d_slerp_raw(q[i], abar, -1.0 / 3);
-    }
-}
-static dq d_bez(dq *p, size_t n, double t)
-{
-    size_t lev, i;
-    for (lev = n - 1; lev > 0; lev--)
-        for (i = 0; i < lev; i++) p[i] = d_slerp_raw(p[i], p[i + 1], t);
-    return p[0];
 }
 static void rand_keys(qo_quat_f32 *k, size_t n, double maxstep)
 {
@@ -188,7 +122,7 @@ int main(void)
         float t = (float)rng_u();
         if (dq_dot(ua, ub) > 0) ub = dq_neg(ub);
         if (qo_quat_slerp_long_f32(fa, fb, t, &out) != QO_OK) continue; /* phi < 0.002 refused */
-        e = dist4(d_slerp_raw(ua, ub, (double)t), dq_from(out)) * phi;
+        e = dist4(d_slerp_unit(ua, ub, (double)t), dq_from(out)) * phi;
         if (e > long_k) long_k = e;
         note_norm(out);
     }
@@ -247,10 +181,10 @@ int main(void)
                 double e;
                 if (dq_dot(s0, q[seg]) < 0) s0 = dq_neg(s0);
                 if (dq_dot(s1, q[seg + 1]) < 0) s1 = dq_neg(s1);
-                x = d_slerp_raw(q[seg], q[seg + 1], (double)t);
-                y = d_slerp_raw(s0, s1, (double)t);
+                x = d_slerp_unit(q[seg], q[seg + 1], (double)t);
+                y = d_slerp_unit(s0, s1, (double)t);
                 qo_quat_squad_f32(kf[seg], sq[seg], sq[seg + 1], kf[seg + 1], t, &out);
-                e = rot_err(d_slerp_raw(x, y, 2.0 * (double)t * (1.0 - (double)t)),
+                e = rot_err(d_slerp_unit(x, y, 2.0 * (double)t * (1.0 - (double)t)),
                             dq_from(out));
                 if (e > squad_err) squad_err = e;
                 note_norm(out);

@@ -23,50 +23,7 @@
 #define PI 3.14159265358979323846
 #define Q30 1073741824.0
 
-static uint64_t rng_state;
-static uint64_t rng_next(void)
-{
-    uint64_t z = (rng_state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-static double rng_u(void) { return (double)(rng_next() >> 11) * (1.0 / 9007199254740992.0); }
-static double rng_range(double lo, double hi) { return lo + (hi - lo) * rng_u(); }
-
-#include "common/dq.h"
-static double rot_err(dq a, dq b)
-{
-    dq d = dq_mul(dq_conj(dq_unit(a)), dq_unit(b));
-    return 2.0 * atan2(sqrt(d.x * d.x + d.y * d.y + d.z * d.z), fabs(d.w));
-}
-static double dist4(dq a, dq b) { return dq_norm(dq_add(a, dq_neg(b))); }
-static dq rand_unit(void)
-{
-    dq q;
-    double n;
-    do {
-        q.w = rng_range(-1, 1); q.x = rng_range(-1, 1);
-        q.y = rng_range(-1, 1); q.z = rng_range(-1, 1);
-        n = dq_norm(q);
-    } while (n > 1.0 || n < 1e-2);
-    return dq_scale(q, 1.0 / n);
-}
-static dq rand_axis_rot(double ang)
-{
-    dq a = rand_unit();
-    return dq_axis_angle(a.x, a.y, a.z + 1e-3, ang);
-}
-static dq d_slerp_raw(dq p, dq q, double u)
-{
-    double c = dq_dot(p, q), th, wa, wb;
-    if (c > 1) c = 1;
-    if (c < -1) c = -1;
-    th = acos(c);
-    if (th < 1e-12) { wa = 1 - u; wb = u; }
-    else { wa = sin((1 - u) * th) / sin(th); wb = sin(u * th) / sin(th); }
-    return dq_unit(dq_add(dq_scale(p, wa), dq_scale(q, wb)));
-}
+#include "common/dq_interp.h"
 
 /* ---- the boundary, written here (not fxconv.h): round to nearest, saturate ---- */
 static int32_t fx_from_d(double v, double scale)
@@ -115,7 +72,7 @@ static void slerp_case(dq a, dq b, double t)
     double e;
     if (xt > QO_Q30_ONE) xt = QO_Q30_ONE;
     if (dq_dot(ua, ub) < 0) ub = dq_neg(ub);
-    ref = d_slerp_raw(ua, ub, xt / Q30);
+    ref = d_slerp_unit(ua, ub, xt / Q30);
     if (qo_quat_slerp_q30(xa, xb, xt, &out) != QO_OK) {
         n_fail++;
         return;
@@ -141,7 +98,7 @@ static void slerp_case(dq a, dq b, double t)
         n_fail++;
         return;
     }
-    e = rot_err(d_slerp_raw(ua, ub, (double)ft), dq_from_f(fo));
+    e = rot_err(d_slerp_unit(ua, ub, (double)ft), dq_from_f(fo));
     if (e > slerp_rot_f) slerp_rot_f = e;
     /* fixed vs float: only meaningful away from the ambiguous exact 180 (dot ~ 0) */
     if (fabs(dq_dot(ua, ub)) > 1e-5) {
@@ -159,46 +116,6 @@ static void x_align(const qo_quat_q30 *k, size_t n, dq *q)
         q[i] = dq_unit(dq_from_x(k[i]));
         if (i && dq_dot(q[i - 1], q[i]) < 0) q[i] = dq_neg(q[i]);
     }
-}
-static void d_spline_controls(const dq *q, size_t n, dq *a, dq *b)
-{
-    size_t i;
-    if (n == 2) {
-        a[0] = d_slerp_raw(q[0], q[1], 1.0 / 3);
-        b[1] = d_slerp_raw(q[0], q[1], 2.0 / 3);
-        return;
-    }
-    a[0] = d_slerp_raw(q[0], d_slerp_raw(q[2], q[1], 2.0), 1.0 / 3);
-    b[n - 1] = d_slerp_raw(q[n - 1], d_slerp_raw(q[n - 3], q[n - 2], 2.0), 1.0 / 3);
-    for (i = 1; i + 1 < n; i++) {
-        dq abar = d_slerp_raw(d_slerp_raw(q[i - 1], q[i], 2.0), q[i + 1], 0.5);
-        a[i] = d_slerp_raw(q[i], abar, 1.0 / 3);
-        b[i] = d_slerp_raw(q[i], abar, -1.0 / 3);
-    }
-}
-static dq d_bez(dq *p, size_t n, double t)
-{
-    size_t lev, i;
-    for (lev = n - 1; lev > 0; lev--)
-        for (i = 0; i < lev; i++) p[i] = d_slerp_raw(p[i], p[i + 1], t);
-    return p[0];
-}
-static dq dq_log(dq q)
-{
-    double vn = sqrt(q.x * q.x + q.y * q.y + q.z * q.z);
-    dq r = { 0, 0, 0, 0 };
-    if (vn > 0) {
-        double k = atan2(vn, q.w) / vn;
-        r.x = q.x * k; r.y = q.y * k; r.z = q.z * k;
-    }
-    return r;
-}
-static dq dq_exp(dq p)
-{
-    double vn = sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
-    double k = (vn > 0) ? sin(vn) / vn : 1.0;
-    dq r = { cos(vn), p.x * k, p.y * k, p.z * k };
-    return r;
 }
 static void d_squad_controls(const dq *q, size_t n, dq *s)
 {
@@ -338,10 +255,10 @@ int main(void)
                 double tt = t / Q30, e;
                 if (dq_dot(s0, q[seg]) < 0) s0 = dq_neg(s0);
                 if (dq_dot(s1, q[seg + 1]) < 0) s1 = dq_neg(s1);
-                x = d_slerp_raw(q[seg], q[seg + 1], tt);
-                y = d_slerp_raw(s0, s1, tt);
+                x = d_slerp_unit(q[seg], q[seg + 1], tt);
+                y = d_slerp_unit(s0, s1, tt);
                 qo_quat_squad_q30(kf[seg], sq[seg], sq[seg + 1], kf[seg + 1], t, &out);
-                e = rot_err(d_slerp_raw(x, y, 2.0 * tt * (1.0 - tt)), dq_from_x(out));
+                e = rot_err(d_slerp_unit(x, y, 2.0 * tt * (1.0 - tt)), dq_from_x(out));
                 if (e > squad_err) squad_err = e;
                 note_norm(out);
             }

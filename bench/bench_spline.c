@@ -14,6 +14,7 @@
 
 #include "qorient/spline.h"
 #include "qorient/spline_fx.h"
+#include "common/ref.h"
 
 #define NK 32
 #define MAXJ 18
@@ -23,11 +24,7 @@
 static uint64_t rng = 12345;
 static double urand(double lo, double hi)
 {
-    uint64_t z = (rng += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return lo + (hi - lo) * (double)(z >> 11) * (1.0 / 9007199254740992.0);
+    return lo + (hi - lo) * ref_unit_from_bits(ref_splitmix64(&rng)); /* tests/common/ref.c */
 }
 
 static double now_ns(void)

@@ -13,6 +13,7 @@
 
 /* The core's private integer helpers (lib/src/fx_internal.h), tested here directly. */
 #include "../lib/src/fx_internal.h"
+#include "common/ref.h"
 
 /* The exact references below need 128-bit integers. 32-bit targets (Cortex-M, armhf under
  * tests/qemu) have none: there the tests that need them are skipped, the others run. */
@@ -26,14 +27,7 @@ __extension__ typedef unsigned __int128 u128;
 #define TWO28 268435456.0
 
 static uint64_t rng_state;
-static uint64_t rnd(void)
-{
-    /* splitmix64 */
-    uint64_t z = (rng_state += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-}
+static uint64_t rnd(void) { return ref_splitmix64(&rng_state); } /* tests/common/ref.c */
 static int32_t rnd_i32(void) { return (int32_t)(uint32_t)rnd(); }
 /* A random int32 of random magnitude (so tiny and huge values both occur). */
 static int32_t rnd_i32_mag(void)

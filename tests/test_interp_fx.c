@@ -29,21 +29,8 @@
 #define PI 3.14159265358979323846
 #define Q30 1073741824.0
 
-/* ---- deterministic PRNG (splitmix64) ---------------------------------------------------- */
-static uint64_t rng_state;
-static void rng_seed(uint64_t s) { rng_state = s; }
-static uint64_t rng_next(void)
-{
-    uint64_t z = (rng_state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-static double rng_u(void) { return (double)(rng_next() >> 11) * (1.0 / 9007199254740992.0); }
-static double rng_range(double lo, double hi) { return lo + (hi - lo) * rng_u(); }
-
 /* ---- double reference quaternion algebra ------------------------------------------------ */
-#include "common/dq.h"
+#include "common/dq_interp.h"
 
 /* Sign-exact dot product for the short-way decision: the products of two Q1.30 values need
  * 60 bits, beyond double; long double (64-bit mantissa or more) holds them and their sum. */
@@ -52,44 +39,9 @@ static long double dq_dot_exact(dq a, dq b)
     return (long double)a.w * b.w + (long double)a.x * b.x + (long double)a.y * b.y +
            (long double)a.z * b.z;
 }
-/* rotation angle (sign-free) between the orientations of a and b, any norm */
-static double rot_err(dq a, dq b)
-{
-    dq d = dq_mul(dq_conj(dq_unit(a)), dq_unit(b));
-    return 2.0 * atan2(sqrt(d.x * d.x + d.y * d.y + d.z * d.z), fabs(d.w));
-}
-static double dist4(dq a, dq b) { return dq_norm(dq_add(a, dq_neg(b))); }
 static double norm_dev(dq q) { return fabs(dq_norm(q) - 1.0); }
 static int dq_equal(dq a, dq b) { return a.w == b.w && a.x == b.x && a.y == b.y && a.z == b.z; }
 
-static dq rand_unit(void)
-{
-    dq q;
-    double n;
-    do {
-        q.w = rng_range(-1, 1); q.x = rng_range(-1, 1);
-        q.y = rng_range(-1, 1); q.z = rng_range(-1, 1);
-        n = dq_norm(q);
-    } while (n > 1.0 || n < 1e-2);
-    return dq_scale(q, 1.0 / n);
-}
-static dq rand_axis_rot(double ang)
-{
-    dq a = rand_unit();
-    return dq_axis_angle(a.x, a.y, a.z + 1e-3, ang);
-}
-
-/* Textbook slerp: sin((1-u)th)/sin th p + sin(u th)/sin th q, th = acos(p.q), no flip. */
-static dq d_slerp_raw(dq p, dq q, double u)
-{
-    double c = dq_dot(p, q), th, wa, wb;
-    if (c > 1) c = 1;
-    if (c < -1) c = -1;
-    th = acos(c);
-    if (th < 1e-12) { wa = 1 - u; wb = u; }
-    else { wa = sin((1 - u) * th) / sin(th); wb = sin(u * th) / sin(th); }
-    return dq_add(dq_scale(p, wa), dq_scale(q, wb));
-}
 /* Shortest-way slerp of (normalised) a, b; the flip decided by the exact sign of the dot. */
 static dq d_slerp(dq a, dq b, double t)
 {
@@ -641,24 +593,6 @@ static void test_bezier(void **state)
 
 /* ---- Shoemake spline, both cores -------------------------------------------------------- */
 
-static void d_spline_controls(const dq *q, size_t n, dq *a, dq *b)
-{
-    size_t i;
-    if (n == 2) {
-        a[0] = dq_unit(d_slerp_raw(q[0], q[1], 1.0 / 3));
-        b[1] = dq_unit(d_slerp_raw(q[0], q[1], 2.0 / 3));
-        return;
-    }
-    a[0] = dq_unit(d_slerp_raw(q[0], dq_unit(d_slerp_raw(q[2], q[1], 2.0)), 1.0 / 3));
-    b[n - 1] = dq_unit(d_slerp_raw(q[n - 1], dq_unit(d_slerp_raw(q[n - 3], q[n - 2], 2.0)),
-                                   1.0 / 3));
-    for (i = 1; i + 1 < n; i++) {
-        dq dbl = dq_unit(d_slerp_raw(q[i - 1], q[i], 2.0));
-        dq abar = dq_unit(d_slerp_raw(dbl, q[i + 1], 0.5));
-        a[i] = dq_unit(d_slerp_raw(q[i], abar, 1.0 / 3));
-        b[i] = dq_unit(d_slerp_raw(q[i], abar, -1.0 / 3));
-    }
-}
 static dq d_spline_eval(const dq *q, const dq *a, const dq *b, size_t n, double s)
 {
     size_t i = (size_t)s;
@@ -880,23 +814,6 @@ static void test_spline_end_rule_and_swing_back(void **state)
 
 /* ---- Squad, both cores ------------------------------------------------------------------ */
 
-static dq dq_log(dq q) /* unit q: (0, angle/2 * axis) */
-{
-    double vn = sqrt(q.x * q.x + q.y * q.y + q.z * q.z);
-    dq r = { 0, 0, 0, 0 };
-    if (vn > 0) {
-        double k = atan2(vn, q.w) / vn;
-        r.x = q.x * k; r.y = q.y * k; r.z = q.z * k;
-    }
-    return r;
-}
-static dq dq_exp(dq p) /* p pure */
-{
-    double vn = sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
-    double k = (vn > 0) ? sin(vn) / vn : 1.0;
-    dq r = { cos(vn), p.x * k, p.y * k, p.z * k };
-    return r;
-}
 static void d_squad_controls(const dq *q, size_t n, dq *s)
 {
     size_t i;

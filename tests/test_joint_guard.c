@@ -13,16 +13,13 @@
 #include <cmocka.h>
 
 #include "linux/joint_guard.h"
+#include "common/ref.h"
 
 static uint64_t rng = 0x5EEDu;
 
 static double urand(double a, double b)
 {
-    uint64_t z = (rng += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return a + (b - a) * (double)(z >> 11) * (1.0 / 9007199254740992.0);
+    return a + (b - a) * ref_unit_from_bits(ref_splitmix64(&rng)); /* tests/common/ref.c */
 }
 
 static qo_regmap_joint joint(qo_reg_type type, double scale, double max_step)

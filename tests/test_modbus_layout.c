@@ -14,6 +14,7 @@
 
 #include "linux/modbus_layout.h"
 #include "linux/wire_budget.h"
+#include "common/ref.h"
 
 static qo_regmap map;
 static qo_modbus_layout lay;
@@ -21,13 +22,7 @@ static qo_wire_budget wb;
 
 static uint64_t rng = 0x13u;
 
-static unsigned rnd(unsigned n)
-{
-    uint64_t z = (rng += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return (unsigned)((z ^ (z >> 31)) % n);
-}
+static unsigned rnd(unsigned n) { return (unsigned)(ref_splitmix64(&rng) % n); } /* tests/common/ref.c */
 
 /* owner[slave][address]: 0 free, 1 + joint index (first register), 1000 + joint (second
  * register of a 32-bit value), 2000 + value-less constant marker; value[] for constants. */

@@ -11,15 +11,10 @@
 #include <cmocka.h>
 
 #include "linux/modbus_pack.h"
+#include "common/ref.h"
 
 static uint64_t rng_state = 0x1234567ull;
-static uint64_t next_u64(void)
-{
-    uint64_t z = (rng_state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
+static uint64_t next_u64(void) { return ref_splitmix64(&rng_state); } /* tests/common/ref.c */
 static double uniform(double lo, double hi)
 {
     return lo + (hi - lo) * ((double)(next_u64() >> 11) / 9007199254740992.0);

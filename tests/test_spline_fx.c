@@ -14,19 +14,14 @@
 
 #include "qorient/spline.h"
 #include "qorient/spline_fx.h"
+#include "common/ref.h"
 
 #define MAXK 12
 #define MAXN 4
 #define CAP 1024
 
 static uint64_t rng_state;
-static uint64_t splitmix64(void)
-{
-    uint64_t z = (rng_state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
+static uint64_t splitmix64(void) { return ref_splitmix64(&rng_state); } /* tests/common/ref.c */
 static double urand(double lo, double hi)
 {
     return lo + (hi - lo) * (double)(splitmix64() >> 11) * (1.0 / 9007199254740992.0);

@@ -258,18 +258,19 @@ ref_mat3 ref_mat3_nearest_rotation(const ref_mat3 *m)
     return r;
 }
 
-uint64_t ref_rng_next(ref_rng *r)
+uint64_t ref_splitmix64(uint64_t *state)
 {
-    uint64_t z = (r->s += 0x9E3779B97F4A7C15ull);
+    uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
     return z ^ (z >> 31);
 }
 
-double ref_rng_unit(ref_rng *r)
-{
-    return (double)(ref_rng_next(r) >> 11) * (1.0 / 9007199254740992.0);
-}
+uint64_t ref_rng_next(ref_rng *r) { return ref_splitmix64(&r->s); }
+
+double ref_unit_from_bits(uint64_t bits) { return (double)(bits >> 11) * (1.0 / 9007199254740992.0); }
+
+double ref_rng_unit(ref_rng *r) { return ref_unit_from_bits(ref_rng_next(r)); }
 
 double ref_rng_range(ref_rng *r, double lo, double hi)
 {

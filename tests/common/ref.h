@@ -26,6 +26,7 @@
  *   ref_to_fixed                          a double rounded to a fixed-point format, saturating
  *   ref_quat_err_lsb_q30                  largest component error of a Q1.30 result, in LSB
  *   ref_rng / ref_rng_next / ref_rng_unit / ref_rng_range   splitmix64 PRNG
+ *   ref_splitmix64 / ref_unit_from_bits    the same on a bare uint64_t state
  *   ref_rng_quat                          uniform random unit quaternion (Shoemake)
  */
 #ifndef QORIENT_TESTS_REF_H
@@ -91,6 +92,10 @@ double ref_quat_err_lsb_q30(qo_quat_q30 got, ref_quat want);
 /* splitmix64 (Vigna): a 64-bit state, every seed is fine, identical on every platform. */
 typedef struct ref_rng { uint64_t s; } ref_rng;
 uint64_t ref_rng_next(ref_rng *r);
+/* The same step on a bare state word (for files that keep their state as a uint64_t). */
+uint64_t ref_splitmix64(uint64_t *state);
+/* The top 53 bits of a 64-bit draw as a uniform double in [0, 1). */
+double ref_unit_from_bits(uint64_t bits);
 /* Uniform double in [0, 1) with 53 random bits. */
 double ref_rng_unit(ref_rng *r);
 /* Uniform double in [lo, hi). */
