@@ -15,6 +15,7 @@
 #include "qorient/spline.h"
 #include "qorient/spline_fx.h"
 #include "common/ref.h"
+#include "common/linux/bench_clock.h"
 
 #define NK 32
 #define MAXJ 18
@@ -25,19 +26,6 @@ static uint64_t rng = 12345;
 static double urand(double lo, double hi)
 {
     return lo + (hi - lo) * ref_unit_from_bits(ref_splitmix64(&rng)); /* tests/common/ref.c */
-}
-
-static double now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e9 + (double)ts.tv_nsec;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
 }
 
 static float t_keys[NK], p_keys[NK * MAXJ];
@@ -77,40 +65,40 @@ static void bench(size_t nj)
     make_plan(nj, 1, &sp, &fx);
     span = t_keys[NK - 1];
     for (r = 0; r < RUNS; r++) {
-        double t0 = now_ns();
+        double t0 = bench_now_ns();
         for (i = 0; i < TICKS; i++) {
             float t = (float)(span * i / TICKS);
             qo_spline_sample_f32(&sp, t, pos, vel, acc, NULL);
             sink_f = pos[nj - 1];
         }
-        tf[r] = (now_ns() - t0) / ((double)TICKS * (double)nj);
-        t0 = now_ns();
+        tf[r] = (bench_now_ns() - t0) / ((double)TICKS * (double)nj);
+        t0 = bench_now_ns();
         for (i = 0; i < TICKS; i++) {
             qo_q16 t = (qo_q16)(span * 65536.0 * i / TICKS);
             qo_spline_sample_q16(&fx, t, pq, vq, aq, NULL);
             sink_q = pq[nj - 1];
         }
-        tq[r] = (now_ns() - t0) / ((double)TICKS * (double)nj);
+        tq[r] = (bench_now_ns() - t0) / ((double)TICKS * (double)nj);
         /* position only (servo setpoints): vel/acc NULL */
-        t0 = now_ns();
+        t0 = bench_now_ns();
         for (i = 0; i < TICKS; i++) {
             float t = (float)(span * i / TICKS);
             qo_spline_sample_f32(&sp, t, pos, NULL, NULL, NULL);
             sink_f = pos[nj - 1];
         }
-        tfp[r] = (now_ns() - t0) / ((double)TICKS * (double)nj);
-        t0 = now_ns();
+        tfp[r] = (bench_now_ns() - t0) / ((double)TICKS * (double)nj);
+        t0 = bench_now_ns();
         for (i = 0; i < TICKS; i++) {
             qo_q16 t = (qo_q16)(span * 65536.0 * i / TICKS);
             qo_spline_sample_q16(&fx, t, pq, NULL, NULL, NULL);
             sink_q = pq[nj - 1];
         }
-        tqp[r] = (now_ns() - t0) / ((double)TICKS * (double)nj);
+        tqp[r] = (bench_now_ns() - t0) / ((double)TICKS * (double)nj);
     }
-    qsort(tfp, RUNS, sizeof tfp[0], cmp_d);
-    qsort(tqp, RUNS, sizeof tqp[0], cmp_d);
-    qsort(tf, RUNS, sizeof tf[0], cmp_d);
-    qsort(tq, RUNS, sizeof tq[0], cmp_d);
+    qsort(tfp, RUNS, sizeof tfp[0], bench_cmp_d);
+    qsort(tqp, RUNS, sizeof tqp[0], bench_cmp_d);
+    qsort(tf, RUNS, sizeof tf[0], bench_cmp_d);
+    qsort(tq, RUNS, sizeof tq[0], bench_cmp_d);
     printf("%2zu joints: float32 %.1f ns/joint/tick (%.0f ns/tick), Q16.16 %.1f ns/joint/tick "
            "(%.0f ns/tick); median of %d runs x %d ticks (min %.1f / %.1f)\n",
            nj, tf[RUNS / 2], tf[RUNS / 2] * (double)nj, tq[RUNS / 2], tq[RUNS / 2] * (double)nj,

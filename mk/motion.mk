@@ -35,10 +35,10 @@ $(MOTION_OLD)/motion_old.c:
 	git show $(MOTION_OLD_REV):lib/include/qorient/motion_fx.h | sed 's/qo_motion_/qoold_motion_/g; s/QO_MOTION_/QOOLD_MOTION_/g; s/QORIENT_MOTION_FX_H/QOOLD_MOTION_FX_H/' > $(MOTION_OLD)/qoold/motion_fx.h
 	git show $(MOTION_OLD_REV):lib/src/motion.c | sed 's/qo_motion_/qoold_motion_/g; s/QO_MOTION_/QOOLD_MOTION_/g; s|qorient/motion.h|qoold/motion.h|' > $@
 
-$(BUILD)/bench/motion_compare: bench/motion/compare.c $(MOTION_OLD)/motion_old.c tests/common/ref.c $(BUILD)/libqorient.a
+$(BUILD)/bench/motion_compare: bench/motion/compare.c $(MOTION_OLD)/motion_old.c $(BUILD)/libqorient_testcommon.a $(BUILD)/libqorient.a
 	@mkdir -p $(@D)
 	$(CC) $(STD) $(WARN) $(FPFLAGS) -O2 -g $(PORT_DEFS) $(CPPFLAGS_CORE) -I$(MOTION_OLD) -Itests bench/motion/compare.c \
-	    $(MOTION_OLD)/motion_old.c tests/common/ref.c $(BUILD)/libqorient.a -lm -o $@
+	    $(MOTION_OLD)/motion_old.c $(BUILD)/libqorient_testcommon.a $(BUILD)/libqorient.a -lm -o $@
 
 bench-motion: $(BUILD)/bench/motion_compare
 	$< $(MOTION_CASES)

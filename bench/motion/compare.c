@@ -21,22 +21,10 @@
 #include "qorient/motion.h"
 #include "qoold/motion.h"
 #include "common/ref.h"
+#include "common/linux/bench_clock.h"
 
 #define NJ 7
 #define REPS 5
-
-static double now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e9 + (double)ts.tv_nsec;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
 
 typedef struct bcase {
     float vmax[NJ], amax[NJ], jmax[NJ], p0[NJ], v0[NJ], a0[NJ], tg[NJ];
@@ -91,9 +79,9 @@ static void make_case(ref_rng *g, int moving, bcase *c)
                 jts[i].ph[0].a = c->a0[i];                                                          \
                 jts[i].ph[0].j = 0.0f;                                                              \
             }                                                                                       \
-            t0 = now_ns();                                                                          \
+            t0 = bench_now_ns();                                                                          \
             if (PFX##_set_target_f32(&pl, 0.0f, c->tg, NULL) != QO_OK) return -1.0;                 \
-            t0 = now_ns() - t0;                                                                     \
+            t0 = bench_now_ns() - t0;                                                                     \
             if (t0 < best) best = t0;                                                               \
         }                                                                                           \
         *dur = pl.duration;                                                                         \
@@ -104,7 +92,7 @@ DEFINE_TIMER(time_old, qoold_motion)
 
 static void report(const char *name, double *x, int n)
 {
-    qsort(x, (size_t)n, sizeof *x, cmp_d);
+    qsort(x, (size_t)n, sizeof *x, bench_cmp_d);
     printf("  %-26s median %6.0f ns  p99 %6.0f ns  worst %7.0f ns\n", name, x[n / 2], x[(int)(0.99 * (n - 1))], x[n - 1]);
 }
 
@@ -145,7 +133,7 @@ int main(int argc, char **argv)
         report(name, tn, n);
         snprintf(name, sizeof name, "before (9bf587d)");
         report(name, to, n);
-        qsort(ratio, (size_t)n, sizeof *ratio, cmp_d);
+        qsort(ratio, (size_t)n, sizeof *ratio, bench_cmp_d);
         printf("  per-case speed-up old/new: median %.2fx, p1 %.2fx\n", ratio[n / 2], ratio[n / 100]);
         printf("  plan durations: %d shorter than before by > 0.1 %%, %d longer\n", faster, slower);
     }
