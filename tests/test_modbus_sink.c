@@ -22,6 +22,7 @@
 #include <cmocka.h>
 
 #include "common/linux/relay.h"
+#include "common/linux/sim_log.h"
 #include "linux/modbus_sink.h"
 #include "linux/sim.h"
 
@@ -96,33 +97,12 @@ static struct run_result stream(qo_modbus_sink *s)
  * the largest step/max_step ratio and the last value per joint. */
 static double check_log(FILE *log, const qo_regmap *m, double *last, unsigned *lines)
 {
-    char line[256];
-    double worst = 0.0;
-    size_t i;
-    *lines = 0;
-    for (i = 0; i < m->n_joints; i++) last[i] = 0.0;
-    rewind(log);
-    assert_non_null(fgets(line, sizeof line, log));
-    assert_string_equal(line, "t_s,request,slave,joint_index,joint,value\n");
-    while (fgets(line, sizeof line, log) != NULL) {
-        double t, v, ratio;
-        unsigned long long req;
-        unsigned slave;
-        size_t ji;
-        char name[64];
-        if (sscanf(line, "%lf,%llu,%u,%zu,%63[^,],%lf", &t, &req, &slave, &ji, name, &v) != 6)
-            fail_msg("log line not parsed: %s", line);
-        if (ji >= m->n_joints || strcmp(name, m->joints[ji].name) != 0)
-            fail_msg("log line with a wrong joint: %s", line);
-        ratio = fabs(v - last[ji]) / m->joints[ji].max_step;
-        if (ratio > 1.0 + 1e-9)
-            fail_msg("joint %s: step %.9g -> %.9g exceeds max_step %.9g (request %llu)", name,
-                     last[ji], v, m->joints[ji].max_step, req);
-        if (ratio > worst) worst = ratio;
-        last[ji] = v;
-        (*lines)++;
-    }
-    return worst;
+    sim_log_result r;
+    sim_log_steps(log, m, "sim log", last, &r); /* tests/common/linux/sim_log.c */
+    assert_int_equal(r.instances, 1);
+    assert_int_equal(r.over, 0);
+    *lines = r.lines;
+    return r.worst;
 }
 
 static void check_final(qo_sim *sim, const char *what)
@@ -137,19 +117,26 @@ static void check_final(qo_sim *sim, const char *what)
     }
 }
 
+/* A simulator of `map` with settings ss (NULL: defaults) on an ephemeral loopback port; its
+ * address into spec. */
+static qo_sim *sim_on_tcp(const qo_sim_settings *ss, char *spec, size_t spec_len)
+{
+    qo_sim *sim = NULL;
+    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, ss, &sim), QO_OK);
+    assert_true(qo_sim_port(sim) > 0);
+    snprintf(spec, spec_len, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+    return sim;
+}
+
 static qo_sim *start_tcp_sim(FILE *log, const qo_sim_fault *fault, double lag, char *spec,
                              size_t spec_len)
 {
-    qo_sim *sim = NULL;
     qo_sim_settings ss = qo_sim_settings_default;
     ss.log = log;
     ss.lag_s = lag;
     ss.seed = 7;
     if (fault != NULL) ss.fault = *fault;
-    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, &ss, &sim), QO_OK);
-    assert_true(qo_sim_port(sim) > 0);
-    snprintf(spec, spec_len, "tcp://127.0.0.1:%d", qo_sim_port(sim));
-    return sim;
+    return sim_on_tcp(&ss, spec, spec_len);
 }
 
 static void test_tcp_clean_stream(void **state)
@@ -311,8 +298,7 @@ static void test_disable_action_and_enable(void **state)
     (void)state;
     assert_int_equal(qo_regmap_parse(disable_map, "disable.ini", &map, err, sizeof err), QO_OK);
     ss.lag_s = 0.0;
-    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, &ss, &sim), QO_OK);
-    snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+    sim = sim_on_tcp(&ss, spec, sizeof spec);
     set.on_fail = QO_MODBUS_ON_FAIL_DISABLE;
     assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
     assert_int_equal(qo_sim_get_register(sim, 1, 200, &reg), QO_OK);
@@ -381,8 +367,7 @@ static void test_grouping(void **state)
     size_t i;
     (void)state;
     assert_int_equal(qo_regmap_parse(group_map, "group.ini", &map, err, sizeof err), QO_OK);
-    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, NULL, &sim), QO_OK);
-    snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+    sim = sim_on_tcp(NULL, spec, sizeof spec);
     assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
     assert_int_equal(qo_sim_get_stats(sim, &a), QO_OK);
     assert_int_equal(qo_modbus_sink_write(s, t, 5, 0), QO_OK);
@@ -550,8 +535,7 @@ static void test_leadshine_example_map(void **state)
     (void)state;
     assert_int_equal(qo_regmap_load("examples/maps/leadshine_cs2rs_pr.ini", &map, err, sizeof err),
                      QO_OK);
-    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, NULL, &sim), QO_OK);
-    snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+    sim = sim_on_tcp(NULL, spec, sizeof spec);
     assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
     assert_int_equal(qo_sim_get_register(sim, 1, 0x0405, &reg), QO_OK);
     assert_int_equal(reg, 1);
@@ -615,8 +599,7 @@ static void test_sim_first_order_lag(void **state)
     (void)state;
     load_six();
     ss.lag_s = tau;
-    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, &ss, &sim), QO_OK);
-    snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+    sim = sim_on_tcp(&ss, spec, sizeof spec);
     assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
     wa = mono_s();
     assert_int_equal(qo_modbus_sink_write(s, t, NJ, 0), QO_OK); /* step 0 -> 0.05 (= max_step) */
@@ -926,8 +909,7 @@ static void test_readback_exception_fallback(void **state)
     ss.log = log;
     ss.lag_s = 0.0; /* feedback = target: the fallback is then exact */
     ss.targets_unreadable = 1;
-    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, &ss, &sim), QO_OK);
-    snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+    sim = sim_on_tcp(&ss, spec, sizeof spec);
     set.response_timeout_us = 30000;
     set.silence_us = 100000;
     set.fail_threshold = 10;
@@ -995,8 +977,7 @@ static void test_settle_until_held(void **state)
         ss.lag_s = 0.0;
         ss.seed = 11;
         ss.targets_unreadable = cases[c].unreadable;
-        assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, &ss, &sim), QO_OK);
-        snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+        sim = sim_on_tcp(&ss, spec, sizeof spec);
         set.fail_threshold = 1000; /* faults must not end the link: settle retries */
         set.silence_us = 100000;   /* a dropped reply: reconnect soon */
         assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);
@@ -1174,8 +1155,7 @@ static void test_sim_lag_dist(void **state)
     assert_null(sim);
     assert_int_equal(qo_sim_parse_lag_dist("0.8:0ms,0.2:40ms", &ss), QO_OK);
     ss.lag_s = 0.0;
-    assert_int_equal(qo_sim_start("tcp://127.0.0.1:0", &map, &ss, &sim), QO_OK);
-    snprintf(spec, sizeof spec, "tcp://127.0.0.1:%d", qo_sim_port(sim));
+    sim = sim_on_tcp(&ss, spec, sizeof spec);
     set.response_timeout_us = 10000;
     set.open_timeout_us = 500000; /* the open is not what is tested here */
     assert_int_equal(qo_modbus_sink_open(spec, &map, &set, &s), QO_OK);

@@ -62,6 +62,7 @@
 #include <cmocka.h>
 
 #include "common/linux/relay.h"
+#include "common/linux/sim_log.h"
 #include "linux/modbus_sink.h"
 #include "linux/sim.h"
 #include "linux/streamer.h"
@@ -367,39 +368,14 @@ static qo_sim *sim_start(const char *spec, FILE *log)
 static double check_log(FILE *log, const char *what, unsigned *lines, unsigned *instances,
                         unsigned *over)
 {
-    char line[256];
-    double last[NJ], worst = 0.0;
-    size_t i;
-    *lines = *instances = *over = 0;
-    for (i = 0; i < NJ; i++) last[i] = 0.0;
-    fflush(log);
-    rewind(log);
-    while (fgets(line, sizeof line, log) != NULL) {
-        double t, v, ratio;
-        unsigned long long req;
-        unsigned slave;
-        size_t ji;
-        char name[64];
-        if (strcmp(line, "t_s,request,slave,joint_index,joint,value\n") == 0) {
-            for (i = 0; i < NJ; i++) last[i] = 0.0;
-            (*instances)++;
-            continue;
-        }
-        if (sscanf(line, "%lf,%llu,%u,%zu,%63[^,],%lf", &t, &req, &slave, &ji, name, &v) != 6 ||
-            ji >= NJ)
-            fail_msg("%s: log line not parsed: %s", what, line);
-        ratio = fabs(v - last[ji]) / map.joints[ji].max_step;
-        if (ratio > 1.0 + 1e-9) {
-            (*over)++;
-            print_error("%s: joint %s: step %.9g -> %.9g exceeds max_step %.9g (t %.4f s, "
-                        "request %llu)\n", what, name, last[ji], v, map.joints[ji].max_step, t,
-                        req);
-        }
-        if (ratio > worst) worst = ratio;
-        last[ji] = v;
-        (*lines)++;
-    }
-    return worst;
+    double last[NJ];
+    sim_log_result r;
+    assert_true(map.n_joints <= NJ);
+    sim_log_steps(log, &map, what, last, &r); /* tests/common/linux/sim_log.c */
+    *lines = r.lines;
+    *instances = r.instances;
+    *over = r.over;
+    return r.worst;
 }
 
 /* ---- one scenario ----------------------------------------------------------------------- */
