@@ -52,45 +52,43 @@ struct figures {
     int failed;
 };
 
-static struct figures run_sink(qo_modbus_sink *s, int nj, int n)
+/* One tick of a loop under measurement: returns 0, or nonzero for a failed write. */
+typedef int (*tick_fn)(void *ctx, int nj, int k);
+
+static int tick_sink(void *ctx, int nj, int k)
 {
+    qo_modbus_sink *s = ctx;
     float t[64];
-    double w0, c0;
-    struct figures f = { 0, 0, 0 };
-    int k, j;
-    w0 = now_s(CLOCK_MONOTONIC);
-    c0 = now_s(CLOCK_THREAD_CPUTIME_ID);
-    for (k = 0; k < n; k++) {
-        for (j = 0; j < nj; j++) t[j] = 0.5f * sinf(0.01f * (float)k + (float)j);
-        if (qo_modbus_sink_write(s, t, (size_t)nj, (uint64_t)k) != QO_OK) {
-            f.failed++;
-            (void)qo_modbus_sink_service(s);
-        }
-    }
-    f.cpu_us = (now_s(CLOCK_THREAD_CPUTIME_ID) - c0) / n * 1e6;
-    f.ups = n / (now_s(CLOCK_MONOTONIC) - w0);
-    return f;
+    int j;
+    for (j = 0; j < nj; j++) t[j] = 0.5f * sinf(0.01f * (float)k + (float)j);
+    if (qo_modbus_sink_write(s, t, (size_t)nj, (uint64_t)k) == QO_OK) return 0;
+    (void)qo_modbus_sink_service(s);
+    return 1;
 }
 
-static struct figures run_bare(modbus_t *ctx, int nj, int n)
+static int tick_bare(void *ctx, int nj, int k)
 {
     uint16_t regs[128];
+    int j;
+    for (j = 0; j < nj; j++) {
+        int32_t v = (int32_t)lrint(500.0 * sin(0.01 * k + j));
+        regs[2 * j] = (uint16_t)((uint32_t)v >> 16);
+        regs[2 * j + 1] = (uint16_t)((uint32_t)v & 0xFFFFu);
+    }
+    if (modbus_write_registers(ctx, 0, 2 * nj, regs) == 2 * nj) return 0;
+    modbus_flush(ctx);
+    return 1;
+}
+
+/* Updates per second (wall) and CPU us per update of n ticks. */
+static struct figures run(tick_fn tick, void *ctx, int nj, int n)
+{
     double w0, c0;
     struct figures f = { 0, 0, 0 };
-    int k, j;
+    int k;
     w0 = now_s(CLOCK_MONOTONIC);
     c0 = now_s(CLOCK_THREAD_CPUTIME_ID);
-    for (k = 0; k < n; k++) {
-        for (j = 0; j < nj; j++) {
-            int32_t v = (int32_t)lrint(500.0 * sin(0.01 * k + j));
-            regs[2 * j] = (uint16_t)((uint32_t)v >> 16);
-            regs[2 * j + 1] = (uint16_t)((uint32_t)v & 0xFFFFu);
-        }
-        if (modbus_write_registers(ctx, 0, 2 * nj, regs) != 2 * nj) {
-            f.failed++;
-            modbus_flush(ctx);
-        }
-    }
+    for (k = 0; k < n; k++) f.failed += tick(ctx, nj, k);
     f.cpu_us = (now_s(CLOCK_THREAD_CPUTIME_ID) - c0) / n * 1e6;
     f.ups = n / (now_s(CLOCK_MONOTONIC) - w0);
     return f;
@@ -141,7 +139,7 @@ int main(int argc, char **argv)
             /* 200 ms: a shared, loaded machine must not turn scheduling delays into errors */
             set.response_timeout_us = 200000;
             if (qo_modbus_sink_open(spec, &map, &set, &s) != QO_OK) return 1;
-            f = run_sink(s, nj, n);
+            f = run(tick_sink, s, nj, n);
             qo_modbus_sink_free(s);
             if (f.ups > bs.ups) bs.ups = f.ups;
             if (f.cpu_us < bs.cpu_us) bs.cpu_us = f.cpu_us;
@@ -150,7 +148,7 @@ int main(int argc, char **argv)
             if (ctx == NULL || modbus_connect(ctx) != 0) return 1;
             modbus_set_slave(ctx, 1);
             modbus_set_response_timeout(ctx, 0, 200000);
-            f = run_bare(ctx, nj, n);
+            f = run(tick_bare, ctx, nj, n);
             modbus_close(ctx);
             modbus_free(ctx);
             if (f.ups > bb.ups) bb.ups = f.ups;

@@ -42,16 +42,24 @@ static qo_status check_format(const qo_reg_format *f)
     return QO_OK;
 }
 
-qo_status qo_reg_raw_from_value(const qo_reg_format *f, double value, double *raw)
+/* The checks both conversions start with, in their documented order: out NULL (nothing
+ * written), then *out = 0, f NULL, a bad format, a non-finite input. */
+static qo_status conv_args(const qo_reg_format *f, double in, double *out)
 {
     qo_status st;
-    double r;
-    if (raw == NULL) return QO_E_NULL;
-    *raw = 0.0;
+    if (out == NULL) return QO_E_NULL;
+    *out = 0.0;
     if (f == NULL) return QO_E_NULL;
     st = check_format(f);
     if (st != QO_OK) return st;
-    if (!isfinite(value)) return QO_E_NONFINITE;
+    return isfinite(in) ? QO_OK : QO_E_NONFINITE;
+}
+
+qo_status qo_reg_raw_from_value(const qo_reg_format *f, double value, double *raw)
+{
+    qo_status st = conv_args(f, value, raw);
+    double r;
+    if (st != QO_OK) return st;
     r = f->scale * (f->invert ? -value : value) + f->offset;
     if (!isfinite(r)) return QO_E_NONFINITE;
     *raw = r;
@@ -60,14 +68,9 @@ qo_status qo_reg_raw_from_value(const qo_reg_format *f, double value, double *ra
 
 qo_status qo_reg_value_from_raw(const qo_reg_format *f, double raw, double *value)
 {
-    qo_status st;
+    qo_status st = conv_args(f, raw, value);
     double v;
-    if (value == NULL) return QO_E_NULL;
-    *value = 0.0;
-    if (f == NULL) return QO_E_NULL;
-    st = check_format(f);
     if (st != QO_OK) return st;
-    if (!isfinite(raw)) return QO_E_NONFINITE;
     v = (raw - f->offset) / f->scale;
     if (f->invert) v = -v;
     if (!isfinite(v)) return QO_E_NONFINITE;
