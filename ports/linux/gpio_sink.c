@@ -4,6 +4,7 @@
  */
 #include "gpio_sink.h"
 #include "mono_clock.h"
+#include "sink_view.h"
 
 #include <errno.h>
 #include <math.h>
@@ -297,12 +298,9 @@ qo_status qo_gpio_sink_write(void *ctx, const float *targets, size_t n, uint64_t
 
 qo_status qo_gpio_sink_as_sink(qo_gpio_sink *g, qo_sink *out)
 {
-    if (out == NULL) return QO_E_NULL;
-    memset(out, 0, sizeof *out); /* flush, close, stats, service: none */
-    if (g == NULL) return QO_E_NULL;
-    out->ctx = g;
-    out->write = qo_gpio_sink_write;
-    return QO_OK;
+    /* flush, close, stats, service: none */
+    static const qo_sink ops = { .write = qo_gpio_sink_write };
+    return qo_port_sink_view(g, &ops, out);
 }
 
 qo_status qo_gpio_sink_position(const qo_gpio_sink *g, size_t joint, int64_t *steps)

@@ -1,6 +1,7 @@
 #include "linux/modbus_sink.h"
 #include "linux/joint_guard.h"
 #include "linux/modbus_layout.h"
+#include "sink_view.h"
 
 #include <arpa/inet.h>
 #include <errno.h>
@@ -1049,25 +1050,12 @@ static void sink_service(void *ctx)
 static qo_status sink_stats(void *ctx, qo_sink_stats *out)
 {
     const qo_modbus_sink *s = ctx;
-    if (out == NULL) return QO_E_NULL;
-    if (s == NULL) {
-        memset(out, 0, sizeof *out);
-        return QO_E_NULL;
-    }
-    *out = s->st.common;
-    return QO_OK;
+    return qo_port_sink_stats(s != NULL ? &s->st.common : NULL, out);
 }
 
 qo_status qo_modbus_sink_as_sink(qo_modbus_sink *s, qo_sink *out)
 {
-    if (out == NULL) return QO_E_NULL;
-    memset(out, 0, sizeof *out);
-    if (s == NULL) return QO_E_NULL;
-    out->ctx = s;
-    out->write = sink_write;
-    out->flush = sink_flush;
-    out->close = sink_close;
-    out->stats = sink_stats;
-    out->service = sink_service;
-    return QO_OK;
+    static const qo_sink ops = { .write = sink_write, .flush = sink_flush, .close = sink_close,
+                                 .stats = sink_stats, .service = sink_service };
+    return qo_port_sink_view(s, &ops, out);
 }

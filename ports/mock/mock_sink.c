@@ -1,4 +1,5 @@
 #include "mock/mock_sink.h"
+#include "sink_view.h"
 
 #include <string.h>
 
@@ -57,13 +58,7 @@ static void mock_close(void *ctx)
 static qo_status mock_stats(void *ctx, qo_sink_stats *out)
 {
     const qo_mock_sink *m = ctx;
-    if (out == NULL) return QO_E_NULL;
-    if (m == NULL) {
-        memset(out, 0, sizeof *out);
-        return QO_E_NULL;
-    }
-    *out = m->stats;
-    return QO_OK;
+    return qo_port_sink_stats(m != NULL ? &m->stats : NULL, out);
 }
 
 qo_status qo_mock_sink_init(qo_mock_sink *m, size_t n_joints, float *values, uint64_t *ticks,
@@ -80,12 +75,11 @@ qo_status qo_mock_sink_init(qo_mock_sink *m, size_t n_joints, float *values, uin
     m->max_records = max_records;
     m->fail_status = QO_E_IO;
     m->stats.connected = 1;
-    sink->ctx = m;
-    sink->write = mock_write;
-    sink->flush = mock_flush;
-    sink->close = mock_close;
-    sink->stats = mock_stats;
-    return QO_OK;
+    {
+        static const qo_sink ops = { .write = mock_write, .flush = mock_flush, .close = mock_close,
+                                     .stats = mock_stats };
+        return qo_port_sink_view(m, &ops, sink);
+    }
 }
 
 qo_status qo_mock_sink_fail_on(qo_mock_sink *m, const uint64_t *fail_ticks, size_t n,
