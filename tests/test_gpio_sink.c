@@ -125,12 +125,23 @@ static void open_sink(void)
     assert_int_equal(qo_gpio_sink_open(&G, &C, &be), QO_OK);
 }
 
+static size_t ntick;
+static uint64_t P_NS;
+
+/* A fresh backend and an open sink of n step/dir joints at 500 Hz (make_config). */
+static void start_sink(size_t n, double rate, double setup_us, int invert)
+{
+    reset_backend();
+    ntick = 0;
+    make_config(n, rate, setup_us, invert);
+    P_NS = 2000000u;
+    open_sink();
+}
+
 /* Tick starts: the streamer would call write at base + k*P, or later if the last write ran
  * late. */
 #define MAXTICK 4000
 static uint64_t tick_start[MAXTICK];
-static size_t ntick;
-static uint64_t P_NS;
 
 static qo_status tick_at(uint64_t t, const float *targets)
 {
@@ -204,11 +215,7 @@ static void test_step_counts(void **state)
     float x[2];
     size_t k;
     (void)state;
-    reset_backend();
-    ntick = 0;
-    make_config(2, rate, 5.0, 0);
-    P_NS = 2000000u;
-    open_sink();
+    start_sink(2, rate, 5.0, 0);
     for (k = 0; k < 200; k++) {
         int64_t p0, p1;
         x[0] = (float)(0.02 * sin(0.05 * (double)k));   /* <= ~0.1 step/tick change */
@@ -243,11 +250,7 @@ static void test_rate_limit_and_carry(void **state)
     size_t k, reached = 0;
     int64_t prev = 0;
     (void)state;
-    reset_backend();
-    ntick = 0;
-    make_config(1, rate, 0.0, 0);
-    P_NS = 2000000u;
-    open_sink();
+    start_sink(1, rate, 0.0, 0);
     x[0] = 0.2f; /* 20 steps */
     for (k = 0; k < 10; k++) {
         int64_t p;
@@ -317,11 +320,7 @@ static void test_fractional_remainders(void **state)
     float x[1];
     size_t k;
     (void)state;
-    reset_backend();
-    ntick = 0;
-    make_config(1, 5000.0, 5.0, 0);
-    P_NS = 2000000u;
-    open_sink();
+    start_sink(1, 5000.0, 5.0, 0);
     for (k = 0; k < 300; k++) {
         int64_t p;
         double steps = 0.3 * (double)k - 1.5;
@@ -345,11 +344,7 @@ static void test_direction_setup_and_invert(void **state)
         float x[1];
         size_t k;
         check_out o;
-        reset_backend();
-        ntick = 0;
-        make_config(1, 4000.0, setup, inv);
-        P_NS = 2000000u;
-        open_sink();
+        start_sink(1, 4000.0, setup, inv);
         for (k = 0; k < 40; k++) {
             int64_t p;
             size_t e0 = B.ne, e;
@@ -516,11 +511,7 @@ static void test_write_errors(void **state)
     float x[2];
     int64_t p0, p1;
     (void)state;
-    reset_backend();
-    ntick = 0;
-    make_config(2, 4000.0, 5.0, 0);
-    P_NS = 2000000u;
-    open_sink();
+    start_sink(2, 4000.0, 5.0, 0);
     x[0] = 0.02f; x[1] = 0.02f;
     assert_int_equal(qo_gpio_sink_write(&G, x, 1, 0), QO_E_ARG);
     assert_int_equal(qo_gpio_sink_write(NULL, x, 2, 0), QO_E_NULL);
