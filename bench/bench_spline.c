@@ -54,46 +54,47 @@ static void make_plan(size_t nj, int exact_times, qo_spline_f32 *sp, qo_spline_q
     }
 }
 
+/* ns per joint per tick of TICKS samples spread over the plan; derivs 0: position only. */
+static double time_f32(const qo_spline_f32 *sp, double span, size_t nj, int derivs)
+{
+    float pos[MAXJ], vel[MAXJ], acc[MAXJ];
+    double t0 = bench_now_ns();
+    int i;
+    for (i = 0; i < TICKS; i++) {
+        float t = (float)(span * i / TICKS);
+        qo_spline_sample_f32(sp, t, pos, derivs ? vel : NULL, derivs ? acc : NULL, NULL);
+        sink_f = pos[nj - 1];
+    }
+    return (bench_now_ns() - t0) / ((double)TICKS * (double)nj);
+}
+
+static double time_q16(const qo_spline_q16 *fx, double span, size_t nj, int derivs)
+{
+    qo_q16 pq[MAXJ], vq[MAXJ], aq[MAXJ];
+    double t0 = bench_now_ns();
+    int i;
+    for (i = 0; i < TICKS; i++) {
+        qo_q16 t = (qo_q16)(span * 65536.0 * i / TICKS);
+        qo_spline_sample_q16(fx, t, pq, derivs ? vq : NULL, derivs ? aq : NULL, NULL);
+        sink_q = pq[nj - 1];
+    }
+    return (bench_now_ns() - t0) / ((double)TICKS * (double)nj);
+}
+
 static void bench(size_t nj)
 {
     qo_spline_f32 sp;
     qo_spline_q16 fx;
     double tf[RUNS], tq[RUNS], tfp[RUNS], tqp[RUNS], span;
-    float pos[MAXJ], vel[MAXJ], acc[MAXJ];
-    qo_q16 pq[MAXJ], vq[MAXJ], aq[MAXJ];
-    int r, i;
+    int r;
     make_plan(nj, 1, &sp, &fx);
     span = t_keys[NK - 1];
     for (r = 0; r < RUNS; r++) {
-        double t0 = bench_now_ns();
-        for (i = 0; i < TICKS; i++) {
-            float t = (float)(span * i / TICKS);
-            qo_spline_sample_f32(&sp, t, pos, vel, acc, NULL);
-            sink_f = pos[nj - 1];
-        }
-        tf[r] = (bench_now_ns() - t0) / ((double)TICKS * (double)nj);
-        t0 = bench_now_ns();
-        for (i = 0; i < TICKS; i++) {
-            qo_q16 t = (qo_q16)(span * 65536.0 * i / TICKS);
-            qo_spline_sample_q16(&fx, t, pq, vq, aq, NULL);
-            sink_q = pq[nj - 1];
-        }
-        tq[r] = (bench_now_ns() - t0) / ((double)TICKS * (double)nj);
+        tf[r] = time_f32(&sp, span, nj, 1);
+        tq[r] = time_q16(&fx, span, nj, 1);
         /* position only (servo setpoints): vel/acc NULL */
-        t0 = bench_now_ns();
-        for (i = 0; i < TICKS; i++) {
-            float t = (float)(span * i / TICKS);
-            qo_spline_sample_f32(&sp, t, pos, NULL, NULL, NULL);
-            sink_f = pos[nj - 1];
-        }
-        tfp[r] = (bench_now_ns() - t0) / ((double)TICKS * (double)nj);
-        t0 = bench_now_ns();
-        for (i = 0; i < TICKS; i++) {
-            qo_q16 t = (qo_q16)(span * 65536.0 * i / TICKS);
-            qo_spline_sample_q16(&fx, t, pq, NULL, NULL, NULL);
-            sink_q = pq[nj - 1];
-        }
-        tqp[r] = (bench_now_ns() - t0) / ((double)TICKS * (double)nj);
+        tfp[r] = time_f32(&sp, span, nj, 0);
+        tqp[r] = time_q16(&fx, span, nj, 0);
     }
     qsort(tfp, RUNS, sizeof tfp[0], bench_cmp_d);
     qsort(tqp, RUNS, sizeof tqp[0], bench_cmp_d);
