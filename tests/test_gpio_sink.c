@@ -77,14 +77,8 @@ static int fb_sleep(void *ctx, uint64_t t)
 
 static qo_gpio_backend fake_backend(void)
 {
-    qo_gpio_backend be;
-    memset(&be, 0, sizeof be);
-    be.ctx = &B;
-    be.open = fb_open;
-    be.set_value = fb_set;
-    be.close = fb_close;
-    be.now_ns = fb_now;
-    be.sleep_until_ns = fb_sleep;
+    qo_gpio_backend be = { .ctx = &B, .open = fb_open, .set_value = fb_set, .close = fb_close,
+                           .now_ns = fb_now, .sleep_until_ns = fb_sleep };
     return be;
 }
 

@@ -22,12 +22,7 @@ static double uniform(double lo, double hi)
 
 static qo_reg_format fmt(qo_reg_type t, qo_word_order o, double scale, double offset, int inv)
 {
-    qo_reg_format f;
-    f.type = t;
-    f.order = o;
-    f.scale = scale;
-    f.offset = offset;
-    f.invert = inv;
+    qo_reg_format f = { .type = t, .order = o, .scale = scale, .offset = offset, .invert = inv };
     return f;
 }
 
