@@ -18,8 +18,6 @@
 
 /* The double-precision reference and the fixed-seed PRNG are tests/common/ref.c (dq.h). */
 static ref_rng rng;
-/* A double rotation as the fixed core receives it: rounded to float32, then fxconv.h. */
-static qo_quat_q30 to_fx(dq q) { return qo_quat_q30_from_f32(ref_quat_to_f32(q)); }
 
 #define QFMT "(%ld %ld %ld %ld)"
 #define QARG(q) (long)(q).w, (long)(q).x, (long)(q).y, (long)(q).z
@@ -69,7 +67,7 @@ static void test_axis_angle(void **state)
         e = ref_quat_err_lsb_q30(r, want);
         if (e > 1.5) fail_msg("from_axis_angle (%ld %ld %ld) %ld = " QFMT ": %.3f LSB", (long)a.x, (long)a.y, (long)a.z, (long)ang, QARG(r), e);
         /* Back: axis and angle of a random quaternion against the double formula. */
-        r = to_fx(ref_rng_quat(&rng));
+        r = fx_from(ref_rng_quat(&rng));
         back = ref_quat_canonical(ref_quat_normalize(ref_quat_from_q30(r)));
         n = sqrt(back.x * back.x + back.y * back.y + back.z * back.z);
         assert_int_equal(qo_quat_to_axis_angle_q30(r, &ax, &an), QO_OK);
@@ -123,7 +121,7 @@ static void test_rotvec(void **state)
         q = ref_rng_quat(&rng);
         if (k % 4 == 1) { q.w = 1.0; q.x *= 1e-6; q.y *= 1e-6; q.z *= 1e-6; }
         if (k % 4 == 2) { q.w *= 1e-6; }
-        r = to_fx(q);
+        r = fx_from(q);
         q = ref_quat_canonical(ref_quat_from_q30(r));
         n = sqrt(q.x * q.x + q.y * q.y + q.z * q.z);
         s = n > 0 ? 2 * atan2(n, q.w) / n : 2.0 / q.w;
@@ -148,7 +146,7 @@ static void test_to_mat3_and_mul_vec3(void **state)
     assert_int_equal(r.x, 0); assert_int_equal(r.y, 0); assert_int_equal(r.z, 0);
     rng.s = 23;
     for (k = 0; k < 20000; k++) {
-        qo_quat_q30 q = to_fx(ref_rng_quat(&rng));
+        qo_quat_q30 q = fx_from(ref_rng_quat(&rng));
         double d[3][3], e = 0, vx, vy, vz;
         qo_vec3_q30 v, rq;
         qo_vec3_f32 f;
@@ -269,7 +267,7 @@ static void test_round_trips(void **state)
         qo_vec3_q28 rv;
         qo_vec3_q30 ax;
         qo_q28 an;
-        assert_int_equal(qo_quat_normalize_q30(to_fx(ref_rng_quat(&rng)), &q), QO_OK);
+        assert_int_equal(qo_quat_normalize_q30(fx_from(ref_rng_quat(&rng)), &q), QO_OK);
         q = qo_quat_canonical_q30(q);
         assert_int_equal(qo_quat_to_mat3_q30(q, &m), QO_OK);
         assert_int_equal(qo_quat_from_mat3_q30(&m, &back), QO_OK);

@@ -17,8 +17,6 @@
 
 /* The double-precision reference and the fixed-seed PRNG are tests/common/ref.c (dq.h). */
 static ref_rng rng;
-/* A double rotation as the fixed core receives it: rounded to float32, then fxconv.h. */
-static qo_quat_q30 to_fx(dq q) { return qo_quat_q30_from_f32(ref_quat_to_f32(q)); }
 
 #define QFMT "(%ld %ld %ld %ld)"
 #define QARG(q) (long)(q).w, (long)(q).x, (long)(q).y, (long)(q).z
@@ -60,7 +58,7 @@ static void test_mul_dot_norm(void **state)
     (void)state;
     rng.s = 11;
     for (k = 0; k < 20000; k++) {
-        qo_quat_q30 a = to_fx(ref_rng_quat(&rng)), b = to_fx(ref_rng_quat(&rng));
+        qo_quat_q30 a = fx_from(ref_rng_quat(&rng)), b = fx_from(ref_rng_quat(&rng));
         long double w = (long double)a.w * b.w - (long double)a.x * b.x - (long double)a.y * b.y - (long double)a.z * b.z;
         long double x = (long double)a.w * b.x + (long double)a.x * b.w + (long double)a.y * b.z - (long double)a.z * b.y;
         long double y = (long double)a.w * b.y - (long double)a.x * b.z + (long double)a.y * b.w + (long double)a.z * b.x;
@@ -183,7 +181,7 @@ static void test_rotate(void **state)
         qo_vec3_f32 vf;
         dq dqq, p, out;
         double e, ex, ey, ez, vn;
-        assert_int_equal(qo_quat_normalize_q30(to_fx(ref_rng_quat(&rng)), &q), QO_OK);
+        assert_int_equal(qo_quat_normalize_q30(fx_from(ref_rng_quat(&rng)), &q), QO_OK);
         vf.x = (float)ref_rng_range(&rng, -1.0, 1.0); vf.y = (float)ref_rng_range(&rng, -1.0, 1.0); vf.z = (float)ref_rng_range(&rng, -1.0, 1.0);
         vn = sqrt((double)vf.x * vf.x + (double)vf.y * vf.y + (double)vf.z * vf.z);
         if (vn > 1.0) { vf.x = (float)(vf.x / vn); vf.y = (float)(vf.y / vn); vf.z = (float)(vf.z / vn); }
@@ -226,7 +224,7 @@ static void test_angle_between(void **state)
         qo_quat_q30 b;
         double vn, want, e;
         qo_q28 got;
-        a = to_fx(da);
+        a = fx_from(da);
         /* Half the pairs close together (small angles), some near antipodal. */
         if (k % 3 == 0) {
             dq dd = { 1.0, 1e-5 * ref_rng_range(&rng, -1.0, 1.0), 1e-5 * ref_rng_range(&rng, -1.0, 1.0), 1e-5 * ref_rng_range(&rng, -1.0, 1.0) };
@@ -235,7 +233,7 @@ static void test_angle_between(void **state)
         } else {
             db = ref_rng_quat(&rng);
         }
-        b = to_fx(db);
+        b = fx_from(db);
         r = dq_mul((dq){ a.w / TWO30, -a.x / TWO30, -a.y / TWO30, -a.z / TWO30 }, ref_quat_from_q30(b));
         vn = sqrt(r.x * r.x + r.y * r.y + r.z * r.z);
         want = 2.0 * atan2(vn, fabs(r.w)) * TWO28;
@@ -243,7 +241,7 @@ static void test_angle_between(void **state)
         e = fabs(got - want);
         if (e > 2.0 || got < 0 || got > QO_Q28_PI) fail_msg("angle_between " QFMT " " QFMT " = %ld: %.3f LSB", QARG(a), QARG(b), (long)got, e);
     }
-    a = to_fx(ref_rng_quat(&rng));
+    a = fx_from(ref_rng_quat(&rng));
     assert_int_equal(qo_quat_angle_between_q30(a, a), 0);
     na.w = -a.w; na.x = -a.x; na.y = -a.y; na.z = -a.z;
     assert_int_equal(qo_quat_angle_between_q30(a, na), 0);
@@ -292,7 +290,7 @@ static void test_exp_log(void **state)
         e = ref_quat_err_lsb_q30(r, want);
         if (e > 2.0) fail_msg("exp(%ld %ld %ld) = " QFMT ": %.3f LSB", (long)v.x, (long)v.y, (long)v.z, QARG(r), e);
         /* log of a random (non-canonical too) quaternion. */
-        q = to_fx(ref_rng_quat(&rng));
+        q = fx_from(ref_rng_quat(&rng));
         lq = ref_quat_from_q30(q);
         n = sqrt(lq.x * lq.x + lq.y * lq.y + lq.z * lq.z);
         s = atan2(n, lq.w) / n;
@@ -317,7 +315,7 @@ static void test_integrate(void **state)
     assert_int_equal(r.w, QO_Q30_ONE);
     rng.s = 16;
     for (k = 0; k < 20000; k++) {
-        qo_quat_q30 q = to_fx(ref_rng_quat(&rng));
+        qo_quat_q30 q = fx_from(ref_rng_quat(&rng));
         qo_vec3_f32 f;
         qo_vec3_q28 d;
         dq dd, want;
