@@ -25,27 +25,6 @@
 
 #include "common/dq_interp.h"
 
-/* ---- the boundary, written here (not fxconv.h): round to nearest, saturate ---- */
-static int32_t fx_from_d(double v, double scale)
-{
-    double s = floor(v * scale + 0.5);
-    if (s > 2147483647.0) return INT32_MAX;
-    if (s < -2147483648.0) return INT32_MIN;
-    return (int32_t)s;
-}
-static qo_quat_q30 x_from(dq q)
-{
-    qo_quat_q30 r;
-    r.w = fx_from_d(q.w, Q30); r.x = fx_from_d(q.x, Q30);
-    r.y = fx_from_d(q.y, Q30); r.z = fx_from_d(q.z, Q30);
-    return r;
-}
-static dq dq_from_x(qo_quat_q30 q)
-{
-    dq r = { q.w / Q30, q.x / Q30, q.y / Q30, q.z / Q30 };
-    return r;
-}
-static dq dq_from_f(qo_quat_f32 q) { dq r = { q.w, q.x, q.y, q.z }; return r; }
 static double norm_dev_x(qo_quat_q30 q) { return fabs(dq_norm(dq_from_x(q)) - 1.0); }
 
 /* running maxima */
@@ -115,17 +94,6 @@ static void x_align(const qo_quat_q30 *k, size_t n, dq *q)
     for (i = 0; i < n; i++) {
         q[i] = dq_unit(dq_from_x(k[i]));
         if (i && dq_dot(q[i - 1], q[i]) < 0) q[i] = dq_neg(q[i]);
-    }
-}
-static void d_squad_controls(const dq *q, size_t n, dq *s)
-{
-    size_t i;
-    s[0] = q[0];
-    s[n - 1] = q[n - 1];
-    for (i = 1; i + 1 < n; i++) {
-        dq qi = dq_conj(q[i]);
-        dq l1 = dq_log(dq_mul(qi, q[i + 1])), l2 = dq_log(dq_mul(qi, q[i - 1]));
-        s[i] = dq_mul(q[i], dq_exp(dq_scale(dq_add(l1, l2), -0.25)));
     }
 }
 static void rand_keys(qo_quat_q30 *k, size_t n, double maxstep)

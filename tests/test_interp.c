@@ -862,18 +862,6 @@ static void test_spline_swing_back(void **state)
 
 /* ---- Squad ------------------------------------------------------------------------------ */
 
-static void d_squad_controls(const dq *q, size_t n, dq *s)
-{
-    size_t i;
-    s[0] = q[0];
-    s[n - 1] = q[n - 1];
-    for (i = 1; i + 1 < n; i++) {
-        dq qi = dq_conj(q[i]);
-        dq l1 = dq_log(dq_mul(qi, q[i + 1])), l2 = dq_log(dq_mul(qi, q[i - 1]));
-        s[i] = dq_mul(q[i], dq_exp(dq_scale(dq_add(l1, l2), -0.25)));
-    }
-}
-
 static dq d_squad(dq q0, dq s0, dq s1, dq q1, double t)
 {
     dq x = dq_unit(d_slerp_raw(q0, q1, t)), y = dq_unit(d_slerp_raw(s0, s1, t));

@@ -51,28 +51,6 @@ static dq d_slerp(dq a, dq b, double t)
 
 /* ---- the two cores behind one interface -------------------------------------------------- */
 
-/* The float / Q1.30 boundary, written here (not fxconv.h): round to nearest, saturate. */
-static int32_t fx_from_d(double v, double scale)
-{
-    double s = floor(v * scale + 0.5);
-    if (s > 2147483647.0) return INT32_MAX;
-    if (s < -2147483648.0) return INT32_MIN;
-    return (int32_t)s;
-}
-static qo_quat_q30 x_from(dq q)
-{
-    qo_quat_q30 r;
-    r.w = fx_from_d(q.w, Q30); r.x = fx_from_d(q.x, Q30);
-    r.y = fx_from_d(q.y, Q30); r.z = fx_from_d(q.z, Q30);
-    return r;
-}
-static dq dq_from_x(qo_quat_q30 q)
-{
-    dq r = { q.w / Q30, q.x / Q30, q.y / Q30, q.z / Q30 };
-    return r;
-}
-static dq dq_from_f(qo_quat_f32 q) { dq r = { q.w, q.x, q.y, q.z }; return r; }
-
 #define MAXK 12
 
 typedef struct core {
@@ -814,17 +792,6 @@ static void test_spline_end_rule_and_swing_back(void **state)
 
 /* ---- Squad, both cores ------------------------------------------------------------------ */
 
-static void d_squad_controls(const dq *q, size_t n, dq *s)
-{
-    size_t i;
-    s[0] = q[0];
-    s[n - 1] = q[n - 1];
-    for (i = 1; i + 1 < n; i++) {
-        dq qi = dq_conj(q[i]);
-        dq l1 = dq_log(dq_mul(qi, q[i + 1])), l2 = dq_log(dq_mul(qi, q[i - 1]));
-        s[i] = dq_mul(q[i], dq_exp(dq_scale(dq_add(l1, l2), -0.25)));
-    }
-}
 static dq d_squad(dq q0, dq s0, dq s1, dq q1, double t)
 {
     dq x = dq_unit(d_slerp_raw(q0, q1, t)), y = dq_unit(d_slerp_raw(s0, s1, t));

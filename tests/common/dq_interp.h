@@ -15,6 +15,10 @@
  *   d_slerp_raw, d_slerp_unit                         textbook slerp, no flip; the same normalised
  *   d_spline_controls, d_bez                          Shoemake C1 inner controls; Bezier on the sphere
  *   dq_log, dq_exp                                    log of a unit quaternion, exp of a pure one
+ *   d_squad_controls                                  Squad inner points from log/exp
+ *   fx_from_d, x_from, dq_from_x, dq_from_f           the float / Q1.30 boundary written in the
+ *                                                     test (not fxconv.h): round to nearest,
+ *                                                     saturate; exact values back
  */
 #ifndef QORIENT_TESTS_DQ_INTERP_H
 #define QORIENT_TESTS_DQ_INTERP_H
@@ -118,5 +122,24 @@ static inline dq dq_exp(dq p)
     dq r = { cos(vn), p.x * k, p.y * k, p.z * k };
     return r;
 }
+
+/* Squad inner points s_i = q_i exp(-(log(q_i^-1 q_(i+1)) + log(q_i^-1 q_(i-1))) / 4), ends = keys. */
+static inline void d_squad_controls(const dq *q, size_t n, dq *s)
+{
+    size_t i;
+    s[0] = q[0];
+    s[n - 1] = q[n - 1];
+    for (i = 1; i + 1 < n; i++) {
+        dq qi = dq_conj(q[i]);
+        dq l1 = dq_log(dq_mul(qi, q[i + 1])), l2 = dq_log(dq_mul(qi, q[i - 1]));
+        s[i] = dq_mul(q[i], dq_exp(dq_scale(dq_add(l1, l2), -0.25)));
+    }
+}
+
+/* The float / Q1.30 boundary, written here (not fxconv.h): round to nearest, saturate. */
+static inline int32_t fx_from_d(double v, double scale) { return ref_to_fixed(v, scale); }
+static inline qo_quat_q30 x_from(dq q) { return ref_quat_to_q30(q); }
+static inline dq dq_from_x(qo_quat_q30 q) { return ref_quat_from_q30(q); }
+static inline dq dq_from_f(qo_quat_f32 q) { return ref_quat_from_f32(q); }
 
 #endif
