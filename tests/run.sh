@@ -4,7 +4,15 @@
 # a labelled line per program ("== NAME: N passed, M failed"), a summary of them at the end and
 # one closing line "N passed, M failed". Exit status 1 if anything failed or a program
 # crashed (a crash counts as one failure even if cmocka had no chance to report it).
+# The summary also adds them up per suite: "core" (the library's cmocka programs), "ports"
+# (programs that include a port header: linux/, mock/) and "command" (the shell tests).
 passed=0; failed=0; crashed=""; summary=""
+sp_core=0; sf_core=0; sn_core=0; sp_ports=0; sf_ports=0; sn_ports=0; sp_command=0; sf_command=0; sn_command=0
+suite_of() {
+    if [ "$mode" = sh ]; then echo command
+    elif grep -qE '#include "(linux|mock)/' "tests/$(basename "$1").c" 2>/dev/null; then echo ports
+    else echo core; fi
+}
 tmp=${TMPDIR:-/tmp}/qorient-run.$$
 trap 'rm -f "$tmp"' EXIT INT TERM
 mode=bin
@@ -24,12 +32,19 @@ for t in "$@"; do
     if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
         failed=$((failed + 1)); crashed="$crashed $t(rc=$rc)"; f="$f+crash"
     fi
+    su=$(suite_of "$t")
+    fn=${f%+crash}; [ "$f" = "$fn" ] || fn=$((fn + 1))
+    eval "sp_$su=\$((sp_$su + p)); sf_$su=\$((sf_$su + fn)); sn_$su=\$((sn_$su + 1))"
     line=$(printf '%-28s %5s passed, %s failed' "$(basename "$t"):" "$p" "$f")
     echo "== $line"
     summary="$summary
   $line"
 done
 echo "== summary per program:$summary"
+echo "== summary per suite:"
+for su in core ports command; do
+    eval "printf '  %-27s %5s passed, %s failed (%s programs)\n' \"suite \$su:\" \$sp_$su \$sf_$su \$sn_$su"
+done
 [ -n "$crashed" ] && echo "crashed or exited non-zero without a report:$crashed"
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ] && [ "$passed" -gt 0 ]
