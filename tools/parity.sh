@@ -14,6 +14,8 @@
 #     written decision ("-" and a reason), never an accident;
 #   - a named function is not declared in the public headers (the table cannot name a
 #     function that does not exist);
+#   - a family (the concept before the dot) is declared in more than one header pair, or in a
+#     header not named after it (mat3 lives in convert.h);
 #   - a function with a core suffix (_f32, _q30, _q28, _q16) declared in a header that has a
 #     block is in no block (a new function must say which concept it is).
 set -eu
@@ -71,6 +73,20 @@ while read -r c; do
             err "concept $c has no $core entry: name the function, or write \"$c - reason\" in a $core block"
     done
 done < "$W.concepts"
+
+# one home per family: a family's functions are declared in one header and its twin (F.h and
+# F_fx.h); the family is named after its header, except mat3, whose home is convert.h (the
+# rotation-matrix conversions and the matrix helpers they need are one family of headers)
+awk -F '\t' '{ fam = $2; sub(/\..*/, "", fam); h = $5; sub(/(_fx)?\.h$/, "", h); print fam "\t" h }' \
+    "$W.entries" | sort -u > "$W.homes"
+cut -f1 "$W.homes" | uniq -d | while read -r fam; do
+    echo "family $fam is declared in more than one header pair: $(awk -F '\t' -v f="$fam" '$1 == f { printf "%s.h ", $2 }' "$W.homes")"
+done > "$W.split"
+while read -r line; do err "$line"; done < "$W.split"
+while IFS="$(printf '\t')" read -r fam h; do
+    [ "$fam" = "$h" ] || { [ "$fam" = mat3 ] && [ "$h" = convert ]; } ||
+        err "family $fam lives in $h.h: a family's home is the header named after it (mat3: convert.h)"
+done < "$W.homes"
 
 [ $fail = 0 ] || { echo "parity: FAIL (the blocks are at the top of $H/*.h; see tools/parity.sh)" >&2; exit 1; }
 
