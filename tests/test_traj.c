@@ -640,6 +640,62 @@ static void test_targets_timing_min_and_edges(void **state)
     assert_int_equal(qo_traj_set_timing(NULL, 1.0f, 0.01f), QO_E_NULL);
 }
 
+/* Found by fuzz/fuzz_traj.c (each input is also in fuzz/regress/traj/): times at both ends of
+ * the range (their difference, 2^63 ns, overflowed int64), a single key with a wrap period
+ * far below its ulp (the wrap loop never ended) and a single key with a position limit of
+ * -Inf above it (held at -Inf with QO_OK). */
+static void test_fuzz_findings(void **state)
+{
+    static struct keys_fix f;
+    static struct tgt_fix g;
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    float p0[NJ] = { 0, 1, 2 }, p1[NJ] = { 2, 3, 4 }, pos[NJ], vel[NJ], acc[NJ];
+    float lo[NJ] = { -INFINITY, -INFINITY, -INFINITY }, hi[NJ] = { INFINITY, -INFINITY, INFINITY };
+    unsigned char wrap[NJ] = { 1, 0, 0 };
+    qo_traj_ns end;
+    size_t j;
+    (void)state;
+    set.profile = QO_SPLINE_LINEAR;
+    assert_int_equal(qo_traj_init_keys(&f.tr, NJ, &set, 1, f.t, CAP, f.store, 4096), QO_OK);
+    assert_int_equal(qo_traj_push(&f.tr, -QO_TRAJ_TIME_MAX, p0, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_push(&f.tr, QO_TRAJ_TIME_MAX, p1, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_sample(&f.tr, QO_TRAJ_TIME_MAX, pos, vel, acc, NULL), QO_OK);
+    for (j = 0; j < NJ; j++) assert_true(pos[j] == p1[j]);
+    /* halfway (t = 0): the mean, to the float32 rounding of 9.2e9 s offsets */
+    assert_int_equal(qo_traj_sample(&f.tr, 0, pos, vel, acc, NULL), QO_OK);
+    for (j = 0; j < NJ; j++) assert_true(fabs(pos[j] - 0.5 * (p0[j] + p1[j])) < 1e-5);
+
+    init_targets(&g, QO_MOTION_SCURVE);
+    assert_int_equal(qo_traj_push(&g.tr, QO_TRAJ_TIME_MAX - S, p0, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_push(&g.tr, QO_TRAJ_TIME_MAX - S, p1, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_sample(&g.tr, QO_TRAJ_TIME_MAX - S, pos, vel, acc, NULL), QO_OK);
+    assert_int_equal(qo_traj_end_time(&g.tr, &end), QO_OK);
+    assert_true(end == QO_TRAJ_TIME_MAX); /* the move's end is beyond the range: saturated */
+    init_targets(&g, QO_MOTION_SCURVE);
+    assert_int_equal(qo_traj_push(&g.tr, -QO_TRAJ_TIME_MAX, p0, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_push(&g.tr, -QO_TRAJ_TIME_MAX, p1, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_sample(&g.tr, QO_TRAJ_TIME_MAX, pos, vel, acc, NULL), QO_OK);
+    for (j = 0; j < NJ; j++) assert_true(pos[j] == p1[j]);
+    assert_int_equal(qo_traj_end_time(&g.tr, &end), QO_OK);
+    assert_true(end > -QO_TRAJ_TIME_MAX && end < -QO_TRAJ_TIME_MAX + 10 * S);
+
+    set.wrap = wrap;
+    set.wrap_period = 1e-30f;
+    p0[0] = 1e30f;
+    assert_int_equal(qo_traj_init_keys(&f.tr, NJ, &set, 1, f.t, CAP, f.store, 4096), QO_OK);
+    assert_int_equal(qo_traj_push(&f.tr, 0, p0, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_sample(&f.tr, S, pos, vel, acc, NULL), QO_OK);
+    assert_true(fabsf(pos[0]) <= 0.5e-30f); /* fmodf: wrapped in one step */
+    set.wrap = NULL;
+    set.pos_min = lo;
+    set.pos_max = hi;
+    assert_int_equal(qo_traj_init_keys(&f.tr, NJ, &set, 1, f.t, CAP, f.store, 4096), QO_OK);
+    assert_int_equal(qo_traj_push(&f.tr, 0, p0, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_prepare(&f.tr), QO_E_LIMIT); /* as the plan of two keys says */
+    assert_int_equal(qo_traj_sample(&f.tr, S, pos, vel, acc, NULL), QO_E_LIMIT);
+    for (j = 0; j < NJ; j++) assert_true(pos[j] == p0[j] && vel[j] == 0.0f && acc[j] == 0.0f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -656,6 +712,7 @@ int main(void)
         cmocka_unit_test(test_targets_edges),
         cmocka_unit_test(test_targets_timing_period),
         cmocka_unit_test(test_targets_timing_min_and_edges),
+        cmocka_unit_test(test_fuzz_findings),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

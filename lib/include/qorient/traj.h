@@ -35,7 +35,7 @@
  * times must increase strictly (also after rounding their offset from the first key to
  * float32). A push only stores the key; the spline is (re)planned over all keys by the next
  * qo_traj_prepare() or qo_traj_sample(): O(K) work. With one key the trajectory holds it at
- * rest; before the first key the first key is held, after the last the last (see spline.h).
+ * rest (the settings are still checked as a plan would: QO_E_RANGE, QO_E_LIMIT); before the first key the first key is held, after the last the last (see spline.h).
  * Pushing keys while sampling re-plans the whole spline: the local profiles (LINEAR,
  * CUBIC_HERMITE, CATMULL_ROM) keep every segment but the last one unchanged, the global
  * CUBIC_C2 and estimated QUINTIC may move earlier segments slightly; live input is what
@@ -72,7 +72,8 @@ extern "C" {
 /* Absolute time in nanoseconds. */
 typedef int64_t qo_traj_ns;
 
-/* Largest |time| accepted anywhere (ns): 2^62, so a difference of two never overflows. */
+/* Largest |time| accepted anywhere (ns): 2^62. The difference of two can reach 2^63, one more
+ * than int64 holds: the library splits times into seconds and ns before subtracting. */
 #define QO_TRAJ_TIME_MAX ((qo_traj_ns)4611686018427387904LL)
 #define QO_TRAJ_NS_PER_S ((qo_traj_ns)1000000000LL)
 
