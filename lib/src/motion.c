@@ -5,7 +5,7 @@
 #include <math.h>
 
 const qo_motion_settings_f32 qo_motion_settings_default = { QO_MOTION_SCURVE, QO_MOTION_SYNC_TIME };
-const qo_motion_limits_f32 qo_motion_limits_default = { 1.0f, 1.0f, 1.0f, -INFINITY, INFINITY, 0.0f };
+const qo_motion_limits_f32 qo_motion_limits_default = { 1.0f, 1.0f, 1.0f, -INFINITY, INFINITY, 0.0f, 0.0f, 0.0f };
 
 /* One piece of a profile under construction: duration d, jerk j; with seta the acceleration
  * is set to a at its start (TRAPEZOID: acceleration jumps), else it carries on continuously. */
@@ -1047,7 +1047,9 @@ qo_status qo_motion_init_f32(qo_motion_planner_f32 *pl, qo_motion_joint_f32 *joi
         jt->w_p = start[i];
         jt->w_v = jt->w_a = jt->w_d = jt->w_vc = jt->w_tc = jt->w_t = 0.0f;
         jt->w_fam = 0;
-        jt->w_vg = jt->vend = 0.0f;
+        jt->w_vg = jt->vend = jt->aend = 0.0f;
+        jt->goal_v = jt->goal_a = 0.0f;
+        jt->sync = -1;
     }
     pl->settings = st;
     pl->t0 = t0;
@@ -1324,4 +1326,19 @@ qo_status qo_motion_export_q16(const qo_motion_planner_f32 *pl, qo_motion_table_
     }
     table->n = pl->n;
     return ovf ? QO_E_OVERFLOW : QO_OK;
+}
+
+/* API stubs: filled in by the following commits. */
+qo_status qo_motion_set_target_state_f32(qo_motion_planner_f32 *pl, float t_now, const float *pos,
+                                         const float *vel, const float *acc, uint32_t *clamped)
+{
+    (void)pl; (void)t_now; (void)pos; (void)vel; (void)acc;
+    if (clamped) *clamped = 0;
+    return QO_E_ARG;
+}
+
+qo_status qo_motion_set_joint_sync_f32(qo_motion_planner_f32 *pl, size_t i, qo_motion_sync sync)
+{
+    (void)pl; (void)i; (void)sync;
+    return QO_E_ARG;
 }
