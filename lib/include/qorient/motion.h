@@ -220,11 +220,7 @@ typedef struct qo_motion_joint_f32 {
     float duration;                                /* seconds after the plan start */
     unsigned nph;                                  /* phases in use, 0 = at rest at `final` */
     qo_motion_phase_f32 ph[QO_MOTION_MAX_PHASES];
-    /* Planner scratch (state at the re-plan time, displacement, solve results), kept here so
-     * a re-plan needs no stack proportional to N. Not meaningful to the caller. */
-    float w_p, w_v, w_a, w_d, w_vc, w_tc, w_t;
-    int w_fam; /* profile family of the solve: 0 extremum velocity w_vc, 1 dip to w_vc [u/s^2] */
-    float w_vg;                                    /* velocity interface: target velocity */
+    float p0, v0, a0;  /* start state of the current plan (at the planner's t0) [u, u/s, u/s^2] */
     float vend;  /* velocity after the last phase [u/s]: 0 = at rest at `final`; the velocity
                   * interface's target (the joint then moves on at vend from `final`) */
     float aend;  /* acceleration at the end of the last phase [u/s^2] (target states; see
