@@ -69,20 +69,16 @@ unsigned qo_motion_vchange(int scurve, float v0, float a0, float v1, const mlim 
     return 3;
 }
 
+static unsigned reverse_segs(const mseg *g, unsigned n, mseg *out);
+
 /* Fastest change from (vc, 0) to the end state (vf, af): with af != 0 it is the time reversal
  * of the fastest change from (-vf, af) to (-vc, 0) (x~(s) = x(T - s) negates v and jerk, keeps
  * a and the acceleration bounds), its segments taken backwards with the jerk negated. */
 static unsigned vchange_end(int scurve, float vc, float vf, float af, const mlim *l, mseg *out)
 {
     mseg g[3];
-    unsigned n, k;
     if (af == 0.0f || !scurve) return qo_motion_vchange(scurve, vc, 0.0f, vf, l, out);
-    n = qo_motion_vchange(1, -vf, af, -vc, l, g);
-    for (k = 0; k < n; k++) {
-        out[k] = g[n - 1 - k];
-        out[k].j = -g[n - 1 - k].j;
-    }
-    return n;
+    return reverse_segs(g, qo_motion_vchange(1, -vf, af, -vc, l, g), out);
 }
 
 /* Profile through extremum velocity vc with cruise tc, from (v0, a0) to (vf, af). */
@@ -109,6 +105,49 @@ static unsigned build(const mprob *p, float vc, float tc, mseg *out)
  * harder: "ramp down, up to amax, hold, ramp to zero" of issue 11. With am = 0 it is the
  * extremum-velocity profile through vn; with am = a0 the direct stop. The velocity never leaves
  * [-|vn|, |vn|] on the way to rest, so it stays within vmax when the start does. SCURVE only. */
+/* Fastest change from (v0, a0) to (v1, a1), both accelerations within [-an, ap]: one pulse,
+ * up-down (peak >= max(a0, a1)) or down-up, its peak from the velocity balance
+ * (2 pk^2 - a0^2 - a1^2) / (2 jmax) = v1 - v0, clipped to the bound with a hold; the shorter
+ * of the two that exist. Writes 3 segments; 0 if neither exists (then out[0].d is NaN). */
+static unsigned vchange2(float v0, float a0, float v1, float a1, const mlim *l, mseg *out)
+{
+    float best = INFINITY, J = l->j;
+    int k;
+    out[0].d = NAN;
+    for (k = 0; k < 2; k++) {
+        float s = k == 0 ? 1.0f : -1.0f, bound = k == 0 ? l->ap : l->an;
+        float b0 = s * a0, b1 = s * a1, dv = s * (v1 - v0), m = fmaxf(b0, b1);
+        float X = J * dv + 0.5f * (b0 * b0 + b1 * b1), pk, h = 0.0f, t;
+        if (m > bound * (1.0f + 1e-6f)) continue;
+        if (X < 0.0f) {
+            if (X < -1e-6f * (J * fabsf(dv) + b0 * b0 + b1 * b1)) continue;
+            X = 0.0f;
+        }
+        /* the lower peak is the faster pulse when both reach max(a0, a1) */
+        pk = -sqrtf(X);
+        if (pk < m) pk = sqrtf(X);
+        if (pk < m - 1e-5f * (fabsf(m) + pk)) continue;
+        if (pk < m) pk = m;
+        if (pk > bound) {
+            pk = bound;
+            h = (dv - (pk * pk - b0 * b0) / (2.0f * J) - (pk * pk - b1 * b1) / (2.0f * J)) / pk;
+            if (h < 0.0f) h = 0.0f;
+        }
+        t = (pk - b0) / J + h + (pk - b1) / J;
+        if (t < best) {
+            best = t;
+            out[0].d = (pk - b0) / J;
+            out[0].j = s * J;
+            out[1].d = h;
+            out[1].j = 0.0f;
+            out[2].d = (pk - b1) / J;
+            out[2].j = -s * J;
+        }
+    }
+    out[0].seta = out[0].setv = out[1].seta = out[1].setv = out[2].seta = out[2].setv = 0;
+    return best < INFINITY ? 3 : 0;
+}
+
 static unsigned build_dip(const mprob *p, float am, mseg *out)
 {
     float j = am >= p->a0 ? p->l.j : -p->l.j, d = fabsf(am - p->a0) / p->l.j;
@@ -116,15 +155,49 @@ static unsigned build_dip(const mprob *p, float am, mseg *out)
     out[0].d = d;
     out[0].j = j;
     out[0].seta = out[0].setv = 0;
-    /* the pulse ends at (vf, 0): the dip family is used only for targets with af = 0 */
-    return 1 + qo_motion_vchange(1, v1, am, p->vf, &p->l, out + 1);
+    /* the pulse to (vf, 0), or to a target acceleration (NaN duration if there is none) */
+    if (p->af == 0.0f) return 1 + qo_motion_vchange(1, v1, am, p->vf, &p->l, out + 1);
+    vchange2(v1, am, p->vf, p->af, &p->l, out + 1);
+    return 4;
+}
+
+/* The time reversal of a problem: x~(s) = x(T - s) starts at the end state with v negated
+ * and a kept, over -dp, with the velocity bounds swapped; its profiles taken backwards with the
+ * jerk negated are the original's. The "end dip" (family 2: a pulse, then a single ramp to the
+ * target acceleration) is the reversed problem's dip. */
+static mprob reversed(const mprob *p)
+{
+    mprob r = *p;
+    r.l.vp = p->l.vn;
+    r.l.vn = p->l.vp;
+    r.v0 = -p->vf;
+    r.a0 = p->af;
+    r.vf = -p->v0;
+    r.af = p->a0;
+    r.dp = -p->dp;
+    return r;
+}
+
+static unsigned reverse_segs(const mseg *g, unsigned n, mseg *out)
+{
+    unsigned k;
+    for (k = 0; k < n; k++) {
+        out[k] = g[n - 1 - k];
+        out[k].j = -g[n - 1 - k].j;
+    }
+    return n;
 }
 
 /* A joint's solved profile: family 0 = extremum velocity x with cruise tc (build), family 1 =
- * dip to acceleration x (build_dip). */
+ * dip to acceleration x (build_dip), family 2 = end dip from acceleration x. */
 unsigned qo_motion_build(const mprob *p, const msol *s, mseg *out)
 {
     if (s->fam == 1) return build_dip(p, s->x, out);
+    if (s->fam == 2) {
+        mprob r = reversed(p);
+        mseg g[4];
+        return reverse_segs(g, build_dip(&r, s->x, g), out);
+    }
     return build(p, s->x, s->tc, out);
 }
 
@@ -389,9 +462,10 @@ static int solve_dip(const mprob *p, float e0, float e1, float *am, float *dur)
         float r = x[k], tr = t[k], fr = f[k];
         if (fr != 0.0f) {
             if (k == QO_MOTION_DIP_SCAN || f[k + 1] == 0.0f || (fr < 0.0f) == (f[k + 1] < 0.0f)) continue;
+            if (fr != fr || f[k + 1] != f[k + 1]) continue; /* no pulse to the end state there */
             r = root(&c, x[k], x[k + 1], f[k], f[k + 1], t[k], t[k + 1], &tr, &fr);
             /* no cruise absorbs a residual here: keep only a root to float precision */
-            if (fabsf(fr) > 1e-6f * (fabsf(dp) + (fabsf(v0) + c.vs) * tr)) continue;
+            if (!(fabsf(fr) <= 1e-6f * (fabsf(dp) + (fabsf(v0) + c.vs) * tr))) continue;
         }
         {
             /* ramping a0 away from zero first drives the velocity further: its extremum, where
@@ -406,6 +480,32 @@ static int solve_dip(const mprob *p, float e0, float e1, float *am, float *dur)
         }
     }
     return *dur < INFINITY;
+}
+
+/* Target accelerations (af != 0): the dips at both ends, each orientation (am between 0 and
+ * the acceleration, and beyond it up to the bound), searched by their end points; the start
+ * dips by solve_dip, the end dips as the reversed problem's start dips. Keeps the shortest in
+ * *sol if shorter than sol->t. */
+static void solve_dips_moving(const mprob *p, msol *sol)
+{
+    int e;
+    for (e = 0; e < 2; e++) {
+        mprob r = e ? reversed(p) : *p;
+        float a0 = r.a0, aw = a0 > 0.0f ? r.l.ap : -r.l.an, am, dd;
+        if (a0 == 0.0f) continue;
+        if (solve_dip(&r, 0.0f, a0, &am, &dd) && dd < sol->t) {
+            sol->x = am;
+            sol->tc = 0.0f;
+            sol->t = dd;
+            sol->fam = 1 + e;
+        }
+        if (fabsf(a0) < fabsf(aw) && solve_dip(&r, a0, aw, &am, &dd) && dd < sol->t) {
+            sol->x = am;
+            sol->tc = 0.0f;
+            sol->t = dd;
+            sol->fam = 1 + e;
+        }
+    }
 }
 
 /* Minimum-time extremum velocity vc and cruise tc for displacement dp (see motion.h).
@@ -570,6 +670,11 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
     sol->x = bv;
     sol->tc = bt;
     sol->t = bd < INFINITY ? bd : 0.0f;
+    if (scurve && p->af != 0.0f) {
+        if (!(bd < INFINITY)) sol->t = INFINITY;
+        solve_dips_moving(p, sol);
+        if (!(sol->t < INFINITY)) sol->t = 0.0f;
+    }
 }
 
 /* A profile of exactly duration T >= the minimum. First bracket: lower |vc| from vc* toward 0
