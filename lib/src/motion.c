@@ -40,7 +40,7 @@ static void load(qo_motion_joint_f32 *jt, float p, float v, float a, const mseg 
         jt->ph[jt->nph].j = g[i].j;
         jt->nph++;
         jt->ph[jt->nph - 1].d = g[i].d;
-        qo_motion_integ(&s, &g[i]);
+        mseg_integ(&s, &g[i]);
         t += g[i].d;
     }
     jt->final = final;
@@ -212,7 +212,7 @@ static void plan_velocity(qo_motion_planner_f32 *pl)
         s.a = jt->a0;
         jt->goal_a = 0.0f;
         n = (jt->v0 == jt->goal_v && jt->a0 == 0.0f) ? 0 : qo_motion_vchange(sc, jt->v0, jt->a0, jt->goal_v, &l, g);
-        for (k = 0; k < n; k++) qo_motion_integ(&s, &g[k]);
+        for (k = 0; k < n; k++) mseg_integ(&s, &g[k]);
         load(jt, jt->p0, jt->v0, jt->a0, g, n, s.p);
         jt->vend = jt->goal_v;
         jt->aend = 0.0f;
@@ -439,51 +439,69 @@ static void line_load(qo_motion_planner_f32 *pl, const qo_motion_joint_f32 *unit
     }
 }
 
-/* Where a joint's minimum-time profile (loaded) has its velocity extremum vc: the cruise, or the
- * phase boundary where the acceleration returns to zero or changes sign; a profile without one
- * before its end (a dip, a direct transfer) starts the exact-duration search from the velocity
- * the start reaches (vs). Only a starting point of qo_motion_solve_time's bracket. */
-static float extremum_hint(const qo_motion_joint_f32 *jt, const mprob *p)
-{
-    unsigned k;
-    float as = 1e-4f * fmaxf(p->l.ap, p->l.an), vs;
-    for (k = 0; k + 1 < jt->nph; k++) {
-        const qo_motion_phase_f32 *ph = &jt->ph[k], *nx = &jt->ph[k + 1];
-        float a1 = ph->a + ph->d * ph->j;
-        if (ph->j == 0.0f && ph->a == 0.0f) return ph->v;
-        if (fabsf(a1) <= as || (p->scurve == 0 && (ph->a < 0.0f) != (nx->a < 0.0f))) return nx->v;
-    }
-    vs = p->scurve ? p->v0 + p->a0 * fabsf(p->a0) / (2.0f * p->l.j) : p->v0;
-    return fminf(fmaxf(vs, -p->l.vn), p->l.vp);
-}
-
 /* 1 if the joint is at its target state already: no phases, never moves (or moves on). */
 static int joint_arrived(const qo_motion_joint_f32 *jt, float d)
 {
     return d == 0.0f && jt->v0 == jt->goal_v && jt->a0 == jt->goal_a;
 }
 
-/* Loads joint jt's minimum-time profile to its goal state (none if it is there already). */
+/* Pass 1 of a plan: joint jt's minimum-time solve, kept in its first phase slot (x in v, tc in
+ * d, the family in j; -1 = already at its target state) with its duration, until pass 2 loads
+ * the profile. The phase array is the planner's storage and holds no plan in between, so a
+ * re-plan needs no per-joint scratch beyond what the joint owns. */
 static void plan_min(const qo_motion_planner_f32 *pl, qo_motion_joint_f32 *jt)
 {
     mprob p = joint_prob(pl, jt);
     msol s;
-    mseg g[MSEGS];
+    jt->nph = 0;
+    jt->final = jt->p0 + p.dp;
     if (joint_arrived(jt, p.dp)) {
-        jt->nph = 0;
+        s.x = s.tc = s.t = 0.0f;
+        s.fam = -1;
+    } else {
+        qo_motion_solve_min(&p, &s);
+    }
+    jt->ph[0].v = s.x;
+    jt->ph[0].d = s.tc;
+    jt->ph[0].j = (float)s.fam;
+    jt->duration = s.t;
+}
+
+/* Pass 2: joint jt's profile of duration Tj (its minimum if Tj is not longer), loaded. Returns 0
+ * if no profile of the family has exactly Tj (the joint keeps its minimum time). */
+static int plan_load(const qo_motion_planner_f32 *pl, qo_motion_joint_f32 *jt, float Tj)
+{
+    mprob p = joint_prob(pl, jt);
+    msol s;
+    mseg g[MSEGS];
+    int ok = 1;
+    s.x = jt->ph[0].v;
+    s.tc = jt->ph[0].d;
+    s.fam = (int)jt->ph[0].j;
+    s.t = jt->duration;
+    if (s.fam < 0) {
         jt->final = jt->p0;
         jt->duration = 0.0f;
-        return;
+        return 1;
     }
-    qo_motion_solve_min(&p, &s);
+    if (s.t < Tj) {
+        msol st;
+        /* the exact-duration search starts from the minimum's extremum velocity; a dip meets
+         * the extremum-velocity family at the velocity the start reaches (vs) */
+        float vcs = s.fam == 0 ? s.x : p.scurve ? p.v0 + p.a0 * fabsf(p.a0) / (2.0f * p.l.j) : p.v0;
+        vcs = fminf(fmaxf(vcs, -p.l.vn), p.l.vp);
+        if (qo_motion_solve_time(&p, vcs, Tj, &st)) s = st;
+        else ok = 0;
+    }
     load(jt, jt->p0, jt->v0, jt->a0, g, qo_motion_build(&p, &s, g), jt->p0 + p.dp);
+    return ok;
 }
 
 /* Plans every joint from its start state toward its goal state with the planner's settings and
  * the per-joint synchronisation: PHASE joints on one straight line if feasible (else TIME),
  * TIME joints (and TIME_IF_NECESSARY joints with a moving target) to the common duration,
- * NONE joints at their own minimum time. Pass 1 loads each joint's minimum-time profile, pass
- * 2 stretches the synchronised ones to the common duration. */
+ * NONE joints at their own minimum time. Pass 1 solves each joint's minimum time, pass 2
+ * stretches the synchronised ones to the common duration and loads every profile. */
 static void plan_goals(qo_motion_planner_f32 *pl)
 {
     size_t i;
@@ -529,17 +547,9 @@ static void plan_goals(qo_motion_planner_f32 *pl)
         qo_motion_joint_f32 *jt = &pl->joints[i];
         qo_motion_sync js = joint_sync(pl, jt);
         float Tj;
-        mprob p;
-        msol s;
-        mseg g[MSEGS];
-        if ((line && js == QO_MOTION_SYNC_PHASE) || jt->nph == 0) continue;
+        if (line && js == QO_MOTION_SYNC_PHASE) continue;
         Tj = js != QO_MOTION_SYNC_NONE ? T : timed(pl, jt->duration);
-        if (!(jt->duration < Tj)) continue;
-        p = joint_prob(pl, jt);
-        if (qo_motion_solve_time(&p, extremum_hint(jt, &p), Tj, &s))
-            load(jt, jt->p0, jt->v0, jt->a0, g, qo_motion_build(&p, &s, g), jt->p0 + p.dp);
-        else
-            pl->unsynced |= (uint32_t)1 << i;
+        if (!plan_load(pl, jt, Tj)) pl->unsynced |= (uint32_t)1 << i;
     }
     pl->duration = 0.0f;
     for (i = 0; i < pl->n; i++)
@@ -661,7 +671,7 @@ qo_status qo_motion_set_target_state_f32(qo_motion_planner_f32 *pl, float t_now,
     }
     sc = pl->settings.profile == QO_MOTION_SCURVE;
     /* refused target states change nothing: checked before the capture */
-    for (i = 0; i < pl->n; i++) {
+    for (i = 0; (vel || acc) && i < pl->n; i++) {
         st = state_ok(&pl->joints[i], sc, vel ? vel[i] : 0.0f, acc ? acc[i] : 0.0f);
         if (st != QO_OK) return st;
     }

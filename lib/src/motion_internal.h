@@ -43,11 +43,21 @@ typedef struct msol {
     int fam;
 } msol;
 
+/* Integrates one segment exactly (the solver's inner loop: inline in both users). */
+static inline void mseg_integ(mstate *s, const mseg *g)
+{
+    float d = g->d;
+    if (g->seta) s->a = g->a;
+    if (g->setv) s->v = g->v;
+    s->p += d * (s->v + d * (0.5f * s->a + d * g->j * (1.0f / 6.0f)));
+    s->v += d * (s->a + 0.5f * d * g->j);
+    s->a += d * g->j;
+}
+
 /* Segments of one plan: velocity change (<= 3) + cruise (1) + end transfer (<= 3). */
 #define MSEGS 7
 
 mlim qo_motion_mlim(const qo_motion_limits_f32 *l);
-void qo_motion_integ(mstate *s, const mseg *g);
 unsigned qo_motion_vchange(int scurve, float v0, float a0, float v1, const mlim *l, mseg *out);
 unsigned qo_motion_build(const mprob *p, const msol *s, mseg *out);
 void qo_motion_solve_min(const mprob *p, msol *s);

@@ -5,20 +5,10 @@
 #include <float.h>
 #include <math.h>
 
-void qo_motion_integ(mstate *s, const mseg *g)
-{
-    float d = g->d;
-    if (g->seta) s->a = g->a;
-    if (g->setv) s->v = g->v;
-    s->p += d * (s->v + d * (0.5f * s->a + d * g->j * (1.0f / 6.0f)));
-    s->v += d * (s->a + 0.5f * d * g->j);
-    s->a += d * g->j;
-}
-
 /* Fastest change from (v0, a0) to (v1, 0) within a in [-an, ap] (after bringing an a0 beyond
  * them back at jmax) and |j| <= jmax (SCURVE), or at ap / -an (TRAPEZOID). A rising velocity
  * uses the positive bound ap, a falling one an. Writes <= 3 segments. */
-unsigned qo_motion_vchange(int scurve, float v0, float a0, float v1, const mlim *l, mseg *out)
+static unsigned vchange(int scurve, float v0, float a0, float v1, const mlim *l, mseg *out)
 {
     float vnat, s, a0s, dv, ap, t1, t2, t3, dv1, dv3, amax, jmax = l->j;
     int capped = 0;
@@ -77,14 +67,14 @@ static unsigned reverse_segs(const mseg *g, unsigned n, mseg *out);
 static unsigned vchange_end(int scurve, float vc, float vf, float af, const mlim *l, mseg *out)
 {
     mseg g[3];
-    if (af == 0.0f || !scurve) return qo_motion_vchange(scurve, vc, 0.0f, vf, l, out);
-    return reverse_segs(g, qo_motion_vchange(1, -vf, af, -vc, l, g), out);
+    if (af == 0.0f || !scurve) return vchange(scurve, vc, 0.0f, vf, l, out);
+    return reverse_segs(g, vchange(1, -vf, af, -vc, l, g), out);
 }
 
 /* Profile through extremum velocity vc with cruise tc, from (v0, a0) to (vf, af). */
 static unsigned build(const mprob *p, float vc, float tc, mseg *out)
 {
-    unsigned n = qo_motion_vchange(p->scurve, p->v0, p->a0, vc, &p->l, out);
+    unsigned n = vchange(p->scurve, p->v0, p->a0, vc, &p->l, out);
     /* The cruise (and the stop after it) starts from exactly (vc, 0): rounding gathered
      * while the velocity change passed through large values must not be carried over a long
      * cruise into the end position. */
@@ -156,7 +146,7 @@ static unsigned build_dip(const mprob *p, float am, mseg *out)
     out[0].j = j;
     out[0].seta = out[0].setv = 0;
     /* the pulse to (vf, 0), or to a target acceleration (NaN duration if there is none) */
-    if (p->af == 0.0f) return 1 + qo_motion_vchange(1, v1, am, p->vf, &p->l, out + 1);
+    if (p->af == 0.0f) return 1 + vchange(1, v1, am, p->vf, &p->l, out + 1);
     vchange2(v1, am, p->vf, p->af, &p->l, out + 1);
     return 4;
 }
@@ -211,7 +201,7 @@ static void eval_segs(float v0, float a0, const mseg *g, unsigned n, float *disp
     s.v = v0;
     s.a = a0;
     for (i = 0; i < n; i++) {
-        qo_motion_integ(&s, &g[i]);
+        mseg_integ(&s, &g[i]);
         t += g[i].d;
     }
     *disp = s.p;
@@ -237,6 +227,12 @@ typedef struct rctx {
     float vs, as; /* scale of the velocities (mode 0, 1) and accelerations (mode 2) searched */
 } rctx;
 
+/* max of two numbers that are not NaN (fmaxf is a libm call where NaN rules must hold) */
+static float maxf(float a, float b)
+{
+    return a > b ? a : b;
+}
+
 static rctx rctx_make(const mprob *p, int mode, float T)
 {
     rctx c;
@@ -244,8 +240,8 @@ static rctx rctx_make(const mprob *p, int mode, float T)
     c.mode = mode;
     c.dp = p->dp;
     c.T = T;
-    c.vs = fmaxf(p->l.vp, p->l.vn);
-    c.as = fmaxf(p->l.ap, p->l.an);
+    c.vs = maxf(p->l.vp, p->l.vn);
+    c.as = maxf(p->l.ap, p->l.an);
     return c;
 }
 
@@ -279,7 +275,7 @@ static float root(const rctx *c, float a, float b, float fa, float fb, float xa,
     unsigned it;
     for (it = 0; it < QO_MOTION_BISECT_ITERS; it++) {
         float m = a - ga * (b - a) / (gb - ga), fm, xm;
-        if (!(m > fminf(a, b) && m < fmaxf(a, b))) m = 0.5f * (a + b);
+        if (!(a < b ? m > a && m < b : m > b && m < a)) m = 0.5f * (a + b);
         if (m == a || m == b) break;
         fm = resid(c, m, &xm);
         /* Done once the position misses by float32 rounding of the move (what the 2-ulp bracket
@@ -305,7 +301,7 @@ static float root(const rctx *c, float a, float b, float fa, float fb, float xa,
         }
         /* 2 ulps of the larger end, and no finer than 2.4e-10 vmax near vc = 0 (the residual's
          * slope there is bounded, so that is far below float32 resolution of the result) */
-        if (fabsf(b - a) <= 2.4e-7f * fmaxf(fmaxf(fabsf(a), fabsf(b)), 1e-3f * (c->mode == 2 ? c->as : c->vs)))
+        if (fabsf(b - a) <= 2.4e-7f * maxf(maxf(fabsf(a), fabsf(b)), 1e-3f * (c->mode == 2 ? c->as : c->vs)))
             break;
     }
     /* Mode 0: prefer the end a short cruise can correct (residual opposite in sign to the
@@ -530,8 +526,8 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
     c = rctx_make(p, 0, 0.0f);
     vn = scurve ? v0 + a0 * fabsf(a0) / (2.0f * l->j) : v0;
     vn = fminf(fmaxf(vn, -l->vn), l->vp);
-    ve = scurve ? p->vf - p->af * fabsf(p->af) / (2.0f * l->j) : p->vf;
-    ve = fminf(fmaxf(ve, -l->vn), l->vp);
+    ve = p->vf;
+    if (scurve && p->af != 0.0f) ve = fminf(fmaxf(ve - p->af * fabsf(p->af) / (2.0f * l->j), -l->vn), l->vp);
     lo = fminf(vn, ve);
     hi = fmaxf(vn, ve);
     pt[np++] = -l->vn;
@@ -751,4 +747,9 @@ int qo_motion_solve_time(const mprob *p, float vcs, float T, msol *sol)
     sol->x = 0.0f;
     sol->tc = tca;
     return tca >= 0.0f && fabsf(fa) <= 1e-4f * (fabsf(p->dp) + c.vs * T);
+}
+
+unsigned qo_motion_vchange(int scurve, float v0, float a0, float v1, const mlim *l, mseg *out)
+{
+    return vchange(scurve, v0, a0, v1, l, out);
 }
