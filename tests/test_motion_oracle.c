@@ -4,11 +4,16 @@
  *
  * Random joints (fixed seed; limits as in issue 11: vmax U[0.5,5], amax U[1,20],
  * jmax U[10,500], displacement U[-3,3], moving starts with |v0| <= vmax, |a0| <= amax and
- * |v0 + a0|a0|/(2 jmax)| <= vmax) planned in 7-joint groups in every sync mode. Each plan is
- * checked for: a joint (NONE) or plan (TIME) more than 0.1 % slower than the reference, or
- * more than 0.1 % faster (the reference would be missing a profile); any limit exceeded by more
- * than 1e-5 relative in the phase coefficients (jerk, acceleration at phase ends, velocity at
- * phase ends and interior extrema) and in dense samples; continuity across a re-plan mid-way.
+ * |v0 + a0|a0|/(2 jmax)| <= vmax) planned in 7-joint groups in every sync mode (NONE, TIME,
+ * PHASE, TIME_IF_NECESSARY). The oracle runs add asymmetric limits (vmin, amin, each with
+ * probability 1/2) and moving target states (probability 1/2, through
+ * qo_motion_set_target_state_f32). Each plan is checked for: a joint (NONE; TIME_IF_NECESSARY
+ * with a target at rest) or plan (TIME; the moving-target joints of TIME_IF_NECESSARY) more
+ * than 0.1 % slower than the reference, or more than 0.1 % faster (the reference would be
+ * missing a profile); any limit exceeded by more than 1e-5 relative in the phase coefficients
+ * (jerk, acceleration at phase ends, velocity at phase ends and interior extrema) and in dense
+ * samples, including the motion after the end; the end state equal to the target state;
+ * continuity across a re-plan mid-way (to new target states).
  *
  * The count is QO_MOTION_ORACLE_JOINTS (default 10,500 per sync mode); `make check-motion` and
  * `make check-motion-long` build this program with larger counts.
@@ -43,9 +48,9 @@ static mref_lim ref_lim_of(const qo_motion_limits_f32 *l)
 {
     mref_lim r;
     r.vmax = l->vmax;
-    r.vmin = -(double)l->vmax;
+    r.vmin = l->vmin != 0.0f ? (double)l->vmin : -(double)l->vmax;
     r.amax = l->amax;
-    r.amin = -(double)l->amax;
+    r.amin = l->amin != 0.0f ? (double)l->amin : -(double)l->amax;
     r.jmax = l->jmax;
     return r;
 }
@@ -64,47 +69,58 @@ static void put_state(qo_motion_planner_f32 *pl, size_t i, float p, float v, flo
     jt->final = p;
 }
 
+/* |x| over its bound on x's side: velocity (acc 0) or acceleration (acc 1). */
+static double vratio(const mref_lim *r, double x, int acc)
+{
+    double hi = acc ? r->amax : r->vmax, lo = acc ? r->amin : r->vmin;
+    return x >= 0.0 ? x / hi : x / lo;
+}
+
 /* Worst relative limit excess of joint i's plan: phase coefficients (jerk; acceleration at
  * phase ends; velocity at phase ends and where the acceleration crosses zero) and `ns` dense
  * samples of the planner. Returns the excess ratio - 1 (<= 0 when within the limits). */
 static double limit_excess(const qo_motion_planner_f32 *pl, size_t i, int ns)
 {
     const qo_motion_joint_f32 *jt = &pl->joints[i];
-    double V = jt->lim.vmax, A = jt->lim.amax, J = jt->lim.jmax, w = 0.0;
+    mref_lim r = ref_lim_of(&jt->lim);
+    double J = jt->lim.jmax, w = 0.0;
     unsigned k;
     int s;
     for (k = 0; k < jt->nph; k++) {
         const qo_motion_phase_f32 *ph = &jt->ph[k];
         double d = ph->d, a1 = ph->a + d * ph->j, v1 = ph->v + d * (ph->a + 0.5 * d * ph->j);
         w = fmax(w, fabs(ph->j) / J);
-        w = fmax(w, fmax(fabs(ph->a), fabs(a1)) / A);
-        w = fmax(w, fmax(fabs(ph->v), fabs(v1)) / V);
+        w = fmax(w, fmax(vratio(&r, ph->a, 1), vratio(&r, a1, 1)));
+        w = fmax(w, fmax(vratio(&r, ph->v, 0), vratio(&r, v1, 0)));
         if (ph->j != 0.0f) {
             double tz = -(double)ph->a / ph->j;
-            if (tz > 0.0 && tz < d) w = fmax(w, fabs(ph->v + tz * (ph->a + 0.5 * tz * ph->j)) / V);
+            if (tz > 0.0 && tz < d) w = fmax(w, vratio(&r, ph->v + tz * (ph->a + 0.5 * tz * ph->j), 0));
         }
     }
-    for (s = 0; s <= ns; s++) {
+    /* dense samples of the plan and of the motion after its end (target states: the
+     * acceleration's ramp to zero, then constant velocity) */
+    for (s = 0; s <= ns + ns / 4; s++) {
         float pos[NJ], vel[NJ], acc[NJ];
-        float t = pl->t0 + pl->duration * (float)s / (float)ns;
+        float t = pl->t0 + (pl->duration + 0.25f) * (float)s / (float)ns;
         qo_motion_sample_f32(pl, t, pos, vel, acc);
-        w = fmax(w, fabs(vel[i]) / V);
-        w = fmax(w, fabs(acc[i]) / A);
+        w = fmax(w, vratio(&r, vel[i], 0));
+        w = fmax(w, vratio(&r, acc[i], 1));
     }
     return w - 1.0;
 }
 
 typedef struct jcase {
     qo_motion_limits_f32 lim;
-    float p0, v0, a0, target;
+    float p0, v0, a0, target, vf, af; /* vf, af: target velocity and acceleration */
 } jcase;
 
 static void print_case(const char *what, int cs, size_t i, const jcase *c, double got, double ref)
 {
-    print_error("%s case %d joint %zu: got %.9g ref %.9g | vmax %.9g amax %.9g jmax %.9g p0 %.9g v0 %.9g a0 %.9g "
-                "target %.9g\n",
+    print_error("%s case %d joint %zu: got %.9g ref %.9g | vmax %.9g amax %.9g jmax %.9g vmin %.9g amin %.9g "
+                "p0 %.9g v0 %.9g a0 %.9g target %.9g vf %.9g af %.9g\n",
                 what, cs, i, got, ref, (double)c->lim.vmax, (double)c->lim.amax, (double)c->lim.jmax,
-                (double)c->p0, (double)c->v0, (double)c->a0, (double)c->target);
+                (double)c->lim.vmin, (double)c->lim.amin, (double)c->p0, (double)c->v0, (double)c->a0,
+                (double)c->target, (double)c->vf, (double)c->af);
 }
 
 /* Plans n joints from their cases with `sync`; returns the planner's status. */
@@ -113,48 +129,97 @@ static qo_status plan_cases(qo_motion_planner_f32 *pl, qo_motion_joint_f32 *jts,
 {
     qo_motion_settings_f32 st = { QO_MOTION_SCURVE, QO_MOTION_SYNC_TIME };
     qo_motion_limits_f32 l[NJ];
-    float p[NJ], tg[NJ];
+    float p[NJ], tg[NJ], vf[NJ], af[NJ];
     size_t i;
     st.sync = sync;
     memset(l, 0, sizeof l);
     memset(p, 0, sizeof p);
     memset(tg, 0, sizeof tg);
+    memset(vf, 0, sizeof vf);
+    memset(af, 0, sizeof af);
     for (i = 0; i < n; i++) {
         l[i] = c[i].lim;
         p[i] = c[i].p0;
         tg[i] = c[i].target;
+        vf[i] = c[i].vf;
+        af[i] = c[i].af;
     }
     assert_int_equal(qo_motion_init_f32(pl, jts, n, l, p, 0.0f, &st), QO_OK);
     for (i = 0; i < n; i++) put_state(pl, i, c[i].p0, c[i].v0, c[i].a0);
-    return qo_motion_set_target_f32(pl, 0.0f, tg, NULL);
+    return qo_motion_set_target_state_f32(pl, 0.0f, tg, vf, af, NULL);
 }
 
 static double ref_time(const jcase *c)
 {
     mref_lim r = ref_lim_of(&c->lim);
-    return mref_min_time(&r, c->p0, c->v0, c->a0, c->target, 0.0, 0.0);
+    return mref_min_time(&r, c->p0, c->v0, c->a0, c->target, c->vf, c->af);
 }
 
-/* A random joint as in issue 11 (moving start with probability 3/4). */
-static void rand_case(ref_rng *g, jcase *c)
+/* A random state (v, a) within r: a start from which the limits can be kept (v + a|a|/(2J)
+ * within the velocity bounds) or, with end = 1, a target state the planner accepts (v -+
+ * a|a|/(2J) both within them). */
+static void rand_state(ref_rng *g, const mref_lim *r, int end, float *v, float *a)
 {
+    for (;;) {
+        double vv = (double)(float)ref_rng_range(g, r->vmin, r->vmax), aa = (double)(float)ref_rng_range(g, r->amin, r->amax);
+        double h = aa * fabs(aa) / (2.0 * r->jmax);
+        if (vv + h > r->vmax || vv + h < r->vmin) continue;
+        if (end && (vv - h > r->vmax || vv - h < r->vmin)) continue;
+        *v = (float)vv;
+        *a = (float)aa;
+        return;
+    }
+}
+
+/* With v = 0, a target acceleration a is holdable if a|a|/(2J) stays within both velocity bounds:
+ * scales a down until it does. */
+static void rand_state_zero_v(const mref_lim *r, float *a)
+{
+    while (fabs((double)*a * fabs(*a) / (2.0 * r->jmax)) > fmin(r->vmax, -r->vmin)) *a *= 0.5f;
+}
+
+/* A random joint as in issue 11 (moving start with probability 3/4). With `mix`, also
+ * asymmetric limits (vmin U[-5,-0.5], amin U[-20,-1], each with probability 1/2) and a moving
+ * target state (probability 1/2; of those a third with a = 0, a sixth with v = 0). */
+static void rand_case_mix(ref_rng *g, jcase *c, int mix)
+{
+    mref_lim r;
     c->lim = qo_motion_limits_default;
     c->lim.vmax = (float)ref_rng_range(g, 0.5, 5.0);
     c->lim.amax = (float)ref_rng_range(g, 1.0, 20.0);
     c->lim.jmax = (float)ref_rng_range(g, 10.0, 500.0);
+    if (mix && ref_rng_unit(g) < 0.5) c->lim.vmin = (float)-ref_rng_range(g, 0.5, 5.0);
+    if (mix && ref_rng_unit(g) < 0.5) c->lim.amin = (float)-ref_rng_range(g, 1.0, 20.0);
+    r = ref_lim_of(&c->lim);
     c->p0 = (float)ref_rng_range(g, -2.0, 2.0);
-    c->v0 = c->a0 = 0.0f;
+    c->v0 = c->a0 = c->vf = c->af = 0.0f;
     if (ref_rng_unit(g) < 0.75) {
-        for (;;) {
-            double v = ref_rng_range(g, -1.0, 1.0) * c->lim.vmax, a = ref_rng_range(g, -1.0, 1.0) * c->lim.amax;
-            if (fabs(v + a * fabs(a) / (2.0 * c->lim.jmax)) <= c->lim.vmax) {
-                c->v0 = (float)v;
-                c->a0 = (float)a;
-                break;
+        if (mix) {
+            rand_state(g, &r, 0, &c->v0, &c->a0);
+        } else {
+            for (;;) {
+                double v = ref_rng_range(g, -1.0, 1.0) * c->lim.vmax, a = ref_rng_range(g, -1.0, 1.0) * c->lim.amax;
+                if (fabs(v + a * fabs(a) / (2.0 * c->lim.jmax)) <= c->lim.vmax) {
+                    c->v0 = (float)v;
+                    c->a0 = (float)a;
+                    break;
+                }
             }
         }
     }
     c->target = (float)(c->p0 + ref_rng_range(g, -3.0, 3.0));
+    if (mix && ref_rng_unit(g) < 0.5) {
+        double u = ref_rng_unit(g);
+        rand_state(g, &r, 1, &c->vf, &c->af);
+        if (u < 1.0 / 3.0) c->af = 0.0f;
+        else if (u < 0.5) c->vf = 0.0f;
+        if (c->vf == 0.0f) rand_state_zero_v(&r, &c->af);
+    }
+}
+
+static void rand_case(ref_rng *g, jcase *c)
+{
+    rand_case_mix(g, c, 0);
 }
 
 /* One 7-joint plan of random cases in mode `sync`, checked as the file header says.
@@ -169,14 +234,15 @@ static int check_group(ref_rng *g, int cs, qo_motion_sync sync, double *tref_out
     size_t i;
     int bad = 0;
     for (i = 0; i < NJ; i++) {
-        rand_case(g, &c[i]);
+        rand_case_mix(g, &c[i], 1);
         /* PHASE is judged on its limits only (the straight line may be slower than TIME) */
         tref[i] = sync == QO_MOTION_SYNC_PHASE ? 0.0 : ref_time(&c[i]);
         if (tref[i] < 0.0) {
             print_case("reference found no profile", cs, i, &c[i], 0.0, tref[i]);
             bad++;
         }
-        tmax = fmax(tmax, tref[i]);
+        /* TIME_IF_NECESSARY: only the joints with a moving target share the duration */
+        if (sync != QO_MOTION_SYNC_TIME_IF_NECESSARY || c[i].vf != 0.0f || c[i].af != 0.0f) tmax = fmax(tmax, tref[i]);
     }
     if (plan_cases(&pl, jts, c, NJ, sync) != QO_OK) {
         print_error("case %d: plan refused\n", cs);
@@ -189,15 +255,34 @@ static int check_group(ref_rng *g, int cs, qo_motion_sync sync, double *tref_out
             print_case("limit exceeded", cs, i, &c[i], e, 0.0);
             bad++;
         }
-        if (sync == QO_MOTION_SYNC_NONE) {
+        if (sync == QO_MOTION_SYNC_NONE ||
+            (sync == QO_MOTION_SYNC_TIME_IF_NECESSARY && c[i].vf == 0.0f && c[i].af == 0.0f)) {
             double t = jts[i].duration;
             if (t > tref[i] * (1.0 + RELTIME) + 1e-6 || t < tref[i] * (1.0 - RELTIME) - 1e-6) {
                 print_case("joint time vs reference", cs, i, &c[i], t, tref[i]);
                 bad++;
             }
+        } else if (sync != QO_MOTION_SYNC_PHASE && !(pl.unsynced >> i & 1u) && jts[i].nph > 0 &&
+                   fabs(jts[i].duration - tmax) > RELTIME * tmax + 1e-6) {
+            print_case("joint not given the common duration", cs, i, &c[i], jts[i].duration, tmax);
+            bad++;
+        }
+        {
+            /* the end state is the target state */
+            float te = pl.t0 + jts[i].duration;
+            qo_motion_sample_f32(&pl, te, pos, vel, acc);
+            if (fabs(pos[i] - c[i].target) > 1e-5 * (1.0 + fabs(c[i].target)) ||
+                fabs(vel[i] - c[i].vf) > 1e-4 * c[i].lim.vmax || fabs(acc[i] - c[i].af) > 1e-4 * c[i].lim.amax) {
+                print_error("case %d joint %zu: end state p %g v %g a %g, target %g %g %g\n", cs, i, (double)pos[i],
+                            (double)vel[i], (double)acc[i], (double)c[i].target, (double)c[i].vf, (double)c[i].af);
+                bad++;
+            }
         }
     }
-    if (sync == QO_MOTION_SYNC_TIME && (T > tmax * (1.0 + RELTIME) + 1e-6 || T < tmax * (1.0 - RELTIME) - 1e-6)) {
+    /* TIME: the plan takes the slowest joint's minimum time; TIME_IF_NECESSARY: at least the
+     * slowest moving-target joint's (a joint with a target at rest may take longer alone) */
+    if ((sync == QO_MOTION_SYNC_TIME && (T > tmax * (1.0 + RELTIME) + 1e-6 || T < tmax * (1.0 - RELTIME) - 1e-6)) ||
+        (sync == QO_MOTION_SYNC_TIME_IF_NECESSARY && T < tmax * (1.0 - RELTIME) - 1e-6)) {
         print_error("time sync case %d: T %.9g ref %.9g\n", cs, T, tmax);
         bad++;
     }
@@ -205,8 +290,14 @@ static int check_group(ref_rng *g, int cs, qo_motion_sync sync, double *tref_out
     {
         float tm = 0.5f * T;
         qo_motion_sample_f32(&pl, tm, pos, vel, acc);
-        for (i = 0; i < NJ; i++) tg[i] = (float)(c[i].target + ref_rng_range(g, -1.0, 1.0));
-        if (qo_motion_set_target_f32(&pl, tm, tg, NULL) != QO_OK) {
+        float vf[NJ], af[NJ];
+        for (i = 0; i < NJ; i++) {
+            mref_lim r = ref_lim_of(&c[i].lim);
+            tg[i] = (float)(c[i].target + ref_rng_range(g, -1.0, 1.0));
+            vf[i] = af[i] = 0.0f;
+            if (ref_rng_unit(g) < 0.5) rand_state(g, &r, 1, &vf[i], &af[i]);
+        }
+        if (qo_motion_set_target_state_f32(&pl, tm, tg, vf, af, NULL) != QO_OK) {
             print_error("case %d: re-plan refused\n", cs);
             return bad + 1;
         }
@@ -254,6 +345,12 @@ static void test_oracle_phase(void **state)
 {
     (void)state;
     run_mode(QO_MOTION_SYNC_PHASE, 1103);
+}
+
+static void test_oracle_time_if_necessary(void **state)
+{
+    (void)state;
+    run_mode(QO_MOTION_SYNC_TIME_IF_NECESSARY, 1106);
 }
 
 /* 1 if T is a whole number of periods to float32 rounding of the phase sums. */
@@ -526,6 +623,7 @@ static void test_issue_phase_sync_moving(void **state)
     jcase c[NJ];
     size_t i;
     (void)state;
+    memset(c, 0, sizeof c);
     for (i = 0; i < NJ; i++) {
         c[i].lim = qo_motion_limits_default;
         c[i].lim.vmax = vmax[i];
@@ -560,6 +658,7 @@ static void test_issue_missing_shape(void **state)
     qo_motion_joint_f32 jts[NJ];
     int k;
     (void)state;
+    memset(c, 0, sizeof c);
     c[0].lim = c[1].lim = qo_motion_limits_default;
     c[0].lim.vmax = 4.41488028f;
     c[0].lim.amax = 19.952261f;
@@ -605,6 +704,7 @@ int main(void)
         cmocka_unit_test(test_oracle_none),
         cmocka_unit_test(test_oracle_time),
         cmocka_unit_test(test_oracle_phase),
+        cmocka_unit_test(test_oracle_time_if_necessary),
         cmocka_unit_test(test_timing),
         cmocka_unit_test(test_timing_args),
         cmocka_unit_test(test_velocity),
