@@ -2,7 +2,8 @@
  * fuzz/fuzz_traj.c - qorient/traj.h: a keyframe trajectory (every spline profile, end
  * condition, key_cols 1..3, limits, wrap, and bad enum values) or a target queue (both motion
  * profiles, every sync, fuzzed limits, timing rules) over 1..4 joints and a capacity of 1..6,
- * with fuzzed storage sizes, then a fuzzed sequence of push, prepare, set_timing, sample,
+ * with fuzzed storage sizes (targets with room for velocities and accelerations, or not),
+ * then a fuzzed sequence of push (target states too), prepare, set_timing, set_joint_sync, sample,
  * end_time, done and joints calls at fuzzed int64 times (near zero, near +-QO_TRAJ_TIME_MAX,
  * beyond it), and qo_traj_ns_from_s and qo_traj_store_len on fuzzed values.
  * Properties from the header: documented statuses; a failed init leaves kind NONE and every
@@ -125,7 +126,13 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
         st = qo_traj_init_targets(&tr, n, lim, &mset, joints, t_ns, cap, store, store_len);
         QO_FUZZ_CHECK(st == QO_OK || st == QO_E_ARG || st == QO_E_LIMIT || st == QO_E_CAPACITY,
                       "init_targets status %d", (int)st);
-        if (store_len < need) QO_FUZZ_CHECK(st != QO_OK, "init_targets took too little storage");
+        /* positions need C*N floats; room for velocities (accelerations) decides target_cols */
+        QO_FUZZ_CHECK((st == QO_E_CAPACITY) == (store_len < qo_traj_store_len(kind, n, cap, 1)) || st == QO_E_ARG || st == QO_E_LIMIT,
+                      "init_targets status %d with %zu floats", (int)st, store_len);
+        if (st == QO_OK) {
+            unsigned want = store_len >= qo_traj_store_len(kind, n, cap, 3) ? 3u : store_len >= qo_traj_store_len(kind, n, cap, 2) ? 2u : 1u;
+            QO_FUZZ_CHECK(tr.target_cols == want, "target_cols %u with %zu floats, want %u", tr.target_cols, store_len, want);
+        }
     }
     inited = st == QO_OK;
     if (!inited) {
@@ -158,7 +165,11 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
             before = tr;
             st = qo_traj_push(&tr, t, p, drop == 1 ? NULL : v, drop == 2 ? NULL : a);
             QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NULL || st == QO_E_RANGE || st == QO_E_NONFINITE || st == QO_E_ORDER
-                          || st == QO_E_CAPACITY || st == QO_E_LIMIT, "push status %d", (int)st);
+                          || st == QO_E_CAPACITY || st == QO_E_LIMIT || (st == QO_E_ARG && kind == QO_TRAJ_TARGETS),
+                          "push status %d", (int)st);
+            if (kind == QO_TRAJ_TARGETS && st == QO_OK)
+                QO_FUZZ_CHECK((drop == 1 || tr.target_cols >= 2) && (drop == 2 || tr.target_cols >= 3),
+                              "push took velocities/accelerations without storage (cols %u)", tr.target_cols);
             if (st != QO_OK) QO_FUZZ_CHECK(memcmp(&tr, &before, sizeof tr) == 0, "push error %d changed the trajectory", (int)st);
             if (st == QO_E_NULL) QO_FUZZ_CHECK(kind == QO_TRAJ_KEYS && ((drop == 1 && key_cols >= 2) || (drop == 2 && key_cols >= 3)),
                                                "push QO_E_NULL with every array given");
@@ -171,6 +182,17 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
             break;
         case 3: {
             float md = qo_fz_f32(&f), per = qo_fz_f32(&f);
+            if (op & 0x80u) { /* per-joint sync instead */
+                size_t ji = qo_fz_u8(&f) % (n + 1u);
+                qo_motion_sync sy = (qo_motion_sync)(qo_fz_u8(&f) % 5u);
+                before = tr;
+                st = qo_traj_set_joint_sync(&tr, ji, sy);
+                QO_FUZZ_CHECK(kind == QO_TRAJ_KEYS ? st == QO_E_STATE
+                              : st == (ji >= n ? QO_E_RANGE : (unsigned)sy > 3u ? QO_E_ARG : QO_OK),
+                              "set_joint_sync(%zu, %d) status %d", ji, (int)sy, (int)st);
+                if (st != QO_OK) QO_FUZZ_CHECK(memcmp(&tr, &before, sizeof tr) == 0, "set_joint_sync error changed the trajectory");
+                break;
+            }
             before = tr;
             st = qo_traj_set_timing(&tr, md, per);
             QO_FUZZ_CHECK(st == QO_OK || st == QO_E_ARG || st == QO_E_STATE, "set_timing status %d", (int)st);

@@ -696,6 +696,84 @@ static void test_fuzz_findings(void **state)
     for (j = 0; j < NJ; j++) assert_true(pos[j] == p0[j] && vel[j] == 0.0f && acc[j] == 0.0f);
 }
 
+/* Target states through the queue: storage decides whether targets carry velocities; each is
+ * reached at the end of its move (position and velocity, the acceleration 0), checked on the
+ * samples against the target, not the planner's coefficients; a refused state leaves the
+ * motion planned before going on, bit for bit; per-joint sync survives the start. */
+static void test_targets_states(void **state)
+{
+    enum { C = 4 };
+    static float store3[C * NJ * 3];
+    qo_traj tr, ref;
+    qo_traj_ns t_ns[C], t_ref[C];
+    float store_ref[C * NJ];
+    qo_motion_joint_f32 joints[NJ], jref[NJ];
+    qo_motion_limits_f32 lim[NJ];
+    float p0[NJ] = { 0, 0, 0 }, p1[NJ] = { 1.0f, -0.5f, 0.25f }, v1[NJ] = { 0.5f, -0.25f, 0.0f };
+    float vbad[NJ] = { 0.5f, 9.0f, 0.0f }, pos[NJ], vel[NJ], acc[NJ], pr[NJ], vr[NJ], ar[NJ];
+    qo_traj_ns end, t;
+    size_t j;
+    (void)state;
+    for (j = 0; j < NJ; j++) {
+        lim[j] = qo_motion_limits_default;
+        lim[j].vmax = 2.0f; lim[j].amax = 4.0f; lim[j].jmax = 20.0f;
+        lim[j].vmin = -1.0f; /* asymmetric: the motion's velocities stay in [-1, 2] */
+    }
+    assert_int_equal(qo_traj_store_len(QO_TRAJ_TARGETS, NJ, C, 2), 2 * C * NJ);
+    assert_int_equal(qo_traj_store_len(QO_TRAJ_TARGETS, NJ, C, 3), 3 * C * NJ);
+    assert_int_equal(qo_traj_store_len(QO_TRAJ_TARGETS, NJ, C, 4), 0);
+    /* positions-only storage: a velocity is refused, nothing stored */
+    assert_int_equal(qo_traj_init_targets(&ref, NJ, lim, NULL, jref, t_ref, C, store_ref, C * NJ), QO_OK);
+    assert_int_equal(ref.target_cols, 1);
+    assert_int_equal(qo_traj_push(&ref, 0, p0, v1, NULL), QO_E_CAPACITY);
+    assert_int_equal(qo_traj_init_targets(&tr, NJ, lim, NULL, joints, t_ns, C, store3, C * NJ * 2), QO_OK);
+    assert_int_equal(tr.target_cols, 2);
+    assert_int_equal(qo_traj_push(&tr, 0, p0, v1, v1), QO_E_CAPACITY); /* no room for accelerations */
+    assert_int_equal(qo_traj_push(&tr, 0, p0, v1, NULL), QO_E_ARG);    /* the start is at rest */
+    assert_int_equal(qo_traj_set_joint_sync(&tr, NJ, QO_MOTION_SYNC_NONE), QO_E_RANGE);
+    assert_int_equal(qo_traj_set_joint_sync(&tr, 0, (qo_motion_sync)9), QO_E_ARG);
+    assert_int_equal(qo_traj_set_joint_sync(&tr, 2, QO_MOTION_SYNC_NONE), QO_OK);
+    assert_int_equal(qo_traj_push(&tr, 0, p0, NULL, NULL), QO_OK);
+    assert_int_equal(joints[2].sync, (int)QO_MOTION_SYNC_NONE); /* kept across the start */
+    assert_int_equal(joints[0].sync, -1);
+    assert_int_equal(qo_traj_push(&tr, 0, p1, v1, NULL), QO_OK);
+    assert_int_equal(qo_traj_sample(&tr, 0, pos, vel, acc, NULL), QO_OK);
+    assert_int_equal(qo_traj_end_time(&tr, &end), QO_OK);
+    assert_true(end > 0 && end < 10 * S);
+    /* at the end: on the target state; just after: moving on at the target velocity */
+    assert_int_equal(qo_traj_sample(&tr, end, pos, vel, acc, NULL), QO_OK);
+    for (j = 0; j < NJ; j++) {
+        if (fabsf(pos[j] - p1[j]) > 1e-4f || fabsf(vel[j] - v1[j]) > 1e-4f || fabsf(acc[j]) > 1e-3f)
+            fail_msg("joint %zu at the end: %g %g %g, want %g %g 0", j, (double)pos[j], (double)vel[j], (double)acc[j],
+                     (double)p1[j], (double)v1[j]);
+    }
+    assert_int_equal(qo_traj_sample(&tr, end + S, pos, vel, acc, NULL), QO_OK);
+    for (j = 0; j < NJ; j++) assert_true(fabsf(pos[j] - (p1[j] + v1[j])) < 1e-3f && fabsf(vel[j] - v1[j]) < 1e-4f);
+    /* every sample on the way within [vmin, vmax] */
+    for (t = 0; t <= end; t += S / 100) {
+        assert_int_equal(qo_traj_sample(&tr, t, pos, vel, acc, NULL), QO_OK);
+        for (j = 0; j < NJ; j++) assert_true(vel[j] <= 2.0f * (1 + 1e-5f) && vel[j] >= -1.0f * (1 + 1e-5f));
+    }
+
+    /* a refused state (9 > vmax): QO_E_LIMIT, the motion before goes on as if never pushed */
+    assert_int_equal(qo_traj_init_targets(&tr, NJ, lim, NULL, joints, t_ns, C, store3, C * NJ * 2), QO_OK);
+    assert_int_equal(qo_traj_init_targets(&ref, NJ, lim, NULL, jref, t_ref, C, store_ref, C * NJ), QO_OK);
+    assert_int_equal(qo_traj_push(&tr, 0, p0, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_push(&ref, 0, p0, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_push(&tr, 0, p1, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_push(&ref, 0, p1, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_push(&tr, S / 2, p0, vbad, NULL), QO_OK);
+    assert_int_equal(qo_traj_sample(&tr, S / 4, pos, vel, acc, NULL), QO_OK);
+    assert_int_equal(qo_traj_sample(&ref, S / 4, pr, vr, ar, NULL), QO_OK);
+    assert_int_equal(qo_traj_sample(&tr, S / 2, pos, vel, acc, NULL), QO_E_LIMIT);
+    assert_int_equal(tr.replan_status, QO_E_LIMIT);
+    for (t = S / 2; t < 5 * S; t += S / 10) {
+        (void)qo_traj_sample(&tr, t, pos, vel, acc, NULL);
+        assert_int_equal(qo_traj_sample(&ref, t, pr, vr, ar, NULL), QO_OK);
+        for (j = 0; j < NJ; j++) assert_true(fabsf(pos[j] - pr[j]) <= 1e-6f * (1 + fabsf(pr[j])) && fabsf(vel[j] - vr[j]) <= 1e-5f);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -713,6 +791,7 @@ int main(void)
         cmocka_unit_test(test_targets_timing_period),
         cmocka_unit_test(test_targets_timing_min_and_edges),
         cmocka_unit_test(test_fuzz_findings),
+        cmocka_unit_test(test_targets_states),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -51,8 +51,9 @@ size_t qo_traj_store_len(qo_traj_kind kind, size_t n_joints, size_t cap, unsigne
     if (n_joints == 0 || cap == 0) return 0;
     if (n_joints > (size_t)-1 / cap) return 0;
     per = n_joints * cap;
-    if (kind == QO_TRAJ_TARGETS) return per;
-    if (kind != QO_TRAJ_KEYS || key_cols < 1 || key_cols > 3 || cap < 2) return 0;
+    if (key_cols < 1 || key_cols > 3) return 0;
+    if (kind == QO_TRAJ_TARGETS) return per > (size_t)-1 / key_cols ? 0 : per * key_cols;
+    if (kind != QO_TRAJ_KEYS || cap < 2) return 0;
     coef = qo_spline_coef_len(n_joints, cap);
     if (coef == 0 || per > ((size_t)-1 - cap) / key_cols) return 0;
     keys = cap + per * key_cols;
@@ -130,6 +131,15 @@ qo_status qo_traj_init_targets(qo_traj *tr, size_t n_joints, const qo_motion_lim
     }
     set_common(tr, n_joints, cap, t_ns, store);
     tr->queue_p = store;
+    /* Room for target velocities (and accelerations) when the storage has it. */
+    tr->target_cols = 1;
+    if (store_len >= qo_traj_store_len(QO_TRAJ_TARGETS, n_joints, cap, 2) && qo_traj_store_len(QO_TRAJ_TARGETS, n_joints, cap, 2))
+        tr->target_cols = 2;
+    if (store_len >= qo_traj_store_len(QO_TRAJ_TARGETS, n_joints, cap, 3) && qo_traj_store_len(QO_TRAJ_TARGETS, n_joints, cap, 3))
+        tr->target_cols = 3;
+    tr->queue_v = tr->target_cols >= 2 ? store + n_joints * cap : NULL;
+    tr->queue_a = tr->target_cols >= 3 ? store + 2 * n_joints * cap : NULL;
+    for (i = 0; i < n_joints; i++) tr->joint_sync[i] = -1;
     tr->joints = joints;
     tr->limits = limits;
     tr->motion_set = *set;
@@ -164,18 +174,34 @@ static qo_status push_key(qo_traj *tr, qo_traj_ns t, const float *pos, const flo
     return QO_OK;
 }
 
-static qo_status push_target(qo_traj *tr, qo_traj_ns t, const float *pos)
+static int any_nonzero(const float *v, size_t n)
+{
+    size_t i;
+    for (i = 0; v != NULL && i < n; i++)
+        if (v[i] != 0.0f) return 1;
+    return 0;
+}
+
+static qo_status push_target(qo_traj *tr, qo_traj_ns t, const float *pos, const float *vel,
+                             const float *acc)
 {
     size_t n = tr->n, i, slot;
-    if (!all_finite(pos, n)) return QO_E_NONFINITE;
+    if ((vel != NULL && tr->target_cols < 2) || (acc != NULL && tr->target_cols < 3)) return QO_E_CAPACITY;
+    if (!all_finite(pos, n) || (vel != NULL && !all_finite(vel, n)) || (acc != NULL && !all_finite(acc, n)))
+        return QO_E_NONFINITE;
     for (i = 0; i < n; i++)
         if (pos[i] > QO_MOTION_POS_MAX || pos[i] < -QO_MOTION_POS_MAX) return QO_E_RANGE;
     if (!tr->started) {
-        qo_status st = qo_motion_init_f32(&tr->planner, tr->joints, n, tr->limits, pos, 0.0f,
-                                          &tr->motion_set);
+        qo_status st;
+        if (any_nonzero(vel, n) || any_nonzero(acc, n)) return QO_E_ARG; /* the start is at rest */
+        st = qo_motion_init_f32(&tr->planner, tr->joints, n, tr->limits, pos, 0.0f, &tr->motion_set);
         if (st != QO_OK) return st;
-        /* The init reset the planner's duration rules: the caller's rules come back. */
+        /* The init reset the planner's duration rules and per-joint sync: the caller's come
+         * back. */
         (void)qo_motion_set_timing_f32(&tr->planner, tr->min_duration, tr->period);
+        for (i = 0; i < n; i++)
+            if (tr->joint_sync[i] >= 0)
+                (void)qo_motion_set_joint_sync_f32(&tr->planner, i, (qo_motion_sync)tr->joint_sync[i]);
         tr->started = 1;
         tr->start_ns = tr->origin = tr->last_push = tr->last_sample = t;
         return QO_OK;
@@ -185,6 +211,8 @@ static qo_status push_target(qo_traj *tr, qo_traj_ns t, const float *pos)
     slot = (tr->head + tr->count) % tr->cap;
     tr->t_ns[slot] = t;
     memcpy(tr->queue_p + slot * n, pos, n * sizeof *pos);
+    for (i = 0; tr->queue_v != NULL && i < n; i++) tr->queue_v[slot * n + i] = vel != NULL ? vel[i] : 0.0f;
+    for (i = 0; tr->queue_a != NULL && i < n; i++) tr->queue_a[slot * n + i] = acc != NULL ? acc[i] : 0.0f;
     tr->count++;
     tr->last_push = t;
     return QO_OK;
@@ -204,6 +232,19 @@ qo_status qo_traj_set_timing(qo_traj *tr, float min_duration, float period)
     return QO_OK;
 }
 
+qo_status qo_traj_set_joint_sync(qo_traj *tr, size_t i, qo_motion_sync sync)
+{
+    qo_status st;
+    if (tr == NULL) return QO_E_NULL;
+    if (tr->kind != QO_TRAJ_TARGETS || tr->n == 0) return QO_E_STATE;
+    /* As set_timing: the planner (a trial one before the first push) checks, the value is
+     * kept for the start's re-init. */
+    st = qo_motion_set_joint_sync_f32(&tr->planner, i, sync);
+    if (st != QO_OK) return st;
+    tr->joint_sync[i] = (signed char)sync;
+    return QO_OK;
+}
+
 qo_status qo_traj_push(qo_traj *tr, qo_traj_ns t, const float *pos, const float *vel,
                        const float *acc)
 {
@@ -211,7 +252,7 @@ qo_status qo_traj_push(qo_traj *tr, qo_traj_ns t, const float *pos, const float 
     if (tr->kind == QO_TRAJ_NONE || tr->n == 0) return QO_E_STATE;
     if (!time_ok(t)) return QO_E_RANGE;
     if (tr->kind == QO_TRAJ_KEYS) return push_key(tr, t, pos, vel, acc);
-    if (tr->kind == QO_TRAJ_TARGETS) return push_target(tr, t, pos);
+    if (tr->kind == QO_TRAJ_TARGETS) return push_target(tr, t, pos, vel, acc);
     return QO_E_STATE;
 }
 
@@ -318,7 +359,12 @@ static qo_status apply_due(qo_traj *tr, qo_traj_ns t)
         /* Planner time 0 follows the last re-plan: the float32 times stay small. */
         (void)qo_motion_shift_time_f32(&tr->planner, rel_s(at, tr->origin));
         tr->origin = at;
-        st = qo_motion_set_target_f32(&tr->planner, 0.0f, tr->queue_p + tr->head * tr->n, &mask);
+        if (tr->queue_v != NULL)
+            st = qo_motion_set_target_state_f32(&tr->planner, 0.0f, tr->queue_p + tr->head * tr->n,
+                                                tr->queue_v + tr->head * tr->n,
+                                                tr->queue_a != NULL ? tr->queue_a + tr->head * tr->n : NULL, &mask);
+        else
+            st = qo_motion_set_target_f32(&tr->planner, 0.0f, tr->queue_p + tr->head * tr->n, &mask);
         tr->clamped = mask;
         tr->replan_status = st;
         tr->replans++;
