@@ -158,6 +158,9 @@ int qo_cli_gimbal(int argc, char **argv)
     ts.vmax = gs.vmax;
     ts.amax = (float)(degrees ? amax * deg : amax);
     ts.jmax = (float)(degrees && isfinite(jmax) ? jmax * deg : jmax);
+    /* With a jerk limit the error gain stays below jmax/(4 amax) (qorient/gimbal.h: above it
+     * the joints ring around the path before settling); the ratio is the same in degrees. */
+    if (amax > 0.0 && isfinite(jmax) && ts.gain > (float)(jmax / (4.0 * amax))) ts.gain = (float)(jmax / (4.0 * amax));
     if (amax > 0.0 && qo_gimbal_track_init_f32(&tr, &ts) != QO_OK) {
         fprintf(stderr, "qorient gimbal: --amax, --jmax and --vmax must be in [%g, %g] rad/s^k with --amax\n",
                 (double)QO_MOTION_LIMIT_MIN, (double)QO_MOTION_LIMIT_MAX);
