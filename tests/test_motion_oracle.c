@@ -1069,6 +1069,42 @@ static void test_stream_through_states(void **state)
     }
 }
 
+/* Joints with target accelerations that `make check-motion` found 1.37x and 1.79x slower than
+ * the reference before the two-holds shape (a0 to one acceleration bound and held, to the
+ * other and held, then to af): each planned alone (NONE) must be within 0.1 %. */
+static void test_target_state_shapes(void **state)
+{
+    /* vmax amax jmax vmin amin p0 v0 a0 target vf af */
+    static const float k[][11] = {
+        { 3.08677292f, 10.4465113f, 60.5358429f, -3.12709069f, -8.9171772f, 1.26687586f, -0.786278486f, 9.55788231f,
+          1.51485348f, 1.13608086f, -4.76285744f },
+        { 2.54340959f, 14.7162514f, 26.5771179f, -3.59248972f, 0.0f, 1.14524162f, 1.91491199f, -10.9061069f,
+          0.010820671f, -1.14858377f, 8.28869438f },
+    };
+    size_t m;
+    (void)state;
+    for (m = 0; m < sizeof k / sizeof k[0]; m++) {
+        qo_motion_planner_f32 pl;
+        qo_motion_joint_f32 jts[1];
+        jcase c;
+        double tr;
+        memset(&c, 0, sizeof c);
+        c.lim = lim_of(k[m][0], k[m][1], k[m][2], k[m][3], k[m][4]);
+        c.p0 = k[m][5];
+        c.v0 = k[m][6];
+        c.a0 = k[m][7];
+        c.target = k[m][8];
+        c.vf = k[m][9];
+        c.af = k[m][10];
+        tr = ref_time(&c);
+        assert_int_equal(plan_cases(&pl, jts, &c, 1, QO_MOTION_SYNC_NONE), QO_OK);
+        if (fabs(jts[0].duration - tr) > RELTIME * tr || limit_excess(&pl, 0, 256) > RELLIM) {
+            print_case("target state shape", (int)m, 0, &c, jts[0].duration, tr);
+            fail();
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1089,6 +1125,9 @@ int main(void)
         cmocka_unit_test(test_joint_sync),
         cmocka_unit_test(test_joint_sync_args),
         cmocka_unit_test(test_stream_through_states),
+        cmocka_unit_test(test_target_state_shapes),
     };
+    /* e.g. QO_MOTION_ORACLE_FILTER=test_oracle_time: one part of a long check-motion run */
+    if (getenv("QO_MOTION_ORACLE_FILTER")) cmocka_set_test_filter(getenv("QO_MOTION_ORACLE_FILTER"));
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
