@@ -802,7 +802,7 @@ static void test_target_state_refused(void **state)
         init_n(&pl, jts, 2, l, QO_MOTION_SYNC_TIME);
         assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, tg, NULL), QO_OK);
         snap(&pl, 0.3f, p1, v1, a1);
-        before = pl;
+        memcpy(&before, &pl, sizeof pl);
         memcpy(jb, jts, sizeof jb);
         v[0] = 0.0f;
         a[0] = 0.0f;
@@ -829,7 +829,7 @@ static void test_target_state_refused(void **state)
         v[1] = 0.0f;
         a[0] = 1.0f;
         a[1] = 0.0f;
-        before = pl;
+        memcpy(&before, &pl, sizeof pl);
         assert_int_equal(qo_motion_set_target_state_f32(&pl, 0.0f, tg, v, a, NULL), QO_E_ARG);
         assert_memory_equal(&pl, &before, sizeof pl);
         assert_int_equal(qo_motion_set_target_state_f32(&pl, 0.0f, tg, v, NULL, NULL), QO_OK);
