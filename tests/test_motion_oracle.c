@@ -15,6 +15,10 @@
  * samples, including the motion after the end; the end state equal to the target state;
  * continuity across a re-plan mid-way (to new target states).
  *
+ * Also unit checks of asymmetric limits, full target states (refused ones leave the planner
+ * bit-for-bit unchanged; the motion after the end against its closed form, float32 and Q16.16),
+ * per-joint synchronisation and TIME_IF_NECESSARY against the reference's minimum times.
+ *
  * The count is QO_MOTION_ORACLE_JOINTS (default 10,500 per sync mode); `make check-motion` and
  * `make check-motion-long` build this program with larger counts.
  */
@@ -695,6 +699,412 @@ static void test_issue_missing_shape(void **state)
     assert_true(fabs(ref_time(&c[2]) - 0.5184) < 1e-3);
 }
 
+/* ---- asymmetric limits, target states, per-joint sync (unit checks) ---- */
+
+static qo_motion_limits_f32 lim_of(float vmax, float amax, float jmax, float vmin, float amin)
+{
+    qo_motion_limits_f32 l = qo_motion_limits_default;
+    l.vmax = vmax;
+    l.amax = amax;
+    l.jmax = jmax;
+    l.vmin = vmin;
+    l.amin = amin;
+    return l;
+}
+
+/* Random limits as in issue 11, with a random vmin / amin where asked. */
+static qo_motion_limits_f32 rand_lim(ref_rng *g, int asym_v, int asym_a)
+{
+    float vmax = (float)ref_rng_range(g, 0.5, 5.0), amax = (float)ref_rng_range(g, 1.0, 20.0);
+    float jmax = (float)ref_rng_range(g, 10.0, 500.0);
+    float vmin = asym_v ? (float)-ref_rng_range(g, 0.5, 5.0) : 0.0f, amin = asym_a ? (float)-ref_rng_range(g, 1.0, 20.0) : 0.0f;
+    return lim_of(vmax, amax, jmax, vmin, amin);
+}
+
+static void init_n(qo_motion_planner_f32 *pl, qo_motion_joint_f32 *jts, size_t n, const qo_motion_limits_f32 *l,
+                   qo_motion_sync sync)
+{
+    qo_motion_settings_f32 st = { QO_MOTION_SCURVE, QO_MOTION_SYNC_TIME };
+    float p0[NJ];
+    memset(p0, 0, sizeof p0);
+    st.sync = sync;
+    assert_int_equal(qo_motion_init_f32(pl, jts, n, l, p0, 0.0f, &st), QO_OK);
+}
+
+static void test_asym_limits_validated(void **state)
+{
+    qo_motion_planner_f32 pl;
+    qo_motion_joint_f32 jts[1];
+    float p0 = 0.0f, tg = 1.0f, pos, vel;
+    const float bad[] = { 1.0f, -1e-7f, -2e12f, NAN, INFINITY, -INFINITY, 1e-30f };
+    size_t k;
+    (void)state;
+    for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        qo_motion_limits_f32 l = qo_motion_limits_default;
+        l.vmin = bad[k];
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, &p0, 0.0f, NULL), QO_E_LIMIT);
+        l.vmin = 0.0f;
+        l.amin = bad[k];
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, &p0, 0.0f, NULL), QO_E_LIMIT);
+    }
+    {
+        /* a bad vmin in set_limits: old limits stay, the joint brakes */
+        qo_motion_limits_f32 l = lim_of(2.0f, 5.0f, 50.0f, -1.0f, -2.0f);
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, &p0, 0.0f, NULL), QO_OK);
+        assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, &tg, NULL), QO_OK);
+        l.vmin = 3.0f;
+        assert_int_equal(qo_motion_set_limits_f32(&pl, 0.2f, 0, &l), QO_E_LIMIT);
+        assert_int_equal(pl.braking, 1);
+        assert_true(jts[0].lim.vmin == -1.0f);
+        /* the velocity interface refuses a velocity below vmin, accepts down to it */
+        vel = -1.5f;
+        assert_int_equal(qo_motion_set_velocity_f32(&pl, 0.3f, &vel), QO_E_RANGE);
+        vel = -1.0f;
+        assert_int_equal(qo_motion_set_velocity_f32(&pl, 0.3f, &vel), QO_OK);
+        assert_int_equal(qo_motion_sample_f32(&pl, qo_motion_end_time_f32(&pl) + 1.0f, &pos, &vel, NULL), QO_OK);
+        assert_true(vel == -1.0f);
+    }
+}
+
+/* Samples the planner at t for all n joints. */
+static void snap(const qo_motion_planner_f32 *pl, float t, float *p, float *v, float *a)
+{
+    qo_motion_sample_f32(pl, t, p, v, a);
+}
+
+static void test_target_state_refused(void **state)
+{
+    /* joint limits vmax 2, vmin -1, amax 4, amin -8, jmax 16: a|a|/(2 jmax) = 0.5 at a = 4 */
+    qo_motion_limits_f32 l[2];
+    qo_motion_planner_f32 pl, before;
+    qo_motion_joint_f32 jts[2], jb[2];
+    struct {
+        float v, a;
+        qo_status st;
+    } cases[] = {
+        { 2.5f, 0.0f, QO_E_LIMIT },   /* above vmax */
+        { -1.5f, 0.0f, QO_E_LIMIT },  /* below vmin (but within -vmax) */
+        { 0.0f, 5.0f, QO_E_LIMIT },   /* above amax */
+        { 0.0f, -9.0f, QO_E_LIMIT },  /* below amin */
+        { 1.8f, 4.0f, QO_E_LIMIT },   /* 1.8 + 0.5 overshoots vmax while a ramps to 0 */
+        { -0.8f, 4.0f, QO_E_LIMIT },  /* -0.8 - 0.5: not reachable from a = 0 within vmin */
+        { 1.8f, -4.0f, QO_E_LIMIT },  /* reached from 1.8 + 0.5 > vmax */
+        { 1.4f, 4.0f, QO_OK },        /* 1.9 and 0.9: fine */
+        { -0.4f, -4.0f, QO_OK },      /* -0.9 and 0.1 */
+    };
+    float tg[2] = { 1.0f, -0.5f }, v[2], a[2], p1[2], v1[2], a1[2], p2[2], v2[2], a2[2];
+    uint32_t cl = 77u;
+    size_t k;
+    (void)state;
+    l[0] = lim_of(2.0f, 4.0f, 16.0f, -1.0f, -8.0f);
+    l[1] = lim_of(2.0f, 4.0f, 16.0f, -1.0f, -8.0f);
+    for (k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        init_n(&pl, jts, 2, l, QO_MOTION_SYNC_TIME);
+        assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, tg, NULL), QO_OK);
+        snap(&pl, 0.3f, p1, v1, a1);
+        memcpy(&before, &pl, sizeof pl);
+        memcpy(jb, jts, sizeof jb);
+        v[0] = 0.0f;
+        a[0] = 0.0f;
+        v[1] = cases[k].v;
+        a[1] = cases[k].a;
+        cl = 77u;
+        assert_int_equal(qo_motion_set_target_state_f32(&pl, 0.2f, tg, v, a, &cl), cases[k].st);
+        assert_int_equal(cl, 0u);
+        if (cases[k].st != QO_OK) {
+            /* refused: nothing moves differently */
+            assert_memory_equal(&pl, &before, sizeof pl);
+            assert_memory_equal(jts, jb, sizeof jb);
+            snap(&pl, 0.3f, p2, v2, a2);
+            assert_memory_equal(p1, p2, sizeof p1);
+            assert_memory_equal(v1, v2, sizeof v1);
+        }
+    }
+    /* TRAPEZOID has no jerk limit: a target acceleration is refused (QO_E_ARG), a velocity not */
+    {
+        qo_motion_settings_f32 st = { QO_MOTION_TRAPEZOID, QO_MOTION_SYNC_TIME };
+        float p0[2] = { 0.0f, 0.0f };
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 2, l, p0, 0.0f, &st), QO_OK);
+        v[0] = 0.5f;
+        v[1] = 0.0f;
+        a[0] = 1.0f;
+        a[1] = 0.0f;
+        memcpy(&before, &pl, sizeof pl);
+        assert_int_equal(qo_motion_set_target_state_f32(&pl, 0.0f, tg, v, a, NULL), QO_E_ARG);
+        assert_memory_equal(&pl, &before, sizeof pl);
+        assert_int_equal(qo_motion_set_target_state_f32(&pl, 0.0f, tg, v, NULL, NULL), QO_OK);
+        snap(&pl, qo_motion_end_time_f32(&pl), p1, v1, a1);
+        assert_true(fabs(v1[0] - 0.5) < 1e-6 && fabs(p1[0] - 1.0) < 1e-6);
+    }
+    /* NaN velocity or acceleration: brake, as for a NaN target */
+    init_n(&pl, jts, 2, l, QO_MOTION_SYNC_TIME);
+    assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, tg, NULL), QO_OK);
+    v[0] = NAN;
+    assert_int_equal(qo_motion_set_target_state_f32(&pl, 0.1f, tg, v, NULL, NULL), QO_E_NONFINITE);
+    assert_int_equal(pl.braking, 1);
+    v[0] = 0.0f;
+    a[0] = INFINITY;
+    assert_int_equal(qo_motion_set_target_state_f32(&pl, 0.2f, tg, v, a, NULL), QO_E_NONFINITE);
+    assert_int_equal(qo_motion_set_target_state_f32(NULL, 0.2f, tg, v, a, NULL), QO_E_NULL);
+    assert_int_equal(qo_motion_set_target_state_f32(&pl, 0.2f, NULL, v, a, NULL), QO_E_NULL);
+    assert_int_equal(qo_motion_set_target_state_f32(&pl, 0.1f, tg, NULL, NULL, NULL), QO_E_ORDER);
+}
+
+/* The motion after the end of a plan to (p, v, a), in double: a ramps to 0 at jmax, then the
+ * velocity stays. */
+static void after_end_ref(double p, double v, double a, double J, double x, double *po, double *vo, double *ao)
+{
+    double ta = fabs(a) / J, jr = a > 0.0 ? -J : J, y = x < ta ? x : ta;
+    *po = p + y * v + y * y * a / 2.0 + y * y * y * jr / 6.0;
+    *vo = v + y * a + y * y * jr / 2.0;
+    *ao = x < ta ? a + y * jr : 0.0;
+    if (x > ta) *po += *vo * (x - ta);
+}
+
+static void test_after_end(void **state)
+{
+    ref_rng g;
+    int cs;
+    (void)state;
+    g.s = 2201;
+    for (cs = 0; cs < 300; cs++) {
+        qo_motion_planner_f32 pl;
+        qo_motion_joint_f32 jts[NJ];
+        qo_motion_limits_f32 l[NJ];
+        qo_motion_table_q16 tab;
+        qo_motion_seg_q16 segs[NJ * QO_MOTION_Q16_SEGS];
+        float tg[NJ], v[NJ], a[NJ], pos[NJ], vel[NJ], acc[NJ];
+        qo_q16 qp[NJ], qv[NJ], qa[NJ];
+        size_t i;
+        int k;
+        for (i = 0; i < NJ; i++) {
+            mref_lim r;
+            l[i] = rand_lim(&g, cs % 2, cs % 3);
+            r = ref_lim_of(&l[i]);
+            tg[i] = (float)ref_rng_range(&g, -3.0, 3.0);
+            rand_state(&g, &r, 1, &v[i], &a[i]);
+            if (cs % 5 == 0) a[i] = 0.0f;
+        }
+        init_n(&pl, jts, NJ, l, (qo_motion_sync)(cs % 4));
+        assert_int_equal(qo_motion_set_target_state_f32(&pl, 0.0f, tg, v, a, NULL), QO_OK);
+        assert_int_equal(qo_motion_export_q16(&pl, &tab, segs, NJ * QO_MOTION_Q16_SEGS), QO_OK);
+        for (k = 0; k <= 40; k++) {
+            float t = pl.duration + 0.02f * (float)k;
+            snap(&pl, t, pos, vel, acc);
+            qo_motion_sample_q16(&tab, (qo_q16)lrint(t * 65536.0), qp, qv, qa);
+            for (i = 0; i < NJ; i++) {
+                double pr, vr, ar, x = (double)t - jts[i].duration;
+                mref_lim r = ref_lim_of(&l[i]);
+                after_end_ref(tg[i], v[i], a[i], l[i].jmax, x, &pr, &vr, &ar);
+                if (fabs(pos[i] - pr) > 1e-5 * (1.0 + fabs(pr)) || fabs(vel[i] - vr) > 1e-5 * r.vmax ||
+                    fabs(acc[i] - ar) > 1e-5 * r.amax || vel[i] > r.vmax * (1.0 + 1e-6) ||
+                    vel[i] < r.vmin * (1.0 + 1e-6) || !qo_motion_done_f32(&pl, t)) {
+                    print_error("case %d joint %zu x %g: p %g v %g a %g, ref %g %g %g\n", cs, i, x, (double)pos[i],
+                                (double)vel[i], (double)acc[i], pr, vr, ar);
+                    fail();
+                }
+                /* the Q16.16 table follows the same motion at its own (rounded) time */
+                x = lrint(t * 65536.0) / 65536.0 - jts[i].duration;
+                if (x < 0.0) continue; /* the rounded time falls in the plan's last phase */
+                after_end_ref(tg[i], v[i], a[i], l[i].jmax, x, &pr, &vr, &ar);
+                if (fabs(qp[i] / 65536.0 - pr) > 2e-4 * (1.0 + fabs(pr)) || fabs(qv[i] / 65536.0 - vr) > 2e-4 * (1.0 + r.vmax) ||
+                    fabs(qa[i] / 65536.0 - ar) > 2e-4 * (1.0 + r.amax)) {
+                    print_error("q16 case %d joint %zu x %g: p %g v %g a %g, ref %g %g %g\n", cs, i, x, qp[i] / 65536.0,
+                                qv[i] / 65536.0, qa[i] / 65536.0, pr, vr, ar);
+                    fail();
+                }
+            }
+        }
+    }
+}
+
+/* Duration of a joint's own minimum-time plan, from the reference. */
+static double ref_min(const qo_motion_limits_f32 *l, float p0, float v0, float a0, float tg, float vf, float af)
+{
+    mref_lim r = ref_lim_of(l);
+    return mref_min_time(&r, p0, v0, a0, tg, vf, af);
+}
+
+static void test_joint_sync(void **state)
+{
+    ref_rng g;
+    int cs, nline = 0, nunsynced = 0;
+    (void)state;
+    g.s = 2202;
+    for (cs = 0; cs < 400; cs++) {
+        qo_motion_planner_f32 pl;
+        qo_motion_joint_f32 jts[NJ];
+        qo_motion_limits_f32 l[NJ];
+        float tg[NJ], v0[NJ], a0[NJ], vf[NJ], af[NJ];
+        qo_motion_sync js[NJ];
+        double tr[NJ], tsync = 0.0, T;
+        size_t i;
+        int nphase = 0, k;
+        qo_motion_sync dflt = (qo_motion_sync)(cs % 4);
+        for (i = 0; i < NJ; i++) {
+            l[i] = rand_lim(&g, 0, 0);
+            tg[i] = (float)ref_rng_range(&g, -3.0, 3.0);
+            v0[i] = a0[i] = vf[i] = af[i] = 0.0f;
+            if (ref_rng_unit(&g) < 0.5) v0[i] = (float)ref_rng_range(&g, -0.5, 0.5) * l[i].vmax;
+            /* moving targets on some joints (TIME_IF_NECESSARY), at rest on the others */
+            if (ref_rng_unit(&g) < 0.5) vf[i] = (float)ref_rng_range(&g, -0.5, 0.5) * l[i].vmax;
+            js[i] = (qo_motion_sync)(ref_rng_next(&g) % 5); /* 4 = keep the settings' sync */
+        }
+        init_n(&pl, jts, NJ, l, dflt);
+        for (i = 0; i < NJ; i++) {
+            put_state(&pl, i, 0.0f, v0[i], a0[i]);
+            if (js[i] != 4) assert_int_equal(qo_motion_set_joint_sync_f32(&pl, i, js[i]), QO_OK);
+            else js[i] = dflt;
+            if (js[i] == QO_MOTION_SYNC_TIME_IF_NECESSARY)
+                js[i] = vf[i] != 0.0f ? QO_MOTION_SYNC_TIME : QO_MOTION_SYNC_NONE;
+            tr[i] = ref_min(&l[i], 0.0f, v0[i], a0[i], tg[i], vf[i], af[i]);
+            if (js[i] != QO_MOTION_SYNC_NONE) tsync = fmax(tsync, tr[i]);
+            if (js[i] == QO_MOTION_SYNC_PHASE) nphase++;
+        }
+        assert_int_equal(qo_motion_set_target_state_f32(&pl, 0.0f, tg, vf, af, NULL), QO_OK);
+        T = pl.duration;
+        for (i = 0; i < NJ; i++) {
+            double d = jts[i].duration;
+            if (js[i] == QO_MOTION_SYNC_NONE) {
+                if (fabs(d - tr[i]) > 1e-3 * tr[i] + 1e-6) {
+                    print_error("case %d joint %zu (own time): %g ref %g\n", cs, i, d, tr[i]);
+                    fail();
+                }
+            } else if (!(pl.unsynced >> i & 1u)) {
+                /* every synchronised joint ends at the common duration; it is the slowest
+                 * synchronised joint's minimum unless the straight line is slower */
+                double Ts = 0.0;
+                size_t m;
+                for (m = 0; m < NJ; m++)
+                    if (js[m] != QO_MOTION_SYNC_NONE) Ts = fmax(Ts, jts[m].duration);
+                if (fabs(d - Ts) > 1e-6 * Ts || Ts < tsync * (1.0 - 1e-3) - 1e-6 ||
+                    (pl.sync_used != QO_MOTION_SYNC_PHASE && Ts > tsync * (1.0 + 1e-3) + 1e-6)) {
+                    print_error("case %d joint %zu (sync %d): %g common %g ref %g used %d\n", cs, i, (int)js[i], d, Ts,
+                                tsync, (int)pl.sync_used);
+                    fail();
+                }
+            }
+        }
+        /* PHASE joints that got the line move on it: (p_i - p0_i) / d_i is the same for all */
+        nunsynced += pl.unsynced != 0;
+        if (pl.sync_used == QO_MOTION_SYNC_PHASE) {
+            nline++;
+            assert_true(nphase > 0);
+            for (k = 1; k < 16; k++) {
+                float pos[NJ];
+                double s = NAN;
+                snap(&pl, (float)(T * k / 16.0), pos, NULL, NULL);
+                for (i = 0; i < NJ; i++) {
+                    if (js[i] != QO_MOTION_SYNC_PHASE || tg[i] == 0.0f) continue;
+                    if (s != s) s = pos[i] / tg[i];
+                    else if (fabs(pos[i] / tg[i] - s) > 1e-5) {
+                        print_error("case %d joint %zu: off the line, s %g vs %g\n", cs, i, pos[i] / tg[i], s);
+                        fail();
+                    }
+                }
+            }
+        }
+        assert_true(T >= 0.0);
+    }
+    /* the straight line was used in a share of the plans, and the sync gap stayed rare */
+    print_message("joint sync: %d of 400 plans on a straight line, %d with an unsynced joint\n", nline, nunsynced);
+    assert_true(nline >= 20);
+    assert_true(nunsynced <= 4);
+}
+
+static void test_joint_sync_args(void **state)
+{
+    qo_motion_planner_f32 pl;
+    qo_motion_joint_f32 jts[2];
+    qo_motion_limits_f32 l[2];
+    float p0[2] = { 0.0f, 0.0f };
+    qo_motion_settings_f32 st = { QO_MOTION_SCURVE, QO_MOTION_SYNC_TIME_IF_NECESSARY };
+    (void)state;
+    l[0] = l[1] = qo_motion_limits_default;
+    assert_int_equal(qo_motion_set_joint_sync_f32(NULL, 0, QO_MOTION_SYNC_TIME), QO_E_NULL);
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 2, l, p0, 0.0f, &st), QO_OK);
+    assert_int_equal(qo_motion_set_joint_sync_f32(&pl, 2, QO_MOTION_SYNC_TIME), QO_E_RANGE);
+    assert_int_equal(qo_motion_set_joint_sync_f32(&pl, 0, (qo_motion_sync)4), QO_E_ARG);
+    assert_int_equal(qo_motion_set_joint_sync_f32(&pl, 0, (qo_motion_sync)-1), QO_E_ARG);
+    assert_int_equal(jts[0].sync, -1);
+    assert_int_equal(qo_motion_set_joint_sync_f32(&pl, 1, QO_MOTION_SYNC_PHASE), QO_OK);
+    assert_int_equal(jts[1].sync, (int)QO_MOTION_SYNC_PHASE);
+    st.sync = (qo_motion_sync)4;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 2, l, p0, 0.0f, &st), QO_E_ARG);
+    assert_int_equal(qo_motion_set_joint_sync_f32(&pl, 0, QO_MOTION_SYNC_TIME), QO_E_STATE);
+}
+
+/* A stream of moving setpoints (teleoperation): each re-plan passes through its target state
+ * without stopping, continuous in p, v, a, within asymmetric limits. */
+static void test_stream_through_states(void **state)
+{
+    qo_motion_planner_f32 pl;
+    qo_motion_joint_f32 jts[2];
+    qo_motion_limits_f32 l[2];
+    float t = 0.0f, p[2], v[2], a[2], pb[2], vb[2], ab[2], tg[2], vf[2];
+    int k;
+    size_t i;
+    (void)state;
+    l[0] = lim_of(2.0f, 8.0f, 80.0f, -1.0f, -4.0f);
+    l[1] = lim_of(1.0f, 5.0f, 50.0f, 0.0f, 0.0f);
+    init_n(&pl, jts, 2, l, QO_MOTION_SYNC_TIME);
+    for (k = 0; k < 200; k++) {
+        double s = 0.02 * k;
+        tg[0] = (float)(0.5 * sin(s));
+        tg[1] = (float)(0.3 * cos(1.3 * s));
+        vf[0] = (float)(0.5 * 0.5 * cos(s)); /* d/dt of the setpoint at 0.5 s per unit of s */
+        vf[1] = (float)(-0.5 * 0.39 * sin(1.3 * s));
+        snap(&pl, t, pb, vb, ab);
+        assert_int_equal(qo_motion_set_target_state_f32(&pl, t, tg, vf, NULL, NULL), QO_OK);
+        snap(&pl, t, p, v, a);
+        for (i = 0; i < 2; i++) {
+            mref_lim r = ref_lim_of(&l[i]);
+            assert_true(fabs(p[i] - pb[i]) <= 1e-6 * (1.0 + fabs(pb[i])));
+            assert_true(fabs(v[i] - vb[i]) <= 1e-6 * r.vmax);
+            assert_true(fabs(a[i] - ab[i]) <= 1e-6 * r.amax);
+            assert_true(v[i] <= r.vmax * (1.0 + 1e-6) && v[i] >= r.vmin * (1.0 + 1e-6));
+            assert_true(a[i] <= r.amax * (1.0 + 1e-6) && a[i] >= r.amin * (1.0 + 1e-6));
+        }
+        t += 0.01f;
+    }
+}
+
+/* Joints with target accelerations that `make check-motion` found 1.37x and 1.79x slower than
+ * the reference before the two-holds shape (a0 to one acceleration bound and held, to the
+ * other and held, then to af): each planned alone (NONE) must be within 0.1 %. */
+static void test_target_state_shapes(void **state)
+{
+    /* vmax amax jmax vmin amin p0 v0 a0 target vf af */
+    static const float k[][11] = {
+        { 3.08677292f, 10.4465113f, 60.5358429f, -3.12709069f, -8.9171772f, 1.26687586f, -0.786278486f, 9.55788231f,
+          1.51485348f, 1.13608086f, -4.76285744f },
+        { 2.54340959f, 14.7162514f, 26.5771179f, -3.59248972f, 0.0f, 1.14524162f, 1.91491199f, -10.9061069f,
+          0.010820671f, -1.14858377f, 8.28869438f },
+    };
+    size_t m;
+    (void)state;
+    for (m = 0; m < sizeof k / sizeof k[0]; m++) {
+        qo_motion_planner_f32 pl;
+        qo_motion_joint_f32 jts[1];
+        jcase c;
+        double tr;
+        memset(&c, 0, sizeof c);
+        c.lim = lim_of(k[m][0], k[m][1], k[m][2], k[m][3], k[m][4]);
+        c.p0 = k[m][5];
+        c.v0 = k[m][6];
+        c.a0 = k[m][7];
+        c.target = k[m][8];
+        c.vf = k[m][9];
+        c.af = k[m][10];
+        tr = ref_time(&c);
+        assert_int_equal(plan_cases(&pl, jts, &c, 1, QO_MOTION_SYNC_NONE), QO_OK);
+        if (fabs(jts[0].duration - tr) > RELTIME * tr || limit_excess(&pl, 0, 256) > RELLIM) {
+            print_case("target state shape", (int)m, 0, &c, jts[0].duration, tr);
+            fail();
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -709,6 +1119,15 @@ int main(void)
         cmocka_unit_test(test_timing_args),
         cmocka_unit_test(test_velocity),
         cmocka_unit_test(test_velocity_args),
+        cmocka_unit_test(test_asym_limits_validated),
+        cmocka_unit_test(test_target_state_refused),
+        cmocka_unit_test(test_after_end),
+        cmocka_unit_test(test_joint_sync),
+        cmocka_unit_test(test_joint_sync_args),
+        cmocka_unit_test(test_stream_through_states),
+        cmocka_unit_test(test_target_state_shapes),
     };
+    /* e.g. QO_MOTION_ORACLE_FILTER=test_oracle_time: one part of a long check-motion run */
+    if (getenv("QO_MOTION_ORACLE_FILTER")) cmocka_set_test_filter(getenv("QO_MOTION_ORACLE_FILTER"));
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -67,26 +67,33 @@ qo_status qo_motion_export_q16(const qo_motion_planner_f32 *pl, qo_motion_table_
         }
         {
             /* After the end: a target acceleration first ramps to zero (one segment), then the
-             * rest segment: at rest, or on at the end velocity (velocity interface, target
-             * states). */
-            float te = jt->nph ? jt->duration : 0.0f, ta = 0.0f;
-            mstate e0 = qo_motion_after_end(jt, 0.0f), e1;
+             * last segment: at rest, or on at the end velocity (velocity interface, target
+             * states). Coefficients at the rounded boundaries, as for the phases. */
+            float te = jt->nph ? jt->duration : 0.0f, ta = 0.0f, tau;
+            qo_q16 tq;
+            mstate e1;
             if (jt->aend != 0.0f && k < QO_MOTION_Q16_SEGS) {
-                ta = fabsf(jt->aend) / jt->lim.jmax;
-                sg[k].t = to_q16(te, &ovf);
-                sg[k].c0 = to_q32(jt->final, &ovf);
-                sg[k].c1 = to_q32(e0.v, &ovf);
-                sg[k].c2 = to_q32(0.5f * e0.a, &ovf);
-                sg[k].c3 = to_q32((jt->aend > 0.0f ? -jt->lim.jmax : jt->lim.jmax) * (1.0f / 6.0f), &ovf);
+                float a = jt->aend, v = jt->vend, jr = a > 0.0f ? -jt->lim.jmax : jt->lim.jmax;
+                ta = fabsf(a) / jt->lim.jmax;
+                tq = to_q16(te, &ovf);
+                tau = (float)tq * (1.0f / 65536.0f) - te;
+                sg[k].t = tq;
+                sg[k].c0 = to_q32(jt->final + tau * (v + tau * (0.5f * a + tau * jr * (1.0f / 6.0f))), &ovf);
+                sg[k].c1 = to_q32(v + tau * (a + 0.5f * tau * jr), &ovf);
+                sg[k].c2 = to_q32(0.5f * (a + tau * jr), &ovf);
+                sg[k].c3 = to_q32(jr * (1.0f / 6.0f), &ovf);
                 k++;
             }
             e1 = qo_motion_after_end(jt, ta);
+            tq = to_q16(te + ta, &ovf);
+            tau = (float)tq * (1.0f / 65536.0f) - (te + ta);
+            e1.p += jt->final + e1.v * tau;
             for (; k < QO_MOTION_Q16_SEGS; k++) {
-                sg[k].t = to_q16(te + ta, &ovf);
-                sg[k].c0 = to_q32(jt->final + e1.p, &ovf);
+                sg[k].t = jt->nph || ta > 0.0f ? tq : 0;
+                sg[k].c0 = to_q32(e1.p, &ovf);
                 sg[k].c1 = to_q32(e1.v, &ovf); /* 0 at rest; the velocity interface's cruise */
                 sg[k].c2 = sg[k].c3 = 0;
-                if (fabsf(jt->final + e1.p) >= 32767.0f) ovf = 1;
+                if (fabsf(e1.p) >= 32767.0f) ovf = 1;
             }
         }
     }

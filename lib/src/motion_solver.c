@@ -178,10 +178,44 @@ static unsigned reverse_segs(const mseg *g, unsigned n, mseg *out)
     return n;
 }
 
+/* Velocity gained by a jerk ramp of the acceleration from x to y at |jerk| = J. */
+static float ramp_dv(float x, float y, float J)
+{
+    return 0.5f * (x + y) * fabsf(y - x) / J;
+}
+
+static void ramp_seg(float x, float y, float J, mseg *g)
+{
+    g->d = fabsf(y - x) / J;
+    g->j = y >= x ? J : -J;
+    g->seta = g->setv = 0;
+}
+
+/* The "two holds" shape (families 3 and 4): a0 ramps to one acceleration bound B1 and holds it
+ * h1, ramps to the other bound B2 and holds it h2, then ramps to af (family 3: B1 = ap, family
+ * 4: B1 = -an). E.g. braking hard from a positive acceleration toward a target state that
+ * accelerates the other way. */
+static unsigned build_holds(const mprob *p, int fam, float h1, float h2, mseg *out)
+{
+    float B1 = fam == 3 ? p->l.ap : -p->l.an, B2 = fam == 3 ? -p->l.an : p->l.ap, J = p->l.j;
+    ramp_seg(p->a0, B1, J, &out[0]);
+    out[1].d = h1;
+    out[1].j = 0.0f;
+    out[1].seta = out[1].setv = 0;
+    ramp_seg(B1, B2, J, &out[2]);
+    out[3].d = h2;
+    out[3].j = 0.0f;
+    out[3].seta = out[3].setv = 0;
+    ramp_seg(B2, p->af, J, &out[4]);
+    return 5;
+}
+
 /* A joint's solved profile: family 0 = extremum velocity x with cruise tc (build), family 1 =
- * dip to acceleration x (build_dip), family 2 = end dip from acceleration x. */
+ * dip to acceleration x (build_dip), family 2 = end dip from acceleration x, families 3 and 4 =
+ * two holds of x and tc seconds (build_holds). */
 unsigned qo_motion_build(const mprob *p, const msol *s, mseg *out)
 {
+    if (s->fam >= 3) return build_holds(p, s->fam, s->x, s->tc, out);
     if (s->fam == 1) return build_dip(p, s->x, out);
     if (s->fam == 2) {
         mprob r = reversed(p);
@@ -435,11 +469,32 @@ static int rest_time(const mprob *p, float T, float *vc, float *tc)
     return rest_fix(&c, x, slope, 4e-6f * (D + fabsf(x) * T), vc, tc, &D);
 }
 
-/* Fastest dip profile (build_dip) with displacement dp: the residual is scanned at
- * QO_MOTION_DIP_SCAN + 1 points of am in [e0, e1] (e.g. the extremum-velocity profile through
- * vn and the direct transfer) and every sign change is solved. Returns 0 if none. */
-#define QO_MOTION_DIP_SCAN 1
-static int solve_dip(const mprob *p, float e0, float e1, float *am, float *dur)
+/* 1 if the velocity of segments g[0..n) from (v0, a0) stays within [-vbn, vbp] (checked at the
+ * segment ends and where the acceleration crosses zero). */
+static int segs_within(float v0, float a0, const mseg *g, unsigned n, float vbp, float vbn)
+{
+    mstate st;
+    unsigned k;
+    st.p = 0.0f;
+    st.v = v0;
+    st.a = a0;
+    for (k = 0; k < n; k++) {
+        float a1 = st.a + g[k].d * g[k].j;
+        if (g[k].j != 0.0f && (st.a < 0.0f) != (a1 < 0.0f)) {
+            float tz = -st.a / g[k].j, vz = st.v + tz * (st.a + 0.5f * tz * g[k].j);
+            if (vz > vbp || vz < -vbn) return 0;
+        }
+        mseg_integ(&st, &g[k]);
+        if (st.v > vbp || st.v < -vbn) return 0;
+    }
+    return 1;
+}
+
+/* Fastest dip profile (build_dip) with displacement dp: the residual is scanned at nscan + 1
+ * (<= QO_MOTION_DIP_SCAN + 1) points of am in [e0, e1] (e.g. the extremum-velocity profile
+ * through vn and the direct transfer) and every sign change is solved. Returns 0 if none. */
+#define QO_MOTION_DIP_SCAN 4
+static int solve_dip(const mprob *p, float e0, float e1, unsigned nscan, float *am, float *dur)
 {
     rctx c;
     float x[QO_MOTION_DIP_SCAN + 1], f[QO_MOTION_DIP_SCAN + 1], t[QO_MOTION_DIP_SCAN + 1];
@@ -450,20 +505,26 @@ static int solve_dip(const mprob *p, float e0, float e1, float *am, float *dur)
     c = rctx_make(p, 2, 0.0f);
     *am = 0.0f;
     *dur = INFINITY;
-    for (k = 0; k <= QO_MOTION_DIP_SCAN; k++) {
-        x[k] = e0 + (e1 - e0) * (float)k / (float)QO_MOTION_DIP_SCAN;
+    if (nscan > QO_MOTION_DIP_SCAN) nscan = QO_MOTION_DIP_SCAN;
+    for (k = 0; k <= nscan; k++) {
+        x[k] = e0 + (e1 - e0) * (float)k / (float)nscan;
         f[k] = resid(&c, x[k], &t[k]);
     }
-    for (k = 0; k <= QO_MOTION_DIP_SCAN; k++) {
+    for (k = 0; k <= nscan; k++) {
         float r = x[k], tr = t[k], fr = f[k];
         if (fr != 0.0f) {
-            if (k == QO_MOTION_DIP_SCAN || f[k + 1] == 0.0f || (fr < 0.0f) == (f[k + 1] < 0.0f)) continue;
+            if (k == nscan || f[k + 1] == 0.0f || (fr < 0.0f) == (f[k + 1] < 0.0f)) continue;
             if (fr != fr || f[k + 1] != f[k + 1]) continue; /* no pulse to the end state there */
             r = root(&c, x[k], x[k + 1], f[k], f[k + 1], t[k], t[k + 1], &tr, &fr);
             /* no cruise absorbs a residual here: keep only a root to float precision */
             if (!(fabsf(fr) <= 1e-6f * (fabsf(dp) + (fabsf(v0) + c.vs) * tr))) continue;
         }
-        {
+        if (p->af != 0.0f) {
+            /* to a target acceleration am may lie on either side of zero: every velocity
+             * extremum of the profile is checked */
+            mseg g[4];
+            if (!segs_within(v0, a0, g, build_dip(p, r, g), vbp, vbn)) continue;
+        } else {
             /* ramping a0 away from zero first drives the velocity further: its extremum, where
              * the pulse to the end crosses a = 0, must stay within the velocity bounds */
             float d = fabsf(r - a0) / J, j = r >= a0 ? J : -J;
@@ -478,28 +539,86 @@ static int solve_dip(const mprob *p, float e0, float e1, float *am, float *dur)
     return *dur < INFINITY;
 }
 
-/* Target accelerations (af != 0): the dips at both ends, each orientation (am between 0 and
- * the acceleration, and beyond it up to the bound), searched by their end points; the start
- * dips by solve_dip, the end dips as the reversed problem's start dips. Keeps the shortest in
- * *sol if shorter than sol->t. */
+/* The two-holds shapes (build_holds): the velocity balance fixes h2 = (R - B1 h1) / B2, and the
+ * displacement is then quadratic in h1: fitted through three evaluations, its smallest root
+ * with h1, h2 >= 0 taken (the duration grows with h1), kept if its integrated residual is at
+ * float32 rounding and the velocity stays within the bounds. */
+static void solve_holds(const mprob *p, msol *sol)
+{
+    const mlim *l = &p->l;
+    float J = l->j, vnat = p->v0 + p->a0 * fabsf(p->a0) / (2.0f * J);
+    float vbp = maxf(l->vp, vnat) * (1.0f + 1e-6f), vbn = maxf(l->vn, -vnat) * (1.0f + 1e-6f);
+    int fam;
+    for (fam = 3; fam <= 4; fam++) {
+        float B1 = fam == 3 ? l->ap : -l->an, B2 = fam == 3 ? -l->an : l->ap;
+        float R = p->vf - p->v0 - ramp_dv(p->a0, B1, J) - ramp_dv(B1, B2, J) - ramp_dv(B2, p->af, J);
+        float h0 = maxf(0.0f, R / B1), H, f[3], t, qa, qb, disc, u, h1, h2, d, dur;
+        mseg g[5];
+        int k;
+        H = (fabsf(B1 - p->a0) + fabsf(B2 - B1) + fabsf(p->af - B2)) / J + h0 + 1e-3f;
+        for (k = 0; k < 3; k++) {
+            float hh = h0 + H * (float)k;
+            eval_segs(p->v0, p->a0, g, build_holds(p, fam, hh, (R - B1 * hh) / B2, g), &f[k], &t);
+            f[k] -= p->dp;
+        }
+        /* f(u) = f0 + qb u + qa u^2, u = h1 - h0 */
+        qa = (f[2] - 2.0f * f[1] + f[0]) / (2.0f * H * H);
+        qb = (f[1] - f[0]) / H - qa * H;
+        if (qa == 0.0f) {
+            u = qb != 0.0f ? -f[0] / qb : -1.0f;
+        } else {
+            float r1, r2, q;
+            disc = qb * qb - 4.0f * qa * f[0];
+            if (!(disc >= 0.0f)) continue;
+            q = -0.5f * (qb + (qb >= 0.0f ? sqrtf(disc) : -sqrtf(disc)));
+            r1 = q / qa;
+            r2 = q != 0.0f ? f[0] / q : r1;
+            if (r1 > r2) {
+                float tmp = r1;
+                r1 = r2;
+                r2 = tmp;
+            }
+            u = r1 >= 0.0f ? r1 : r2;
+        }
+        if (!(u >= 0.0f)) continue;
+        h1 = h0 + u;
+        h2 = (R - B1 * h1) / B2;
+        if (h2 < 0.0f) h2 = 0.0f; /* rounding at h0 */
+        build_holds(p, fam, h1, h2, g);
+        eval_segs(p->v0, p->a0, g, 5, &d, &dur);
+        if (!(fabsf(d - p->dp) <= 1e-6f * (fabsf(p->dp) + (fabsf(p->v0) + maxf(l->vp, l->vn)) * dur))) continue;
+        if (!(dur < sol->t) || !segs_within(p->v0, p->a0, g, 5, vbp, vbn)) continue;
+        sol->x = h1;
+        sol->tc = h2;
+        sol->t = dur;
+        sol->fam = fam;
+    }
+}
+
+/* Target accelerations (af != 0): the dips at both ends (three jerk ramps a0 -> am -> peak ->
+ * af, the peak from the velocity balance and clipped with a hold; the end dip the reversed
+ * problem's), am over the whole acceleration range in its pieces between the bounds, 0 and a0,
+ * each scanned at 4 points. Keeps the shortest in *sol if shorter than sol->t. */
 static void solve_dips_moving(const mprob *p, msol *sol)
 {
     int e;
+    unsigned k;
     for (e = 0; e < 2; e++) {
+        /* am over every acceleration: the pieces between the bounds, 0 and a0 */
         mprob r = e ? reversed(p) : *p;
-        float a0 = r.a0, aw = a0 > 0.0f ? r.l.ap : -r.l.an, am, dd;
-        if (a0 == 0.0f) continue;
-        if (solve_dip(&r, 0.0f, a0, &am, &dd) && dd < sol->t) {
-            sol->x = am;
-            sol->tc = 0.0f;
-            sol->t = dd;
-            sol->fam = 1 + e;
-        }
-        if (fabsf(a0) < fabsf(aw) && solve_dip(&r, a0, aw, &am, &dd) && dd < sol->t) {
-            sol->x = am;
-            sol->tc = 0.0f;
-            sol->t = dd;
-            sol->fam = 1 + e;
+        float pt[4], am, dd;
+        pt[0] = -r.l.an;
+        pt[1] = r.a0 < 0.0f ? r.a0 : 0.0f;
+        pt[2] = r.a0 < 0.0f ? 0.0f : r.a0;
+        pt[3] = r.l.ap;
+        for (k = 0; k < 3; k++) {
+            if (!(pt[k + 1] > pt[k])) continue;
+            if (solve_dip(&r, pt[k], pt[k + 1], 3, &am, &dd) && dd < sol->t) {
+                sol->x = am;
+                sol->tc = 0.0f;
+                sol->t = dd;
+                sol->fam = 1 + e;
+            }
         }
     }
 }
@@ -566,7 +685,7 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
      * Only for end states with af = 0 (the dip's pulse ends at zero acceleration). */
     if (scurve && p->af == 0.0f && a0 != 0.0f && vn != ve && (fz < 0.0f) != (fn0 < 0.0f) && fz == fz && fn0 == fn0) {
         float am, dd;
-        if (solve_dip(p, 0.0f, a0, &am, &dd) && dd < bd) {
+        if (solve_dip(p, 0.0f, a0, 1, &am, &dd) && dd < bd) {
             bv = am;
             bt = 0.0f;
             bd = dipd = dd;
@@ -581,7 +700,7 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
         rctx cw = rctx_make(p, 2, 0.0f);
         fw = resid(&cw, aw, &tw);
         if (fw != fw || (fw < 0.0f) != (fz < 0.0f) || fw == 0.0f) {
-            if (solve_dip(p, a0, aw, &am, &dd) && dd < bd) {
+            if (solve_dip(p, a0, aw, 1, &am, &dd) && dd < bd) {
                 bv = am;
                 bt = 0.0f;
                 bd = dipd = dd;
@@ -669,6 +788,7 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
     if (scurve && p->af != 0.0f) {
         if (!(bd < INFINITY)) sol->t = INFINITY;
         solve_dips_moving(p, sol);
+        solve_holds(p, sol);
         if (!(sol->t < INFINITY)) sol->t = 0.0f;
     }
 }
