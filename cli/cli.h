@@ -57,7 +57,8 @@ enum qo_cli_plan_optid {
     QO_CLI_OPT_PROFILE = 256, QO_CLI_OPT_RATE, QO_CLI_OPT_END, QO_CLI_OPT_COLUMNS, QO_CLI_OPT_DERIVS,
     QO_CLI_OPT_MIN, QO_CLI_OPT_MAX, QO_CLI_OPT_WRAP, QO_CLI_OPT_UNWRAPPED, QO_CLI_OPT_DEGREES,
     QO_CLI_OPT_FIXED, QO_CLI_OPT_VMAX, QO_CLI_OPT_AMAX, QO_CLI_OPT_JMAX, QO_CLI_OPT_SYNC,
-    QO_CLI_OPT_MAX_SAMPLES, QO_CLI_OPT_MIN_DURATION, QO_CLI_OPT_DISCRETE, QO_CLI_OPT_LAST_
+    QO_CLI_OPT_MAX_SAMPLES, QO_CLI_OPT_MIN_DURATION, QO_CLI_OPT_DISCRETE, QO_CLI_OPT_VMIN,
+    QO_CLI_OPT_AMIN, QO_CLI_OPT_TARGET_VELOCITIES, QO_CLI_OPT_LAST_
 };
 /* The getopt_long entries of the planning options (one table for plan and stream). */
 #define QO_CLI_PLAN_OPTIONS                                                                       \
@@ -78,7 +79,10 @@ enum qo_cli_plan_optid {
     { "sync", required_argument, NULL, QO_CLI_OPT_SYNC },                                         \
     { "max-samples", required_argument, NULL, QO_CLI_OPT_MAX_SAMPLES },                           \
     { "min-duration", required_argument, NULL, QO_CLI_OPT_MIN_DURATION },                         \
-    { "discrete", no_argument, NULL, QO_CLI_OPT_DISCRETE }
+    { "discrete", no_argument, NULL, QO_CLI_OPT_DISCRETE },                                       \
+    { "vmin", required_argument, NULL, QO_CLI_OPT_VMIN },                                         \
+    { "amin", required_argument, NULL, QO_CLI_OPT_AMIN },                                         \
+    { "target-velocities", no_argument, NULL, QO_CLI_OPT_TARGET_VELOCITIES }
 
 /* The planning options as given. Lists stay text until the joint count is known. */
 struct qo_cli_plan_opts {
@@ -88,8 +92,11 @@ struct qo_cli_plan_opts {
     qo_spline_derivs derivs;
     int columns;                /* 1 p, 2 pv, 3 pva (0 until checked) */
     qo_motion_profile mprofile;
-    qo_motion_sync sync;
+    qo_motion_sync sync;        /* --sync with one value (with a list: TIME, overridden) */
+    const char *sync_list;      /* --sync with a comma list: one value per joint */
     const char *vmax, *amax, *jmax, *min, *max, *wrap;
+    const char *vmin, *amin;    /* asymmetric limits (NULL: -vmax, -amax) */
+    int target_vel;             /* --target-velocities: target lines t,p1..pN,v1..vN */
     double rate, max_samples;
     double min_duration;        /* --min-duration S (0 = none) */
     int discrete;               /* --discrete: durations in whole periods of --rate */
@@ -140,6 +147,10 @@ int qo_cli_plan_build(const char *who, const struct qo_cli_plan_opts *o, size_t 
  * or 1, message naming the line. */
 int qo_cli_plan_push(const char *who, const char *name, struct qo_cli_plan *p, qo_traj_ns t,
                      const double *row, long lineno);
+/* Targets: a trial run of the plan applying each row at its time; a target state the planner
+ * refuses is named (its line) on stderr. *end = when the motion ends. Returns 0, 1 or 2. */
+int qo_cli_plan_trial(const char *who, const char *name, const struct qo_cli_plan_opts *o,
+                      const struct qo_cli_rows *r, qo_traj_ns *end);
 /* build + push every row (+ plan the keyframes). Returns 0, 1 or 2. */
 int qo_cli_plan_from_rows(const char *who, const char *name, const struct qo_cli_plan_opts *o,
                           const struct qo_cli_rows *r, struct qo_cli_plan *p);

@@ -29,13 +29,22 @@ static void gimbal_usage(FILE *f)
           "lock     1 inside the hold band (the free angle a3 is held steady), else 0\n"
           "clipped  bit mask of joints a rate or position limit held back (1 = a1, 2 = a2, 4 = a3)\n"
           "\n"
+          "With --amax the joint angles are those of a tracking filter (qo_gimbal_track_f32): the\n"
+          "joints follow the path with continuous rates, |acceleration| <= A (and |jerk| <= J),\n"
+          "lagging it where the path asks for more; after the last key the output goes on until\n"
+          "every joint is on the path's end at rest.\n"
+          "\n"
           "options:\n"
           "  -s, --seq SEQ       axes outer to inner, scipy naming (default ZYX: yaw, pitch, roll)\n"
           "  -r, --rate HZ       output rate (default 100)\n"
           "  -i, --interp KIND   slerp (piecewise, default) or spline (Shoemake, C1 through keys)\n"
           "  -b, --band DEG      hold band around the singular configuration, degrees (default 1)\n"
           "  -v, --vmax V        joint rate limit, rad/s (deg/s with --degrees); default none\n"
-          "  -d, --degrees       write angles and margin in degrees, read --vmax in deg/s\n"
+          "  -a, --amax A        smooth the joints: follow the path with acceleration limited to A,\n"
+          "                      rad/s^2 (deg/s^2 with --degrees); rates are then continuous\n"
+          "  -j, --jmax J        with --amax, also limit jerk to J, rad/s^3 (deg/s^3 with --degrees)\n"
+          "  -d, --degrees       write angles and margin in degrees, read --vmax, --amax, --jmax in\n"
+          "                      deg/s, deg/s^2, deg/s^3\n"
           "  -h, --help          this text\n"
           "\n"
           "Errors (non-monotonic times, wrong column count, non-numbers, a zero quaternion, bad\n"
@@ -61,6 +70,8 @@ int qo_cli_gimbal(int argc, char **argv)
         { "interp", required_argument, NULL, 'i' },
         { "band", required_argument, NULL, 'b' },
         { "vmax", required_argument, NULL, 'v' },
+        { "amax", required_argument, NULL, 'a' },
+        { "jmax", required_argument, NULL, 'j' },
         { "degrees", no_argument, NULL, 'd' },
         { "help", no_argument, NULL, 'h' },
         { NULL, 0, NULL, 0 },
@@ -68,8 +79,8 @@ int qo_cli_gimbal(int argc, char **argv)
     const double deg = 3.14159265358979323846 / 180.0;
     qo_gimbal_settings_f32 gs = qo_gimbal_settings_default_f32;
     qo_path_interp interp = QO_PATH_SLERP;
-    double rate = 100.0, band_deg = 1.0, vmax = INFINITY, v;
-    int degrees = 0, ch, rc = 1;
+    double rate = 100.0, band_deg = 1.0, vmax = INFINITY, amax = 0.0, jmax = INFINITY, v;
+    int degrees = 0, ch, rc = 1, unsettled = 0;
     unsigned caught_up_not = 0;
     FILE *in = stdin;
     float *t = NULL;
@@ -81,9 +92,11 @@ int qo_cli_gimbal(int argc, char **argv)
     unsigned long lineno = 0;
     qo_orient_path_f32 path;
     qo_gimbal_f32 g;
+    qo_gimbal_track_settings_f32 ts = qo_gimbal_track_settings_default_f32;
+    qo_gimbal_track_f32 tr;
     qo_status st;
 
-    while ((ch = getopt_long(argc, argv, "s:r:i:b:v:dh", opts, NULL)) != -1) {
+    while ((ch = getopt_long(argc, argv, "s:r:i:b:v:a:j:dh", opts, NULL)) != -1) {
         switch (ch) {
         case 's':
             if (qo_euler_seq_parse(optarg, &gs.seq) != QO_OK) {
@@ -112,10 +125,22 @@ int qo_cli_gimbal(int argc, char **argv)
             }
             vmax = v;
             break;
+        case 'a':
+        case 'j':
+            if (!parse_positive(optarg, &v)) {
+                fprintf(stderr, "qorient gimbal: --%s: '%s' is not a positive number\n", ch == 'a' ? "amax" : "jmax", optarg);
+                return 2;
+            }
+            if (ch == 'a') amax = v; else jmax = v;
+            break;
         case 'd': degrees = 1; break;
         case 'h': gimbal_usage(stdout); return 0;
         default: gimbal_usage(stderr); return 2;
         }
+    }
+    if (isfinite(jmax) && amax == 0.0) {
+        fprintf(stderr, "qorient gimbal: --jmax needs --amax\n");
+        return 2;
     }
     if (argc - optind > 1) {
         fprintf(stderr, "qorient gimbal: at most one input file\n");
@@ -130,6 +155,18 @@ int qo_cli_gimbal(int argc, char **argv)
     }
     gs.band = (float)(band_deg * deg);
     gs.vmax = (float)(degrees && isfinite(vmax) ? vmax * deg : vmax);
+    ts.vmax = gs.vmax;
+    ts.amax = (float)(degrees ? amax * deg : amax);
+    ts.jmax = (float)(degrees && isfinite(jmax) ? jmax * deg : jmax);
+    /* With a jerk limit the error gain stays below jmax/(4 amax) (qorient/gimbal.h: above it
+     * the joints ring around the path before settling); the ratio is the same in degrees. */
+    if (amax > 0.0 && isfinite(jmax) && ts.gain > (float)(jmax / (4.0 * amax))) ts.gain = (float)(jmax / (4.0 * amax));
+    if (amax > 0.0 && qo_gimbal_track_init_f32(&tr, &ts) != QO_OK) {
+        fprintf(stderr, "qorient gimbal: --amax, --jmax and --vmax must be in [%g, %g] rad/s^k with --amax\n",
+                (double)QO_MOTION_LIMIT_MIN, (double)QO_MOTION_LIMIT_MAX);
+        if (in != stdin) fclose(in);
+        return 2;
+    }
 
     while ((len = qo_cli_getline(&line, &lcap, in)) >= 0) {
         double f[6];
@@ -222,18 +259,24 @@ int qo_cli_gimbal(int argc, char **argv)
         }
         kmax = (unsigned long)span_n;
         extra = t0 + (double)kmax / rate < t1 - 1e-9;
-        /* After the last key the path holds it; while a rate limit still holds a joint back
-         * the samples go on (on the same grid) until every joint has arrived: the motion has
-         * ended when the joints are where the path ends, not when the path does. Bounded by
-         * one hour of catching up. */
+        /* After the last key the path holds it; while a rate limit still holds a joint back,
+         * or the tracking filter has not settled on the path's end, the samples go on (on the
+         * same grid) until every joint has arrived: the motion has ended when the joints are
+         * where the path ends, not when the path does. Bounded by one hour of catching up. */
         unsigned long kcatch = kmax + (unsigned long)(3600.0 * rate < 1e9 ? 3600.0 * rate : 1e9);
         qo_gimbal_sample_f32 o;
+        qo_gimbal_track_sample_f32 to;
         o.clipped = 0;
-        for (k = 0; k <= kmax + (unsigned long)extra || (o.clipped && k <= kcatch); k++) {
+        to.settled = 1;
+        for (k = 0; k <= kmax + (unsigned long)extra || ((o.clipped || !to.settled) && k <= kcatch); k++) {
             double tt = k <= kmax ? t0 + (double)k / rate : k == kmax + 1 && extra ? t1 : t0 + (double)(k - (unsigned long)extra) / rate;
             qo_quat_f32 q;
             st = qo_orient_path_sample_f32(&path, (float)tt, &q);
             if (st == QO_OK) st = qo_gimbal_step_f32(&g, (float)tt, q, &o);
+            if (st == QO_OK && amax > 0.0) {
+                st = qo_gimbal_track_step_f32(&tr, (float)tt, o.angles, &to);
+                o.angles = to.angles;
+            }
             if (st != QO_OK) {
                 fprintf(stderr, "qorient gimbal: t=%g: %s\n", tt, qo_status_str(st));
                 goto out;
@@ -246,11 +289,16 @@ int qo_cli_gimbal(int argc, char **argv)
             printf(",%d,%u\n", o.locked, o.clipped);
         }
         caught_up_not = o.clipped;
+        unsettled = !to.settled;
     }
     rc = 0;
     if (caught_up_not) {
         fprintf(stderr, "qorient gimbal: after one hour of catch-up --vmax still holds joints back (clipped=%u): "
                 "the last row is far from the path's end\n", caught_up_not);
+        rc = 1;
+    } else if (unsettled) {
+        fprintf(stderr, "qorient gimbal: after one hour of catch-up the tracking filter has not settled on the "
+                "path's end: the last row is not at rest there\n");
         rc = 1;
     }
     goto out;

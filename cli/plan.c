@@ -24,6 +24,9 @@ static const char *const plan_usage[] = {
     "                           replaces the previous target): the motion re-plans from its\n"
     "                           position, velocity and acceleration at t. The first line is\n"
     "                           the start: at rest at p1..pN from t.\n"
+    "             t,p1..pN,v1..vN  with --target-velocities: each target is reached moving at\n"
+    "                           v1..vN (the joints pass through it and, with no later\n"
+    "                           target, move on at that velocity); the start's v must be 0\n"
     "  Times are exact to the ns at any magnitude up to +-4.6e9 s.\n"
     "Output: one line per sample, 't,p1..pN,v1..vN,a1..aN' (position, velocity in unit/s,\n"
     "  acceleration in unit/s^2) at t = t_first + i/rate, i = 0, 1, ...: keyframes up to the\n"
@@ -74,10 +77,18 @@ static const char *const plan_usage[] = {
     "  --vmax V[,V...]  maximum |velocity| per joint (unit/s), in [1e-6, 1e12]; required\n"
     "  --amax A[,A...]  maximum |acceleration| (unit/s^2), in [1e-6, 1e12]; required\n"
     "  --jmax J[,J...]  maximum |jerk| (unit/s^3), in [1e-6, 1e12]; required for scurve\n"
-    "  --sync time|phase|none\n"
-    "                   time (default): all joints arrive together; phase: straight line in\n"
-    "                   joint space when the state allows it, else time, with a note; none:\n"
-    "                   each joint as fast as it can\n"
+    "  --vmin V[,V...]  asymmetric limits: most negative velocity per joint (unit/s), in\n"
+    "  --amin A[,A...]  [-1e12, -1e-6] (default -vmax, -amax); every velocity of the motion is\n"
+    "                   in [vmin, vmax], every acceleration in [amin, amax]\n"
+    "  --sync MODE[,MODE...]\n"
+    "                   one mode for all joints, or one per joint: time (default): all\n"
+    "                   joints arrive together; phase: straight line in joint space when the\n"
+    "                   state allows it, else time, with a note; none: each joint as fast as\n"
+    "                   it can; if-necessary: time sync only for joints whose target moves\n"
+    "                   (--target-velocities), the others as fast as they can\n"
+    "  --target-velocities\n"
+    "                   target lines are t,p1..pN,v1..vN (above); a target velocity outside\n"
+    "                   [vmin, vmax] is refused naming its line, nothing printed (exit 1)\n"
     "  --min-duration S a move lasts at least S seconds, in [0, 1e4] (default 0)\n"
     "  --discrete       durations rounded up to whole periods of --rate: a move issued on a\n"
     "                   sample ends exactly on a sample (the last one at rest)\n"
@@ -231,20 +242,14 @@ static int emit(struct out *w, qo_traj_ns t)
     return rc;
 }
 
-/* Rows a targets plan prints: a trial run of the same plan, applied to its last target. */
+/* Rows a targets plan prints: a trial run of the same plan (which also refuses, naming the
+ * line, a target state the limits cannot reach, before anything is printed). */
 static int targets_rows(const struct qo_cli_plan_opts *o, const struct qo_cli_rows *r, const char *name,
                         double *rows)
 {
-    struct qo_cli_plan p;
     qo_traj_ns end = 0;
-    float f[QO_MOTION_MAX_JOINTS];
-    int rc = qo_cli_plan_from_rows("plan", name, o, r, &p);
-    if (rc == 0) {
-        (void)qo_traj_sample(&p.tr, r->t[r->rows - 1], f, NULL, NULL, NULL);
-        (void)qo_traj_end_time(&p.tr, &end);
-        *rows = ceil((double)(end - r->t[0]) * 1e-9 * o->rate) + 1.0;
-    }
-    qo_cli_plan_free(&p);
+    int rc = qo_cli_plan_trial("plan", name, o, r, &end);
+    if (rc == 0) *rows = ceil((double)(end - r->t[0]) * 1e-9 * o->rate) + 1.0;
     return rc;
 }
 

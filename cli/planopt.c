@@ -34,6 +34,29 @@ static int pick(const char *who, const char *opt, const char *arg, const char *c
     return 2;
 }
 
+/* A --sync list "time,none,phase,if-necessary": writes up to cap values to out (may be
+ * NULL); returns the count, or -1 after a message naming the bad item. */
+static int sync_items(const char *who, const char *arg, size_t cap, qo_motion_sync *out)
+{
+    static const char *const names[] = { "none", "time", "phase", "if-necessary" };
+    const char *p = arg;
+    int count = 0;
+    for (;;) {
+        size_t len = strcspn(p, ","), i;
+        for (i = 0; i < 4; i++)
+            if (strlen(names[i]) == len && strncmp(p, names[i], len) == 0) break;
+        if (i == 4) {
+            fprintf(stderr, "qorient %s: --sync: item %d '%.*s' is not time, phase, none or if-necessary\n",
+                    who, count + 1, (int)len, p);
+            return -1;
+        }
+        if (out != NULL && (size_t)count < cap) out[count] = (qo_motion_sync)i;
+        count++;
+        if (p[len] == '\0') return count;
+        p += len + 1;
+    }
+}
+
 int qo_cli_plan_opt(const char *who, struct qo_cli_plan_opts *o, int opt, const char *arg)
 {
     static const char *const profiles[] = { "linear", "cubic", "catmull", "spline", "quintic",
@@ -41,7 +64,7 @@ int qo_cli_plan_opt(const char *who, struct qo_cli_plan_opts *o, int opt, const 
     static const char *const ends[] = { "rest", "natural", NULL };
     static const char *const cols[] = { "p", "pv", "pva", NULL };
     static const char *const derivs[] = { "estimated", "zero", NULL };
-    static const char *const syncs[] = { "none", "time", "phase", NULL };
+    static const char *const syncs[] = { "none", "time", "phase", "if-necessary", NULL };
     int k = 0;
     double v;
     switch (opt) {
@@ -76,9 +99,23 @@ int qo_cli_plan_opt(const char *who, struct qo_cli_plan_opts *o, int opt, const 
         o->key_opt = "--derivs";
         return 0;
     case QO_CLI_OPT_SYNC:
-        if (pick(who, "--sync", arg, syncs, "time, phase or none", &k)) return 2;
-        o->sync = (qo_motion_sync)k;
         if (!o->motion_opt) o->motion_opt = "--sync";
+        o->sync_list = NULL;
+        o->sync = QO_MOTION_SYNC_TIME;
+        if (strchr(arg, ',') == NULL) {
+            if (pick(who, "--sync", arg, syncs, "time, phase, none or if-necessary", &k)) return 2;
+            o->sync = (qo_motion_sync)k;
+            return 0;
+        }
+        /* one per joint: the names checked now, the count once the joints are known */
+        if (sync_items(who, arg, 0, NULL) < 0) return 2;
+        o->sync_list = arg;
+        return 0;
+    case QO_CLI_OPT_VMIN: o->vmin = arg; if (!o->motion_opt) o->motion_opt = "--vmin"; return 0;
+    case QO_CLI_OPT_AMIN: o->amin = arg; if (!o->motion_opt) o->motion_opt = "--amin"; return 0;
+    case QO_CLI_OPT_TARGET_VELOCITIES:
+        o->target_vel = 1;
+        if (!o->motion_opt) o->motion_opt = "--target-velocities";
         return 0;
     case QO_CLI_OPT_MIN_DURATION:
         if (qo_cli_number(who, "--min-duration", arg, 0.0, QO_MOTION_DURATION_MAX, "s", &o->min_duration))
@@ -113,7 +150,7 @@ int qo_cli_plan_opts_check(const char *who, struct qo_cli_plan_opts *o)
                     !o->vmax ? "--vmax" : !o->amax ? "--amax" : "--jmax");
             return 2;
         }
-        o->columns = 1;
+        o->columns = o->target_vel ? 2 : 1;
         return 0;
     }
     if (o->motion_opt) {
@@ -174,10 +211,11 @@ int qo_cli_rows_add(const char *who, const char *name, const struct qo_cli_plan_
     width = n - (size_t)has_time;
     if (r->rows == 0) {
         size_t per = (size_t)o->columns;
-        if (width < 1 || width % per != 0 || (o->motion && width > QO_MOTION_MAX_JOINTS)) {
-            fprintf(stderr, "qorient %s: %s: line %ld: %zu columns: expected %s%s per joint%s\n", who,
+        if (width < 1 || width % per != 0 || (o->motion && width / per > QO_MOTION_MAX_JOINTS)) {
+            fprintf(stderr, "qorient %s: %s: line %ld: %zu columns: expected %s%s per joint%s%s\n", who,
                     name, lineno, n, has_time ? "t and " : "",
                     per == 1 ? "1 number" : per == 2 ? "2 numbers" : "3 numbers",
+                    o->motion && o->target_vel ? " (p1..pN,v1..vN: --target-velocities)" : "",
                     o->motion ? " (at most 32 joints)" : "");
             return 1;
         }
@@ -318,25 +356,43 @@ int qo_cli_plan_build(const char *who, const struct qo_cli_plan_opts *o, size_t 
     } else {
         qo_motion_settings_f32 ms = qo_motion_settings_default;
         double v[QO_MOTION_MAX_JOINTS], a[QO_MOTION_MAX_JOINTS], jm[QO_MOTION_MAX_JOINTS];
+        double vn[QO_MOTION_MAX_JOINTS], an[QO_MOTION_MAX_JOINTS];
+        qo_motion_sync sy[QO_MOTION_MAX_JOINTS];
+        int ns = 0;
         if (qo_cli_list(who, "--vmax", o->vmax, n, QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX, v) ||
             qo_cli_list(who, "--amax", o->amax, n, QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX, a) ||
-            qo_cli_list(who, "--jmax", o->jmax, n, QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX, jm))
+            qo_cli_list(who, "--jmax", o->jmax, n, QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX, jm) ||
+            qo_cli_list(who, "--vmin", o->vmin, n, -QO_MOTION_LIMIT_MAX, -QO_MOTION_LIMIT_MIN, vn) ||
+            qo_cli_list(who, "--amin", o->amin, n, -QO_MOTION_LIMIT_MAX, -QO_MOTION_LIMIT_MIN, an))
             return 2;
+        if (o->sync_list) {
+            ns = sync_items(who, o->sync_list, QO_MOTION_MAX_JOINTS, sy);
+            if (ns != (int)n) {
+                fprintf(stderr, "qorient %s: --sync: %d values for %zu joints: give one, or one per joint\n", who,
+                        ns, n);
+                return 2;
+            }
+        }
         for (j = 0; j < n; j++) {
             p->lim[j] = qo_motion_limits_default;
             p->lim[j].vmax = (float)v[j];
             p->lim[j].amax = (float)a[j];
             if (o->jmax) p->lim[j].jmax = (float)jm[j];
+            if (o->vmin) p->lim[j].vmin = (float)vn[j];
+            if (o->amin) p->lim[j].amin = (float)an[j];
             p->lim[j].pmin = p->lo[j];
             p->lim[j].pmax = p->hi[j];
             if (p->wrap[j]) p->lim[j].wrap = (float)p->period;
         }
         ms.profile = o->mprofile;
         ms.sync = o->sync;
-        len = qo_traj_store_len(QO_TRAJ_TARGETS, n, cap, 1);
+        /* --target-velocities: storage for a velocity per target is what makes the queue
+         * carry them (qo_traj_init_targets) */
+        len = qo_traj_store_len(QO_TRAJ_TARGETS, n, cap, o->target_vel ? 2u : 1u);
         p->store = len ? malloc(len * sizeof *p->store) : NULL;
         if (!p->t || !p->store) goto oom;
         st = qo_traj_init_targets(&p->tr, n, p->lim, &ms, p->joints, p->t, cap, p->store, len);
+        for (j = 0; st == QO_OK && j < (size_t)ns; j++) st = qo_traj_set_joint_sync(&p->tr, j, sy[j]);
         /* --discrete: the sample period is the control period, so a move issued on a sample
          * ends on one (1/rate is within the planner's period range for every --rate). */
         if (st == QO_OK)
@@ -356,7 +412,8 @@ int qo_cli_plan_push(const char *who, const char *name, struct qo_cli_plan *p, q
                      const double *row, long lineno)
 {
     float f[QO_CLI_MAX_FIELDS];
-    size_t j, per = p->tr.kind == QO_TRAJ_KEYS ? p->tr.key_cols : 1, n = p->n;
+    size_t j, per = p->tr.kind == QO_TRAJ_KEYS ? p->tr.key_cols : p->tr.target_cols, n = p->n;
+    int start = p->tr.kind == QO_TRAJ_TARGETS && !p->tr.started;
     qo_status st;
     for (j = 0; j < n * per; j++) {
         double x = row[j];
@@ -365,7 +422,22 @@ int qo_cli_plan_push(const char *who, const char *name, struct qo_cli_plan *p, q
         if (j < n && p->wrap[j]) x = remainder(x, p->period);
         f[j] = (float)x;
     }
+    /* A target velocity the limits refuse is named here, where its line is known (a live line
+     * is applied later, at a tick): with zero acceleration, reachable = within [vmin, vmax]. */
+    for (j = 0; p->tr.kind == QO_TRAJ_TARGETS && per >= 2 && j < n; j++) {
+        float hi = p->lim[j].vmax, lo = p->lim[j].vmin != 0.0f ? p->lim[j].vmin : -hi;
+        if (f[n + j] > hi || f[n + j] < lo) {
+            fprintf(stderr, "qorient %s: %s: line %ld: joint %zu: target velocity %.9g is outside [%.9g, %.9g] "
+                    "(--vmin, --vmax): refused\n", who, name, lineno, j + 1, (double)f[n + j], (double)lo, (double)hi);
+            return 1;
+        }
+    }
     st = qo_traj_push(&p->tr, t, f, per >= 2 ? f + n : NULL, per >= 3 ? f + 2 * n : NULL);
+    if (st == QO_E_ARG && start) {
+        fprintf(stderr, "qorient %s: %s: line %ld: the start line is at rest: its velocities must be 0\n", who,
+                name, lineno);
+        return 1;
+    }
     if (st != QO_OK) {
         fprintf(stderr, "qorient %s: %s: line %ld: %s\n", who, name, lineno,
                 st == QO_E_ORDER ? "time too close to the previous key for float32 offsets from the "
@@ -374,6 +446,29 @@ int qo_cli_plan_push(const char *who, const char *name, struct qo_cli_plan *p, q
         return 1;
     }
     return 0;
+}
+
+int qo_cli_plan_trial(const char *who, const char *name, const struct qo_cli_plan_opts *o,
+                      const struct qo_cli_rows *r, qo_traj_ns *end)
+{
+    struct qo_cli_plan p;
+    float f[QO_MOTION_MAX_JOINTS];
+    size_t k;
+    int rc = qo_cli_plan_from_rows(who, name, o, r, &p);
+    *end = r->t[0];
+    for (k = 1; rc == 0 && k < r->rows; k++) {
+        qo_status st = qo_traj_sample(&p.tr, r->t[k], f, NULL, NULL, NULL);
+        if (k + 1 < r->rows && r->t[k + 1] == r->t[k]) continue; /* applied together */
+        if (st == QO_E_LIMIT || st == QO_E_ARG) {
+            fprintf(stderr, "qorient %s: %s: line %ld: the target state cannot be reached or held within the "
+                    "limits (qo_motion_set_target_state_f32: %s): refused, nothing %s\n", who, name, r->line[k],
+                    qo_status_str(st), who[0] == 'p' ? "printed" : "sent");
+            rc = 1;
+        }
+    }
+    if (rc == 0) (void)qo_traj_end_time(&p.tr, end);
+    qo_cli_plan_free(&p);
+    return rc;
 }
 
 int qo_cli_plan_from_rows(const char *who, const char *name, const struct qo_cli_plan_opts *o,

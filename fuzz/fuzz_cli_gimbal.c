@@ -1,7 +1,8 @@
 /*
  * fuzz/fuzz_cli_gimbal.c - `qorient gimbal` (cli/gimbal.c over qorient/gimbal.h)
  * end to end: the first two bytes pick the axis sequence, rate, interpolation, hold band,
- * rate limit and --degrees; the rest is the keyframe text 't,w,x,y,z' given as FILE.
+ * rate limit, the tracking filter's --amax / --jmax and --degrees; the rest is the keyframe
+ * text 't,w,x,y,z' given as FILE.
  * Properties: exit status 0 or 1 (valid options); every output row is a list of finite
  * numbers. Not fuzzed: inputs whose key times span between 4000 and 1e9 samples at the
  * chosen rate (the command writes them all by design; above 1e9 it refuses, and that refusal
@@ -22,8 +23,10 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     static const char *const rates[] = { "1", "10", "100", "1000" };
     static const char *const bands[] = { "1", "0", "0.0001", "90" };
     static const char *const vmaxs[] = { "1", "100", "0.5", "1000" };
-    char store[16][24];
-    char *argv[18];
+    static const char *const amaxs[] = { "10", "0.001", "1e6", "1e13" }; /* the last: refused */
+    static const char *const jmaxs[] = { "100", "1", "1e9", "0" };       /* the last: refused */
+    char store[20][24];
+    char *argv[22];
     int argc = 0, rc;
     uint8_t s0, s1;
     double t_lo, t_hi, rate, span;
@@ -49,6 +52,8 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     if (s0 & 0x40u) { FUZZ_GB_ARG("--band"); FUZZ_GB_ARG(bands[s1 & 3u]); }
     if (s0 & 0x80u) { FUZZ_GB_ARG("--vmax"); FUZZ_GB_ARG(vmaxs[(s1 >> 2) & 3u]); }
     if (s1 & 0x10u) FUZZ_GB_ARG("--degrees");
+    if (s1 & 0x20u) { FUZZ_GB_ARG("--amax"); FUZZ_GB_ARG(amaxs[(s1 >> 6) & 3u]); }
+    if ((s1 & 0x21u) == 0x21u) { FUZZ_GB_ARG("--jmax"); FUZZ_GB_ARG(jmaxs[(s1 >> 1) & 1u ? 3u : (s1 >> 6) & 3u]); }
     argv[argc++] = qo_fz_cli_files_get()->in_path;
     argv[argc] = NULL;
 #undef FUZZ_GB_ARG
@@ -59,9 +64,12 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     /* A rate limit makes the command catch up for up to an hour of samples after the last
      * key: bounded, but long at 1000 Hz. */
     if ((s0 & 0x80u) && rate > 100.0) return 0;
+    /* So does the tracking filter until it settles: at --amax 0.001 that can be the hour. */
+    if ((s1 & 0x20u) && rate > 10.0) return 0;
 
     rc = qo_fz_cli_run(QO_FZ_CLI_FN(qo_cli_gimbal), argc, argv, 0, data, size, &out, &out_len);
-    QO_FUZZ_CHECK(rc == 0 || rc == 1, "gimbal: exit status %d", rc);
+    /* exit 2 only for the refused filter limits (an --amax or --jmax out of range) */
+    QO_FUZZ_CHECK(rc == 0 || rc == 1 || ((s1 & 0x20u) && rc == 2), "gimbal: exit status %d", rc);
     qo_fz_cli_check_output(out, "gimbal");
     free(out);
     return 0;

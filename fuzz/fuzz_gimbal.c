@@ -5,7 +5,10 @@
  * documented statuses; a failed path init leaves n = 0; samples are unit; every commanded
  * sample is finite with margin in [0, pi/2] and locked == (margin <= band); no step moves a
  * joint more than vmax*dt; on a step error the joints hold (previous angles, margin 0,
- * locked 0, clipped 0) and the state is unchanged.
+ * locked 0, clipped 0) and the state is unchanged. With a fuzzed tracking filter
+ * (qo_gimbal_track_*) after the gimbal: documented statuses; finite outputs; |rate| within the
+ * filter's vmax; err = the largest |path - angles|; on an error other than the brake the state
+ * is unchanged and the output is the state at the previous step.
  */
 #include "fuzz_common.h"
 #include "qorient/gimbal.h"
@@ -32,7 +35,10 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     qo_gimbal_f32 g, before;
     qo_gimbal_sample_f32 o;
     qo_status st, sp;
-    int steps;
+    int steps, track = 0;
+    qo_gimbal_track_settings_f32 trs = qo_gimbal_track_settings_default_f32;
+    qo_gimbal_track_f32 tr, trb;
+    qo_gimbal_track_sample_f32 to, tprev;
 
     for (i = 0; i < n; i++) {
         /* times: fuzzed increments (possibly negative, NaN...) from the previous key */
@@ -52,6 +58,17 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
         gs.band = qo_fz_f32(&f);
         gs.vmax = qo_fz_f32(&f);
         for (i = 0; i < 3; i++) { gs.min[i] = qo_fz_f32(&f); gs.max[i] = qo_fz_f32(&f); }
+    }
+    if (n & 1u) { /* the tracking filter, with fuzzed limits */
+        uint8_t tb = qo_fz_u8(&f);
+        trs.amax = qo_fz_f32(&f);
+        if (tb & 1u) trs.jmax = qo_fz_f32(&f);
+        if (tb & 2u) trs.vmax = qo_fz_f32(&f);
+        if (tb & 4u) trs.gain = qo_fz_f32(&f);
+        st = qo_gimbal_track_init_f32(&tr, &trs);
+        QO_FUZZ_CHECK(st == QO_OK || st == QO_E_LIMIT, "track_init status %d", (int)st);
+        track = st == QO_OK;
+        memset(&tprev, 0, sizeof tprev);
     }
     st = qo_gimbal_init_f32(&g, &gs);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_ARG || st == QO_E_RANGE || st == QO_E_LIMIT, "gimbal_init status %d", (int)st);
@@ -111,6 +128,28 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
                               (double)ts, (int)g.s.seq, (double)g.s.band, (double)g.s.vmax, (double)g.s.min[0],
                               (double)g.s.min[1], (double)g.s.min[2], (double)g.s.max[0], (double)g.s.max[1],
                               (double)g.s.max[2], QO_FZ_QARG(q));
+            }
+            if (track) {
+                float vm = fminf(fminf(trs.amax * 1000.0f, trs.vmax), QO_MOTION_LIMIT_MAX);
+                trb = tr;
+                st = qo_gimbal_track_step_f32(&tr, ts, o.angles, &to);
+                QO_FUZZ_CHECK(st == QO_OK || st == QO_E_ORDER || st == QO_E_RANGE || st == QO_E_NONFINITE,
+                              "track_step status %d", (int)st);
+                QO_FUZZ_CHECK(isfinite(to.angles.a1) && isfinite(to.angles.a2) && isfinite(to.angles.a3) && isfinite(to.err),
+                              "track_step non-finite output");
+                for (i = 0; i < 3; i++)
+                    QO_FUZZ_CHECK(isfinite(to.rate[i]) && isfinite(to.acc[i]) && fabsf(to.rate[i]) <= vm * (1.0f + 1e-5f),
+                                  "track_step rate %g acc %g vmax %g", (double)to.rate[i], (double)to.acc[i], (double)vm);
+                if (st == QO_OK) {
+                    double e = fmax(fabs((double)o.angles.a1 - to.angles.a1), fmax(fabs((double)o.angles.a2 - to.angles.a2),
+                                                                                   fabs((double)o.angles.a3 - to.angles.a3)));
+                    QO_FUZZ_CHECK(fabs(e - to.err) <= 1e-6 * (1.0 + e), "track_step err %g, want %g", (double)to.err, e);
+                } else if (st != QO_E_RANGE || memcmp(&tr, &trb, sizeof tr) == 0) {
+                    QO_FUZZ_CHECK(memcmp(&tr, &trb, sizeof tr) == 0, "track_step error %d changed the state", (int)st);
+                    QO_FUZZ_CHECK(to.angles.a1 == tprev.angles.a1 && to.angles.a2 == tprev.angles.a2 && to.angles.a3 == tprev.angles.a3
+                                  && to.err == 0.0f && to.settled == 0, "track_step error %d output (%.9g %.9g %.9g) want (%.9g %.9g %.9g)", (int)st, (double)to.angles.a1, (double)to.angles.a2, (double)to.angles.a3, (double)tprev.angles.a1, (double)tprev.angles.a2, (double)tprev.angles.a3);
+                }
+                if (st == QO_OK || st == QO_E_RANGE) tprev = to;
             }
         } else {
             qo_euler_f32 hold = before.prev;

@@ -1,10 +1,14 @@
 # mk/motion.mk - the motion planner against its independent reference, at scale. Included by
 # the Makefile with `-include mk/motion.mk`.
 #
-#   make check-motion        1,000,000 random joints per sync mode (NONE, TIME, PHASE: 142,858
-#                            7-joint plans each), tests/test_motion_oracle.c optimised, no
-#                            sanitizers (make test runs the same program with 10,500 per mode)
+#   make check-motion        1,000,000 random joints per sync mode (NONE, TIME, PHASE,
+#                            TIME_IF_NECESSARY: 142,858 random 7-joint plans each, with moving
+#                            starts, asymmetric limits and moving target states),
+#                            tests/test_motion_oracle.c optimised, no sanitizers (make test runs
+#                            the same program with 10,500 per mode)
 #   make check-motion-long   10,000,000 per sync mode
+# QO_MOTION_ORACLE_FILTER=test_oracle_time (a cmocka name pattern) runs one part, e.g. the modes
+# in parallel on a machine with cores to spare.
 #
 # Each prints one line per mode "sync N: G groups of 7 joints, F failures" and fails on any
 # failure (a joint or plan more than 0.1 % slower or faster than the reference, a limit

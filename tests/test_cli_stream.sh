@@ -90,6 +90,25 @@ set -- $r
 awk -v m="$2" 'BEGIN { exit !(m <= 0.05 + 1e-9) }' && ok || bad "live: a step of $2 above max_step 0.05"
 shift 2
 [ "$*" = "0.4 0.2 -0.3 0 0.1 -0.2" ] && ok || bad "live final targets '$*' != '0.4 0.2 -0.3 0 0.1 -0.2'"
+# 1d. --live --target-velocities: lines p1..p6,v1..v6; a target passed through moving, one
+#     with a velocity beyond --vmax named (line and joint) and skipped (exit 1), the last at
+#     rest held by the drives; asymmetric limits and a per-joint sync list taken.
+start_sim
+{ printf '0,0,0,0,0,0,0,0,0,0,0,0\n'; sleep 0.3; printf '0.5,-0.5,0.2,0,0,0.1,0.5,0,0,0,0,0\n'; sleep 0.2;
+  printf '1,1,1,1,1,1,0,0,9,0,0,0\n'; sleep 0.1; printf '0.4,0.2,-0.3,0,0.1,-0.2,0,0,0,0,0,0\n'; } |
+    $Q stream --map $MAP --modbus "tcp://127.0.0.1:$PORT" --rate 100 --timeout-ms 50 --no-rt --quiet --live \
+        --profile scurve --vmax 2 --vmin -1.5 --amax 4 --amin -3 --jmax 20 --sync time,time,none,time,if-necessary,time \
+        --target-velocities > "$T/out" 2> "$T/err"; rc=$?
+[ "$rc" = 1 ] && ok || bad "live target states with a refused line: exit $rc: $(cat "$T/err")"
+grep -q "^qorient stream: -: line 3: joint 3: target velocity 9 is outside \[-1.5, 2\]" "$T/err" && ok ||
+    bad "live refused target state message: $(cat "$T/err")"
+grep -q 'final ok$' "$T/out" && ok || bad "live target states summary: $(cat "$T/out")"
+stop_sim
+r=$(log_summary)
+set -- $r
+awk -v m="$2" 'BEGIN { exit !(m <= 0.05 + 1e-9) }' && ok || bad "live target states: a step of $2 above max_step 0.05"
+shift 2
+[ "$*" = "0.4 0.2 -0.3 0 0.1 -0.2" ] && ok || bad "live target states final '$*' != '0.4 0.2 -0.3 0 0.1 -0.2'"
 # without a start line --live says what it needs
 : | $Q stream --map $MAP --modbus "tcp://127.0.0.1:1" --live --profile trapezoid --vmax 1 --amax 1 > /dev/null 2> "$T/err"; rc=$?
 [ "$rc" = 1 ] && grep -q "needs a start line" "$T/err" && ok || bad "live without input: rc=$rc $(cat "$T/err")"

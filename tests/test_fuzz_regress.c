@@ -84,6 +84,9 @@
 #define QO_FUZZ_ENTRY fuzz_one_cli_plan_moves
 #include "../fuzz/fuzz_cli_plan_moves.c"
 #undef QO_FUZZ_ENTRY
+#define QO_FUZZ_ENTRY fuzz_one_traj
+#include "../fuzz/fuzz_traj.c"
+#undef QO_FUZZ_ENTRY
 
 typedef int (*fuzz_entry)(const uint8_t *data, size_t size);
 
@@ -184,6 +187,7 @@ static fuzz_target targets[] = {
     { "cli_plan_moves", fuzz_one_cli_plan_moves, 17 },
     { "interp_fx", fuzz_one_interp_fx, 1 },
     { "cli_gimbal", fuzz_one_cli_gimbal, 17 },
+    { "traj", fuzz_one_traj, 1 },
 };
 
 #define T(i, name) { "replay " name, replay_target, NULL, NULL, &targets[i] }, \
@@ -195,7 +199,7 @@ int main(void)
         T(0, "quat"), T(1, "convert"), T(2, "euler"), T(3, "interp"), T(4, "gimbal"), T(5, "fxmath"),
         T(6, "fx_orient"), T(7, "regmap"), T(8, "spline"), T(9, "motion"), T(10, "modbus_pack"),
         T(11, "cli_numbers"), T(12, "cli_convert"), T(13, "cli_plan_keys"), T(14, "cli_plan_moves"),
-        T(15, "interp_fx"), T(16, "cli_gimbal"),
+        T(15, "interp_fx"), T(16, "cli_gimbal"), T(17, "traj"),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -261,6 +261,233 @@ static void test_gimbal_errors_hold(void **state)
     assert_int_equal(qo_gimbal_reset_f32(&g, held, 1.0f), QO_E_NONFINITE);
 }
 
+/* The tracking filter on random paths through and near the ZYX singular configuration (fixed
+ * seed): keys every 0.5 s with yaw and roll random, pitch sweeping 60 -> 120 degrees (through
+ * lock) or 70 -> 89.x -> 70 (near it), hold band 1..3 degrees, sampled at 100..500 Hz, with
+ * and without a rate limit and a jerk limit. Judged only from the output positions, in double,
+ * by finite differences over m ticks (the mean of the acceleration over a triangle of 2m ticks,
+ * so it can never exceed the largest |acceleration| of a true motion): independent of the
+ * planner's coefficients. Float32 rounding of the positions enters each difference as at most
+ * (2^k) * ulp(|p|) / (m dt)^k; the tolerance is that plus 1e-5 relative. */
+#define TRACK_CASES 120
+#define TRACK_MAXS 4100
+
+/* k-th derivative by finite differences over the points i-m, i, i+m (, i+2m) at their actual
+ * float32 sample times: k! times the Newton divided difference, which is the mean of the k-th
+ * derivative over a B-spline kernel, so it never exceeds the largest |derivative|. */
+static double fd_k(const double *p, const double *tt, int i, int m, int k)
+{
+    double x[4], d[4];
+    int a, b;
+    for (a = 0; a <= k; a++) { x[a] = tt[i + (a - 1) * m]; d[a] = p[i + (a - 1) * m]; }
+    if (k == 1) { x[0] = tt[i - m]; d[0] = p[i - m]; x[1] = tt[i]; d[1] = p[i]; }
+    for (b = 1; b <= k; b++)
+        for (a = k; a >= b; a--) d[a] = (d[a] - d[a - 1]) / (x[a] - x[a - b]);
+    return d[k] * (k == 3 ? 6 : k);
+}
+
+static void test_track_random_paths(void **state)
+{
+    static double out[3][TRACK_MAXS], path[3][TRACK_MAXS], tt[TRACK_MAXS];
+    ref_rng rng = { 0x7EAC4ED5ULL };
+    int c, raw_jumps = 0;
+    (void)state;
+    for (c = 0; c < TRACK_CASES; c++) {
+        enum { K = 7 };
+        float kt[K];
+        qo_quat_f32 keys[K], ks[K], ca[K], cb[K];
+        qo_orient_path_f32 pa;
+        qo_gimbal_settings_f32 gs = qo_gimbal_settings_default_f32;
+        qo_gimbal_track_settings_f32 ts = qo_gimbal_track_settings_default_f32;
+        qo_gimbal_f32 g;
+        qo_gimbal_track_f32 tr;
+        qo_gimbal_sample_f32 o;
+        qo_gimbal_track_sample_f32 to;
+        const double rates[3] = { 100, 200, 500 };
+        double dt = 1.0 / rates[c % 3], through = c % 2 == 0, peak = 89.0 + ref_rng_unit(&rng);
+        double maxp = 0, worst_a = 0, worst_j = 0, worst_v = 0, worst_err = 0, raw_step = 0;
+        int i, k, j, n = 0, settled_at = -1, interp = (c / 2) % 2;
+        gs.band = (float)(ref_rng_range(&rng, 1, 3) * DEG);
+        if (c % 5 == 1) gs.vmax = (float)ref_rng_range(&rng, 1, 4);
+        ts.amax = (float)ref_rng_range(&rng, 4, 40);
+        ts.vmax = gs.vmax;
+        if (c % 3 != 0) {
+            ts.jmax = (float)ref_rng_range(&rng, 100, 2000);
+            if (ts.gain > ts.jmax / (4 * ts.amax)) ts.gain = ts.jmax / (4 * ts.amax);
+        }
+        for (k = 0; k < K; k++) {
+            double u = (double)k / (K - 1), pitch = through ? 60 + 60 * u : 70 + (peak - 70) * sin(REF_PI * u);
+            kt[k] = 0.5f * (float)k;
+            keys[k] = ref_quat_to_f32(ref_zyx(ref_rng_range(&rng, -1, 1), pitch * DEG, ref_rng_range(&rng, -0.5, 0.5)));
+        }
+        assert_int_equal(qo_orient_path_init_f32(&pa, kt, keys, K, (qo_path_interp)interp, ks, ca, cb), QO_OK);
+        assert_int_equal(qo_gimbal_init_f32(&g, &gs), QO_OK);
+        assert_int_equal(qo_gimbal_track_init_f32(&tr, &ts), QO_OK);
+        /* the path (3 s), then until settled, at most TRACK_MAXS samples */
+        for (i = 0; i < TRACK_MAXS; i++) {
+            float t = (float)(i * dt);
+            qo_quat_f32 q;
+            assert_int_equal(qo_orient_path_sample_f32(&pa, t, &q), QO_OK);
+            assert_int_equal(qo_gimbal_step_f32(&g, t, q, &o), QO_OK);
+            assert_int_equal(qo_gimbal_track_step_f32(&tr, t, o.angles, &to), QO_OK);
+            tt[i] = t;
+            path[0][i] = o.angles.a1; path[1][i] = o.angles.a2; path[2][i] = o.angles.a3;
+            out[0][i] = to.angles.a1; out[1][i] = to.angles.a2; out[2][i] = to.angles.a3;
+            for (j = 0; j < 3; j++) {
+                double e = fabs(path[j][i] - out[j][i]);
+                if (fabs(out[j][i]) > maxp) maxp = fabs(out[j][i]);
+                if (e > worst_err) worst_err = e;
+                if (fabs(to.err - fmax(fabs(path[0][i] - out[0][i]), fmax(fabs(path[1][i] - out[1][i]),
+                    fabs(path[2][i] - out[2][i])))) > 1e-6) fail_msg("case %d step %d: err %g", c, i, (double)to.err);
+            }
+            n = i + 1;
+            if (t > 3.0f && to.settled) { settled_at = i; break; }
+        }
+        /* tracking error -> 0: the joints end on the path's end, at rest, exactly */
+        if (settled_at < 0) fail_msg("case %d: not settled %g s after the path stopped", c, (n - 1) * dt - 3);
+        for (j = 0; j < 3; j++) assert_true(out[j][n - 1] == path[j][n - 1] && to.rate[j] == 0.0f);
+        /* bounded: well under the excursion a rate step at amax can leave (the paths' rates
+         * stay below 3 rad/s: 3^2 / (2 * 4) = 1.1 rad) */
+        /* bounded: the joints stay within the range the path covers, up to the overshoot of
+         * braking onto it when the path stops dead: from rate R (the largest seen) and
+         * acceleration amax away from it, the acceleration ramps to -amax in 2 amax/jmax
+         * (covering at most 2 R amax/jmax), then stops within R^2/(2 amax); the filter sees
+         * the stop one step late (the path's rate is a difference of its last two samples),
+         * R dt more: the filter never runs away from the path */
+        for (j = 0; j < 3; j++) {
+            double lo = path[j][0], hi = lo, r = 0, over;
+            for (i = 1; i < n; i++) {
+                lo = fmin(lo, path[j][i]); hi = fmax(hi, path[j][i]);
+                r = fmax(r, fabs(fd_k(out[j], tt, i, 1, 1)));
+            }
+            over = r * r / (2 * ts.amax) + (isfinite(ts.jmax) ? 2 * r * ts.amax / ts.jmax : 0) + r * dt + 1e-6;
+            for (i = 0; i < n; i++)
+                if (out[j][i] < lo - over || out[j][i] > hi + over)
+                    fail_msg("case %d joint %d step %d: %g outside the path's [%g, %g] by more than %g", c, j, i,
+                             out[j][i], lo, hi, over);
+        }
+        for (j = 0; j < 3; j++) {
+            const double ulp = 1.2e-7 * (maxp + 1);
+            for (i = 1; i < n; i++) {
+                double v = fd_k(out[j], tt, i, 1, 1), rv = fd_k(path[j], tt, i, 1, 1);
+                if (isfinite(gs.vmax) && fabs(v) > gs.vmax * (1 + 1e-5) + 2 * ulp / dt)
+                    fail_msg("case %d joint %d step %d: rate %g > vmax %g", c, j, i, v, (double)gs.vmax);
+                if (i + 1 < n) {
+                    /* rates continuous: each step of the rate within amax*dt, over 1 and 10 ticks */
+                    int m;
+                    for (m = 1; m <= 10; m += 9) {
+                        if (i - m >= 0 && i + m < n) {
+                            double a = fabs(fd_k(out[j], tt, i, m, 2)), tol = 4 * ulp / (m * dt * m * dt);
+                            if (a > ts.amax * (1 + 1e-5) + tol)
+                                fail_msg("case %d joint %d step %d (m %d): |acc| %.9g > amax %g", c, j, i, m, a, (double)ts.amax);
+                            if (a - tol > worst_a) worst_a = a - tol;
+                        }
+                    }
+                    if (i + 1 < n && fabs(fd_k(path[j], tt, i + 1, 1, 1) - rv) > raw_step)
+                        raw_step = fabs(fd_k(path[j], tt, i + 1, 1, 1) - rv);
+                }
+                if (isfinite(ts.jmax) && i - 20 >= 0 && i + 40 < n) {
+                    double h = 20 * dt, jr = fabs(fd_k(out[j], tt, i, 20, 3)), tol = 8 * ulp / (h * h * h);
+                    if (jr > ts.jmax * (1 + 1e-5) + tol)
+                        fail_msg("case %d joint %d step %d: |jerk| %.9g > jmax %g", c, j, i, jr, (double)ts.jmax);
+                    if (jr > worst_j) worst_j = jr;
+                }
+                if (fabs(v) > worst_v) worst_v = fabs(v);
+            }
+        }
+        (void)worst_a; (void)worst_j;
+        /* the unfiltered gimbal's rate jumps by more than amax*dt here (the filter had work) */
+        if (raw_step > ts.amax * dt * 1.5) raw_jumps++;
+    }
+    /* a check on the test: most paths ask for more than the limits somewhere */
+    if (raw_jumps < TRACK_CASES / 2) fail_msg("only %d of %d paths exceeded amax unfiltered", raw_jumps, TRACK_CASES);
+}
+
+/* A path holding still from the start stays exactly still; a constant-rate ramp is tracked
+ * with an error that decays to float32 rounding. */
+static void test_track_steady(void **state)
+{
+    qo_gimbal_track_f32 tr;
+    qo_gimbal_track_sample_f32 to;
+    qo_euler_f32 e = { 0.5f, -0.25f, 1.0f };
+    int i;
+    (void)state;
+    assert_int_equal(qo_gimbal_track_init_f32(&tr, &qo_gimbal_track_settings_default_f32), QO_OK);
+    for (i = 0; i < 50; i++) {
+        assert_int_equal(qo_gimbal_track_step_f32(&tr, 0.01f * (float)i, e, &to), QO_OK);
+        assert_true(to.angles.a1 == e.a1 && to.angles.a2 == e.a2 && to.angles.a3 == e.a3 && to.settled == 1);
+    }
+    /* ramp at 0.3 rad/s on a1 from t = 0.5 s: after 3 s the error is small */
+    for (i = 50; i < 400; i++) {
+        qo_euler_f32 r = e;
+        double t = 0.01 * i;
+        r.a1 = (float)(0.5 + 0.3 * (t - 0.49));
+        assert_int_equal(qo_gimbal_track_step_f32(&tr, (float)t, r, &to), QO_OK);
+        assert_int_equal(to.settled, 0);
+    }
+    if (to.err > 1e-5f || fabsf(to.rate[0] - 0.3f) > 1e-4f) fail_msg("ramp: err %g rate %g", (double)to.err, (double)to.rate[0]);
+}
+
+static void test_track_errors(void **state)
+{
+    qo_gimbal_track_settings_f32 s = qo_gimbal_track_settings_default_f32;
+    qo_gimbal_track_f32 tr, before;
+    qo_gimbal_track_sample_f32 to;
+    qo_euler_f32 e = { 0.1f, 0.2f, 0.3f }, bad = e;
+    const float badv[] = { 0.0f, -1.0f, NAN, 1e-7f, 2e12f, (float)1e39 /* +Inf */ };
+    size_t i;
+    (void)state;
+    assert_int_equal(qo_gimbal_track_init_f32(NULL, &s), QO_E_NULL);
+    assert_int_equal(qo_gimbal_track_init_f32(&tr, NULL), QO_E_NULL);
+    for (i = 0; i < sizeof badv / sizeof badv[0]; i++) {
+        s = qo_gimbal_track_settings_default_f32; s.amax = badv[i];
+        assert_int_equal(qo_gimbal_track_init_f32(&tr, &s), QO_E_LIMIT);
+        assert_int_equal(qo_gimbal_track_step_f32(&tr, 0.0f, e, &to), QO_E_STATE);
+        assert_true(to.angles.a1 == 0.0f && to.err == 0.0f && to.settled == 0);
+        s = qo_gimbal_track_settings_default_f32; s.gain = badv[i];
+        assert_int_equal(qo_gimbal_track_init_f32(&tr, &s), QO_E_LIMIT);
+        if (!isinf(badv[i])) { /* jmax and vmax take +INFINITY for "none" */
+            s = qo_gimbal_track_settings_default_f32; s.jmax = badv[i];
+            assert_int_equal(qo_gimbal_track_init_f32(&tr, &s), QO_E_LIMIT);
+            s = qo_gimbal_track_settings_default_f32; s.vmax = badv[i];
+            assert_int_equal(qo_gimbal_track_init_f32(&tr, &s), QO_E_LIMIT);
+        }
+    }
+    s = qo_gimbal_track_settings_default_f32; s.vmax = -INFINITY;
+    assert_int_equal(qo_gimbal_track_init_f32(&tr, &s), QO_E_LIMIT);
+    s = qo_gimbal_track_settings_default_f32; s.jmax = 100.0f;
+    assert_int_equal(qo_gimbal_track_init_f32(&tr, &s), QO_OK);
+    /* before the first step: errors give zeros and do not start the filter */
+    bad.a2 = NAN;
+    assert_int_equal(qo_gimbal_track_step_f32(&tr, 0.0f, bad, &to), QO_E_NONFINITE);
+    bad.a2 = 1e19f;
+    assert_int_equal(qo_gimbal_track_step_f32(&tr, 0.0f, bad, &to), QO_E_RANGE);
+    assert_int_equal(tr.started, 0);
+    assert_int_equal(qo_gimbal_track_step_f32(&tr, 0.0f, e, NULL), QO_E_NULL);
+    assert_int_equal(qo_gimbal_track_step_f32(&tr, 0.0f, e, &to), QO_OK);
+    e.a1 = 1.0f;
+    assert_int_equal(qo_gimbal_track_step_f32(&tr, 0.1f, e, &to), QO_OK);
+    /* errors after start: the state at the last step, state unchanged */
+    {
+        qo_gimbal_track_sample_f32 last = to;
+        const float ts[] = { NAN, 0.1f, 0.05f, 0.2f, 0.2f, (float)1e39 };
+        for (i = 0; i < sizeof ts / sizeof ts[0]; i++) {
+            qo_euler_f32 x = e;
+            qo_status want = i == 0 || i == 5 ? QO_E_NONFINITE : i < 3 ? QO_E_ORDER : QO_E_RANGE;
+            if (i == 3) x.a3 = 1e19f;
+            if (i == 4) x.a3 = -INFINITY, want = QO_E_NONFINITE;
+            before = tr;
+            assert_int_equal(qo_gimbal_track_step_f32(&tr, ts[i], x, &to), want);
+            assert_memory_equal(&tr, &before, sizeof tr);
+            assert_true(to.angles.a1 == last.angles.a1 && to.angles.a2 == last.angles.a2
+                        && to.rate[0] == last.rate[0] && to.acc[0] == last.acc[0] && to.err == 0.0f && to.settled == 0);
+        }
+    }
+    /* a step of a huge length (float difference overflows) is refused */
+    tr.t_prev = -3e38f;
+    assert_int_equal(qo_gimbal_track_step_f32(&tr, 3e38f, e, &to), QO_E_RANGE);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -269,6 +496,9 @@ int main(void)
         cmocka_unit_test(test_gimbal_through_singularity),
         cmocka_unit_test(test_gimbal_rate_and_position_limits),
         cmocka_unit_test(test_gimbal_errors_hold),
+        cmocka_unit_test(test_track_random_paths),
+        cmocka_unit_test(test_track_steady),
+        cmocka_unit_test(test_track_errors),
     };
     return cmocka_run_group_tests_name("gimbal", tests, NULL, NULL);
 }

@@ -1,6 +1,7 @@
 #!/bin/sh
-# `qorient plan --profile trapezoid|scurve`: text contract, limits,
-# sync, clamp, wrap, fixed point, streaming and every input error. Prints "N passed, M failed".
+# `qorient plan --profile trapezoid|scurve`: text contract, limits (also asymmetric),
+# sync (also per joint), target states, clamp, wrap, fixed point, streaming and every input
+# error. Prints "N passed, M failed".
 Q=${QORIENT:-build/qorient}
 pass=0; fail=0
 tmp=${TMPDIR:-/tmp}/qo-plan.$$
@@ -171,6 +172,142 @@ for args in "--discrete" "--min-duration 1" "--profile linear --discrete"; do
 done
 printf '0,0\n0.5,1\n' | P --profile trapezoid --vmax 1 --amax 1 --discrete=1 >"$tmp.o" 2>"$tmp.e"; rc=$?
 check "--discrete takes no value" [ $rc -eq 2 ]
+
+# ---- the planner's new limits and target states ----
+# --vmin/--amin (asymmetric limits), --target-velocities (target lines t,p1..pN,v1..vN),
+# per-joint --sync lists and --sync if-necessary. Judged by awk from the printed samples only
+# (never from the planner's coefficients): every velocity within [vmin, vmax], every
+# acceleration and every finite difference of the velocities within [amin, amax], jerk by
+# differences of the accelerations within jmax, each target state reached, refusals named.
+P --profile scurve --help >"$tmp.h" 2>&1
+for o in --vmin --amin --target-velocities if-necessary; do
+    check "help mentions $o" grep -q -- "$o" "$tmp.h"
+done
+
+# limits FILE N VMAX VMIN AMAX AMIN JMAX RATE: prints the number of violations of the limits
+# in the printed samples (t, p1..pN, v1..vN, a1..aN), each list one value per joint. The
+# difference checks are means of the next derivative, so within its bounds (float32 values of
+# v and a, ~2e-6 of their range, and the float32 rounding of the plan's time since its
+# re-plan, ulp(t) times the next derivative, enter divided by dt: the tolerance is 1e-5 of
+# the limit plus those; t since the first sample bounds the time since the re-plan).
+limits() {
+    awk -F, -v n="$2" -v VX="$3" -v VN="$4" -v AX="$5" -v AN="$6" -v JX="$7" -v rate="$8" '
+        BEGIN { split(VX, vx, " "); split(VN, vn, " "); split(AX, ax, " "); split(AN, an, " "); split(JX, jx, " ") }
+        NR == 1 { tf = $1 }
+        { for (j = 1; j <= n; j++) {
+              v = $(1 + n + j); a = $(1 + 2 * n + j)
+              if (v > vx[j] * (1 + 1e-5) || v < vn[j] * (1 + 1e-5)) { bad++; if (bad < 4) print "v", NR, j, v > "/dev/stderr" }
+              if (a > ax[j] * (1 + 1e-5) || a < an[j] * (1 + 1e-5)) { bad++; if (bad < 4) print "a", NR, j, a > "/dev/stderr" }
+              if (NR > 1) {
+                  h = $1 - t0; ut = 1.2e-7 * ($1 - tf); tol = (2e-6 * (vx[j] - vn[j]) + 2 * ax[j] * ut) / h
+                  fa = (v - pv[j]) / h
+                  if (fa > ax[j] * (1 + 1e-5) + tol || fa < an[j] * (1 + 1e-5) - tol) { bad++; if (bad < 4) print "fd a", NR, j, fa > "/dev/stderr" }
+                  fj = (a - pa[j]) / h; tol = (2e-6 * (ax[j] - an[j]) + 2 * jx[j] * ut) / h
+                  if (fj > jx[j] * (1 + 1e-5) + tol || fj < -jx[j] * (1 + 1e-5) - tol) { bad++; if (bad < 4) print "fd j", NR, j, fj > "/dev/stderr" }
+              }
+              pv[j] = v; pa[j] = a }
+          t0 = $1 }
+        END { print bad + 0 }' "$1"
+}
+
+# A stream of target states (fixed seed): 3 joints, asymmetric limits, targets every 12 s
+# with velocities in [vmin, vmax]/2, passing through without stopping. Checked: the limits in
+# every sample, and each target state reached (position, velocity, acceleration 0 on one row
+# between its issue and the next: --discrete makes each move end on a sample).
+awk 'BEGIN { srand(20261201); printf "0,0,0,0,0,0,0\n";
+    for (k = 1; k <= 6; k++) {
+        printf "%g", (k - 1) * 12
+        for (j = 1; j <= 3; j++) printf ",%.4f", -2 + 4 * rand()
+        printf ",%.4f,%.4f,%.4f\n", 0.9 * rand(), -0.2 * rand(), 0.6 * rand() - 0.3 } }' > "$tmp.in"
+P --profile scurve --vmax 1,1.5,2 --vmin -0.5,-1.5,-0.8 --amax 3,4,2 --amin -2,-4,-1.5 --jmax 20,30,15 \
+    --target-velocities --discrete --rate 100 "$tmp.in" > "$tmp.o" 2> "$tmp.e"; rc=$?
+check "states: exit 0 ($(cat "$tmp.e"))" [ $rc -eq 0 ]
+check "states: 10 columns" awk -F, 'NF != 10 { exit 1 }' "$tmp.o"
+v=$(limits "$tmp.o" 3 "1 1.5 2" "-0.5 -1.5 -0.8" "3 4 2" "-2 -4 -1.5" "20 30 15" 100)
+check "states: $v samples outside [vmin,vmax] / [amin,amax] / jmax" [ "$v" = 0 ]
+# the asymmetric limits are in force, not just respected by luck: joint 1 brakes with -2 at
+# most (symmetric would allow -3), and the velocity floor of joint 2 is used
+check "states: amin reached" awk -F, '{ if ($8 < m) m = $8 } END { exit !(m < -1.9) }' "$tmp.o"
+r=$(awk -F, 'NR == FNR { if (FNR > 1) { tt[FNR - 1] = $1; for (j = 1; j <= 6; j++) w[FNR - 1, j] = $(j + 1); nk = FNR - 1 } next }
+    { for (k = 1; k <= nk; k++) {
+          if ($1 < tt[k] || (k < nk && $1 >= tt[k + 1]) || hit[k]) continue
+          m = 0
+          for (j = 1; j <= 3; j++) {
+              d = $(j + 1) - w[k, j]; if (d < 0) d = -d; if (d > m) m = d
+              d = $(j + 4) - w[k, j + 3]; if (d < 0) d = -d; if (d > m) m = d
+              d = $(j + 7); if (d < 0) d = -d; if (d * 0.01 > m) m = d * 0.01 }
+          if (m < 1e-4) hit[k] = 1 } }
+    END { for (k = 1; k <= nk; k++) if (!hit[k]) miss = miss " " k; print miss "" }' "$tmp.in" "$tmp.o")
+check "states: target state(s)$r not reached on a sample" [ -z "$r" ]
+
+# trapezoid takes target velocities too (zero target acceleration)
+P --profile trapezoid --vmax 2 --amax 4 --target-velocities --discrete --rate 50 "$tmp.in" > "$tmp.o" 2> "$tmp.e"; rc=$?
+v=$(limits "$tmp.o" 3 "2 2 2" "-2 -2 -2" "4 4 4" "-4 -4 -4" "1e30 1e30 1e30" 50)
+check "trapezoid states: exit $rc, $v violations" [ $rc -eq 0 ] && [ "$v" = 0 ]
+
+# --vmin alone: a long move down cruises at vmin, not at -vmax
+printf '0,0\n0,-10\n' | P --profile scurve --vmax 2 --vmin -0.5 --amax 4 --jmax 20 --rate 50 > "$tmp.o"
+check "vmin cruise" awk -F, '{ if ($3 < m) m = $3 } END { exit !(m > -0.5 * 1.00001 && m < -0.4999) }' "$tmp.o"
+
+# refusals: named line, nothing printed, exit 1 (plan), and before anything is sent (stream)
+printf '0,0,0,0,0\n1,1,1,0.5,2.5\n' > "$tmp.bad"
+P --profile scurve --vmax 2 --amax 4 --jmax 20 --target-velocities "$tmp.bad" > "$tmp.o" 2> "$tmp.e"; rc=$?
+check "v > vmax refused: exit $rc" [ $rc -eq 1 ]
+check "v > vmax: nothing printed" [ ! -s "$tmp.o" ]
+check "v > vmax: names line 2 and joint 2" grep -q "line 2: joint 2: target velocity 2.5" "$tmp.e"
+printf '0,0,0\n1,1,-0.75\n' | P --profile scurve --vmax 2 --vmin -0.5 --amax 4 --jmax 20 --target-velocities > "$tmp.o" 2> "$tmp.e"; rc=$?
+check "v < vmin refused ($rc)" [ $rc -eq 1 ] && [ ! -s "$tmp.o" ] && grep -q "outside \[-0.5, 2\]" "$tmp.e"
+printf '0,0,0.5\n' | P --profile scurve --vmax 2 --amax 4 --jmax 20 --target-velocities > "$tmp.o" 2> "$tmp.e"; rc=$?
+check "moving start refused ($rc)" [ $rc -eq 1 ] && grep -q "line 1: the start line is at rest" "$tmp.e"
+printf '0,0,0\n1,1\n' | P --profile scurve --vmax 2 --amax 4 --jmax 20 --target-velocities > "$tmp.o" 2> "$tmp.e"; rc=$?
+check "column count with --target-velocities ($rc)" [ $rc -eq 1 ] && grep -q "line 2" "$tmp.e"
+MAP=examples/maps/six_int32.ini
+printf '0,0,0,0,0,0,0,0,0,0,0,0,0\n1,1,1,1,1,1,1,0,0,0,9,0,0\n' > "$tmp.bad6"
+"$Q" stream --map $MAP --modbus rtu:/dev/null,115200,8N1 --dry-run --profile scurve --vmax 2 --amax 4 --jmax 20 \
+    --target-velocities "$tmp.bad6" > "$tmp.o" 2> "$tmp.e"; rc=$?
+check "stream refuses v > vmax before sending ($rc: $(cat "$tmp.e"))" [ $rc -eq 1 ] && grep -q "line 2: joint 4" "$tmp.e"
+printf '0,0,0,0,0,0,0,0,0,0,0,0,0\n1,1,1,1,1,1,1,0,0,0,1,0,0\n' > "$tmp.ok6"
+printf '0,0,0,0,0,0,0\n1,1,1,1,1,1,1\n' > "$tmp.p6"
+"$Q" stream --map $MAP --modbus rtu:/dev/null,115200,8N1 --dry-run --profile scurve --vmax 2 --amax 4 --jmax 20 \
+    --vmin -1 --amin -3 --sync time,time,none,if-necessary,phase,time --target-velocities "$tmp.ok6" > "$tmp.o" 2> "$tmp.e"; rc=$?
+check "stream dry-run with the new options ($rc: $(cat "$tmp.e"))" [ $rc -eq 0 ] && grep -q "dry-run: plan over" "$tmp.o"
+"$Q" stream --map $MAP --modbus rtu:/dev/null,115200,8N1 --dry-run --profile scurve --vmax 2 --amax 4 --jmax 20 \
+    --sync time,none "$tmp.p6" > "$tmp.o" 2> "$tmp.e"; rc=$?
+check "stream: --sync list of the wrong length is a usage error ($rc)" [ $rc -eq 2 ]
+
+# per-joint sync: joint 1 (short move) with none arrives before joint 2 (long move);
+# with time they arrive on the same row. if-necessary: joint 1's target is at rest (own
+# time), joint 2's moves (synchronised): joint 1 arrives first as with none.
+arrive() { # file joint target: row index where the joint is on its target at rest for good
+    awk -F, -v j="$2" -v p="$3" '{ n = NR; d = $(1 + j) - p; if (d < 0) d = -d
+        if (d < 1e-6 && $(3 + j) == 0) { if (!at) at = NR } else at = 0 } END { print at }' "$1"
+}
+printf '0,0,0\n0,0.2,3\n' > "$tmp.s"
+P --profile scurve --vmax 2 --amax 4 --jmax 20 --sync time "$tmp.s" > "$tmp.o"
+a1=$(arrive "$tmp.o" 1 0.2); a2=$(arrive "$tmp.o" 2 3)
+check "sync time: together ($a1, $a2)" [ -n "$a1" ] && [ "$a1" = "$a2" ]
+P --profile scurve --vmax 2 --amax 4 --jmax 20 --sync none,time "$tmp.s" > "$tmp.o"
+a1=$(arrive "$tmp.o" 1 0.2); a2=$(arrive "$tmp.o" 2 3)
+check "sync none,time: joint 1 first ($a1 < $a2)" [ "$a1" -gt 0 ] && [ "$a1" -lt "$a2" ]
+printf '0,0,0,0,0\n0,0.2,3,0,0.5\n' > "$tmp.s"
+P --profile scurve --vmax 2 --amax 4 --jmax 20 --sync if-necessary --target-velocities "$tmp.s" > "$tmp.o"
+a1=$(arrive "$tmp.o" 1 0.2); last=$(wc -l < "$tmp.o")
+check "sync if-necessary: the joint at rest arrives before the moving one ends ($a1 < $last)" [ "$a1" -gt 0 ] && [ "$a1" -lt "$last" ]
+P --profile scurve --vmax 2 --amax 4 --jmax 20 --sync time --target-velocities "$tmp.s" > "$tmp.o"
+a1=$(arrive "$tmp.o" 1 0.2); last=$(wc -l < "$tmp.o")
+check "sync time with a moving target: together ($a1 = $last)" [ "$a1" = "$last" ]
+
+# option errors: usage (2)
+for args in "--vmin 1" "--vmin 0" "--amin x" "--sync time,bogus" "--sync time,none,phase" "--vmin -1,-1,-1"; do
+    # shellcheck disable=SC2086  # $args is a list of options
+    printf '0,0,0\n0,1,1\n' | P --profile scurve --vmax 2 --amax 4 --jmax 20 $args > "$tmp.o" 2> "$tmp.e"; rc=$?
+    check "'$args' is a usage error ($rc: $(cat "$tmp.e"))" [ $rc -eq 2 ] && [ ! -s "$tmp.o" ]
+done
+for args in "--vmin -1" "--target-velocities" "--sync if-necessary"; do
+    # shellcheck disable=SC2086
+    printf '0,0\n1,1\n' | P --profile spline $args > "$tmp.o" 2> "$tmp.e"; rc=$?
+    check "'$args' refused for keyframes ($rc)" [ $rc -eq 2 ]
+done
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

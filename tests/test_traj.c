@@ -640,6 +640,140 @@ static void test_targets_timing_min_and_edges(void **state)
     assert_int_equal(qo_traj_set_timing(NULL, 1.0f, 0.01f), QO_E_NULL);
 }
 
+/* Found by fuzz/fuzz_traj.c (each input is also in fuzz/regress/traj/): times at both ends of
+ * the range (their difference, 2^63 ns, overflowed int64), a single key with a wrap period
+ * far below its ulp (the wrap loop never ended) and a single key with a position limit of
+ * -Inf above it (held at -Inf with QO_OK). */
+static void test_fuzz_findings(void **state)
+{
+    static struct keys_fix f;
+    static struct tgt_fix g;
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    float p0[NJ] = { 0, 1, 2 }, p1[NJ] = { 2, 3, 4 }, pos[NJ], vel[NJ], acc[NJ];
+    float lo[NJ] = { -INFINITY, -INFINITY, -INFINITY }, hi[NJ] = { INFINITY, -INFINITY, INFINITY };
+    unsigned char wrap[NJ] = { 1, 0, 0 };
+    qo_traj_ns end;
+    size_t j;
+    (void)state;
+    set.profile = QO_SPLINE_LINEAR;
+    assert_int_equal(qo_traj_init_keys(&f.tr, NJ, &set, 1, f.t, CAP, f.store, 4096), QO_OK);
+    assert_int_equal(qo_traj_push(&f.tr, -QO_TRAJ_TIME_MAX, p0, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_push(&f.tr, QO_TRAJ_TIME_MAX, p1, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_sample(&f.tr, QO_TRAJ_TIME_MAX, pos, vel, acc, NULL), QO_OK);
+    for (j = 0; j < NJ; j++) assert_true(pos[j] == p1[j]);
+    /* halfway (t = 0): the mean, to the float32 rounding of 9.2e9 s offsets */
+    assert_int_equal(qo_traj_sample(&f.tr, 0, pos, vel, acc, NULL), QO_OK);
+    for (j = 0; j < NJ; j++) assert_true(fabs(pos[j] - 0.5 * (p0[j] + p1[j])) < 1e-5);
+
+    init_targets(&g, QO_MOTION_SCURVE);
+    assert_int_equal(qo_traj_push(&g.tr, QO_TRAJ_TIME_MAX - S, p0, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_push(&g.tr, QO_TRAJ_TIME_MAX - S, p1, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_sample(&g.tr, QO_TRAJ_TIME_MAX - S, pos, vel, acc, NULL), QO_OK);
+    assert_int_equal(qo_traj_end_time(&g.tr, &end), QO_OK);
+    assert_true(end == QO_TRAJ_TIME_MAX); /* the move's end is beyond the range: saturated */
+    init_targets(&g, QO_MOTION_SCURVE);
+    assert_int_equal(qo_traj_push(&g.tr, -QO_TRAJ_TIME_MAX, p0, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_push(&g.tr, -QO_TRAJ_TIME_MAX, p1, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_sample(&g.tr, QO_TRAJ_TIME_MAX, pos, vel, acc, NULL), QO_OK);
+    for (j = 0; j < NJ; j++) assert_true(pos[j] == p1[j]);
+    assert_int_equal(qo_traj_end_time(&g.tr, &end), QO_OK);
+    assert_true(end > -QO_TRAJ_TIME_MAX && end < -QO_TRAJ_TIME_MAX + 10 * S);
+
+    set.wrap = wrap;
+    set.wrap_period = 1e-30f;
+    p0[0] = 1e30f;
+    assert_int_equal(qo_traj_init_keys(&f.tr, NJ, &set, 1, f.t, CAP, f.store, 4096), QO_OK);
+    assert_int_equal(qo_traj_push(&f.tr, 0, p0, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_sample(&f.tr, S, pos, vel, acc, NULL), QO_OK);
+    assert_true(fabsf(pos[0]) <= 0.5e-30f); /* fmodf: wrapped in one step */
+    set.wrap = NULL;
+    set.pos_min = lo;
+    set.pos_max = hi;
+    assert_int_equal(qo_traj_init_keys(&f.tr, NJ, &set, 1, f.t, CAP, f.store, 4096), QO_OK);
+    assert_int_equal(qo_traj_push(&f.tr, 0, p0, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_prepare(&f.tr), QO_E_LIMIT); /* as the plan of two keys says */
+    assert_int_equal(qo_traj_sample(&f.tr, S, pos, vel, acc, NULL), QO_E_LIMIT);
+    for (j = 0; j < NJ; j++) assert_true(pos[j] == p0[j] && vel[j] == 0.0f && acc[j] == 0.0f);
+}
+
+/* Target states through the queue: storage decides whether targets carry velocities; each is
+ * reached at the end of its move (position and velocity, the acceleration 0), checked on the
+ * samples against the target, not the planner's coefficients; a refused state leaves the
+ * motion planned before going on, bit for bit; per-joint sync survives the start. */
+static void test_targets_states(void **state)
+{
+    enum { C = 4 };
+    static float store3[C * NJ * 3];
+    qo_traj tr, ref;
+    qo_traj_ns t_ns[C], t_ref[C];
+    float store_ref[C * NJ];
+    qo_motion_joint_f32 joints[NJ], jref[NJ];
+    qo_motion_limits_f32 lim[NJ];
+    float p0[NJ] = { 0, 0, 0 }, p1[NJ] = { 1.0f, -0.5f, 0.25f }, v1[NJ] = { 0.5f, -0.25f, 0.0f };
+    float vbad[NJ] = { 0.5f, 9.0f, 0.0f }, pos[NJ], vel[NJ], acc[NJ], pr[NJ], vr[NJ], ar[NJ];
+    qo_traj_ns end, t;
+    size_t j;
+    (void)state;
+    for (j = 0; j < NJ; j++) {
+        lim[j] = qo_motion_limits_default;
+        lim[j].vmax = 2.0f; lim[j].amax = 4.0f; lim[j].jmax = 20.0f;
+        lim[j].vmin = -1.0f; /* asymmetric: the motion's velocities stay in [-1, 2] */
+    }
+    assert_int_equal(qo_traj_store_len(QO_TRAJ_TARGETS, NJ, C, 2), 2 * C * NJ);
+    assert_int_equal(qo_traj_store_len(QO_TRAJ_TARGETS, NJ, C, 3), 3 * C * NJ);
+    assert_int_equal(qo_traj_store_len(QO_TRAJ_TARGETS, NJ, C, 4), 0);
+    /* positions-only storage: a velocity is refused, nothing stored */
+    assert_int_equal(qo_traj_init_targets(&ref, NJ, lim, NULL, jref, t_ref, C, store_ref, C * NJ), QO_OK);
+    assert_int_equal(ref.target_cols, 1);
+    assert_int_equal(qo_traj_push(&ref, 0, p0, v1, NULL), QO_E_CAPACITY);
+    assert_int_equal(qo_traj_init_targets(&tr, NJ, lim, NULL, joints, t_ns, C, store3, C * NJ * 2), QO_OK);
+    assert_int_equal(tr.target_cols, 2);
+    assert_int_equal(qo_traj_push(&tr, 0, p0, v1, v1), QO_E_CAPACITY); /* no room for accelerations */
+    assert_int_equal(qo_traj_push(&tr, 0, p0, v1, NULL), QO_E_ARG);    /* the start is at rest */
+    assert_int_equal(qo_traj_set_joint_sync(&tr, NJ, QO_MOTION_SYNC_NONE), QO_E_RANGE);
+    assert_int_equal(qo_traj_set_joint_sync(&tr, 0, (qo_motion_sync)9), QO_E_ARG);
+    assert_int_equal(qo_traj_set_joint_sync(&tr, 2, QO_MOTION_SYNC_NONE), QO_OK);
+    assert_int_equal(qo_traj_push(&tr, 0, p0, NULL, NULL), QO_OK);
+    assert_int_equal(joints[2].sync, (int)QO_MOTION_SYNC_NONE); /* kept across the start */
+    assert_int_equal(joints[0].sync, -1);
+    assert_int_equal(qo_traj_push(&tr, 0, p1, v1, NULL), QO_OK);
+    assert_int_equal(qo_traj_sample(&tr, 0, pos, vel, acc, NULL), QO_OK);
+    assert_int_equal(qo_traj_end_time(&tr, &end), QO_OK);
+    assert_true(end > 0 && end < 10 * S);
+    /* at the end: on the target state; just after: moving on at the target velocity */
+    assert_int_equal(qo_traj_sample(&tr, end, pos, vel, acc, NULL), QO_OK);
+    for (j = 0; j < NJ; j++) {
+        if (fabsf(pos[j] - p1[j]) > 1e-4f || fabsf(vel[j] - v1[j]) > 1e-4f || fabsf(acc[j]) > 1e-3f)
+            fail_msg("joint %zu at the end: %g %g %g, want %g %g 0", j, (double)pos[j], (double)vel[j], (double)acc[j],
+                     (double)p1[j], (double)v1[j]);
+    }
+    assert_int_equal(qo_traj_sample(&tr, end + S, pos, vel, acc, NULL), QO_OK);
+    for (j = 0; j < NJ; j++) assert_true(fabsf(pos[j] - (p1[j] + v1[j])) < 1e-3f && fabsf(vel[j] - v1[j]) < 1e-4f);
+    /* every sample on the way within [vmin, vmax] */
+    for (t = 0; t <= end; t += S / 100) {
+        assert_int_equal(qo_traj_sample(&tr, t, pos, vel, acc, NULL), QO_OK);
+        for (j = 0; j < NJ; j++) assert_true(vel[j] <= 2.0f * (1 + 1e-5f) && vel[j] >= -1.0f * (1 + 1e-5f));
+    }
+
+    /* a refused state (9 > vmax): QO_E_LIMIT, the motion before goes on as if never pushed */
+    assert_int_equal(qo_traj_init_targets(&tr, NJ, lim, NULL, joints, t_ns, C, store3, C * NJ * 2), QO_OK);
+    assert_int_equal(qo_traj_init_targets(&ref, NJ, lim, NULL, jref, t_ref, C, store_ref, C * NJ), QO_OK);
+    assert_int_equal(qo_traj_push(&tr, 0, p0, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_push(&ref, 0, p0, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_push(&tr, 0, p1, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_push(&ref, 0, p1, NULL, NULL), QO_OK);
+    assert_int_equal(qo_traj_push(&tr, S / 2, p0, vbad, NULL), QO_OK);
+    assert_int_equal(qo_traj_sample(&tr, S / 4, pos, vel, acc, NULL), QO_OK);
+    assert_int_equal(qo_traj_sample(&ref, S / 4, pr, vr, ar, NULL), QO_OK);
+    assert_int_equal(qo_traj_sample(&tr, S / 2, pos, vel, acc, NULL), QO_E_LIMIT);
+    assert_int_equal(tr.replan_status, QO_E_LIMIT);
+    for (t = S / 2; t < 5 * S; t += S / 10) {
+        (void)qo_traj_sample(&tr, t, pos, vel, acc, NULL);
+        assert_int_equal(qo_traj_sample(&ref, t, pr, vr, ar, NULL), QO_OK);
+        for (j = 0; j < NJ; j++) assert_true(fabsf(pos[j] - pr[j]) <= 1e-6f * (1 + fabsf(pr[j])) && fabsf(vel[j] - vr[j]) <= 1e-5f);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -656,6 +790,8 @@ int main(void)
         cmocka_unit_test(test_targets_edges),
         cmocka_unit_test(test_targets_timing_period),
         cmocka_unit_test(test_targets_timing_min_and_edges),
+        cmocka_unit_test(test_fuzz_findings),
+        cmocka_unit_test(test_targets_states),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

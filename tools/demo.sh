@@ -5,7 +5,8 @@
 #  2. plans a jerk-limited, time-synchronised move of the arm with a new target issued in the
 #     middle of the motion (re-planned without a jump) and streams it at 200 Hz;
 #  3. plans a gimbal path through the yaw-pitch-roll singular configuration (pitch 90 deg),
-#     turns it into joint angles (nearest solution, hold band, rate limit) and streams those;
+#     turns it into joint angles (nearest solution, hold band, rate limit, then the tracking
+#     filter: acceleration- and jerk-limited, so the rates are continuous) and streams those;
 #  4. stops the simulators and draws what the drives received - positions and velocities per
 #     joint over time, and the lock margin of the gimbal path - into build/demo/demo.png.
 set -eu
@@ -56,7 +57,7 @@ awk 'BEGIN { pi = atan2(0, -1); d = pi / 180;
         cy = cos(yaw / 2); sy = sin(yaw / 2); cp = cos(pitch / 2); sp = sin(pitch / 2); cr = cos(roll / 2); sr = sin(roll / 2);
         printf "%g,%.9f,%.9f,%.9f,%.9f\n", t, cy*cp*cr + sy*sp*sr, cy*cp*sr - sy*sp*cr, cy*sp*cr + sy*cp*sr, sy*cp*cr - cy*sp*sr } }' \
     > "$D/gimbal-keys.csv"
-$Q gimbal --seq ZYX --interp spline --rate 200 --band 2 --vmax 3 "$D/gimbal-keys.csv" > "$D/gimbal-angles.csv"
+$Q gimbal --seq ZYX --interp spline --rate 200 --band 2 --vmax 3 --amax 20 --jmax 400 "$D/gimbal-keys.csv" > "$D/gimbal-angles.csv"
 cut -d, -f1-4 "$D/gimbal-angles.csv" > "$D/gimbal-joint-keys.csv"
 echo "demo: streaming the gimbal path through the singular configuration"
 $Q stream --map examples/maps/gimbal3.ini --modbus "tcp://127.0.0.1:$GIM_PORT" --rate 200 \
@@ -97,7 +98,7 @@ set title "gimbal ZYX joints: pitch carries on through 90 deg to 150, no flip"
 plot for [j=0:2] "$D/gimbal-plan.dat" using 1:(column(j+2)*r2d) with lines lw 2 lc j+1 title word("yaw pitch roll", j+1), \
      for [j=0:2] "$D/gimbal-rx-".j.".dat" using 1:(\$2*r2d) every 4 with points pt 7 ps 0.3 lc j+1 notitle
 set ylabel "rate (deg/s)"
-set title "gimbal joint rates (limit 3 rad/s = 172 deg/s)"
+set title "gimbal joint rates: continuous through the hold band (limits 3 rad/s = 172 deg/s, 20 rad/s^2, 400 rad/s^3)"
 plot for [j=0:2] "$D/gimbal-plan.dat" using 1:(column(j+5)*r2d) with lines lw 1.5 lc j+1 title word("yaw pitch roll", j+1)
 set ylabel "margin (deg)"
 set title "gimbal: lock margin (distance from the singular configuration); band 2 deg"

@@ -33,15 +33,17 @@ static const char stream_usage[] =
     "       qorient stream ... --profile trapezoid|scurve --vmax V --amax A [--jmax J] --live\n"
     "\n"
     "Reads keyframes or targets exactly as 'qorient plan' does (same input, same options:\n"
-    "--profile, --vmax, --amax, --jmax, --sync, --min-duration, --discrete, --min, --max,\n"
-    "--wrap, --degrees, ...; with --discrete a move ends on a tick of --rate),\n"
+    "--profile, --vmax, --amax, --jmax, --vmin, --amin, --sync, --target-velocities,\n"
+    "--min-duration, --discrete, --min, --max, --wrap, --degrees, ...; with --discrete a move\n"
+    "ends on a tick of --rate),\n"
     "plans the motion and streams it to servo drives at --rate HZ (default 100): each tick\n"
     "samples the trajectory at the actual wake time and sends every joint's target. A plan\n"
     "whose joint count differs from the map's (or the --lines list's) is refused, naming both,\n"
     "before anything is sent.\n"
     "\n"
     "Live targets (--live, with --profile trapezoid|scurve): standard input gives lines\n"
-    "'p1,...,pN' (no time column; at most 65535 characters). The first line is the start (the\n"
+    "'p1,...,pN' (no time column; at most 65535 characters; with --target-velocities\n"
+    "'p1,...,pN,v1,...,vN'). The first line is the start (the\n"
     "joints at rest there; read before streaming begins); every later line is a new target,\n"
     "applied when it arrives and re-planned from the current position, velocity and\n"
     "acceleration. A bad line is reported (naming it) and skipped; the exit status is then 1.\n"
@@ -462,7 +464,7 @@ int qo_cli_stream(int argc, char **argv)
     sc.opts = &po;
     if (live) {
         if (live_start(&sc) != 0) goto out;
-        plan_joints = sc.rows.width;
+        plan_joints = sc.rows.width / (size_t)po.columns;
     } else {
         if (qo_cli_rows_read("stream", &po, in_path, &rows) != 0) goto out;
         plan_joints = rows.width / (size_t)po.columns;
@@ -477,7 +479,11 @@ int qo_cli_stream(int argc, char **argv)
         if (rc == 0) rc = qo_cli_plan_push("stream", "-", &plan, 0, sc.rows.v, sc.rows.line[0]);
         sc.t0 = 0;
     } else {
-        rc = qo_cli_plan_from_rows("stream", in_path, &po, &rows, &plan);
+        qo_traj_ns end;
+        /* targets: a trial run first, so a target state the limits refuse stops the command
+         * (naming its line) before anything is sent */
+        rc = po.motion ? qo_cli_plan_trial("stream", in_path, &po, &rows, &end) : 0;
+        if (rc == 0) rc = qo_cli_plan_from_rows("stream", in_path, &po, &rows, &plan);
         sc.t0 = rows.t[0];
     }
     if (rc != 0) {

@@ -193,9 +193,9 @@ void SysTick_Handler(void)
 
 /* Joint limits (rad, rad/s, rad/s^2, rad/s^3): yaw +-172 deg, pitch +-95 deg, roll +-46 deg. */
 static const qo_motion_limits_f32 g_limits[QO_EX_AXES] = {
-    { 3.0f, 20.0f, 200.0f, -3.0f, 3.0f, 0.0f },
-    { 3.0f, 20.0f, 200.0f, -1.66f, 1.66f, 0.0f },
-    { 4.0f, 30.0f, 300.0f, -0.8f, 0.8f, 0.0f },
+    { 3.0f, 20.0f, 200.0f, -3.0f, 3.0f, 0.0f, 0.0f, 0.0f },
+    { 3.0f, 20.0f, 200.0f, -1.66f, 1.66f, 0.0f, 0.0f, 0.0f },
+    { 4.0f, 30.0f, 300.0f, -0.8f, 0.8f, 0.0f, 0.0f, 0.0f },
 };
 
 /* An angle and the same angle +-2 pi give the same pose. When the solution nearest the previous

@@ -197,3 +197,177 @@ qo_status qo_gimbal_step_f32(qo_gimbal_f32 *g, float t, qo_quat_f32 q, qo_gimbal
     out->clipped = clipped;
     return QO_OK;
 }
+
+const qo_gimbal_track_settings_f32 qo_gimbal_track_settings_default_f32 = {
+    10.0f,    /* rad/s^2: a small camera head; the caller sets its mechanism's figure */
+    INFINITY, /* acceleration-limited (TRAPEZOID) unless a jerk limit is asked for */
+    INFINITY,
+    10.0f,    /* 1/s: a 0.1 s time constant for small errors, well below amax/vmax scales */
+};
+
+static int track_limit_ok(float v, int inf_ok)
+{
+    if (inf_ok && v == INFINITY) return 1;
+    return v >= QO_MOTION_LIMIT_MIN && v <= QO_MOTION_LIMIT_MAX; /* false for NaN */
+}
+
+static qo_status track_check(const qo_gimbal_track_settings_f32 *s)
+{
+    if (!track_limit_ok(s->amax, 0) || !track_limit_ok(s->jmax, 1) || !track_limit_ok(s->vmax, 1)
+        || !track_limit_ok(s->gain, 0))
+        return QO_E_LIMIT;
+    return QO_OK;
+}
+
+qo_status qo_gimbal_track_init_f32(qo_gimbal_track_f32 *tr, const qo_gimbal_track_settings_f32 *s)
+{
+    int i;
+    if (tr == NULL) return QO_E_NULL;
+    tr->s = qo_gimbal_track_settings_default_f32;
+    tr->pl.joints = NULL;
+    tr->pl.n = 0; /* the planner is set up at the first step, at the path's angles */
+    for (i = 0; i < 3; i++) tr->path_prev[i] = 0.0f;
+    tr->t_prev = 0.0f;
+    tr->started = 0;
+    tr->last.angles.a1 = tr->last.angles.a2 = tr->last.angles.a3 = 0.0f;
+    for (i = 0; i < 3; i++) tr->last.rate[i] = tr->last.acc[i] = 0.0f;
+    tr->last.err = 0.0f;
+    tr->last.settled = 0;
+    if (s == NULL) return QO_E_NULL;
+    if (track_check(s) != QO_OK) {
+        tr->s.amax = 0.0f; /* marks the failed init: steps return QO_E_STATE */
+        return QO_E_LIMIT;
+    }
+    tr->s = *s;
+    return QO_OK;
+}
+
+/* Velocity that closes position error e: linear (gain) for small errors, and beyond
+ * amax/(2 gain^2) the speed from which amax/2 brakes to zero exactly at the path (the two
+ * pieces meet with equal value and slope); half of amax is left for following the path's own
+ * rate changes. Capped at |e|/(2 dt): a joint commanded at that speed for one step closes at
+ * most half the error, so a long step (a slow control loop) cannot overshoot and ring. */
+static float track_correction(float e, float amax, float gain, float dt)
+{
+    float ae = fabsf(e), lin = amax / (2.0f * gain * gain), c, cap;
+    c = ae <= lin ? gain * ae : sqrtf(amax * (ae - 0.5f * lin));
+    cap = ae / (2.0f * dt);
+    if (c > cap) c = cap;
+    return e < 0.0f ? -c : c;
+}
+
+static float clampf(float v, float lim)
+{
+    if (v > lim) return lim;
+    if (v < -lim) return -lim;
+    return v;
+}
+
+/* Output of a step that did not move the filter: the last step's joints, err 0, settled 0. */
+static void track_hold(const qo_gimbal_track_f32 *tr, qo_gimbal_track_sample_f32 *out)
+{
+    if (!tr->started) return;
+    *out = tr->last;
+    out->err = 0.0f;
+    out->settled = 0;
+}
+
+qo_status qo_gimbal_track_step_f32(qo_gimbal_track_f32 *tr, float t, qo_euler_f32 path,
+                                   qo_gimbal_track_sample_f32 *out)
+{
+    float in[3], p[3], v[3], a[3], cmd[3], dt = 0.0f, vm;
+    int i, still = 1, settled = 1;
+    qo_status st;
+    if (out == NULL) return QO_E_NULL;
+    out->angles.a1 = out->angles.a2 = out->angles.a3 = 0.0f;
+    for (i = 0; i < 3; i++) out->rate[i] = out->acc[i] = 0.0f;
+    out->err = 0.0f;
+    out->settled = 0;
+    if (tr == NULL) return QO_E_NULL;
+    if (track_check(&tr->s) != QO_OK) return QO_E_STATE;
+    track_hold(tr, out);
+    in[0] = path.a1; in[1] = path.a2; in[2] = path.a3;
+    if (!isfinite(t)) return QO_E_NONFINITE;
+    for (i = 0; i < 3; i++) {
+        if (!isfinite(in[i])) return QO_E_NONFINITE;
+        if (fabsf(in[i]) > QO_MOTION_POS_MAX) return QO_E_RANGE;
+    }
+    if (tr->started) {
+        if (!(t > tr->t_prev)) return QO_E_ORDER;
+        dt = t - tr->t_prev;
+        /* A step longer than any plan the planner makes (1e4 s) would extrapolate a moving
+         * joint beyond the planner's position range: refused like an overflowing one. */
+        if (!(dt <= QO_MOTION_DURATION_MAX)) return QO_E_RANGE;
+    }
+    /* The planner's rate limit: vmax, but at most the speed amax reaches in 1000 s (no real
+     * path asks for more). The float32 planner loses a re-planned target when vmax/amax is
+     * near 1e5 s or more (its plan then ends short and snaps: a jump), so "no limit" must
+     * not be handed to it as QO_MOTION_LIMIT_MAX. */
+    vm = tr->s.amax * 1000.0f;
+    if (tr->s.vmax < vm) vm = tr->s.vmax;
+    if (vm > QO_MOTION_LIMIT_MAX) vm = QO_MOTION_LIMIT_MAX;
+
+    if (!tr->started) {
+        /* The planner's time is kept relative to the last step (0 = now), so float32 times
+         * never grow with the run. */
+        qo_motion_limits_f32 lim[3];
+        qo_motion_settings_f32 ms;
+        ms.profile = isfinite(tr->s.jmax) ? QO_MOTION_SCURVE : QO_MOTION_TRAPEZOID;
+        ms.sync = QO_MOTION_SYNC_NONE;
+        for (i = 0; i < 3; i++) {
+            lim[i] = qo_motion_limits_default;
+            lim[i].vmax = vm;
+            lim[i].amax = tr->s.amax;
+            lim[i].jmax = isfinite(tr->s.jmax) ? tr->s.jmax : tr->s.amax; /* unused by TRAPEZOID */
+        }
+        st = qo_motion_init_f32(&tr->pl, tr->joints, 3, lim, in, 0.0f, &ms);
+        if (st != QO_OK) return st; /* not reachable for the inputs checked above */
+        for (i = 0; i < 3; i++) tr->path_prev[i] = in[i];
+        tr->t_prev = t;
+        tr->started = 1;
+        out->angles = path;
+        for (i = 0; i < 3; i++) out->rate[i] = out->acc[i] = 0.0f;
+        out->settled = 1;
+        tr->last = *out;
+        return QO_OK;
+    }
+
+    st = qo_motion_sample_f32(&tr->pl, dt, p, v, a);
+    if (st != QO_OK) return st; /* not reachable: dt > 0 is finite */
+    for (i = 0; i < 3; i++) {
+        float e = in[i] - p[i], rate;
+        if (fabsf(e) > out->err) out->err = fabsf(e);
+        if (in[i] != tr->path_prev[i]) still = 0;
+        if (e != 0.0f || v[i] != 0.0f || a[i] != 0.0f) settled = 0;
+        /* The path's rate over the last step, and the correction, each clamped first so that
+         * their sum is finite (a huge jump over a tiny step gives an infinite quotient). */
+        rate = clampf((in[i] - tr->path_prev[i]) / dt, vm);
+        cmd[i] = clampf(rate + clampf(track_correction(e, tr->s.amax, tr->s.gain, dt), vm), vm);
+    }
+    (void)qo_motion_shift_time_f32(&tr->pl, dt); /* finite dt, started planner: cannot fail */
+    /* A path holding still is a position target: the joints arrive on it exactly, at rest,
+     * instead of approaching it forever. A joint state beyond the planner's position range
+     * (a fast joint over a long step) cannot be planned from: stop. */
+    if (!(fabsf(p[0]) <= QO_MOTION_POS_MAX && fabsf(p[1]) <= QO_MOTION_POS_MAX && fabsf(p[2]) <= QO_MOTION_POS_MAX)) {
+        (void)qo_motion_brake_f32(&tr->pl, 0.0f);
+        st = QO_E_RANGE;
+    } else if (still)
+        st = qo_motion_set_target_f32(&tr->pl, 0.0f, in, NULL);
+    else
+        st = qo_motion_set_velocity_f32(&tr->pl, 0.0f, cmd);
+    for (i = 0; i < 3; i++) tr->path_prev[i] = in[i];
+    tr->t_prev = t;
+    out->angles.a1 = p[0]; out->angles.a2 = p[1]; out->angles.a3 = p[2];
+    for (i = 0; i < 3; i++) { out->rate[i] = v[i]; out->acc[i] = a[i]; }
+    out->settled = still && settled;
+    if (st != QO_OK) {
+        /* The safety stop starts where the planner could put it (a state beyond its range,
+         * after a huge step, is not one): report that, the state the next step starts from. */
+        (void)qo_motion_sample_f32(&tr->pl, 0.0f, p, v, a);
+        out->angles.a1 = p[0]; out->angles.a2 = p[1]; out->angles.a3 = p[2];
+        for (i = 0; i < 3; i++) { out->rate[i] = v[i]; out->acc[i] = a[i]; }
+        out->settled = 0;
+    }
+    tr->last = *out;
+    return st;
+}

@@ -1,13 +1,23 @@
 #include "qorient/traj.h"
 
+#include <float.h>
+#include <math.h>
 #include <string.h>
 
-/* Relative time in seconds as float32. Split into whole seconds and the ns remainder so the
- * only rounding is the final float32 one (converting the ns count alone to float would round
- * it first to 24 bits of ns). */
-static float rel_s(qo_traj_ns dt)
+/* Relative time a - b in seconds as float32. Split into whole seconds and the ns remainder so
+ * the only rounding is the final float32 one (converting the ns count alone to float would
+ * round it first to 24 bits of ns). Each time is split before subtracting: a - b itself
+ * overflows int64 when a = QO_TRAJ_TIME_MAX and b = -QO_TRAJ_TIME_MAX (2^63). The pair is
+ * then normalised to truncating division's (quotient, remainder of the sign of a - b), so the
+ * float32 result is bit for bit that of splitting a - b. */
+static float rel_s(qo_traj_ns a, qo_traj_ns b)
 {
-    qo_traj_ns s = dt / QO_TRAJ_NS_PER_S, r = dt % QO_TRAJ_NS_PER_S;
+    qo_traj_ns s = a / QO_TRAJ_NS_PER_S - b / QO_TRAJ_NS_PER_S;
+    qo_traj_ns r = a % QO_TRAJ_NS_PER_S - b % QO_TRAJ_NS_PER_S;
+    if (r >= QO_TRAJ_NS_PER_S) { s++; r -= QO_TRAJ_NS_PER_S; }
+    else if (r <= -QO_TRAJ_NS_PER_S) { s--; r += QO_TRAJ_NS_PER_S; }
+    if (s > 0 && r < 0) { s--; r += QO_TRAJ_NS_PER_S; }
+    else if (s < 0 && r > 0) { s++; r -= QO_TRAJ_NS_PER_S; }
     return (float)s + (float)r * 1e-9f;
 }
 
@@ -41,8 +51,9 @@ size_t qo_traj_store_len(qo_traj_kind kind, size_t n_joints, size_t cap, unsigne
     if (n_joints == 0 || cap == 0) return 0;
     if (n_joints > (size_t)-1 / cap) return 0;
     per = n_joints * cap;
-    if (kind == QO_TRAJ_TARGETS) return per;
-    if (kind != QO_TRAJ_KEYS || key_cols < 1 || key_cols > 3 || cap < 2) return 0;
+    if (key_cols < 1 || key_cols > 3) return 0;
+    if (kind == QO_TRAJ_TARGETS) return per > (size_t)-1 / key_cols ? 0 : per * key_cols;
+    if (kind != QO_TRAJ_KEYS || cap < 2) return 0;
     coef = qo_spline_coef_len(n_joints, cap);
     if (coef == 0 || per > ((size_t)-1 - cap) / key_cols) return 0;
     keys = cap + per * key_cols;
@@ -120,6 +131,15 @@ qo_status qo_traj_init_targets(qo_traj *tr, size_t n_joints, const qo_motion_lim
     }
     set_common(tr, n_joints, cap, t_ns, store);
     tr->queue_p = store;
+    /* Room for target velocities (and accelerations) when the storage has it. */
+    tr->target_cols = 1;
+    if (store_len >= qo_traj_store_len(QO_TRAJ_TARGETS, n_joints, cap, 2) && qo_traj_store_len(QO_TRAJ_TARGETS, n_joints, cap, 2))
+        tr->target_cols = 2;
+    if (store_len >= qo_traj_store_len(QO_TRAJ_TARGETS, n_joints, cap, 3) && qo_traj_store_len(QO_TRAJ_TARGETS, n_joints, cap, 3))
+        tr->target_cols = 3;
+    tr->queue_v = tr->target_cols >= 2 ? store + n_joints * cap : NULL;
+    tr->queue_a = tr->target_cols >= 3 ? store + 2 * n_joints * cap : NULL;
+    for (i = 0; i < n_joints; i++) tr->joint_sync[i] = -1;
     tr->joints = joints;
     tr->limits = limits;
     tr->motion_set = *set;
@@ -139,7 +159,7 @@ static qo_status push_key(qo_traj *tr, qo_traj_ns t, const float *pos, const flo
         return QO_E_NONFINITE;
     if (k > 0) {
         if (t <= tr->t_ns[k - 1]) return QO_E_ORDER;
-        rel = rel_s(t - tr->t_ns[0]);
+        rel = rel_s(t, tr->t_ns[0]);
         /* The spline sees float32 offsets: they too must increase strictly. */
         if (!(rel > tr->t_rel[k - 1])) return QO_E_ORDER;
     }
@@ -154,18 +174,34 @@ static qo_status push_key(qo_traj *tr, qo_traj_ns t, const float *pos, const flo
     return QO_OK;
 }
 
-static qo_status push_target(qo_traj *tr, qo_traj_ns t, const float *pos)
+static int any_nonzero(const float *v, size_t n)
+{
+    size_t i;
+    for (i = 0; v != NULL && i < n; i++)
+        if (v[i] != 0.0f) return 1;
+    return 0;
+}
+
+static qo_status push_target(qo_traj *tr, qo_traj_ns t, const float *pos, const float *vel,
+                             const float *acc)
 {
     size_t n = tr->n, i, slot;
-    if (!all_finite(pos, n)) return QO_E_NONFINITE;
+    if ((vel != NULL && tr->target_cols < 2) || (acc != NULL && tr->target_cols < 3)) return QO_E_CAPACITY;
+    if (!all_finite(pos, n) || (vel != NULL && !all_finite(vel, n)) || (acc != NULL && !all_finite(acc, n)))
+        return QO_E_NONFINITE;
     for (i = 0; i < n; i++)
         if (pos[i] > QO_MOTION_POS_MAX || pos[i] < -QO_MOTION_POS_MAX) return QO_E_RANGE;
     if (!tr->started) {
-        qo_status st = qo_motion_init_f32(&tr->planner, tr->joints, n, tr->limits, pos, 0.0f,
-                                          &tr->motion_set);
+        qo_status st;
+        if (any_nonzero(vel, n) || any_nonzero(acc, n)) return QO_E_ARG; /* the start is at rest */
+        st = qo_motion_init_f32(&tr->planner, tr->joints, n, tr->limits, pos, 0.0f, &tr->motion_set);
         if (st != QO_OK) return st;
-        /* The init reset the planner's duration rules: the caller's rules come back. */
+        /* The init reset the planner's duration rules and per-joint sync: the caller's come
+         * back. */
         (void)qo_motion_set_timing_f32(&tr->planner, tr->min_duration, tr->period);
+        for (i = 0; i < n; i++)
+            if (tr->joint_sync[i] >= 0)
+                (void)qo_motion_set_joint_sync_f32(&tr->planner, i, (qo_motion_sync)tr->joint_sync[i]);
         tr->started = 1;
         tr->start_ns = tr->origin = tr->last_push = tr->last_sample = t;
         return QO_OK;
@@ -175,6 +211,8 @@ static qo_status push_target(qo_traj *tr, qo_traj_ns t, const float *pos)
     slot = (tr->head + tr->count) % tr->cap;
     tr->t_ns[slot] = t;
     memcpy(tr->queue_p + slot * n, pos, n * sizeof *pos);
+    for (i = 0; tr->queue_v != NULL && i < n; i++) tr->queue_v[slot * n + i] = vel != NULL ? vel[i] : 0.0f;
+    for (i = 0; tr->queue_a != NULL && i < n; i++) tr->queue_a[slot * n + i] = acc != NULL ? acc[i] : 0.0f;
     tr->count++;
     tr->last_push = t;
     return QO_OK;
@@ -194,6 +232,19 @@ qo_status qo_traj_set_timing(qo_traj *tr, float min_duration, float period)
     return QO_OK;
 }
 
+qo_status qo_traj_set_joint_sync(qo_traj *tr, size_t i, qo_motion_sync sync)
+{
+    qo_status st;
+    if (tr == NULL) return QO_E_NULL;
+    if (tr->kind != QO_TRAJ_TARGETS || tr->n == 0) return QO_E_STATE;
+    /* As set_timing: the planner (a trial one before the first push) checks, the value is
+     * kept for the start's re-init. */
+    st = qo_motion_set_joint_sync_f32(&tr->planner, i, sync);
+    if (st != QO_OK) return st;
+    tr->joint_sync[i] = (signed char)sync;
+    return QO_OK;
+}
+
 qo_status qo_traj_push(qo_traj *tr, qo_traj_ns t, const float *pos, const float *vel,
                        const float *acc)
 {
@@ -201,8 +252,24 @@ qo_status qo_traj_push(qo_traj *tr, qo_traj_ns t, const float *pos, const float 
     if (tr->kind == QO_TRAJ_NONE || tr->n == 0) return QO_E_STATE;
     if (!time_ok(t)) return QO_E_RANGE;
     if (tr->kind == QO_TRAJ_KEYS) return push_key(tr, t, pos, vel, acc);
-    if (tr->kind == QO_TRAJ_TARGETS) return push_target(tr, t, pos);
+    if (tr->kind == QO_TRAJ_TARGETS) return push_target(tr, t, pos, vel, acc);
     return QO_E_STATE;
+}
+
+/* The settings checks qo_spline_init_f32 makes that also concern a single key held at rest
+ * (which plans nothing): a wrapped joint needs a finite period > 0 (QO_E_RANGE), position
+ * limits must not be NaN, min = +Inf, max = -Inf nor min > max (QO_E_LIMIT). */
+static qo_status one_key_settings(const qo_traj *tr)
+{
+    const qo_spline_settings_f32 *s = &tr->spline_set;
+    size_t j;
+    for (j = 0; j < tr->n; j++)
+        if (s->wrap && s->wrap[j] && !(s->wrap_period > 0.0f && s->wrap_period <= FLT_MAX)) return QO_E_RANGE;
+    for (j = 0; j < tr->n; j++) {
+        float lo = s->pos_min ? s->pos_min[j] : -INFINITY, hi = s->pos_max ? s->pos_max[j] : INFINITY;
+        if (isnan(lo) || isnan(hi) || lo == INFINITY || hi == -INFINITY || lo > hi) return QO_E_LIMIT;
+    }
+    return QO_OK;
 }
 
 static qo_status plan_keys(qo_traj *tr)
@@ -212,7 +279,7 @@ static qo_status plan_keys(qo_traj *tr)
     if (tr->n_keys < 2) {
         /* One key: held at rest, nothing to plan. */
         tr->spline.n_keys = 0;
-        tr->plan_status = tr->n_keys == 1 ? QO_OK : QO_E_TOO_FEW;
+        tr->plan_status = tr->n_keys == 1 ? one_key_settings(tr) : QO_E_TOO_FEW;
         return tr->plan_status;
     }
     tr->spline_set.key_vel = tr->key_v;
@@ -233,19 +300,28 @@ qo_status qo_traj_prepare(qo_traj *tr)
 }
 
 /* The first key held at rest, with the position limits and wrap of the settings applied as
- * the spline sampler would (so a failed plan still gives the documented safe output). */
+ * the spline sampler would (so a failed plan still gives the documented safe output), when
+ * the settings are valid: a limit of -Inf above the key (refused by the plan) would make the
+ * held position infinite. */
 static void hold_first_key(const qo_traj *tr, float *pos, float *vel, float *acc, int8_t *clamped)
 {
     size_t j, n = tr->n;
     const qo_spline_settings_f32 *s = &tr->spline_set;
     zero_out(n, pos, vel, acc, clamped);
+    if (one_key_settings(tr) != QO_OK) {
+        memcpy(pos, tr->key_p, n * sizeof *pos);
+        return;
+    }
     for (j = 0; j < n; j++) {
         float p = tr->key_p[j];
         int8_t c = 0;
-        if (s->wrap && s->wrap[j] && s->wrap_output && s->wrap_period > 0.0f) {
-            float P = s->wrap_period, h = 0.5f * P;
-            while (p > h) p -= P; /* keys are finite and checked by the caller's push */
-            while (p <= -h) p += P;
+        if (s->wrap && s->wrap[j] && s->wrap_output && s->wrap_period > 0.0f && s->wrap_period <= FLT_MAX) {
+            /* as the spline sampler wraps: fmodf is exact and takes one step whatever the
+             * ratio (a loop of p -= P never ends once P is below ulp(p)) */
+            float P = s->wrap_period;
+            p = fmodf(p, P);
+            if (p > 0.5f * P) p -= P;
+            else if (p <= -0.5f * P) p += P;
         }
         if (s->pos_min && p < s->pos_min[j]) { p = s->pos_min[j]; c = -1; }
         if (s->pos_max && p > s->pos_max[j]) { p = s->pos_max[j]; c = 1; }
@@ -266,7 +342,7 @@ static qo_status sample_keys(qo_traj *tr, qo_traj_ns t, float *pos, float *vel, 
         hold_first_key(tr, pos, vel, acc, clamped);
         return st != QO_OK ? st : time_ok(t) ? QO_OK : QO_E_RANGE;
     }
-    return qo_spline_sample_f32(&tr->spline, rel_s(t - tr->t_ns[0]), pos, vel, acc, clamped);
+    return qo_spline_sample_f32(&tr->spline, rel_s(t, tr->t_ns[0]), pos, vel, acc, clamped);
 }
 
 /* Applies every queued target due at t, each re-planned from the state at its time (or the
@@ -281,9 +357,14 @@ static qo_status apply_due(qo_traj *tr, qo_traj_ns t)
         if (at < tr->last_sample) at = tr->last_sample;
         if (at < tr->origin) at = tr->origin;
         /* Planner time 0 follows the last re-plan: the float32 times stay small. */
-        (void)qo_motion_shift_time_f32(&tr->planner, rel_s(at - tr->origin));
+        (void)qo_motion_shift_time_f32(&tr->planner, rel_s(at, tr->origin));
         tr->origin = at;
-        st = qo_motion_set_target_f32(&tr->planner, 0.0f, tr->queue_p + tr->head * tr->n, &mask);
+        if (tr->queue_v != NULL)
+            st = qo_motion_set_target_state_f32(&tr->planner, 0.0f, tr->queue_p + tr->head * tr->n,
+                                                tr->queue_v + tr->head * tr->n,
+                                                tr->queue_a != NULL ? tr->queue_a + tr->head * tr->n : NULL, &mask);
+        else
+            st = qo_motion_set_target_f32(&tr->planner, 0.0f, tr->queue_p + tr->head * tr->n, &mask);
         tr->clamped = mask;
         tr->replan_status = st;
         tr->replans++;
@@ -322,7 +403,7 @@ static qo_status sample_targets(qo_traj *tr, qo_traj_ns t, float *pos, float *ve
         return ap != QO_OK ? ap : QO_E_ORDER;
     }
     if (t > tr->last_sample) tr->last_sample = t;
-    st = qo_motion_sample_f32(&tr->planner, rel_s(t - tr->origin), pos, vel, acc);
+    st = qo_motion_sample_f32(&tr->planner, rel_s(t, tr->origin), pos, vel, acc);
     return ap != QO_OK ? ap : st;
 }
 
@@ -379,8 +460,9 @@ qo_status qo_traj_end_time(const qo_traj *tr, qo_traj_ns *end)
     }
     if (tr->kind != QO_TRAJ_TARGETS) return QO_E_STATE;
     if (!tr->started) return QO_E_TOO_FEW;
-    e = tr->origin + ns_up(qo_motion_end_time_f32(&tr->planner));
-    if (e > QO_TRAJ_TIME_MAX) e = QO_TRAJ_TIME_MAX;
+    e = ns_up(qo_motion_end_time_f32(&tr->planner));
+    /* compared before adding: origin + e can reach 2^63 (e is in [0, QO_TRAJ_TIME_MAX]) */
+    e = tr->origin > 0 && e > QO_TRAJ_TIME_MAX - tr->origin ? QO_TRAJ_TIME_MAX : tr->origin + e;
     if (tr->count > 0 && tr->last_push > e) e = tr->last_push;
     *end = e;
     return QO_OK;

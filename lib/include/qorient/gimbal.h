@@ -33,13 +33,19 @@
  *   qo_gimbal_init_f32                    validate settings, start without a previous sample
  *   qo_gimbal_reset_f32                   start from known joint angles (e.g. read from encoders)
  *   qo_gimbal_step_f32                    one sample: orientation -> joint angles + report
+ *   qo_gimbal_track_settings_f32 / _default_f32  opt-in tracking filter: acceleration, jerk limits
+ *   qo_gimbal_track_f32                   the filter's state (a 3-joint motion planner)
+ *   qo_gimbal_track_init_f32              validate settings, start without a previous sample
+ *   qo_gimbal_track_step_f32              one sample: the gimbal's joint angles -> smooth joints
  *
- * Units: times in seconds, angles in radians, rates in rad/s.
+ * Units: times in seconds, angles in radians, rates in rad/s, accelerations in rad/s^2, jerk
+ * in rad/s^3.
  */
 #ifndef QORIENT_GIMBAL_H
 #define QORIENT_GIMBAL_H
 
 #include "qorient/euler.h"
+#include "qorient/motion.h"
 #include "qorient/status.h"
 #include "qorient/types.h"
 
@@ -159,6 +165,98 @@ qo_status qo_gimbal_reset_f32(qo_gimbal_f32 *g, qo_euler_f32 angles, float t);
  * 0, locked 0, clipped 0, and the state is unchanged.
  */
 qo_status qo_gimbal_step_f32(qo_gimbal_f32 *g, float t, qo_quat_f32 q, qo_gimbal_sample_f32 *out);
+
+/*
+ * Tracking filter (opt-in). qo_gimbal_step_f32 limits rates only, so its joint rates jump
+ * where the path enters and leaves the hold band, and wherever a key or a clip changes the
+ * rate. The filter follows the gimbal's commanded angles (the "path" below) with a 3-joint
+ * motion planner (qorient/motion.h) re-planned at every step, so that its output has:
+ *   - continuous rates and |acceleration| <= amax at every instant (TRAPEZOID profile), and
+ *     with jmax finite also continuous accelerations and |jerk| <= jmax (SCURVE profile);
+ *     the planner guarantees the limits of each plan and each re-plan starts from the state
+ *     the previous one had reached, so the limits hold across steps as well;
+ *   - |rate| <= vmax.
+ * How it follows: while the path moves, every joint is commanded (velocity interface) to the
+ * path's rate over the last step plus a correction of the position error e = path - joint,
+ * c(e) = gain*e for |e| <= amax/(2 gain^2), sign(e)*sqrt(amax*(|e| - amax/(4 gain^2))) beyond
+ * (the velocity from which half of amax stops the joint at the path: large errors close at
+ * about amax/2, without overshoot from braking too late), capped at |e|/(2 dt) so a long step
+ * never overshoots, and the sum clamped to +-vmax. While the path holds still (the same angle
+ * twice in a row) the joint is instead planned to the path's position at rest: it arrives
+ * exactly, in minimum time within the limits.
+ * What it costs: the output lags the path. While the path's rate changes faster than amax
+ * (or its acceleration faster than jmax) the error grows: a rate step of dv leaves an error
+ * of about dv^2/(2 amax) (plus dv*amax/(2 jmax) with jerk limiting), closed at gain
+ * (1/s, time constant 1/gain) once the path's rate is reachable again; on a path of constant
+ * rate the error decays to float32 rounding; after the path stops the joints reach it
+ * exactly and at rest, overshooting the path's end (when it stops dead from rate R) by at
+ * most R^2/(2 amax) + 2 R amax/jmax + R dt: the filter sees a change of the path's rate one
+ * step (dt) late, the rate being the difference of its last two samples. Position limits
+ * apply to the path (the gimbal clamps it); an output joint may overshoot a limit by its
+ * tracking error. out->err reports the largest error.
+ */
+typedef struct qo_gimbal_track_settings_f32 {
+    float amax;  /* rad/s^2, in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX]: acceleration limit */
+    float jmax;  /* rad/s^3, in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX], or +INFINITY for no
+                    jerk limit (accelerations may then step) */
+    float vmax;  /* rad/s, in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX], or +INFINITY; a vmax
+                    above 1000 s * amax (and +INFINITY) acts as 1000 s * amax, which the
+                    joints would need 1000 s at amax to reach */
+    float gain;  /* 1/s, in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX]: how fast a small position
+                    error is closed; keep it below jmax/(4 amax) with a jerk limit, or the joints
+                    ring around the path before settling */
+} qo_gimbal_track_settings_f32;
+
+/* amax 10 rad/s^2, jmax +INFINITY, vmax +INFINITY, gain 10 /s. */
+extern const qo_gimbal_track_settings_f32 qo_gimbal_track_settings_default_f32;
+
+/* One filtered sample. */
+typedef struct qo_gimbal_track_sample_f32 {
+    qo_euler_f32 angles;  /* filtered joint angles, rad */
+    float rate[3];        /* joint rates, rad/s */
+    float acc[3];         /* joint accelerations, rad/s^2 */
+    float err;            /* rad: largest |path - angles| over the joints at this step */
+    int settled;          /* 1 when the path holds still and every joint is on it at rest */
+} qo_gimbal_track_sample_f32;
+
+/* The filter's state: caller storage (880 bytes on x86-64: three planner joints of 248),
+ * written only by the functions. */
+typedef struct qo_gimbal_track_f32 {
+    qo_gimbal_track_settings_f32 s;
+    qo_motion_planner_f32 pl;         /* time origin moved to the last step (shift_time) */
+    qo_motion_joint_f32 joints[3];
+    float path_prev[3];               /* the path's angles at the last step, rad */
+    float t_prev;                     /* time of the last step, s */
+    qo_gimbal_track_sample_f32 last;  /* the last step's output (what an error repeats) */
+    int started;                      /* 0 until the first step */
+} qo_gimbal_track_f32;
+
+/*
+ * Validates settings and starts the filter without a previous sample (the first step puts
+ * the joints on the path at rest).
+ * Returns QO_OK; QO_E_NULL; QO_E_LIMIT (amax, vmax, gain or jmax NaN or outside their ranges
+ * above). On error the filter keeps the default settings and is not started; every step then
+ * returns QO_E_STATE until a successful init.
+ */
+qo_status qo_gimbal_track_init_f32(qo_gimbal_track_f32 *tr, const qo_gimbal_track_settings_f32 *s);
+
+/*
+ * One step at time t (s, strictly increasing; steps of any length, e.g. the control period):
+ * path = the gimbal's commanded angles at t (qo_gimbal_sample_f32.angles) -> the filtered
+ * joint state at t, then a re-plan from that state toward the path (see above). The output
+ * at t comes from the plan made at the previous step, so it never jumps.
+ * Returns QO_OK; QO_E_NULL; QO_E_STATE (not initialised, or an earlier init failed);
+ * QO_E_NONFINITE (t or an angle NaN/Inf); QO_E_ORDER (t not after the previous step's);
+ * QO_E_RANGE (an angle beyond +-QO_MOTION_POS_MAX, or t - previous t above
+ * QO_MOTION_DURATION_MAX or overflowing float32: state unchanged; or a joint would be beyond
+ * +-QO_MOTION_POS_MAX, or the re-plan would not be finite: the planner's safety stop, every
+ * joint brakes to rest from its state at t as fast as its limits allow, or is held where
+ * the planner can hold it if even that is not finite, and out is the state the stop starts
+ * from). On the other errors the state is unchanged and out holds the joints' state at
+ * the previous step (all 0 before the first), err 0, settled 0.
+ */
+qo_status qo_gimbal_track_step_f32(qo_gimbal_track_f32 *tr, float t, qo_euler_f32 path,
+                                   qo_gimbal_track_sample_f32 *out);
 
 #ifdef __cplusplus
 }

@@ -20,6 +20,8 @@
  *   qo_motion_limits_default        const default limits of one joint (all 1, no range, no wrap)
  *   qo_motion_init_f32              set up a planner over caller arrays, at rest at given positions
  *   qo_motion_set_target_f32        re-plan from the sampled state at t_now to new targets
+ *   qo_motion_set_target_state_f32  re-plan to target positions with velocities, accelerations
+ *   qo_motion_set_joint_sync_f32    per-joint synchronisation (overrides settings.sync)
  *   qo_motion_set_velocity_f32      velocity interface: every joint to a target velocity, then on
  *   qo_motion_set_limits_f32        change one joint's limits at t_now (bad limits -> brake)
  *   qo_motion_brake_f32             stop every joint as fast as its limits allow, from t_now
@@ -180,7 +182,12 @@ typedef enum qo_motion_profile {
 typedef enum qo_motion_sync {
     QO_MOTION_SYNC_NONE = 0,  /* each joint at its own minimum time */
     QO_MOTION_SYNC_TIME = 1,  /* all joints arrive together */
-    QO_MOTION_SYNC_PHASE = 2  /* straight line in joint space (falls back to TIME) */
+    QO_MOTION_SYNC_PHASE = 2, /* straight line in joint space (falls back to TIME) */
+    /* Time sync only where a joint would otherwise arrive early: a joint whose target state is
+     * moving (target velocity or acceleration nonzero) is synchronised like TIME, because
+     * arriving at its own minimum time would carry it past its target before the others
+     * arrive; a joint whose target is at rest keeps its own minimum time (like NONE). */
+    QO_MOTION_SYNC_TIME_IF_NECESSARY = 3
 } qo_motion_sync;
 
 typedef struct qo_motion_settings_f32 {
@@ -194,14 +201,22 @@ extern const qo_motion_settings_f32 qo_motion_settings_default;
 /* Limits of one joint. vmax, amax, jmax: in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] (jmax
  * also for TRAPEZOID, where it is unused). pmin <= pmax, each finite or -INFINITY / +INFINITY
  * (= no range; the default). wrap: 0 = ordinary joint, in (0, QO_MOTION_POS_MAX] = continuous
- * joint with that period (2*pi rad, 360 deg). */
+ * joint with that period (2*pi rad, 360 deg).
+ * vmin, amin: asymmetric limits, the most negative velocity [u/s] and acceleration [u/s^2]
+ * allowed (e.g. vmin = -2 with vmax = 3). 0 (the default, and what an initializer of the first
+ * six fields gives) means symmetric: vmin = -vmax, amin = -amax. Otherwise each must lie in
+ * [-QO_MOTION_LIMIT_MAX, -QO_MOTION_LIMIT_MIN] (else QO_E_LIMIT). Every plan (all profiles and
+ * sync modes, braking, the velocity interface, target states) keeps v in [vmin, vmax] and a
+ * in [amin, amax] (starts beyond them are first brought back, as for the symmetric limits). */
 typedef struct qo_motion_limits_f32 {
     float vmax, amax, jmax;
     float pmin, pmax;
     float wrap;
+    float vmin, amin;
 } qo_motion_limits_f32;
 
-/* vmax = amax = jmax = 1, pmin = -INFINITY, pmax = +INFINITY, wrap = 0. */
+/* vmax = amax = jmax = 1, pmin = -INFINITY, pmax = +INFINITY, wrap = 0, vmin = amin = 0
+ * (symmetric). */
 extern const qo_motion_limits_f32 qo_motion_limits_default;
 
 /* One phase of a joint's plan: from time t (seconds after the plan start) the joint follows
@@ -219,13 +234,13 @@ typedef struct qo_motion_joint_f32 {
     float duration;                                /* seconds after the plan start */
     unsigned nph;                                  /* phases in use, 0 = at rest at `final` */
     qo_motion_phase_f32 ph[QO_MOTION_MAX_PHASES];
-    /* Planner scratch (state at the re-plan time, displacement, solve results), kept here so
-     * a re-plan needs no stack proportional to N. Not meaningful to the caller. */
-    float w_p, w_v, w_a, w_d, w_vc, w_tc, w_t;
-    int w_fam; /* profile family of the solve: 0 extremum velocity w_vc, 1 dip to w_vc [u/s^2] */
-    float w_vg;                                    /* velocity interface: target velocity */
+    float p0, v0, a0;  /* start state of the current plan (at the planner's t0) [u, u/s, u/s^2] */
     float vend;  /* velocity after the last phase [u/s]: 0 = at rest at `final`; the velocity
                   * interface's target (the joint then moves on at vend from `final`) */
+    float aend;  /* acceleration at the end of the last phase [u/s^2] (target states; see
+                  * qo_motion_set_target_state_f32 for the motion after the end) */
+    float goal_v, goal_a;                          /* last accepted target velocity, acceleration */
+    int sync;    /* per-joint sync (qo_motion_set_joint_sync_f32), -1 = settings.sync */
 } qo_motion_joint_f32;
 
 /* The planner. Fields are readable; change them only through the functions. */
@@ -275,6 +290,47 @@ qo_status qo_motion_init_f32(qo_motion_planner_f32 *pl, qo_motion_joint_f32 *joi
  */
 qo_status qo_motion_set_target_f32(qo_motion_planner_f32 *pl, float t_now, const float *targets,
                                    uint32_t *clamped);
+
+/*
+ * Full target states (streams of setpoints passing through without stopping): re-plans every
+ * joint from its state sampled at `t_now` to position pos[i] [u] with velocity vel[i] [u/s] and
+ * acceleration acc[i] [u/s^2] at the plan's end (n entries each; vel and acc may be NULL = all
+ * 0). qo_motion_set_target_f32(pl, t, p, c) is qo_motion_set_target_state_f32(pl, t, p, NULL,
+ * NULL, c). Positions are clamped to [pmin, pmax] and wrapped as for set_target.
+ * A target state must be reachable and then holdable within the limits: vmin <= v <= vmax,
+ * amin <= a <= amax, and, because after the end the acceleration ramps to 0 at jmax (below),
+ * v + a|a|/(2 jmax) within [vmin, vmax] (the velocity the ramp reaches). TRAPEZOID (jerk
+ * unlimited) requires acc = 0. A joint whose velocity is nonzero but whose position stays the
+ * same still moves (it arrives at its target moving).
+ * After the end (what a teleoperation stream needs if its next setpoint is late: keep moving
+ * as commanded, continuously, within the limits): the acceleration ramps from acc[i] to 0 at
+ * jmax (duration |acc|/jmax), then the joint moves on at constant velocity, like the velocity
+ * interface; qo_motion_done_f32 is 1 from the end. Nothing stops it but a later call, and the
+ * position range is NOT applied after the end (a moving target near a range end leaves the
+ * range unless the caller re-plans or brakes in time).
+ * Synchronisation works with target states: TIME gives every joint the common duration,
+ * PHASE is used only where the straight line is feasible (all target velocities and
+ * accelerations zero, or proportional like the start), else TIME, reported by sync_used;
+ * TIME_IF_NECESSARY synchronises only the joints with a moving target.
+ * Returns as qo_motion_set_target_f32, and QO_E_NULL (pl or pos NULL); QO_E_NONFINITE (a
+ * velocity or acceleration NaN/Inf: brake, as for a non-finite target); QO_E_LIMIT (a target
+ * state outside the limits or not holdable as above: refused, the plan is unchanged and
+ * nothing moves differently); QO_E_ARG (acc nonzero with TRAPEZOID: refused, unchanged).
+ * *clamped is 0 on every error.
+ */
+qo_status qo_motion_set_target_state_f32(qo_motion_planner_f32 *pl, float t_now, const float *pos,
+                                         const float *vel, const float *acc, uint32_t *clamped);
+
+/*
+ * Per-joint synchronisation: joint i uses `sync` instead of settings.sync from the next re-plan
+ * (does not re-plan). NONE: its own minimum time; TIME: the common duration of all TIME and
+ * PHASE joints (and of TIME_IF_NECESSARY joints with a moving target); PHASE: on the straight
+ * line with the other PHASE joints when that is feasible, else TIME (sync_used reports the
+ * plan's overall mode: PHASE only if every PHASE joint got it); TIME_IF_NECESSARY: as in
+ * qo_motion_sync. Returns QO_OK; QO_E_NULL; QO_E_STATE (not initialised); QO_E_RANGE (i >= n);
+ * QO_E_ARG (unknown sync value: unchanged).
+ */
+qo_status qo_motion_set_joint_sync_f32(qo_motion_planner_f32 *pl, size_t i, qo_motion_sync sync);
 
 /*
  * Velocity interface (jogging, teleoperation): from its state sampled at `t_now` every joint

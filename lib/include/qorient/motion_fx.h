@@ -48,8 +48,10 @@
 extern "C" {
 #endif
 
-/* Segments per joint in a table: 7 phases + the final rest. */
-#define QO_MOTION_Q16_SEGS 8
+/* Segments per joint in a table: 7 phases + the ramp of a target acceleration to zero after
+ * the end (qo_motion_set_target_state_f32) + the final segment (at rest, or moving on at the
+ * end velocity). */
+#define QO_MOTION_Q16_SEGS 9
 
 /* One polynomial segment: from local time t (Q16.16 s) on, c0 + c1 tau + c2 tau^2 + c3 tau^3. */
 typedef struct qo_motion_seg_q16 {

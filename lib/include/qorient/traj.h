@@ -18,6 +18,7 @@
  *   qo_traj_init_keys()         set up a keyframe trajectory (qorient/spline.h profiles)
  *   qo_traj_init_targets()      set up a target queue (qorient/motion.h profiles)
  *   qo_traj_set_timing()        TARGETS: minimum move duration, durations in whole control periods
+ *   qo_traj_set_joint_sync()    TARGETS: one joint's synchronisation (qo_motion_set_joint_sync_f32)
  *   qo_traj_push()              add a keyframe / a timed target (also between samples: live)
  *   qo_traj_prepare()           plan what the pushes left pending (optional: sample does it)
  *   qo_traj_sample()            position, velocity, acceleration of every joint at a time
@@ -45,7 +46,7 @@
  * times must increase strictly (also after rounding their offset from the first key to
  * float32). A push only stores the key; the spline is (re)planned over all keys by the next
  * qo_traj_prepare() or qo_traj_sample(): O(K) work. With one key the trajectory holds it at
- * rest; before the first key the first key is held, after the last the last (see spline.h).
+ * rest (the settings are still checked as a plan would: QO_E_RANGE, QO_E_LIMIT); before the first key the first key is held, after the last the last (see spline.h).
  * Pushing keys while sampling re-plans the whole spline: the local profiles (LINEAR,
  * CUBIC_HERMITE, CATMULL_ROM) keep every segment but the last one unchanged, the global
  * CUBIC_C2 and estimated QUINTIC may move earlier segments slightly; live input is what
@@ -58,6 +59,12 @@
  * (position, velocity, acceleration: no jump) at max(target time, latest time sampled), so a
  * target that arrives late (live input) starts from where the joints really are. Queued targets
  * take capacity; applied ones free it (a ring of `cap` entries).
+ * Target states: given storage for them (qo_traj_store_len with key_cols 2 or 3), a target
+ * carries velocities (and accelerations) too, reached with its positions at the end of its
+ * move (qo_motion_set_target_state_f32: the joints pass through it moving, and move on at
+ * that velocity if no later target comes). A target state the limits cannot reach or hold is
+ * refused when it becomes due: the sample says so (QO_E_LIMIT, QO_E_ARG) and the motion
+ * planned before goes on unchanged.
  *
  * Concurrency: one trajectory is one object; push, prepare and sample must not overlap (a
  * reader thread pushing while a timer thread samples takes a lock around both). Two
@@ -82,7 +89,8 @@ extern "C" {
 /* Absolute time in nanoseconds. */
 typedef int64_t qo_traj_ns;
 
-/* Largest |time| accepted anywhere (ns): 2^62, so a difference of two never overflows. */
+/* Largest |time| accepted anywhere (ns): 2^62. The difference of two can reach 2^63, one more
+ * than int64 holds: the library splits times into seconds and ns before subtracting. */
 #define QO_TRAJ_TIME_MAX ((qo_traj_ns)4611686018427387904LL)
 #define QO_TRAJ_NS_PER_S ((qo_traj_ns)1000000000LL)
 
@@ -118,6 +126,10 @@ typedef struct qo_traj {
     qo_motion_settings_f32 motion_set;
     float min_duration, period;    /* qo_traj_set_timing's rules (0 = off), re-applied at the start */
     float *queue_p;                /* cap*N queued target positions */
+    float *queue_v, *queue_a;      /* cap*N queued target velocities, accelerations (NULL: none) */
+    unsigned target_cols;          /* 1 positions, 2 + velocities, 3 + accelerations */
+    signed char joint_sync[QO_MOTION_MAX_JOINTS]; /* qo_traj_set_joint_sync's values, -1 = none,
+                                                   * re-applied at the start */
     size_t head, count;            /* ring of queued targets */
     int started;                   /* the start (first push) is in */
     qo_traj_ns start_ns;           /* time of the start */
@@ -132,8 +144,9 @@ typedef struct qo_traj {
 
 /*
  * Floats of `store` a trajectory needs: KEYS: C + C*N*key_cols + qo_spline_coef_len(N, C)
- * (C >= 2); TARGETS: C*N. Returns 0 for kind unknown, n_joints == 0, cap == 0, key_cols not
- * 1..3 (KEYS) or a size that overflows.
+ * (C >= 2); TARGETS: C*N*key_cols (key_cols 1: target positions; 2: and velocities; 3: and
+ * accelerations). Returns 0 for kind unknown, n_joints == 0, cap == 0, key_cols not 1..3 or
+ * a size that overflows.
  */
 size_t qo_traj_store_len(qo_traj_kind kind, size_t n_joints, size_t cap, unsigned key_cols);
 
@@ -158,7 +171,8 @@ qo_status qo_traj_init_keys(qo_traj *tr, size_t n_joints, const qo_spline_settin
  * queued targets, with the per-joint limits (n entries, checked now, read again by the first
  * push: keep them valid until then) and settings (NULL = qo_motion_settings_default).
  * joints: n planner joints (caller storage); t_ns: cap times; store: store_len >=
- * qo_traj_store_len(QO_TRAJ_TARGETS, N, cap, 1).
+ * qo_traj_store_len(QO_TRAJ_TARGETS, N, cap, 1), or with key_cols 2 (3) for targets that carry
+ * velocities (and accelerations): the storage given decides (tr->target_cols).
  * Returns QO_OK; QO_E_NULL (tr, joints, limits, t_ns or store NULL); QO_E_TOO_FEW (n_joints
  * == 0 or cap == 0); QO_E_CAPACITY (n_joints > QO_MOTION_MAX_JOINTS or store_len too small);
  * QO_E_ARG and QO_E_LIMIT as qo_motion_init_f32 (bad settings or limits). On error *tr is
@@ -182,15 +196,28 @@ qo_status qo_traj_init_targets(qo_traj *tr, size_t n_joints, const qo_motion_lim
 qo_status qo_traj_set_timing(qo_traj *tr, float min_duration, float period);
 
 /*
+ * TARGETS: joint i (0-based) takes synchronisation `sync` instead of the settings' from the
+ * next re-plan on (qo_motion_set_joint_sync_f32: NONE, TIME, PHASE, TIME_IF_NECESSARY).
+ * Callable before or after the first push (kept across the start's set-up, like the timing).
+ * Returns QO_OK; QO_E_NULL; QO_E_STATE (not initialised, or KEYS); QO_E_RANGE (i >= N);
+ * QO_E_ARG (unknown sync): nothing changed.
+ */
+qo_status qo_traj_set_joint_sync(qo_traj *tr, size_t i, qo_motion_sync sync);
+
+/*
  * Adds a keyframe (KEYS) or a target (TARGETS; the first one is the start) at absolute time
  * t (ns). pos: N positions; vel, acc: N key velocities / accelerations, required when
- * key_cols >= 2 / 3, else ignored (pass NULL); TARGETS take positions only.
+ * key_cols >= 2 / 3, else ignored (pass NULL). TARGETS: vel, acc: N target velocities [u/s]
+ * and accelerations [u/s^2] or NULL (= 0: at rest), each only with storage for it (else
+ * QO_E_CAPACITY); the start is at rest (nonzero ones: QO_E_ARG). Whether a state is
+ * reachable is decided when it becomes due (qo_traj_sample).
  * Nothing is stored on error. Returns QO_OK; QO_E_NULL (tr or pos NULL, or vel/acc missing for
  * key_cols); QO_E_STATE (not initialised); QO_E_RANGE (|t| > QO_TRAJ_TIME_MAX; TARGETS: a
  * position beyond +-QO_MOTION_POS_MAX); QO_E_NONFINITE (a position, velocity or acceleration
  * NaN/Inf); QO_E_ORDER (KEYS: t not after the previous key, also when their offsets from the
  * first key round to the same float32; TARGETS: t before the previous push); QO_E_CAPACITY
- * (cap keys stored, or cap targets queued and not yet due); TARGETS start: QO_E_LIMIT /
+ * (cap keys stored, or cap targets queued and not yet due; TARGETS: vel/acc given without
+ * storage for them); TARGETS start: QO_E_ARG (nonzero velocity or acceleration), QO_E_LIMIT /
  * QO_E_RANGE from qo_motion_init_f32.
  */
 qo_status qo_traj_push(qo_traj *tr, qo_traj_ns t, const float *pos, const float *vel,
@@ -215,7 +242,9 @@ qo_status qo_traj_prepare(qo_traj *tr);
  * QO_E_ORDER (TARGETS: t before the last re-plan: the state at the re-plan); the error of a
  * failed plan (KEYS: as qo_traj_prepare, first key held at rest) or of a target applied by
  * this call (TARGETS: as qo_motion_set_target_f32; the planner then brakes, the sample is of
- * the braking motion).
+ * the braking motion; a refused target state, QO_E_LIMIT or QO_E_ARG of
+ * qo_motion_set_target_state_f32, leaves the motion planned before going on: tr->replan_status
+ * says which of the two).
  */
 qo_status qo_traj_sample(qo_traj *tr, qo_traj_ns t, float *pos, float *vel, float *acc,
                          int8_t *clamped);
