@@ -134,7 +134,7 @@ qo_status qo_quat_from_euler_q30(qo_euler_seq seq, qo_euler_q28 e, qo_quat_q30 *
     if (out == NULL) return QO_E_NULL;
     *out = identity_q30();
     if (!qo_euler_seq_valid(seq)) return QO_E_ARG;
-    ax = qo_euler_seq_axes[(int)seq % 12];
+    ax = qo_euler_seq_row(seq);
     q1 = elem_quat(ax[0], e.a1, 1);
     q2 = elem_quat(ax[1], e.a2, 1);
     q3 = elem_quat(ax[2], e.a3, 1);
@@ -189,13 +189,13 @@ static int64_t half_diff(uint64_t s1, uint64_t s2)
 
 static decomp decompose(q64 q, qo_euler_seq seq)
 {
-    const unsigned char *ax = qo_euler_seq_axes[(int)seq % 12];
+    const unsigned char *ax = qo_euler_seq_row(seq);
     int intrinsic = (int)seq >= 12;
     int i = intrinsic ? ax[0] : ax[2];
     int j = ax[1];
     int k = intrinsic ? ax[2] : ax[0];
     /* eps = +1 when e_i x e_j = +e_(third axis), i.e. (i, j, .) is cyclic. */
-    int64_t eps = (j == (i + 1) % 3) ? 1 : -1;
+    int64_t eps = (j == (int)qo_euler_axis_next((unsigned)i)) ? 1 : -1;
     int64_t a, b, c, d, h, p, t2y, t2x;
     uint64_t s1, s2, n1, n2;
     qo_q28 t1, t2, t3;
@@ -252,7 +252,7 @@ static decomp decompose(q64 q, qo_euler_seq seq)
  * (2uv, u^2 - v^2), already in [-pi, pi] and independent of the sign of p. */
 static qo_q28 fit_a1(q64 q, qo_euler_seq seq, qo_q28 a2, qo_q28 a3)
 {
-    const unsigned char *ax = qo_euler_seq_axes[(int)seq % 12];
+    const unsigned char *ax = qo_euler_seq_row(seq);
     q64 c2 = elem_quat(ax[1], a2, -1);
     q64 c3 = elem_quat(ax[2], a3, -1);
     q64 p;
@@ -471,15 +471,14 @@ qo_status qo_quat_to_euler_fast_q30(qo_quat_q30 q, qo_euler_seq seq, qo_q28 band
     }
     if (v[0] < 0 || (v[0] == 0 && (v[1] < 0 || (v[1] == 0 && (v[2] < 0 || (v[2] == 0 && v[3] < 0))))))
         for (i = 0; i < 4; i++) v[i] = -v[i];
-    /* (no % here: a library division on ARMv6-M) */
     intrinsic = (int)seq >= 12;
-    ax = qo_euler_seq_axes[intrinsic ? (int)seq - 12 : (int)seq];
+    ax = qo_euler_seq_row(seq);
     proper = ax[0] == ax[2];
     i = intrinsic ? ax[0] : ax[2];
     j = ax[1];
     k = proper ? 3u - i - j : (intrinsic ? ax[2] : ax[0]);
     /* eps = -1 when (i, j, .) is anti-cyclic; as in decompose(). */
-    eps_neg = j != (i == 2u ? 0u : i + 1u);
+    eps_neg = j != qo_euler_axis_next(i);
     {
         int32_t x = v[1 + i], y = v[1 + j], z = eps_neg ? -v[1 + k] : v[1 + k];
         if (proper) { pr = v[0]; pi = x; qr = y; qi = z; }

@@ -253,14 +253,13 @@ qo_status qo_quat_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *
      * norm is 1 to a few ulp before that). */
     c = sqrtf(0.5f + 0.5f * x);
     h = 0.5f / c;
-    if (t <= 0.5f) {
-        u = 2.0f * t;                                /* exact */
-        sin_ratios(u, c - 1.0f, &wa, &wb);           /* r = wa a' + wb m */
+    /* 2t and 2t - 1 are exact (the latter by Sterbenz) */
+    u = t <= 0.5f ? 2.0f * t : 2.0f * t - 1.0f;
+    sin_ratios(u, c - 1.0f, &wa, &wb);
+    if (t <= 0.5f) {                                 /* r = wa a' + wb m */
         wb *= h;
         wa += wb;
-    } else {
-        u = 2.0f * t - 1.0f;                         /* exact (Sterbenz) */
-        sin_ratios(u, c - 1.0f, &wa, &wb);           /* r = wa m + wb b' */
+    } else {                                         /* r = wa m + wb b' */
         wa *= h;
         wb += wa;
     }
