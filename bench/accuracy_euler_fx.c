@@ -75,6 +75,9 @@ int main(int argc, char **argv)
     double max_noisy_margin = 0;
     long n_exact = 0, n_exact_flagged = 0, n_flagged_total = 0, n_cases = 0;
     long n_noisy = 0, n_noisy_flagged = 0, n_bad_status = 0;
+    double w_fast_gen = 0, w_fast_lock = 0, w_fast_near_in = 0, w_fast_near_out = 0;
+    long n_fast_unflagged = 0;
+    int s_fast_gen = 0;
     int s_from = 0, s_gen = 0, s_lock = 0, s_near = 0, seq;
     int ok = 1;
     long i;
@@ -118,6 +121,8 @@ int main(int argc, char **argv)
             n_cases++;
             if (info.locked) { n_flagged_total++; upd(&max_flag_margin, info.margin / Q28, 0, NULL); }
             upd(&w_gen, recomp(seq, o, r), seq, &s_gen);
+            if (qo_quat_to_euler_fast_q30(qf, sq, QO_EULER_LOCK_BAND_Q28, &o, &info) != QO_OK) n_bad_status++;
+            upd(&w_fast_gen, recomp(seq, o, r), seq, &s_fast_gen);
 
             /* nearest-solution variant, generic, prev a random nearby-ish triple */
             {
@@ -140,6 +145,9 @@ int main(int argc, char **argv)
             if (info.locked) { n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin / Q28, 0, NULL); }
             upd(&max_exact_margin, info.margin / Q28, 0, NULL);
             upd(&w_lock, recomp(seq, o, r), seq, &s_lock);
+            qo_quat_to_euler_fast_q30(qf, sq, QO_EULER_LOCK_BAND_Q28, &o, &info);
+            if (!info.locked) n_fast_unflagged++;
+            upd(&w_fast_lock, recomp(seq, o, r), seq, NULL);
 
             /* exactly singular, as a user would build it: from_euler_q30 with the Q3.28
              * nearest the singular middle angle */
@@ -185,6 +193,8 @@ int main(int argc, char **argv)
             } else {
                 upd(&w_near_out, recomp(seq, o, r), seq, &s_near);
             }
+            qo_quat_to_euler_fast_q30(qf, sq, QO_EULER_LOCK_BAND_Q28, &o, &info);
+            upd(info.locked ? &w_fast_near_in : &w_fast_near_out, recomp(seq, o, r), seq, NULL);
         }
     }
 
@@ -206,6 +216,10 @@ int main(int argc, char **argv)
     printf("  largest margin at which lock flagged   = %.3g rad (%.3g deg)   goal <= 2 deg\n",
            max_flag_margin, max_flag_margin * 180.0 / PI_D);
     printf("  flagged in total                       = %ld of %ld decompositions\n", n_flagged_total, n_cases);
+    printf("  fast tier (qo_quat_to_euler_fast_q30):\n");
+    printf("    generic worst recomposition          = %.3g rad (%s)   goal <= 2e-7\n", w_fast_gen, k_names[s_fast_gen]);
+    printf("    at exact lock worst recomp.          = %.3g rad, %ld not flagged   goal <= 1e-5, 0\n", w_fast_lock, n_fast_unflagged);
+    printf("    near lock worst recomp.              = %.3g rad flagged, %.3g rad not   goal <= 1e-5\n", w_fast_near_in, w_fast_near_out);
     printf("  unexpected non-OK statuses             = %ld\n", n_bad_status);
 
     /* speed (host, informative) */
@@ -236,6 +250,8 @@ int main(int argc, char **argv)
 
     if (w_from > 1e-6 || w_gen > 1e-6 || w_nearfn > 1e-6) ok = 0;
     if (w_lock > 1e-5 || w_near_in > 1e-5 || w_near_out > 1e-5) ok = 0;
+    if (w_fast_gen > 2e-7 || w_fast_lock > 1e-5 || w_fast_near_in > 1e-5 || w_fast_near_out > 1e-5 ||
+        n_fast_unflagged != 0) ok = 0;
     if (max_flag_margin > two_deg || n_exact_flagged != n_exact || n_bad_status != 0) ok = 0;
     printf("accuracy_euler_fx: %s\n", ok ? "all goals met" : "GOAL MISSED");
     return ok ? 0 : 1;

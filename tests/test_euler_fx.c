@@ -169,10 +169,26 @@ static qo_status x_near(dq q, int seq, const double prev[3], double band, double
     return st;
 }
 
-static const core k_cores[2] = {
+/* The fast tier (qo_quat_to_euler_fast_q30) behind the same interface: its own to_euler,
+ * the exact core's from_euler and near (it has neither). */
+static qo_status x_to_fast(dq q, int seq, int use_default, double band, double out[3], einfo *info)
+{
+    qo_euler_q28 e = { 9, 9, 9 };
+    qo_euler_info_q28 xi = { 7, 9 };
+    qo_status st = qo_quat_to_euler_fast_q30(x_quat(q), (qo_euler_seq)seq,
+                                             use_default ? QO_EULER_LOCK_BAND_Q28 : to_raw(band, Q28),
+                                             &e, info ? &xi : NULL);
+    out[0] = e.a1 / Q28; out[1] = e.a2 / Q28; out[2] = e.a3 / Q28;
+    if (info) { info->locked = xi.locked; info->margin = xi.margin / Q28; }
+    return st;
+}
+
+static const core k_cores[3] = {
     { "float32", 2e-6, 1e-6, 1e-6, 1e-5, f_rq, f_rq, f_nudge, f_from_euler, f_to, f_near },
     /* Q1.30 output: each component a few LSB (9.3e-10) from exact. */
     { "fixed", 27.0 / Q28, 1e-8, 5e-8, 5e-8, x_rq, x_ra, x_nudge, x_from, x_to, x_near },
+    /* fast tier: three atan2 of 32-bit pairs, each angle a few LSB */
+    { "fixed fast", 27.0 / Q28, 1e-8, 5e-8, 5e-8, x_rq, x_ra, x_nudge, x_from, x_to_fast, x_near },
 };
 
 /* The quaternion the core holds for q, as exact doubles (not normalised). */
@@ -199,6 +215,8 @@ static void check_ranges(const core *c, int seq, const double e[3], const char *
 }
 
 #define FOR_CORES(c) for (c = &k_cores[0]; c != &k_cores[2]; c++)
+/* quaternion -> angles: the fast tier too */
+#define FOR_TO_CORES(c) for (c = &k_cores[0]; c != &k_cores[3]; c++)
 
 /* ---- from_euler ------------------------------------------------------------------------ */
 static void test_from_euler_random_all24(void **state)
@@ -313,7 +331,7 @@ static void test_to_euler_random_rotations_all24(void **state)
     const core *c;
     int seq, n;
     (void)state;
-    FOR_CORES(c) {
+    FOR_TO_CORES(c) {
         rng.s = 42;
         for (seq = 0; seq < 24; seq++) {
             for (n = 0; n < 300; n++) {
@@ -349,7 +367,7 @@ static void test_to_euler_recovers_angles_all24(void **state)
     const core *c;
     int seq, n;
     (void)state;
-    FOR_CORES(c) {
+    FOR_TO_CORES(c) {
         rng.s = 7;
         for (seq = 0; seq < 24; seq++) {
             for (n = 0; n < 200; n++) {
@@ -385,7 +403,7 @@ static void test_to_euler_known_values(void **state)
 {
     const core *c;
     (void)state;
-    FOR_CORES(c) {
+    FOR_TO_CORES(c) {
         dq q = { sqrt(0.5), 0, 0, sqrt(0.5) };
         double e[3];
         einfo info;
@@ -496,7 +514,7 @@ static void test_edge_table_both_cores(void **state)
     size_t i;
     int seq;
     (void)state;
-    FOR_CORES(c)
+    FOR_TO_CORES(c)
         for (i = 0; i < sizeof k_edges / sizeof k_edges[0]; i++) {
             if (k_edges[i].seq >= 0) run_edge(c, &k_edges[i], k_edges[i].seq);
             else for (seq = 0; seq < 24; seq++) run_edge(c, &k_edges[i], seq);
@@ -509,7 +527,7 @@ static void test_exactly_singular_all24(void **state)
     const core *c;
     int seq, which, n, k;
     (void)state;
-    FOR_CORES(c) {
+    FOR_TO_CORES(c) {
         rng.s = 99;
         for (seq = 0; seq < 24; seq++)
             for (which = 0; which < 2; which++)
@@ -586,7 +604,7 @@ static void test_singular_free_angle_choice(void **state)
     const core *c;
     size_t i;
     (void)state;
-    FOR_CORES(c)
+    FOR_TO_CORES(c)
         for (i = 0; i < sizeof k / sizeof k[0]; i++) {
             double e[3];
             einfo info;
@@ -606,7 +624,7 @@ static void test_just_off_singular_all24(void **state)
     const core *c;
     int seq, which, k, n, side;
     (void)state;
-    FOR_CORES(c) {
+    FOR_TO_CORES(c) {
         /* offsets relative to the core's own band: a third of it (flagged) and 3x (not) */
         double rel[2];
         rel[0] = c->band / 3.0; rel[1] = 3.0 * c->band;
@@ -677,7 +695,7 @@ static void test_to_euler_bad_inputs(void **state)
     const core *c;
     const dq ok = { 0.9, 0.1, 0.2, 0.3 }, zero = { 0, 0, 0, 0 };
     (void)state;
-    FOR_CORES(c) {
+    FOR_TO_CORES(c) {
         double e[3];
         einfo info;
         expect_error(c, zero, QO_EULER_xyx, c->band, QO_E_DEGENERATE, "zero q");
@@ -903,6 +921,7 @@ static void test_fx_random_raw_inputs(void **state)
             qo_euler_info_q28 info;
             qo_status st;
             unsigned sh = (unsigned)(ref_rng_next(&rng) % 31);
+            int k;
             double ee[3], oo[3], tol;
             dq r;
             q.w = (int32_t)(uint32_t)ref_rng_next(&rng) >> sh; q.x = (int32_t)(uint32_t)ref_rng_next(&rng) >> sh;
@@ -911,15 +930,20 @@ static void test_fx_random_raw_inputs(void **state)
             if (n % 50 == 1) q.x = INT32_MAX;
             if (q.w == 0 && q.x == 0 && q.y == 0 && q.z == 0) q.z = 1;
             r.w = q.w; r.x = q.x; r.y = q.y; r.z = q.z;
-            st = qo_quat_to_euler_q30(q, (qo_euler_seq)seq, &e, &info);
-            ee[0] = e.a1 / Q28; ee[1] = e.a2 / Q28; ee[2] = e.a3 / Q28;
-            /* a few-LSB quaternion is still exact input; components >= 1.0 lose 1 bit */
-            tol = info.locked ? 2.0 * info.margin / Q28 + 5e-8 : 5e-8;
-            if (st != QO_OK || recompose_err(seq, ee, r) > tol)
-                fail_msg("fixed raw %s q=(%d %d %d %d): status %d (%.10g %.10g %.10g) err %.3g",
-                         k_names[seq], (int)q.w, (int)q.x, (int)q.y, (int)q.z, (int)st, ee[0],
-                         ee[1], ee[2], recompose_err(seq, ee, r));
-            check_ranges(&k_cores[1], seq, ee, "raw");
+            /* the exact function and the fast tier (which rescales the same way), one bound */
+            for (k = 1; k <= 2; k++) {
+                st = k == 1 ? qo_quat_to_euler_q30(q, (qo_euler_seq)seq, &e, &info)
+                            : qo_quat_to_euler_fast_q30(q, (qo_euler_seq)seq, QO_EULER_LOCK_BAND_Q28,
+                                                        &e, &info);
+                ee[0] = e.a1 / Q28; ee[1] = e.a2 / Q28; ee[2] = e.a3 / Q28;
+                /* a few-LSB quaternion is still exact input; components >= 1.0 lose 1 bit */
+                tol = info.locked ? 2.0 * info.margin / Q28 + 5e-8 : 5e-8;
+                if (st != QO_OK || recompose_err(seq, ee, r) > tol)
+                    fail_msg("%s raw %s q=(%d %d %d %d): status %d (%.10g %.10g %.10g) err %.3g",
+                             k_cores[k].name, k_names[seq], (int)q.w, (int)q.x, (int)q.y, (int)q.z,
+                             (int)st, ee[0], ee[1], ee[2], recompose_err(seq, ee, r));
+                check_ranges(&k_cores[k], seq, ee, "raw");
+            }
             prev.a1 = (int32_t)(uint32_t)ref_rng_next(&rng); prev.a2 = (int32_t)(uint32_t)ref_rng_next(&rng);
             prev.a3 = (int32_t)(uint32_t)ref_rng_next(&rng);
             st = qo_quat_to_euler_near_q30(q, (qo_euler_seq)seq, prev,

@@ -167,6 +167,8 @@ int main(void)
         qo_quat_q30 r; (void)qo_quat_normalize_fast_q30(qi[j], &r); sink_i = r.w + r.x + r.y + r.z;
 #elif OP == 23 && HAVE_INTERP_FX
         qo_quat_q30 r; (void)qo_quat_slerp_fast_q30(qi[j], qi[(j + 1) & 7], ti[j], &r); sink_i = r.w + r.x + r.y + r.z;
+#elif OP == 24
+        qo_euler_q28 e; (void)qo_quat_to_euler_fast_q30(qi[j], seqs[j], QO_EULER_LOCK_BAND_Q28, &e, NULL); sink_i = e.a1 + e.a2 + e.a3;
 #endif
     }
     return 0;
@@ -205,7 +207,8 @@ for spec in "0:loop body alone" \
             "17:to_mat3 + from_mat3 _q30" \
             "18:qo_quat_to_euler_q30" "19:qo_quat_to_euler_f32 (soft)" \
             "20:qo_quat_slerp_q30" "21:qo_quat_slerp_f32 (soft)" \
-            "22:qo_quat_normalize_fast_q30" "23:qo_quat_slerp_fast_q30"; do
+            "22:qo_quat_normalize_fast_q30" "23:qo_quat_slerp_fast_q30" \
+            "24:qo_quat_to_euler_fast_q30"; do
     op=${spec%%:*}; name=${spec#*:}
     case " ${OPS:-$op} " in *" $op "*) ;; *) continue ;; esac
     if { [ "$op" = 20 ] || [ "$op" = 23 ]; } && [ "$HAVE_INTERP_FX" = 0 ]; then

@@ -52,7 +52,7 @@ qo_status qo_quat_from_euler_f32(qo_euler_seq seq, qo_euler_f32 e, qo_quat_f32 *
     *out = qo_quat_identity_f32();
     if (!qo_euler_seq_valid(seq)) return QO_E_ARG;
     if (!isfinite(e.a1) || !isfinite(e.a2) || !isfinite(e.a3)) return QO_E_NONFINITE;
-    ax = qo_euler_seq_axes[(int)seq % 12];
+    ax = qo_euler_seq_row(seq);
     q1 = elem_quat(ax[0], e.a1);
     q2 = elem_quat(ax[1], e.a2);
     q3 = elem_quat(ax[2], e.a3);
@@ -114,13 +114,13 @@ static qo_quat_f32 scale_pow2(qo_quat_f32 q)
  * atan2 is skipped when it is certainly larger (margin is then reported as pi/2). */
 static decomp decompose(qo_quat_f32 q, qo_euler_seq seq, float skip_band)
 {
-    const unsigned char *ax = qo_euler_seq_axes[(int)seq % 12];
+    const unsigned char *ax = qo_euler_seq_row(seq);
     int intrinsic = (int)seq >= 12;
     int i = intrinsic ? ax[0] : ax[2];
     int j = ax[1];
     int k = intrinsic ? ax[2] : ax[0];
     /* eps = +1 when e_i x e_j = +e_(third axis), i.e. (i, j, .) is cyclic. */
-    float eps = (j == (i + 1) % 3) ? 1.0f : -1.0f;
+    float eps = (j == (int)qo_euler_axis_next((unsigned)i)) ? 1.0f : -1.0f;
     float t1, t2, t3, n1, n2, lo, hi;
     decomp r;
     if (i == k) {
@@ -178,7 +178,7 @@ static decomp decompose(qo_quat_f32 q, qo_euler_seq seq, float skip_band)
  * maximises |<q_axis(a1), p>|. Result in [-pi, pi]. */
 static float fit_a1(qo_quat_f32 q, qo_euler_seq seq, float a2, float a3)
 {
-    const unsigned char *ax = qo_euler_seq_axes[(int)seq % 12];
+    const unsigned char *ax = qo_euler_seq_row(seq);
     qo_quat_f32 c2 = qo_quat_conj_f32(elem_quat(ax[1], a2));
     qo_quat_f32 c3 = qo_quat_conj_f32(elem_quat(ax[2], a3));
     qo_quat_f32 p;

@@ -58,18 +58,27 @@ static uint32_t shr_round(uint64_t v, unsigned s)
     return r + half;
 }
 
+/* The number of bits of v above 30 (0 when v < 2^30), on 32-bit words by a binary search
+ * (ARMv6-M has no count-leading-zeros instruction). */
+static unsigned bits_above_30(uint64_t v)
+{
+    unsigned s = 0;
+    uint32_t t;
+    if ((v >> 32) != 0) { s = 2; t = (uint32_t)(v >> 32); }
+    else t = (uint32_t)v >> 30;
+    if (t >= 0x10000u) { t >>= 16; s += 16; }
+    if (t >= 0x100u) { t >>= 8; s += 8; }
+    if (t >= 0x10u) { t >>= 4; s += 4; }
+    if (t >= 0x4u) { t >>= 2; s += 2; }
+    if (t >= 0x2u) { t >>= 1; s += 1; }
+    return s + t;
+}
+
 static qo_q28 atan2_i64(int64_t y, int64_t x)
 {
     uint64_t ay = qo_fx_abs_u64(y), ax = qo_fx_abs_u64(x), m = ay > ax ? ay : ax;
-    unsigned s = 0;
+    unsigned s = bits_above_30(m);   /* (a 64-bit shift per step is slow on Cortex-M0) */
     int32_t yy, xx;
-    uint32_t t;
-    /* s = the bit length of m above 30, found on 32-bit words (a 64-bit shift per step is
-     * slow on Cortex-M0). */
-    if ((m >> 32) != 0) { s = 2; t = (uint32_t)(m >> 32); }
-    else t = (uint32_t)m >> 30;
-    while (t >= 256u) { t >>= 8; s += 8; }
-    while (t != 0) { t >>= 1; s++; }
     yy = (int32_t)shr_round(ay, s);
     xx = (int32_t)shr_round(ax, s);
     if (y < 0) yy = -yy;
@@ -125,7 +134,7 @@ qo_status qo_quat_from_euler_q30(qo_euler_seq seq, qo_euler_q28 e, qo_quat_q30 *
     if (out == NULL) return QO_E_NULL;
     *out = identity_q30();
     if (!qo_euler_seq_valid(seq)) return QO_E_ARG;
-    ax = qo_euler_seq_axes[(int)seq % 12];
+    ax = qo_euler_seq_row(seq);
     q1 = elem_quat(ax[0], e.a1, 1);
     q2 = elem_quat(ax[1], e.a2, 1);
     q3 = elem_quat(ax[2], e.a3, 1);
@@ -180,13 +189,13 @@ static int64_t half_diff(uint64_t s1, uint64_t s2)
 
 static decomp decompose(q64 q, qo_euler_seq seq)
 {
-    const unsigned char *ax = qo_euler_seq_axes[(int)seq % 12];
+    const unsigned char *ax = qo_euler_seq_row(seq);
     int intrinsic = (int)seq >= 12;
     int i = intrinsic ? ax[0] : ax[2];
     int j = ax[1];
     int k = intrinsic ? ax[2] : ax[0];
     /* eps = +1 when e_i x e_j = +e_(third axis), i.e. (i, j, .) is cyclic. */
-    int64_t eps = (j == (i + 1) % 3) ? 1 : -1;
+    int64_t eps = (j == (int)qo_euler_axis_next((unsigned)i)) ? 1 : -1;
     int64_t a, b, c, d, h, p, t2y, t2x;
     uint64_t s1, s2, n1, n2;
     qo_q28 t1, t2, t3;
@@ -243,7 +252,7 @@ static decomp decompose(q64 q, qo_euler_seq seq)
  * (2uv, u^2 - v^2), already in [-pi, pi] and independent of the sign of p. */
 static qo_q28 fit_a1(q64 q, qo_euler_seq seq, qo_q28 a2, qo_q28 a3)
 {
-    const unsigned char *ax = qo_euler_seq_axes[(int)seq % 12];
+    const unsigned char *ax = qo_euler_seq_row(seq);
     q64 c2 = elem_quat(ax[1], a2, -1);
     q64 c3 = elem_quat(ax[2], a3, -1);
     q64 p;
@@ -388,4 +397,142 @@ qo_status qo_quat_to_euler_near_q30(qo_quat_q30 q, qo_euler_seq seq, qo_euler_q2
     }
     if (info != NULL) { info->locked = r.margin <= band; info->margin = r.margin; }
     return ovf ? QO_E_OVERFLOW : QO_OK;
+}
+
+/* ---- fast tier: 32-bit angle pairs, three atan2, one square root, no quaternion product ----
+ *
+ * The decomposition above keeps every product exact in int64, which costs four atan2 of 64-bit
+ * pairs and, at lock, two sin/cos and two quaternion products on a core without a 64-bit
+ * multiply. Here the same angles come from the ARGUMENTS of the two component pairs of the
+ * derivation in euler.c instead of from their products: with P and Q the pairs (proper:
+ * P = (w, q_i), Q = (q_j, eps q_l); Tait-Bryan: P = (w + y, x + z), Q = (w - y, z - x)),
+ * t1 = arg P + arg Q, t3 = arg P - arg Q (proper) or t1 = arg P - arg Q, t3 = arg P + arg Q
+ * (Tait-Bryan, then eps t3), and the middle angle from |P|^2 and |Q|^2 with one square root of
+ * their product. At lock the angle pair of the vanishing pair is noise, and a1 is twice the
+ * argument of the other pair (no fit). Each angle carries up to three atan2 roundings plus the
+ * halving of the components below: a few LSB of Q3.28 (measured in tests/test_euler_fx.c). */
+
+/* t in (-2 QO_Q28_TWO_PI, 2 QO_Q28_TWO_PI) wrapped into [-QO_Q28_PI, QO_Q28_PI] (one turn). */
+static qo_q28 wrap_turn(int32_t t)
+{
+    if (t > QO_Q28_PI) return t - QO_Q28_TWO_PI;
+    if (t < -QO_Q28_PI) return t + QO_Q28_TWO_PI;
+    return t;
+}
+
+static uint64_t sq_u64(int32_t v)
+{
+    uint32_t m = v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
+    return qo_fx_umul32_u64(m, m);
+}
+
+/* v = m 2^e (m truncated) with e even and m < 2^32, m >= 2^30 when v >= 2^30. */
+static uint32_t mant_even(uint64_t v, unsigned *e)
+{
+    unsigned s = bits_above_30(v);
+    s += s & 1u;
+    *e = s;
+    return s == 0 ? (uint32_t)v : s < 32u ? (uint32_t)(v >> s) : (uint32_t)(v >> 32) >> (s - 32u);
+}
+
+qo_status qo_quat_to_euler_fast_q30(qo_quat_q30 q, qo_euler_seq seq, qo_q28 band_rad,
+                                    qo_euler_q28 *out, qo_euler_info_q28 *info)
+{
+    const unsigned char *ax;
+    int32_t v[4], pr, pi, qr, qi, tp, tq, t1, t2, t3, margin, c;
+    uint64_t sp, sq;
+    uint32_t hp, hq, mp, mq, m;
+    unsigned i, j, k, s, ep, eq;
+    int intrinsic, proper, eps_neg, locked, p_small, r;
+    if (out == NULL) return QO_E_NULL;
+    set_error_outputs(out, info);
+    if (!qo_euler_seq_valid(seq)) return QO_E_ARG;
+    if (q.w == 0 && q.x == 0 && q.y == 0 && q.z == 0) return QO_E_DEGENERATE;
+    if (band_rad < 0 || band_rad > QO_Q28_HALF_PI) return QO_E_RANGE;
+    /* Scaled by a power of two so the largest |component| is in [2^29, 2^30): a component of
+     * +-1.0 or beyond halves all four (truncation toward zero is odd; the halved INT32_MIN is
+     * taken to -(2^30 - 1): 1 part in 2^30), a short quaternion is shifted up (exact). Every
+     * sum or difference of two components then fits an int32, and |P|^2 + |Q|^2 =
+     * 2 |q|^2 is in [2^59, 2^63). The sign is made canonical (first non-zero component
+     * positive), so q and -q give the same bits. */
+    v[0] = q.w; v[1] = q.x; v[2] = q.y; v[3] = q.z;
+    m = 0;
+    for (i = 0; i < 4; i++) m |= v[i] < 0 ? 0u - (uint32_t)v[i] : (uint32_t)v[i];
+    if (m >= (uint32_t)QO_Q30_ONE) {
+        for (i = 0; i < 4; i++) {
+            v[i] /= 2;
+            if (v[i] < 1 - QO_Q30_ONE) v[i] = 1 - QO_Q30_ONE;
+        }
+    } else {
+        s = 0;
+        while ((m << s) < ((uint32_t)1 << 21)) s += 8;
+        while ((m << s) < ((uint32_t)1 << 29)) s++;
+        for (i = 0; i < 4; i++) v[i] *= (int32_t)1 << s;   /* exact: stays below 2^30 */
+    }
+    if (v[0] < 0 || (v[0] == 0 && (v[1] < 0 || (v[1] == 0 && (v[2] < 0 || (v[2] == 0 && v[3] < 0))))))
+        for (i = 0; i < 4; i++) v[i] = -v[i];
+    intrinsic = (int)seq >= 12;
+    ax = qo_euler_seq_row(seq);
+    proper = ax[0] == ax[2];
+    i = intrinsic ? ax[0] : ax[2];
+    j = ax[1];
+    k = proper ? 3u - i - j : (intrinsic ? ax[2] : ax[0]);
+    /* eps = -1 when (i, j, .) is anti-cyclic; as in decompose(). */
+    eps_neg = j != qo_euler_axis_next(i);
+    {
+        int32_t x = v[1 + i], y = v[1 + j], z = eps_neg ? -v[1 + k] : v[1 + k];
+        if (proper) { pr = v[0]; pi = x; qr = y; qi = z; }
+        else { pr = v[0] + y; pi = x + z; qr = v[0] - y; qi = z - x; }
+    }
+    tp = qo_fx_atan2_q28(pi, pr);
+    tq = qo_fx_atan2_q28(qi, qr);
+    /* |P|^2 and |Q|^2 (exact) reduced by one power of two so their sum is below 2^30: then
+     * their difference fits an int32. 2 |P| |Q| at that scale comes from the two squares
+     * normalised apart (so the smaller one keeps its relative precision near lock, where it
+     * sets the margin): sqrt(mp mq) 2^((ep + eq)/2), shifted down by s (and up by 1 for the
+     * factor 2): r = s - (ep + eq)/2 - 1 >= 0, as 2 |P| |Q| <= |P|^2 + |Q|^2 < 2^(30 + s). */
+    sp = sq_u64(pr) + sq_u64(pi);
+    sq = sq_u64(qr) + sq_u64(qi);
+    s = bits_above_30(sp + sq);
+    hp = shr_round(sp, s);
+    hq = shr_round(sq, s);
+    mp = mant_even(sp, &ep);
+    mq = mant_even(sq, &eq);
+    r = (int)s - (int)((ep + eq) / 2u) - 1;
+    m = (uint32_t)qo_fx_sqrt_u64(qo_fx_umul32_u64(mp, mq));
+    c = r <= 0 ? (int32_t)(m << -r) : r > 34 ? 0 : (int32_t)shr_round(m, (unsigned)r);
+    if (proper) {
+        /* t2 = 2 atan2(|Q|, |P|) in [0, pi]; the margin is the distance to 0 or pi. */
+        t2 = qo_fx_atan2_q28(c, (int32_t)hp - (int32_t)hq);
+        margin = t2 <= QO_Q28_HALF_PI ? t2 : QO_Q28_PI - t2;
+        p_small = t2 > QO_Q28_HALF_PI;
+        t1 = wrap_turn(tp + tq);
+        t3 = wrap_turn(tp - tq);
+    } else {
+        /* t2 = 2 atan2(|P|, |Q|) - pi/2 in [-pi/2, pi/2]. */
+        t2 = qo_fx_atan2_q28((int32_t)hp - (int32_t)hq, c);
+        margin = QO_Q28_HALF_PI - (t2 < 0 ? -t2 : t2);
+        if (margin < 0) margin = 0;
+        p_small = t2 < 0;
+        t1 = wrap_turn(tp - tq);
+        t3 = wrap_turn(tp + tq);
+        if (eps_neg) t3 = -t3;
+    }
+    locked = margin <= band_rad;
+    if (locked) {
+        /* The determined combination C = t1 + sigma t3 is twice the argument of the larger
+         * pair (the smaller one's argument is noise); a3 = 0 leaves a1 = C (intrinsic, a1 is
+         * t1) or sigma C (extrinsic, a1 is t3). sigma: proper +1 (Q small) / -1 (P small);
+         * Tait-Bryan +eps (Q small) / -eps (P small). */
+        int sigma_neg = proper ? p_small : (p_small != eps_neg);
+        c = wrap_turn(p_small ? (proper ? 2 * tq : -2 * tq) : 2 * tp);
+        out->a1 = (!intrinsic && sigma_neg) ? -c : c;
+        out->a3 = 0;
+    } else {
+        out->a1 = intrinsic ? t1 : t3;
+        out->a3 = intrinsic ? t3 : t1;
+    }
+    out->a2 = t2;
+    if (info != NULL) { info->locked = locked; info->margin = margin; }
+    return QO_OK;
 }

@@ -12,4 +12,12 @@ extern const unsigned char qo_euler_seq_axes[12][3];
 /* 1 if seq is one of the 24 conventions. */
 int qo_euler_seq_valid(qo_euler_seq seq);
 
+/* The axes row of a valid seq, and the axis after i in the cyclic order x y z: without % (a
+ * division, a library call on cores without a divider). */
+static inline const unsigned char *qo_euler_seq_row(qo_euler_seq seq)
+{
+    return qo_euler_seq_axes[(int)seq >= 12 ? (int)seq - 12 : (int)seq];
+}
+static inline unsigned qo_euler_axis_next(unsigned i) { return i == 2u ? 0u : i + 1u; }
+
 #endif /* QORIENT_EULER_SEQ_INTERNAL_H */

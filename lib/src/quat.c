@@ -98,19 +98,6 @@ qo_status qo_quat_inverse_f32(qo_quat_f32 q, qo_quat_f32 *out)
     return QO_OK;
 }
 
-qo_quat_f32 qo_quat_canonical_f32(qo_quat_f32 q)
-{
-    int flip;
-    if (q.w != 0.0f) flip = q.w < 0.0f;
-    else if (q.x != 0.0f) flip = q.x < 0.0f;
-    else if (q.y != 0.0f) flip = q.y < 0.0f;
-    else flip = q.z < 0.0f;
-    if (flip) { q.w = -q.w; q.x = -q.x; q.y = -q.y; q.z = -q.z; }
-    /* -0.0 becomes +0.0 so canonical quaternions compare equal bitwise. */
-    q.w += 0.0f; q.x += 0.0f; q.y += 0.0f; q.z += 0.0f;
-    return q;
-}
-
 float qo_quat_angle_between_f32(qo_quat_f32 a, qo_quat_f32 b)
 {
     qo_quat_f32 d = qo_quat_mul_f32(qo_quat_conj_f32(a), b);

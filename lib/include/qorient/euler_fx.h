@@ -1,6 +1,7 @@
 /* parity fixed (tools/parity.sh writes docs/PARITY.md from these blocks):
  *   euler.from_euler     qo_quat_from_euler_q30
  *   euler.to_euler       qo_quat_to_euler_q30
+ *   euler.to_euler       qo_quat_to_euler_fast_q30 (the fast tier: 6e-9 rad, under half the Cortex-M0 instructions)
  *   euler.to_euler_near  qo_quat_to_euler_near_q30
  *   euler.to_euler_band  qo_quat_to_euler_band_q30
  */
@@ -18,6 +19,7 @@
  *   qo_quat_to_euler_q30()       quaternion -> angles, scipy ranges, default lock band
  *   qo_quat_to_euler_band_q30()  the same with a caller-chosen lock band
  *   qo_quat_to_euler_near_q30()  quaternion -> the solution nearest previous angles (joints)
+ *   qo_quat_to_euler_fast_q30()  quaternion -> angles, fast tier (Cortex-M0), a few LSB off
  * The sequence type qo_euler_seq and its helpers (qo_euler_seq_parse, _name, _is_intrinsic,
  * _is_proper) are qorient/euler_seq.h's, shared by both cores (lib/src/euler_seq.c: no float,
  * part of the fixed-only build too).
@@ -75,9 +77,9 @@
  * exact lock, <= 6.1e-9 near lock outside the band, <= 2.1e-7 inside the default band (the
  * 2*margin bound); to_euler_near <= 8.4e-9 generic. Goals: 1e-6 generic, 1e-5 at/near lock;
  * the float core's figures are 2.7e-7 / 4.2e-7 / 3.2e-6.
- * Cost (Cortex-M0+, arm-none-eabi-gcc -O2, tools/core-check.sh): 5.6 kB of code besides
- * fxmath, at most ~0.65 kB of stack (the nearest variant at lock); libgcc's 64-bit
- * multiply and divide helpers only. Every function is pure (no state, reentrant).
+ * Cost (Cortex-M0+, arm-none-eabi-gcc -O2, tools/core-check.sh): 7.4 kB of code besides
+ * fxmath (1.6 kB of it the fast tier), at most ~0.65 kB of stack (the nearest variant at
+ * lock); libgcc's 64-bit multiply and divide helpers only. Every function is pure (no state, reentrant).
  */
 #ifndef QORIENT_EULER_FX_H
 #define QORIENT_EULER_FX_H
@@ -157,6 +159,25 @@ qo_status qo_quat_to_euler_band_q30(qo_quat_q30 q, qo_euler_seq seq, qo_q28 band
  */
 qo_status qo_quat_to_euler_near_q30(qo_quat_q30 q, qo_euler_seq seq, qo_euler_q28 prev,
                                     qo_q28 band, qo_euler_q28 *out, qo_euler_info_q28 *info);
+
+/*
+ * The fast tier of qo_quat_to_euler_band_q30, for cores without a 64-bit multiply
+ * (Cortex-M0/M0+): the same conventions, ranges, lock band rule, lock choice (a3 = 0) and
+ * statuses, from 32-bit arithmetic: three atan2 and one square root, no quaternion product
+ * (lib/src/euler_fx.c). Not bit-identical to the exact function: each angle within a few LSB
+ * of Q3.28. The composed result vs the Q1.30 input (bench/accuracy_euler_fx, 20000 cases x
+ * 24 conventions): generic <= 6.0e-9 rad (goal 2e-7; the exact function 5.7e-9), exact lock
+ * <= 5.5e-9, inside the band <= 2*margin (a1 is then twice the argument of the determined
+ * component pair, not a fit); tests/test_euler_fx.c runs every shared to_euler test body on
+ * it with a 5e-8 bound. q need not be unit (a component of +-1.0 or beyond costs one bit);
+ * q and -q give the same bits. Pass QO_EULER_LOCK_BAND_Q28 for the default band. Under half
+ * the exact function's instructions on Cortex-M0 (tools/qemu-icount.sh, docs/FIGURES.md).
+ * Returns QO_OK; QO_E_NULL (out NULL); QO_E_ARG (bad seq); QO_E_DEGENERATE (q zero);
+ * QO_E_RANGE (band outside [0, QO_Q28_HALF_PI]), checked in that order. On error
+ * *out = (0, 0, 0) and *info = { 0, 0 }. info may be NULL.
+ */
+qo_status qo_quat_to_euler_fast_q30(qo_quat_q30 q, qo_euler_seq seq, qo_q28 band_rad,
+                                    qo_euler_q28 *out, qo_euler_info_q28 *info);
 
 #ifdef __cplusplus
 }

@@ -2,12 +2,15 @@
  *   gimbal.track   qo_gimbal_init_f32
  *   gimbal.track   qo_gimbal_reset_f32
  *   gimbal.track   qo_gimbal_step_f32
+ *   gimbal.filter  qo_gimbal_track_init_f32
+ *   gimbal.filter  qo_gimbal_track_step_f32
  *   gimbal.path    qo_orient_path_init_f32
  *   gimbal.path    qo_orient_path_sample_f32
  */
 /* parity fixed:
  *   gimbal.track   - float32 only: a gimbal controller runs where the IMU fusion runs, in float
  *   gimbal.path    - float32 only: sample its joint angles into a spline and export that to Q16
+ *   gimbal.filter  - float32 only: it runs the float32 motion planner; export its output instead
  */
 /*
  * qorient/gimbal.h - orientation paths for 2- and 3-axis gimbals and spherical wrists, float32.

@@ -2,6 +2,8 @@
  *   motion.plan    qo_motion_init_f32
  *   motion.plan    qo_motion_set_limits_f32
  *   motion.plan    qo_motion_set_target_f32
+ *   motion.plan    qo_motion_set_target_state_f32
+ *   motion.plan    qo_motion_set_joint_sync_f32
  *   motion.plan    qo_motion_set_velocity_f32
  *   motion.plan    qo_motion_set_timing_f32
  *   motion.plan    qo_motion_brake_f32

@@ -39,8 +39,8 @@
  *   qo_quat_is_finite_f32    all four components finite
  *   qo_quat_normalize_full_f32  the out-of-line complete path of qo_quat_normalize_f32
  *
- * Inline functions: identity, mul, conj, dot, rotate, is_finite and normalize's fast path are
- * `static inline` here (a call would cost more than the arithmetic: mul is 16 multiplies).
+ * Inline functions: identity, mul, conj, dot, rotate, is_finite, canonical and normalize's fast
+ * path are `static inline` here (a call would cost more than the arithmetic: mul is 16 multiplies).
  * libqorient also exports each of them under the same name, built from these same bodies,
  * so code linked against an older header keeps working. The inline copies compute exactly
  * the library's bits when the caller's compiler does not fuse a*b+c into one rounding:
@@ -71,10 +71,6 @@ float qo_quat_norm_f32(qo_quat_f32 q);
  * float (components near FLT_MAX) or 1/|q| overflowing (|q| below ~3e-39);
  * *out is the identity on error. */
 qo_status qo_quat_inverse_f32(qo_quat_f32 q, qo_quat_f32 *out);
-
-/* The representative of the same rotation with w >= 0; when w == 0 the first non-zero of
- * x, y, z is made positive. Matches scipy's as_quat(canonical=True). */
-qo_quat_f32 qo_quat_canonical_f32(qo_quat_f32 q);
 
 /* Angle in radians, in [0, pi], of the rotation that takes orientation a to orientation b
  * (both unit). Computed as 2*atan2(|vec(conj(a)*b)|, |scalar(conj(a)*b)|), accurate for
@@ -119,6 +115,7 @@ float qo_quat_dot_f32(qo_quat_f32 a, qo_quat_f32 b);
 int qo_quat_is_finite_f32(qo_quat_f32 q);
 qo_vec3_f32 qo_quat_rotate_f32(qo_quat_f32 q, qo_vec3_f32 v);
 qo_status qo_quat_normalize_f32(qo_quat_f32 q, qo_quat_f32 *out);
+qo_quat_f32 qo_quat_canonical_f32(qo_quat_f32 q);
 #else
 #define QO_QUAT_INLINE static inline
 #endif
@@ -199,6 +196,21 @@ QO_QUAT_INLINE qo_status qo_quat_normalize_f32(qo_quat_f32 q, qo_quat_f32 *out)
         return QO_OK;
     }
     return qo_quat_normalize_full_f32(q, out);
+}
+
+/* The representative of the same rotation with w >= 0; when w == 0 the first non-zero of
+ * x, y, z is made positive. Matches scipy's as_quat(canonical=True). -0.0 components become
+ * +0.0, so canonical quaternions compare equal bitwise. */
+QO_QUAT_INLINE qo_quat_f32 qo_quat_canonical_f32(qo_quat_f32 q)
+{
+    int flip;
+    if (q.w != 0.0f) flip = q.w < 0.0f;
+    else if (q.x != 0.0f) flip = q.x < 0.0f;
+    else if (q.y != 0.0f) flip = q.y < 0.0f;
+    else flip = q.z < 0.0f;
+    if (flip) { q.w = -q.w; q.x = -q.x; q.y = -q.y; q.z = -q.z; }
+    q.w += 0.0f; q.x += 0.0f; q.y += 0.0f; q.z += 0.0f;
+    return q;
 }
 
 #ifdef __cplusplus
