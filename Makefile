@@ -15,8 +15,11 @@
 #   cli/linux/*.c          its Linux-only subcommands (stream, sim): they need the Linux ports
 #                          (libmodbus, libgpiod, threads); kept apart so the portable part can be
 #                          built and fuzzed without them
-#   tests/test_*.c         one cmocka program each; tests/common/*.c linked into all of them
-#   tests/test_*.sh        shell tests of the command, run with build/qorient
+#   tests/SUITE/test_*.c   one cmocka program each (SUITE: core, ports, examples, fuzz; see
+#                          docs/TESTING.md); tests/common/*.c linked into all of them; built as
+#                          build/tests/test_NAME whatever the folder
+#   tests/SUITE/test_*.sh  shell tests (tests/cli/: the command; tests/examples/), run with
+#                          build/qorient
 #   bench/*.c              figure programs (accuracy_*.c run by `make figures`, docs/FIGURES.md)
 
 CC      ?= cc
@@ -45,10 +48,13 @@ CORE_SRC  := $(sort $(wildcard lib/src/*.c))
 FX_SRC    := $(sort $(wildcard lib/src/*_fx.c))
 PORT_SRC  := $(sort $(wildcard ports/mock/*.c ports/linux/*.c))
 CLI_SRC   := $(sort $(wildcard cli/*.c cli/linux/*.c))
-TEST_SRC  := $(sort $(wildcard tests/test_*.c))
+# The suite folders, in the order `make test` runs them; tests/common, qemu, install and vm
+# hold no test_*.c / test_*.sh of their own.
+TEST_DIRS := core ports examples fuzz cli
+TEST_SRC  := $(foreach d,$(TEST_DIRS),$(sort $(wildcard tests/$(d)/test_*.c)))
 # tests/common/linux/: the Linux-only harness (pty relay); tests/common/*.c also builds for Cortex-M
 TEST_COMMON := $(sort $(wildcard tests/common/*.c tests/common/linux/*.c))
-TEST_SH   := $(sort $(wildcard tests/test_*.sh))
+TEST_SH   := $(foreach d,$(TEST_DIRS),$(sort $(wildcard tests/$(d)/test_*.sh)))
 
 CORE_OBJ  := $(CORE_SRC:%.c=$(BUILD)/obj/%.o)
 PORT_OBJ  := $(PORT_SRC:%.c=$(BUILD)/obj/%.o)
@@ -57,7 +63,8 @@ CLI_OBJ   := $(CLI_SRC:%.c=$(BUILD)/obj/%.o)
 SCORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/san/%.o)
 SPORT_OBJ := $(PORT_SRC:%.c=$(BUILD)/san/%.o)
 SCOMMON_OBJ := $(TEST_COMMON:%.c=$(BUILD)/san/%.o)
-TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
+# build/tests/test_NAME, flat: scripts and tools run the programs by name, not by suite.
+TEST_BIN  := $(addprefix $(BUILD)/tests/,$(basename $(notdir $(TEST_SRC))))
 
 .PHONY: all lib demo test test-run test-vm core-check clean tests-build figures figures-check parity parity-check
 # Keep the sanitizer objects between runs (they are intermediates of the test pattern rule).
@@ -103,9 +110,13 @@ $(BUILD)/san/tests/%.o: tests/%.c
 	@mkdir -p $(@D)
 	$(CC) -MMD -MP $(STD) $(WARN) -Wno-double-promotion $(FPFLAGS) -O1 -g $(SAN) $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports -Itests $(PKG_CFLAGS) -c $< -o $@
 
-$(BUILD)/tests/%: $(BUILD)/san/tests/%.o $(SCOMMON_OBJ) $(SPORT_OBJ) $(SCORE_OBJ)
-	@mkdir -p $(@D)
-	$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(PKG_LIBS) -lm -pthread -lutil
+# One link rule per program: build/tests/test_NAME from build/san/tests/SUITE/test_NAME.o.
+define TEST_LINK
+$(BUILD)/tests/$(basename $(notdir $(1))): $(BUILD)/san/$(1:.c=.o) $$(SCOMMON_OBJ) $$(SPORT_OBJ) $$(SCORE_OBJ)
+	@mkdir -p $$(@D)
+	$$(CC) $$(SAN) -o $$@ $$^ $$(CMOCKA_LIBS) $$(PKG_LIBS) -lm -pthread -lutil
+endef
+$(foreach s,$(TEST_SRC),$(eval $(call TEST_LINK,$(s))))
 
 # ---- figures: accuracy and speed programs in bench/ (optimised, no sanitizers) ----
 # The bench programs link tests/common (the double references, the port harness) as an archive,

@@ -25,7 +25,7 @@
 
 typedef int (*qo_fz_cli_fn)(int argc, char **argv);
 
-/* QO_FUZZ_CLI_EXEC (tests/test_fuzz_regress.c, which is not linked with the command's
+/* QO_FUZZ_CLI_EXEC (tests/fuzz/test_fuzz_regress.c, which is not linked with the command's
  * objects): run the built command $QORIENT (default build/qorient) as a child process with the
  * same argv instead of calling the entry point in process. */
 #ifdef QO_FUZZ_CLI_EXEC

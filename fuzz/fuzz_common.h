@@ -3,7 +3,7 @@
  *
  * Index:
  *   QO_FUZZ_FAIL(...)        report a property violation (default: message + abort(), which
- *                            libFuzzer records as a crash; tests/test_fuzz_regress.c maps it to
+ *                            libFuzzer records as a crash; tests/fuzz/test_fuzz_regress.c maps it to
  *                            a cmocka failure)
  *   QO_FUZZ_ENTRY            name of the target's entry point (default LLVMFuzzerTestOneInput;
  *                            the regress test renames it per target)

@@ -8,7 +8,7 @@
 # Each target runs on a working corpus build/fuzz/corpus/NAME (new units land there) seeded
 # from the committed fuzz/corpus/NAME and fuzz/regress/NAME; a crash or property violation
 # leaves its input in build/fuzz/artifacts/ (copy it to fuzz/regress/NAME/ to keep it as a
-# regression test: tests/test_fuzz_regress.c replays both directories under `make test`).
+# regression test: tests/fuzz/test_fuzz_regress.c replays both directories under `make test`).
 # fuzz/run.sh prints the executions per target (libFuzzer's stat::number_of_executed_units)
 # and a last line "N passed, M failed"; it exits non-zero on any finding.
 #

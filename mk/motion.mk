@@ -4,7 +4,7 @@
 #   make check-motion        1,000,000 random joints per sync mode (NONE, TIME, PHASE,
 #                            TIME_IF_NECESSARY: 142,858 random 7-joint plans each, with moving
 #                            starts, asymmetric limits and moving target states),
-#                            tests/test_motion_oracle.c optimised, no sanitizers (make test runs
+#                            tests/core/test_motion_oracle.c optimised, no sanitizers (make test runs
 #                            the same program with 10,500 per mode)
 #   make check-motion-long   10,000,000 per sync mode
 # QO_MOTION_ORACLE_FILTER=test_oracle_time (a cmocka name pattern) runs one part, e.g. the modes
@@ -15,7 +15,7 @@
 # exceeded by more than 1e-5 relative, a jump across a re-plan); the first 20 are printed with
 # their inputs.
 .PHONY: check-motion check-motion-long
-MOTION_CHECK_SRC := tests/test_motion_oracle.c tests/common/motion_ref.c tests/common/ref.c
+MOTION_CHECK_SRC := tests/core/test_motion_oracle.c tests/common/motion_ref.c tests/common/ref.c
 
 $(BUILD)/check/test_motion_oracle_%: $(MOTION_CHECK_SRC) $(BUILD)/libqorient.a
 	@mkdir -p $(@D)

@@ -4,14 +4,22 @@
 # a labelled line per program ("== NAME: N passed, M failed"), a summary of them at the end and
 # one closing line "N passed, M failed". Exit status 1 if anything failed or a program
 # crashed (a crash counts as one failure even if cmocka had no chance to report it).
-# The summary also adds them up per suite: "core" (the library's cmocka programs), "ports"
-# (programs that include a port header: linux/, mock/) and "command" (the shell tests).
+# The summary also adds them up per suite, the program's folder under tests/: "core" (the
+# library's cmocka programs), "ports" (ports/), "command" (tests/cli/: the shell tests of the
+# command), "examples" (examples/) and "fuzz" (the fuzz regressions). A cmocka program is found
+# by name (build/tests/test_x -> tests/*/test_x.c), a shell test by its path.
 passed=0; failed=0; crashed=""; summary=""
-sp_core=0; sf_core=0; sn_core=0; sp_ports=0; sf_ports=0; sn_ports=0; sp_command=0; sf_command=0; sn_command=0
+SUITES="core ports command examples fuzz other"
+for su in $SUITES; do eval "sp_$su=0; sf_$su=0; sn_$su=0"; done
 suite_of() {
-    if [ "$mode" = sh ]; then echo command
-    elif grep -qE '#include "(linux|mock)/' "tests/$(basename "$1").c" 2>/dev/null; then echo ports
-    else echo core; fi
+    if [ "$mode" = sh ]; then src=$1
+    else src=$(ls tests/*/"$(basename "$1")".c 2>/dev/null | head -1); fi
+    d=$(basename "$(dirname "${src:-unknown/x}")")
+    case $d in
+    core|ports|examples|fuzz) echo "$d";;
+    cli) echo command;;
+    *) echo other;;
+    esac
 }
 tmp=${TMPDIR:-/tmp}/qorient-run.$$
 trap 'rm -f "$tmp"' EXIT INT TERM
@@ -42,7 +50,8 @@ for t in "$@"; do
 done
 echo "== summary per program:$summary"
 echo "== summary per suite:"
-for su in core ports command; do
+for su in $SUITES; do
+    [ "$su" = other ] && eval "[ \$sn_other -eq 0 ]" && continue
     eval "printf '  %-27s %5s passed, %s failed (%s programs)\n' \"suite \$su:\" \$sp_$su \$sf_$su \$sn_$su"
 done
 [ -n "$crashed" ] && echo "crashed or exited non-zero without a report:$crashed"

@@ -9,7 +9,7 @@
 #  3. on Cortex-M0+ nothing reachable from SysTick_Handler (the call graph of the linked image)
 #     is a floating-point helper (__aeabi_f*, __aeabi_d*, libm): the interrupt is integer-only;
 #  4. examples/pi/stream_modbus.c compiles warning-free on the host (built and run against the
-#     simulator by tests/test_example_pi.sh);
+#     simulator by tests/examples/test_example_pi.sh);
 #  5. tools/check-library-json.py: the PlatformIO manifest builds and names existing examples.
 # PlatformIO itself is not run (not installed in CI; see examples/platformio/README.md).
 set -eu
@@ -82,7 +82,7 @@ EOF
     done
 done
 
-# The host example: compile only (tests/test_example_pi.sh builds, links and runs it).
+# The host example: compile only (tests/examples/test_example_pi.sh builds, links and runs it).
 PKG_CONFIG=${PKG_CONFIG:-pkg-config}
 if cc -std=c99 -Wall -Wextra -Wpedantic -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes \
         -ffp-contract=off -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Ilib/include -Iports \

@@ -27,7 +27,7 @@
  * Porting: everything that touches hardware is between the HARDWARE markers below
  * (hw_systick_start, hw_pwm_write_us, hw_lock_led, hw_setpoint_poll, hw_wait_for_interrupt).
  * Define QO_EX_EXTERNAL_HW to leave that block out and define those five static functions
- * before including this file: tests/test_example_mcu.c runs the example on the host that way,
+ * before including this file: tests/examples/test_example_mcu.c runs the example on the host that way,
  * with a simulated clock and its own setpoints. The SysTick registers are architectural (the
  * same on every Cortex-M); the PWM is your timer's. Your vendor's startup file provides the
  * vector table that calls SysTick_Handler (on the RP2040 SDK the name is isr_systick). The

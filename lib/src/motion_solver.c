@@ -681,7 +681,7 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
     /* The dip family runs from the extremum-velocity profile through vs (am = 0) to the direct
      * transfer (vc = ve, am = a0): searched when those two bracket dp, i.e. when the two-stage
      * middle piece below would be; its profiles are then never shorter (checked against the
-     * reference in tests/test_motion_oracle.c), so that piece is searched only without a dip.
+     * reference in tests/core/test_motion_oracle.c), so that piece is searched only without a dip.
      * Only for end states with af = 0 (the dip's pulse ends at zero acceleration). */
     if (scurve && p->af == 0.0f && a0 != 0.0f && vn != ve && (fz < 0.0f) != (fn0 < 0.0f) && fz == fz && fn0 == fn0) {
         float am, dd;

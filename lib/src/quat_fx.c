@@ -5,7 +5,7 @@
  * fx_internal.h): 16-bit column sums on Cortex-M0/M0+ (no 64-bit multiply), plain int64 sums
  * where a widening multiply exists (x86-64, aarch64, ARMv7-M). normalize uses one Newton
  * reciprocal instead of four 64-bit divisions (no divider on Cortex-M0). Every form gives the
- * identical result (same exact sum, same single rounding; tests/test_parts_fx.c compares
+ * identical result (same exact sum, same single rounding; tests/core/test_parts_fx.c compares
  * them); other inputs take the general path. This file is the kernel of the fixed core: it
  * depends on fxmath only (convert_fx.c, interp_fx.c build on it, not the other way). */
 #include "qorient/quat_fx.h"

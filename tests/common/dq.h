@@ -1,6 +1,6 @@
 /*
  * tests/common/dq.h - short names for the double-precision quaternion algebra the
- * interpolation tests and accuracy programs (tests/test_interp*.c, bench/accuracy_interp*.c)
+ * interpolation tests and accuracy programs (tests/core/test_interp*.c, bench/accuracy_interp*.c)
  * compute their references with. `dq` is the reference quaternion of common/ref.h (one
  * reference for every test and bench program, linked from tests/common/ref.c); the helpers
  * here are the few vector-space operations ref.h has no use for.

@@ -1,7 +1,7 @@
 /*
  * tests/common/dq_interp.h - the double-precision interpolation references (textbook slerp,
  * Shoemake spline controls, de Casteljau on the sphere, log/exp) and the fixed-seed PRNG that
- * the interpolation tests and accuracy programs (tests/test_interp*.c,
+ * the interpolation tests and accuracy programs (tests/core/test_interp*.c,
  * bench/accuracy_interp*.c) share. Built on common/dq.h (common/ref.c); independent of the
  * library. Static inline: each user takes what it needs; the PRNG state is per file.
  *

@@ -1,4 +1,4 @@
-/* tests/common/same_bits.h: digests of tests/test_same_bits.c (made on x86-64; how: see
+/* tests/common/same_bits.h: digests of tests/core/test_same_bits.c (made on x86-64; how: see
  * that file's comment). Every target must reproduce them bit for bit. */
 static const uint32_t same_bits_expected[5][48] = {
     { /* fmath */

@@ -1,7 +1,7 @@
 /*
  * tests/qemu/cmocka.h - a small cmocka-compatible shim for bare-metal Cortex-M under QEMU.
  *
- * There is no cmocka for arm-none-eabi. The core's test programs (tests/test_*.c) are built
+ * There is no cmocka for arm-none-eabi. The core's test programs (tests/core/test_*.c) are built
  * unmodified against this header (it is found first through -isystem tests/qemu) and run on
  * emulated Cortex-M0 / M4F / M7 cores with newlib's semihosting stdio. It provides exactly the
  * part of cmocka's API that the tests use, with cmocka's semantics:

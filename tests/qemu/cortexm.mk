@@ -4,7 +4,7 @@
 #
 #   make -f tests/qemu/cortexm.mk QT=m0|m4f|m7 TESTS="test_quat test_euler ..." [-j2]
 #
-# Outputs: build/qemu-QT/TEST.elf (one per test), build/qemu-QT/selftest.elf (the shim's own test),
+# Outputs: build/qemu-QT/TEST.elf (one per test, flat whatever its tests/SUITE/ folder), build/qemu-QT/selftest.elf (the shim's own test),
 # build/qemu-QT/libqorient.a
 # The core is built with the project's core flags and -Werror; the test sources with the host
 # test flags minus -Werror (their warnings under newlib's types are reported, not fatal).
@@ -73,9 +73,14 @@ $(OUT)/obj/tests/%.o: tests/%.c
 $(OUT)/libqorient.a: $(CORE_OBJ)
 	rm -f $@ && $(AR) rcs $@ $^
 
-$(OUT)/%.elf: $(OUT)/obj/tests/%.o $(COMMON_OBJ) $(SHIM_OBJ) $(OUT)/libqorient.a tests/qemu/cm.ld
-	$(CC) $(CPU) $(SPECS) -T tests/qemu/cm.ld $(MEM) -Wl,--gc-sections -o $@ \
-	    $< $(COMMON_OBJ) $(SHIM_OBJ) $(OUT)/libqorient.a -lm
+# TESTS names programs (test_quat); each is found in its suite folder (tests/core/test_quat.c,
+# tests/examples/test_example_mcu.c, ...). A name with no source is left to fail as before.
+define TEST_ELF
+$(OUT)/$(1).elf: $(OUT)/obj/$(patsubst %.c,%.o,$(or $(firstword $(wildcard tests/*/$(1).c)),tests/$(1).c)) $$(COMMON_OBJ) $$(SHIM_OBJ) $$(OUT)/libqorient.a tests/qemu/cm.ld
+	$$(CC) $$(CPU) $$(SPECS) -T tests/qemu/cm.ld $$(MEM) -Wl,--gc-sections -o $$@ \
+	    $$< $$(COMMON_OBJ) $$(SHIM_OBJ) $$(OUT)/libqorient.a -lm
+endef
+$(foreach t,$(TESTS),$(eval $(call TEST_ELF,$(t))))
 
 # The shim's own test (tests/qemu/selftest.c): run first, must report exactly what it expects.
 $(OUT)/selftest.elf: $(OUT)/obj/tests/qemu/selftest.o $(SHIM_OBJ) tests/qemu/cm.ld

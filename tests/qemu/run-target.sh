@@ -8,6 +8,12 @@
 #   sh tests/qemu/run-target.sh aarch64|armhf   the whole host suite (core, ports, cmocka and
 #                                               shell tests, ASan+UBSan) cross-built with the top
 #                                               Makefile and run under qemu-aarch64 / qemu-arm
+#   sh tests/qemu/run-target.sh list            prints which programs each kind of target takes
+#                                               ("cortex-m tests/core/test_quat.c", "linux ...")
+#                                               and builds nothing
+#
+# The programs are tests/SUITE/test_*.c and tests/SUITE/test_*.sh (SUITE: core, ports, examples,
+# fuzz, cli); the Cortex-M targets take the C programs that pass is_core below, whatever their folder.
 #
 # Prints one line per program ("  test_quat: 14 passed, 0 failed (3.1 s wall, 2.9 s cpu)"), a
 # "[   TIME   ]" line from the Cortex-M shim for each test function over 1 s of CPU, and a last line
@@ -23,10 +29,9 @@ cd "$(dirname "$0")/../.." || exit 2
 T=${1:?usage: run-target.sh m0|m4f|m7|aarch64|armhf}
 OUT=build/qemu-$T
 LOGS=$OUT/logs
-mkdir -p "$LOGS"
 passed=0; failed=0; skipped=""; problems=""
 SUMMARY=$OUT/summary.txt
-: >"$SUMMARY"
+if [ "$T" != list ]; then mkdir -p "$LOGS"; : >"$SUMMARY"; fi
 
 now() { date +%s.%N; }
 # CPU seconds used so far by finished children (user + sys), from `times` run in this shell
@@ -37,15 +42,19 @@ cpu_of() { tail -1 "$1" | awk '{ n = 0; for (i = 1; i <= NF; i++) { split($i, a,
 secs() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.1f", b - a }'; }
 
 # A core test includes only C99 headers, <cmocka.h>, "qorient/..." and "common/..." (the core and
-# tests/common), or a source file beside it (say "../examples/mcu/x.c") that itself follows this
-# rule: anything else (ports/, POSIX, libmodbus, libgpiod) keeps it on Linux.
+# tests/common), or an example's source (say "../examples/mcu/x.c", found like the compiler does:
+# beside the including file, else through -Itests) that itself follows this rule: anything else
+# (ports/, POSIX, libmodbus, libgpiod) keeps it on Linux.
 is_core() {
     d=$(dirname "$1")
     for inc in $(grep -E '^[[:space:]]*#[[:space:]]*include' "$1" | grep -Ev \
         -e '<(assert|ctype|errno|float|inttypes|iso646|limits|locale|math|setjmp|signal|stdarg|stdbool|stddef|stdint|stdio|stdlib|string|wchar|wctype|cmocka)\.h>' \
         -e '"(qorient|common)/[A-Za-z0-9_]+\.h"' | sed 's/[^"<]*[<"]\([^">]*\)[">].*/\1/'); do
         case $inc in
-        ../examples/*.[ch]) [ -f "$d/$inc" ] && is_core "$d/$inc" || return 1;;
+        ../examples/*.[ch])
+            if [ -f "$d/$inc" ]; then is_core "$d/$inc" || return 1
+            elif [ -f "tests/$inc" ]; then is_core "tests/$inc" || return 1
+            else return 1; fi;;
         *) return 1;;
         esac
     done
@@ -113,6 +122,13 @@ build_failed() { # NAME LOGFILE
 }
 
 case $T in
+list)
+    for src in tests/*/test_*.c; do
+        if is_core "$src"; then echo "cortex-m $src"; else echo "linux $src"; fi
+    done
+    for sh in tests/*/test_*.sh; do echo "linux $sh"; done
+    exit 0
+    ;;
 m0|m4f|m7)
     case $T in
     m0) BOARD=microbit; CPU=cortex-m0; TMO=${QEMU_TIMEOUT:-1800};;
@@ -121,7 +137,7 @@ m0|m4f|m7)
     esac
     echo "== $T: core tests on $CPU ($BOARD) under qemu-system-arm + semihosting"
     core=""
-    for src in tests/test_*.c; do
+    for src in tests/*/test_*.c; do
         n=$(basename "$src" .c)
         if ! is_core "$src"; then skip_it "$n" "not core: includes a port, POSIX or bus header"; continue; fi
         if ! wanted "$n"; then skip_it "$n" "QEMU_SKIP"; continue; fi
@@ -196,13 +212,13 @@ aarch64|armhf)
     printf '#!/bin/sh\nexec %s %s "$@"\n' "$QRUN" "$PWD/$OUT/qorient" >"$QW"
     chmod +x "$QW"
     QORIENT=$QW; export QORIENT
-    for src in tests/test_*.c; do
+    for src in tests/*/test_*.c; do
         n=$(basename "$src" .c)
         if ! wanted "$n"; then skip_it "$n" "QEMU_SKIP"; continue; fi
         if [ ! -f "$OUT/tests/$n" ]; then build_failed "$n" "$LOGS/build.log"; continue; fi
         run "$n" bin $QRUN "$OUT/tests/$n"
     done
-    for sh in tests/test_*.sh; do
+    for sh in tests/*/test_*.sh; do
         n=$(basename "$sh" .sh)
         if ! wanted "$n"; then skip_it "$n" "QEMU_SKIP"; continue; fi
         if host_cc_test "$sh"; then skip_it "$n" "builds and runs a program with the host's cc"; continue; fi
@@ -211,7 +227,7 @@ aarch64|armhf)
     done
     ;;
 *)
-    echo "run-target.sh: unknown target '$T' (m0, m4f, m7, aarch64, armhf)" >&2
+    echo "run-target.sh: unknown target '$T' (m0, m4f, m7, aarch64, armhf, list)" >&2
     exit 2
     ;;
 esac

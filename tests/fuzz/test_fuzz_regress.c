@@ -1,5 +1,5 @@
 /*
- * tests/test_fuzz_regress.c - replays the fuzz inputs under `make test` (ASan + UBSan, gcc):
+ * tests/fuzz/test_fuzz_regress.c - replays the fuzz inputs under `make test` (ASan + UBSan, gcc):
  * every file in fuzz/regress/NAME/ (inputs that once crashed or violated a property: each is
  * a regression test of the fix named in its file name) and every seed in fuzz/corpus/NAME/,
  * through the same target code as the libFuzzer build (fuzz/fuzz_NAME.c is included here with

@@ -163,7 +163,7 @@ static void test_same_bits(void **state)
     (void)state;
     for (c = 0; c < N_CASES; c++) run_case(c);
     if (print != NULL && print[0] != '\0') {
-        printf("/* tests/common/same_bits.h: digests of tests/test_same_bits.c (made on x86-64; how: see\n"
+        printf("/* tests/common/same_bits.h: digests of tests/core/test_same_bits.c (made on x86-64; how: see\n"
                " * that file's comment). Every target must reproduce them bit for bit. */\n"
                "static const uint32_t same_bits_expected[%d][%d] = {\n", F_COUNT, N_CASES);
         for (f = 0; f < F_COUNT; f++) {

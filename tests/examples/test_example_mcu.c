@@ -1,5 +1,5 @@
 /*
- * tests/test_example_mcu.c - runs examples/mcu/gimbal_follow.c on the host: the example is
+ * tests/examples/test_example_mcu.c - runs examples/mcu/gimbal_follow.c on the host: the example is
  * included with QO_EX_EXTERNAL_HW, and the five hardware functions below simulate its clock
  * (each wait-for-interrupt is one SysTick), its setpoint link and its servos.
  *

@@ -1,5 +1,5 @@
 #!/bin/sh
-# tests/test_readme.sh - every README example that shows its output prints exactly that.
+# tests/cli/test_readme.sh - every README example that shows its output prints exactly that.
 #
 # In README.md's ```sh blocks, a line "$ COMMAND" is run (with sh, from the repository root, the
 # command's build/qorient replaced by $QORIENT when set) and the lines after it, up to the next
@@ -7,7 +7,7 @@
 # byte. Blocks without "$ " lines are listed commands, not checked here. Prints one line per
 # example and "N passed, M failed".
 set -u
-cd "$(dirname "$0")/.." || exit 2
+cd "$(dirname "$0")/../.." || exit 2
 Q=${QORIENT:-build/qorient}
 [ -x "${Q%% *}" ] || command -v "${Q%% *}" >/dev/null 2>&1 || { echo "test_readme: $Q not built"; echo "0 passed, 1 failed"; exit 1; }
 tmp=${TMPDIR:-/tmp}/qo-readme.$$

@@ -158,7 +158,7 @@ expect_err "bad limit" 2 "0 0\n1 1\n" "--min.*not a list" --min x
 expect_err "wrap index" 2 "0 0\n1 1\n" "--wrap: .2. is not a joint number 1..1" --wrap 2
 expect_err "vmax with keyframes" 2 "0 0\n1 1\n" "--vmax applies to --profile trapezoid[|]scurve only" --vmax 1
 expect_err "sync with keyframes" 2 "0 0\n1 1\n" "--sync applies to --profile trapezoid" --profile quintic --sync time
-# --profile trapezoid|scurve are routed to the motion planner by plan.c (tests/test_plan_moves.sh)
+# --profile trapezoid|scurve are routed to the motion planner by plan.c (tests/cli/test_plan_moves.sh)
 expect_err "unknown profile" 2 "0 0\n1 1\n" "--profile: 'bogus' is not linear, cubic" --profile bogus
 expect_err "bad rate" 2 "0 0\n1 1\n" "--rate: .0. is not a number in .0.001, 1e.06. Hz" --rate 0
 expect_err "cubic needs pv" 2 "0 0\n1 1\n" "cubic needs key velocities" --profile cubic --columns p
