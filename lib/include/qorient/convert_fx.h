@@ -173,7 +173,7 @@ qo_mat3_q30 qo_mat3_identity_q30(void);
 /* Determinant in Q1.30 (cofactor expansion along the first row): 1.0 (QO_Q30_ONE) for a
  * rotation, -1.0 for a reflection. Exact 64-bit products, the cofactors and the sum each
  * rounded once: within 2 LSB when no entry exceeds 1 + 1/16 in magnitude; larger entries
- * (up to the format's 2) are handled with Q3.28 cofactors (within ~8 LSB), and a determinant
+ * (up to the format's 2) are handled with Q3.28 cofactors (within 12 LSB), and a determinant
  * beyond [-2, 2) saturates. m NULL gives 0. */
 qo_q30 qo_mat3_det_q30(const qo_mat3_q30 *m);
 
