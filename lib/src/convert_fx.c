@@ -381,7 +381,7 @@ qo_status qo_mat3_orthonormalize_q30(const qo_mat3_q30 *m, qo_mat3_q30 *out)
     /* Newton-Schulz (Bjorck) iteration X <- X (3I - X^T X) / 2: no inverse and no division,
      * every product of entries <= 1, so all of it is exact 64-bit sums rounded once per entry.
      * Each singular value s maps to s (3 - s^2) / 2: quadratic convergence to 1 near 1, growth
-     * by 1.5x per step from below; the polar factor is the fixed point. (The float core uses
+     * by 1.5x per step from below; the polar factor is the fixed point. (convert.c uses
      * Higham's scaled Newton iteration, which needs an inverse per step.) */
     for (it = 0; it < ORTHO_MAX_ITER; it++) {
         int64_t step = 0;
