@@ -10,7 +10,8 @@
  * algebra of tests/common (ref.c, dq.h, dq_interp.h), so each core is judged on the inputs it
  * actually received. Fixed seeds; every failure names the core, the case and its inputs.
  *
- * Concepts: slerp_long, slerp_rate, exp/log, mul, conj, rotate, normalize, axis-angle,
+ * Concepts: slerp_long, slerp_rate, exp/log, mul, conj, rotate, normalize, canonical,
+ * angle_between, integrate, axis-angle,
  * rotation vector, to/from mat3 (checked, trusted, ortho), mat3 identity, transpose, mul, det,
  * orthonormalize. Edges in every body: identity, identical and antipodal inputs, zero, and the
  * out-of-range value of each core - NaN/Inf for float32, a saturated input for fixed point -
@@ -60,6 +61,9 @@ typedef struct core {
     dq (*conj)(dq q);
     ref_vec3 (*rotate)(dq q, ref_vec3 v);
     qo_status (*normalize)(dq q, dq *out);
+    dq (*canonical)(dq q);
+    double (*angle_between)(dq a, dq b);
+    qo_status (*integrate)(dq q, ref_vec3 dtheta, dq *out);   /* body frame, rad */
     qo_status (*from_axis_angle)(ref_vec3 axis, double ang, dq *out);
     qo_status (*to_axis_angle)(dq q, ref_vec3 *axis, double *ang);
     qo_status (*from_rotvec)(ref_vec3 rv, dq *out);
@@ -126,6 +130,18 @@ typedef struct core {
     {                                                                                         \
         QT o;                                                                                 \
         qo_status st = qo_quat_normalize_##SFX(P##_q(q), &o);                                 \
+        *out = P##_qb(o);                                                                     \
+        return st;                                                                            \
+    }                                                                                         \
+    static dq P##_canonical(dq q) { return P##_qb(qo_quat_canonical_##SFX(P##_q(q))); }       \
+    static double P##_angle_between(dq a, dq b)                                               \
+    {                                                                                         \
+        return P##_ab(qo_quat_angle_between_##SFX(P##_q(a), P##_q(b)));                       \
+    }                                                                                         \
+    static qo_status P##_integrate(dq q, ref_vec3 dtheta, dq *out)                          \
+    {                                                                                         \
+        QT o;                                                                                 \
+        qo_status st = P##_integ(P##_q(q), P##_av(dtheta), &o);                               \
         *out = P##_qb(o);                                                                     \
         return st;                                                                            \
     }                                                                                         \
@@ -217,7 +233,7 @@ typedef struct core {
 /* The table entries of one core, in the order of `core`, after its header fields. */
 #define CORE_FUNCS(P)                                                                         \
     P##_slerp_long, P##_slerp_rate, P##_exp, P##_log, P##_mul, P##_conj, P##_rotate,          \
-    P##_normalize, P##_from_axis_angle, P##_to_axis_angle, P##_from_rotvec, P##_to_rotvec,    \
+    P##_normalize, P##_canonical, P##_angle_between, P##_integrate, P##_from_axis_angle, P##_to_axis_angle, P##_from_rotvec, P##_to_rotvec,    \
     P##_to_mat3, P##_from_mat3, P##_from_mat3_trusted, P##_from_mat3_ortho,                   \
     P##_orthonormalize, P##_mat3_mul, P##_mat3_transpose, P##_mat3_identity, P##_mat3_det
 
@@ -238,6 +254,11 @@ static double f_db(float d) { return d; }
 #define f_av f_v
 #define f_avb f_vb
 #define f_rb f_vb
+/* qo_quat_integrate_f32 takes omega (rad/s) and dt (s): the increment is omega with dt = 1 */
+static qo_status f_integ(qo_quat_f32 q, qo_vec3_f32 dtheta, qo_quat_f32 *out)
+{
+    return qo_quat_integrate_f32(q, dtheta, 1.0f, out);
+}
 DEFINE_ADAPTERS(f, f32, qo_quat_f32, qo_vec3_f32, qo_vec3_f32, qo_vec3_f32, qo_mat3_f32, float)
 
 static const core CORE_F32 = {
@@ -291,6 +312,7 @@ static ref_mat3 x_mb(const qo_mat3_q30 *m)
         for (j = 0; j < 3; j++) r.m[i][j] = m->m[i][j] / Q30;
     return r;
 }
+#define x_integ qo_quat_integrate_q30
 DEFINE_ADAPTERS(x, q30, qo_quat_q30, qo_vec3_q30, qo_vec3_q28, qo_vec3_q16, qo_mat3_q30, qo_q28)
 
 static const core CORE_Q30 = {
@@ -556,6 +578,49 @@ static void test_mul_conj_normalize(void **state)
     o.w = o.x = o.y = o.z = c->u_in(1.0);
     o = c->mul(o, dq_conj(o));
     assert_true(fabs(o.w - fmin(4.0, c->u_max)) <= c->tol_abs);
+}
+
+static void test_canonical_angle_integrate(void **state)
+{
+    const core *c = *state;
+    int n;
+    dq o;
+    rng_seed(111);
+    for (n = 0; n < N_RANDOM; n++) {
+        dq a = c->q_in(rand_unit()), b = c->q_in(n % 4 ? rand_unit() : rand_axis_rot(1e-5));
+        ref_vec3 d = v_in(c, v_rand(-0.5, 0.5), 1);
+        dq p = { 0, d.x / 2, d.y / 2, d.z / 2 }, want;
+        double ang = ref_quat_angle_between(a, b);
+        o = c->canonical(a);
+        if (!dq_is(o, ref_quat_canonical(a)))
+            fail_msg("%s canonical case %d: " QFMT " got " QFMT, c->name, n, QARG(a), QARG(o));
+        if (fabs(c->angle_between(a, b) - ang) > 2 * c->tol_ang ||
+            c->angle_between(a, dq_neg(b)) != c->angle_between(a, b))
+            fail_msg("%s angle_between case %d: a " QFMT " b " QFMT " got %.12g want %.12g",
+                     c->name, n, QARG(a), QARG(b), c->angle_between(a, b), ang);
+        want = dq_unit(dq_mul(a, dq_exp(p)));
+        if (c->integrate(a, d, &o) != QO_OK || dist4(o, want) > 4 * c->tol_abs)
+            fail_msg("%s integrate case %d: q " QFMT " dtheta (%.10g %.10g %.10g) error %.3g",
+                     c->name, n, QARG(a), d.x, d.y, d.z, dist4(o, want));
+    }
+    /* identical: 0 (exactly in fixed point, as quat_fx.h says; float32 to rounding);
+     * antipodal: the same rotation, 0 too; -1 canonicalises to 1 */
+    o = c->q_in(rand_unit());
+    assert_true(c->angle_between(o, o) <= (c->fixed ? 0.0 : c->tol_ang));
+    assert_true(c->angle_between(o, dq_neg(o)) <= c->tol_ang);
+    assert_true(dq_is(c->canonical(dq_neg(ID)), ID));
+    /* w == 0: the first non-zero of x, y, z made positive */
+    {
+        dq h = { 0, 0, -0.5, 0.5 }, hc = { 0, 0, 0.5, -0.5 };
+        assert_true(dq_is(c->canonical(h), hc));
+    }
+    assert_int_equal(c->integrate(ID, v_make(0, 0, 0), &o), QO_OK);
+    assert_true(dq_is(o, ID));
+    assert_int_equal(c->integrate(ZERO_Q, v_make(0.1, 0, 0), &o), QO_E_DEGENERATE);
+    assert_true(dq_is(o, ID));
+    /* out of range: Inf (float32) / a saturated Q3.28 increment (fixed: ~8 rad, a valid turn) */
+    assert_int_equal(c->integrate(ID, v_make(c->big, 0, 0), &o), ST(c, QO_E_NONFINITE, QO_OK));
+    assert_true(fabs(dq_norm(o) - 1) <= 4 * c->tol_abs);
 }
 
 static void test_rotate(void **state)
@@ -853,6 +918,7 @@ int main(void)
         BOTH(test_slerp_rate),
         BOTH(test_exp_log),
         BOTH(test_mul_conj_normalize),
+        BOTH(test_canonical_angle_integrate),
         BOTH(test_rotate),
         BOTH(test_axis_angle),
         BOTH(test_rotvec),
