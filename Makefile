@@ -45,7 +45,9 @@ CORE_SRC  := $(sort $(wildcard lib/src/*.c))
 FX_SRC    := $(sort $(wildcard lib/src/*_fx.c))
 PORT_SRC  := $(sort $(wildcard ports/mock/*.c ports/linux/*.c))
 CLI_SRC   := $(sort $(wildcard cli/*.c cli/linux/*.c))
-TEST_SRC  := $(sort $(wildcard tests/test_*.c))
+# tests/core/test_*.c: one body per concept run against both cores (docs/TESTING.md); built
+# to build/tests/NAME like the flat ones, so names must stay unique across the two folders.
+TEST_SRC  := $(sort $(wildcard tests/test_*.c tests/core/test_*.c))
 # tests/common/linux/: the Linux-only harness (pty relay); tests/common/*.c also builds for Cortex-M
 TEST_COMMON := $(sort $(wildcard tests/common/*.c tests/common/linux/*.c))
 TEST_SH   := $(sort $(wildcard tests/test_*.sh))
@@ -57,7 +59,7 @@ CLI_OBJ   := $(CLI_SRC:%.c=$(BUILD)/obj/%.o)
 SCORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/san/%.o)
 SPORT_OBJ := $(PORT_SRC:%.c=$(BUILD)/san/%.o)
 SCOMMON_OBJ := $(TEST_COMMON:%.c=$(BUILD)/san/%.o)
-TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
+TEST_BIN  := $(addprefix $(BUILD)/tests/,$(notdir $(TEST_SRC:.c=)))
 
 .PHONY: all lib demo test test-run test-vm core-check clean tests-build figures figures-check parity parity-check
 # Keep the sanitizer objects between runs (they are intermediates of the test pattern rule).
@@ -104,6 +106,9 @@ $(BUILD)/san/tests/%.o: tests/%.c
 	$(CC) -MMD -MP $(STD) $(WARN) -Wno-double-promotion $(FPFLAGS) -O1 -g $(SAN) $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports -Itests $(PKG_CFLAGS) -c $< -o $@
 
 $(BUILD)/tests/%: $(BUILD)/san/tests/%.o $(SCOMMON_OBJ) $(SPORT_OBJ) $(SCORE_OBJ)
+	@mkdir -p $(@D)
+	$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(PKG_LIBS) -lm -pthread -lutil
+$(BUILD)/tests/%: $(BUILD)/san/tests/core/%.o $(SCOMMON_OBJ) $(SPORT_OBJ) $(SCORE_OBJ)
 	@mkdir -p $(@D)
 	$(CC) $(SAN) -o $@ $^ $(CMOCKA_LIBS) $(PKG_LIBS) -lm -pthread -lutil
 

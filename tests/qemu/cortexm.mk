@@ -76,6 +76,10 @@ $(OUT)/libqorient.a: $(CORE_OBJ)
 $(OUT)/%.elf: $(OUT)/obj/tests/%.o $(COMMON_OBJ) $(SHIM_OBJ) $(OUT)/libqorient.a tests/qemu/cm.ld
 	$(CC) $(CPU) $(SPECS) -T tests/qemu/cm.ld $(MEM) -Wl,--gc-sections -o $@ \
 	    $< $(COMMON_OBJ) $(SHIM_OBJ) $(OUT)/libqorient.a -lm
+# tests/core/test_*.c (one body for both cores) build to the same flat names.
+$(OUT)/%.elf: $(OUT)/obj/tests/core/%.o $(COMMON_OBJ) $(SHIM_OBJ) $(OUT)/libqorient.a tests/qemu/cm.ld
+	$(CC) $(CPU) $(SPECS) -T tests/qemu/cm.ld $(MEM) -Wl,--gc-sections -o $@ \
+	    $< $(COMMON_OBJ) $(SHIM_OBJ) $(OUT)/libqorient.a -lm
 
 # The shim's own test (tests/qemu/selftest.c): run first, must report exactly what it expects.
 $(OUT)/selftest.elf: $(OUT)/obj/tests/qemu/selftest.o $(SHIM_OBJ) tests/qemu/cm.ld

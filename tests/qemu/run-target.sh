@@ -121,7 +121,7 @@ m0|m4f|m7)
     esac
     echo "== $T: core tests on $CPU ($BOARD) under qemu-system-arm + semihosting"
     core=""
-    for src in tests/test_*.c; do
+    for src in tests/test_*.c tests/core/test_*.c; do
         n=$(basename "$src" .c)
         if ! is_core "$src"; then skip_it "$n" "not core: includes a port, POSIX or bus header"; continue; fi
         if ! wanted "$n"; then skip_it "$n" "QEMU_SKIP"; continue; fi
@@ -196,7 +196,7 @@ aarch64|armhf)
     printf '#!/bin/sh\nexec %s %s "$@"\n' "$QRUN" "$PWD/$OUT/qorient" >"$QW"
     chmod +x "$QW"
     QORIENT=$QW; export QORIENT
-    for src in tests/test_*.c; do
+    for src in tests/test_*.c tests/core/test_*.c; do
         n=$(basename "$src" .c)
         if ! wanted "$n"; then skip_it "$n" "QEMU_SKIP"; continue; fi
         if [ ! -f "$OUT/tests/$n" ]; then build_failed "$n" "$LOGS/build.log"; continue; fi

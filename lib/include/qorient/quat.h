@@ -12,7 +12,7 @@
  *   quat.mul_checked     - float32 overflow gives Inf, which qo_quat_is_finite_f32 reports
  *   quat.rotate          qo_quat_rotate_f32
  *   quat.angle_between   qo_quat_angle_between_f32
- *   quat.exp             qo_quat_exp_f32 (takes a quaternion)
+ *   quat.exp             qo_quat_exp_f32
  *   quat.log             qo_quat_log_f32
  *   quat.integrate       qo_quat_integrate_f32
  *   quat.is_finite       qo_quat_is_finite_f32
@@ -33,8 +33,8 @@
  *   qo_quat_canonical_f32    the sign with w >= 0 (ties broken by the first non-zero of x, y, z)
  *   qo_quat_rotate_f32       rotate a vector by a unit quaternion: q v q*
  *   qo_quat_angle_between_f32  rotation angle from a to b, in [0, pi]
- *   qo_quat_exp_f32          exponential of a quaternion
- *   qo_quat_log_f32          natural logarithm of a quaternion
+ *   qo_quat_exp_f32          exp of a pure quaternion (0, v), v in radians
+ *   qo_quat_log_f32          log of a quaternion, vector part in radians
  *   qo_quat_integrate_f32    advance an orientation by a body-frame angular velocity over dt
  *   qo_quat_is_finite_f32    all four components finite
  *   qo_quat_normalize_full_f32  the out-of-line complete path of qo_quat_normalize_f32
@@ -77,20 +77,25 @@ qo_status qo_quat_inverse_f32(qo_quat_f32 q, qo_quat_f32 *out);
  * tiny angles (no acos), and the same for b and -b. */
 float qo_quat_angle_between_f32(qo_quat_f32 a, qo_quat_f32 b);
 
-/* Quaternion exponential exp(q) = e^w (cos|v|, sin|v| v/|v|), v = (x, y, z). For a pure
- * quaternion (0, theta/2 * axis) it is the unit rotation by theta about axis. Uses a Taylor
- * series for sin|v|/|v| at small |v|.
- * Returns QO_OK, QO_E_NULL, QO_E_NONFINITE (NaN/Inf input, or e^w overflowing float);
- * *out is the identity on error. */
-qo_status qo_quat_exp_f32(qo_quat_f32 q, qo_quat_f32 *out);
+/* exp of the pure quaternion (0, v), v in radians: (cos|v|, sin|v| v/|v|), the unit
+ * rotation by 2|v| about v (so v = theta/2 * axis gives the rotation by theta). v = 0 gives the
+ * identity; a Taylor series for sin|v|/|v| keeps a tiny v exact, (1, v). The shape of
+ * qo_quat_exp_q30: a rotation has no use for a scalar part (it would scale by e^w), so both
+ * cores take the vector.
+ * Returns QO_OK; QO_E_NULL (out NULL); QO_E_NONFINITE (a NaN/Inf component, or |v|
+ * overflowing float). *out is the identity on error. */
+qo_status qo_quat_exp_f32(qo_vec3_f32 v, qo_quat_f32 *out);
 
-/* Quaternion logarithm log(q) = (ln|q|, atan2(|v|, w) v/|v|). For a unit quaternion the
- * result is pure, (0, theta/2 * axis), with theta in [0, 2pi]; canonicalise q first for the
- * short rotation. For v == 0 and w < 0 (a rotation by 2pi about an undefined axis) the
- * vector part is (pi, 0, 0) - a documented choice of axis x.
- * Returns QO_OK, QO_E_NULL, QO_E_NONFINITE, QO_E_DEGENERATE for q == 0 (log 0 undefined);
- * *out is (0,0,0,0) on error. */
-qo_status qo_quat_log_f32(qo_quat_f32 q, qo_quat_f32 *out);
+/* Vector part of log(q / |q|): atan2(|u|, w) u/|u|, u = (x, y, z), in radians: for a unit
+ * quaternion theta/2 * axis with theta in [0, 2pi] (canonicalise q first for the short
+ * rotation: then |result| <= pi/2). The scalar part ln|q| is not returned (q is taken as a
+ * rotation; measure it with qo_quat_norm_f32), the shape of qo_quat_log_q30. Any non-zero
+ * finite q, components up to FLT_MAX and subnormal vector parts included. For u == 0:
+ * (0, 0, 0) if w > 0, and (pi, 0, 0) if w < 0 (a rotation by 2pi about an undefined axis - a
+ * documented choice of axis x).
+ * Returns QO_OK; QO_E_NULL (out NULL); QO_E_NONFINITE (NaN/Inf component); QO_E_DEGENERATE for
+ * q == 0. *out is (0, 0, 0) on error. */
+qo_status qo_quat_log_f32(qo_quat_f32 q, qo_vec3_f32 *out);
 
 /* Integrates a constant BODY-frame angular velocity omega (rad/s, about the body's own axes)
  * over dt seconds: out = q * exp((0, omega*dt/2)), then normalised. This is exact for constant
