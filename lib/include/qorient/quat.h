@@ -57,6 +57,20 @@
 #include "qorient/status.h"
 #include "qorient/types.h"
 
+/* QO_SIMD_SSE2: the inline bodies use SSE2 4-wide arithmetic (a compiler header, not an OS one)
+ * where the compiler targets it; define QO_NO_SIMD to get the scalar bodies everywhere. Both
+ * paths round every component in the same order, so the results are bit-identical (NaN
+ * results stay NaN; IEEE 754 leaves the sign and payload of a NaN result unspecified). */
+#if defined(__SSE2__) && !defined(QO_NO_SIMD)
+#define QO_SIMD_SSE2 1
+#include <emmintrin.h>
+/* Lanes of v picked by the constant imm (_MM_SHUFFLE order) with pshufd, which unlike shufps
+ * leaves its source intact (no register copies); a macro because imm must be a constant. */
+#define QO_SIMD_SHUFFLE_PS(v, imm) _mm_castsi128_ps(_mm_shuffle_epi32(_mm_castps_si128(v), (imm)))
+#else
+#define QO_SIMD_SSE2 0
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -124,6 +138,17 @@ qo_quat_f32 qo_quat_canonical_f32(qo_quat_f32 q);
 #pragma STDC FP_CONTRACT OFF
 #endif
 
+#if QO_SIMD_SSE2
+/* Lane 0 of the result is ((v0 + v1) + v2) + v3, the left-to-right order of the scalar sums
+ * (a pairwise horizontal add would round differently). An internal helper, not API. */
+static inline __m128 qo_simd_sum4_ss(__m128 v)
+{
+    __m128 s = _mm_add_ss(QO_SIMD_SHUFFLE_PS(v, 0x55), v);   /* x + w: addition commutes */
+    s = _mm_add_ss(s, QO_SIMD_SHUFFLE_PS(v, 0xaa));
+    return _mm_add_ss(s, QO_SIMD_SHUFFLE_PS(v, 0xff));
+}
+#endif
+
 /* The identity rotation (1, 0, 0, 0). */
 QO_QUAT_INLINE qo_quat_f32 qo_quat_identity_f32(void)
 {
@@ -136,10 +161,28 @@ QO_QUAT_INLINE qo_quat_f32 qo_quat_identity_f32(void)
 QO_QUAT_INLINE qo_quat_f32 qo_quat_mul_f32(qo_quat_f32 a, qo_quat_f32 b)
 {
     qo_quat_f32 r;
+#if QO_SIMD_SSE2
+    /* Lane j of term k is the k-th product of component j below, with its sign, so each lane
+     * sums ((t0 + t1) + t2) + t3 exactly as the scalar code (x - y == x + (-y) exactly).
+     * The loads read the four floats of a quaternion (the struct has no padding). */
+    const __m128 a4 = _mm_loadu_ps(&a.w), b4 = _mm_loadu_ps(&b.w);
+    const __m128 s1 = _mm_castsi128_ps(_mm_set_epi32(0, INT32_MIN, 0, INT32_MIN));
+    const __m128 s2 = _mm_castsi128_ps(_mm_set_epi32(INT32_MIN, 0, 0, INT32_MIN));
+    const __m128 s3 = _mm_castsi128_ps(_mm_set_epi32(0, 0, INT32_MIN, INT32_MIN));
+    __m128 t0 = _mm_mul_ps(QO_SIMD_SHUFFLE_PS(a4, 0x00), b4);
+    __m128 t1 = _mm_mul_ps(QO_SIMD_SHUFFLE_PS(a4, 0x55), QO_SIMD_SHUFFLE_PS(b4, 0xb1)); /* xwzy */
+    __m128 t2 = _mm_mul_ps(QO_SIMD_SHUFFLE_PS(a4, 0xaa), QO_SIMD_SHUFFLE_PS(b4, 0x4e)); /* yzwx */
+    __m128 t3 = _mm_mul_ps(QO_SIMD_SHUFFLE_PS(a4, 0xff), QO_SIMD_SHUFFLE_PS(b4, 0x1b)); /* zyxw */
+    t0 = _mm_add_ps(t0, _mm_xor_ps(t1, s1));
+    t0 = _mm_add_ps(t0, _mm_xor_ps(t2, s2));
+    t0 = _mm_add_ps(t0, _mm_xor_ps(t3, s3));
+    _mm_storeu_ps(&r.w, t0);
+#else
     r.w = a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z;
     r.x = a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y;
     r.y = a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x;
     r.z = a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w;
+#endif
     return r;
 }
 
@@ -189,12 +232,25 @@ QO_QUAT_INLINE qo_vec3_f32 qo_quat_rotate_f32(qo_quat_f32 q, qo_vec3_f32 v)
  * full path computes); anything else goes to qo_quat_normalize_full_f32. */
 QO_QUAT_INLINE qo_status qo_quat_normalize_f32(qo_quat_f32 q, qo_quat_f32 *out)
 {
+#if QO_SIMD_SSE2
+    /* The same operations lane for lane: squares 4-wide, the sum in lane 0 in the scalar order,
+     * sqrtss (correctly rounded like sqrtf, and without libm's errno branch: n > 0 here). */
+    const __m128 q4 = _mm_loadu_ps(&q.w);
+    const __m128 n4 = qo_simd_sum4_ss(_mm_mul_ps(q4, q4));
+    const float n = _mm_cvtss_f32(n4);
+    if (out != NULL && n >= 1e-30f && !(n > 1e30f)) {   /* NaN fails the first test */
+        __m128 inv = _mm_div_ss(_mm_set_ss(1.0f), _mm_sqrt_ss(n4));
+        _mm_storeu_ps(&out->w, _mm_mul_ps(q4, _mm_shuffle_ps(inv, inv, 0)));
+        return QO_OK;
+    }
+#else
     float n = q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z;
     if (out != NULL && n >= 1e-30f && n <= 1e30f) {
         float inv = 1.0f / sqrtf(n);
         out->w = q.w * inv; out->x = q.x * inv; out->y = q.y * inv; out->z = q.z * inv;
         return QO_OK;
     }
+#endif
     return qo_quat_normalize_full_f32(q, out);
 }
 
