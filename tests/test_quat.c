@@ -13,6 +13,8 @@
 #include <cmocka.h>
 
 #include "common/ref.h"
+#include "common/scalar_inline.h"
+#include "qorient/convert.h"
 #include "qorient/quat.h"
 
 /* A status check inside a loop over cases: names the call and the case on failure. */
@@ -631,6 +633,102 @@ static void test_lecture_examples(void **state)
     }
 }
 
+/* ---- SIMD bodies against the scalar ones, bit for bit ---------------------------------------- */
+
+/* Equal bits, or both NaN (IEEE 754 leaves a NaN result's sign and payload unspecified, and
+ * compilers already pick either operand's NaN for a commutative a*b). */
+static int same_f(float a, float b)
+{
+    uint32_t ua, ub;
+    if (isnan(a) || isnan(b)) return isnan(a) && isnan(b);
+    memcpy(&ua, &a, sizeof ua);
+    memcpy(&ub, &b, sizeof ub);
+    return ua == ub;
+}
+
+static float bits_f(uint32_t u)
+{
+    float f;
+    memcpy(&f, &u, sizeof f);
+    return f;
+}
+
+/* One component: any bit pattern (NaN, Inf, subnormal, -0 included), an edge value, a value
+ * of random sign and decade in [1e-45, 1e38], or a component of a random unit quaternion. */
+static float rand_component(ref_rng *rng, int mode, float unit)
+{
+    static const uint32_t edge[] = {
+        0x00000000u, 0x80000000u, 0x3f800000u, 0xbf800000u, 0x7f800000u, 0xff800000u,
+        0x7fc00000u, 0xffc00000u, 0x7f800001u, 0x00000001u, 0x80000001u, 0x007fffffu,
+        0x00800000u, 0x7f7fffffu, 0xff7fffffu, 0x3f000000u, 0x0da24260u, 0x7149f2cau
+    };
+    uint64_t r = ref_rng_next(rng);
+    switch (mode) {
+    case 0: return bits_f((uint32_t)r);
+    case 1: return bits_f(edge[(r >> 8) % (sizeof edge / sizeof edge[0])]);
+    case 2: {
+        double m = ref_rng_range(rng, 1.0, 10.0) * pow(10.0, ref_rng_range(rng, -45.0, 38.0));
+        return (float)((r & 1u) ? -m : m);
+    }
+    default: return unit;
+    }
+}
+
+/* 1e6 cases where there are SIMD bodies; elsewhere both sides are the scalar code and a short
+ * run (emulated Cortex-M is slow) only keeps the test itself honest. */
+#define SIMD_CASES (QO_SIMD_SSE2 ? 1000000L : 10000L)
+
+static void test_simd_same_bits_as_scalar(void **state)
+{
+    ref_rng rng = { 15 };
+    long i, nan_in = 0;
+    (void)state;
+    /* the comparison itself catches one ulp */
+    assert_false(same_f(1.0f, nextafterf(1.0f, 2.0f)));
+    assert_false(same_f(0.0f, -0.0f));
+    for (i = 0; i < SIMD_CASES; i++) {
+        qo_quat_f32 ua = ref_quat_to_f32(ref_rng_quat(&rng)), ub = ref_quat_to_f32(ref_rng_quat(&rng));
+        int ma = (int)(ref_rng_next(&rng) % 5u), mb = (int)(ref_rng_next(&rng) % 5u);
+        qo_quat_f32 a = qf(rand_component(&rng, ma, ua.w), rand_component(&rng, ma, ua.x),
+                           rand_component(&rng, ma, ua.y), rand_component(&rng, ma, ua.z));
+        qo_quat_f32 b = qf(rand_component(&rng, mb, ub.w), rand_component(&rng, mb, ub.x),
+                           rand_component(&rng, mb, ub.y), rand_component(&rng, mb, ub.z));
+        qo_vec3_f32 v = vf(b.x, b.y, b.z), rv = qo_quat_rotate_f32(a, v), sv = scalar_quat_rotate_f32(a, v);
+        qo_quat_f32 rq = qo_quat_mul_f32(a, b), sq = scalar_quat_mul_f32(a, b);
+        qo_mat3_f32 rm, sm;
+        qo_status rs, ss;
+        int k;
+        if (!qo_quat_is_finite_f32(a)) nan_in++;
+        if (!(same_f(rq.w, sq.w) && same_f(rq.x, sq.x) && same_f(rq.y, sq.y) && same_f(rq.z, sq.z))) {
+            print_q("a", a); print_q("b", b); print_q("simd", rq); print_q("scalar", sq);
+            fail_msg("case %ld: qo_quat_mul_f32 differs from the scalar body", i);
+        }
+        if (!(same_f(rv.x, sv.x) && same_f(rv.y, sv.y) && same_f(rv.z, sv.z))) {
+            print_q("q", a);
+            fail_msg("case %ld: rotate of (%a %a %a): simd (%a %a %a), scalar (%a %a %a)", i, v.x,
+                     v.y, v.z, rv.x, rv.y, rv.z, sv.x, sv.y, sv.z);
+        }
+        rs = qo_quat_normalize_f32(a, &rq);
+        ss = scalar_quat_normalize_f32(a, &sq);
+        if (rs != ss || !(same_f(rq.w, sq.w) && same_f(rq.x, sq.x) && same_f(rq.y, sq.y) &&
+                          same_f(rq.z, sq.z))) {
+            print_q("q", a); print_q("simd", rq); print_q("scalar", sq);
+            fail_msg("case %ld: normalize differs (status %d, scalar %d)", i, (int)rs, (int)ss);
+        }
+        rs = qo_quat_to_mat3_f32(a, &rm);
+        ss = scalar_quat_to_mat3_f32(a, &sm);
+        for (k = 0; k < 9; k++) {
+            if (rs != ss || !same_f(rm.m[k / 3][k % 3], sm.m[k / 3][k % 3])) {
+                print_q("q", a);
+                fail_msg("case %ld: to_mat3 m[%d][%d] simd %a, scalar %a (status %d, %d)", i, k / 3,
+                         k % 3, rm.m[k / 3][k % 3], sm.m[k / 3][k % 3], (int)rs, (int)ss);
+            }
+        }
+    }
+    /* the edges were exercised: a fifth of the cases or so have a NaN/Inf component */
+    assert_true(nan_in > SIMD_CASES / 10);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -648,6 +746,7 @@ int main(void)
         cmocka_unit_test(test_integrate),
         cmocka_unit_test(test_is_finite),
         cmocka_unit_test(test_lecture_examples),
+        cmocka_unit_test(test_simd_same_bits_as_scalar),
     };
     return cmocka_run_group_tests_name("quat", tests, NULL, NULL);
 }
