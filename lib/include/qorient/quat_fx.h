@@ -13,7 +13,7 @@
  *   quat.angle_between   qo_quat_angle_between_q30
  *   quat.exp             qo_quat_exp_q30
  *   quat.log             qo_quat_log_q30
- *   quat.integrate       qo_quat_integrate_q30
+ *   quat.integrate       qo_quat_integrate_q30 (takes the increment omega*dt, Q3.28 rad: a Q16.16 dt times a rate would lose the small steps)
  *   quat.is_finite       - a fixed-point value is always finite
  */
 /*
