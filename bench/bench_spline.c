@@ -47,7 +47,7 @@ static void make_plan(size_t nj, int exact_times, qo_spline_f32 *sp, qo_spline_q
     for (i = 0; i < NK * nj; i++) p_keys[i] = (float)urand(-3.0, 3.0);
     set.profile = QO_SPLINE_QUINTIC;
     st = qo_spline_init_f32(nj, NK, t_keys, p_keys, &set, coef, sizeof coef / sizeof coef[0], sp);
-    if (st == QO_OK) st = qo_spline_to_q16_f32(sp, table, sizeof table / sizeof table[0], fx);
+    if (st == QO_OK) st = qo_spline_export_q16(sp, fx, table, sizeof table / sizeof table[0]);
     if (st != QO_OK) {
         fprintf(stderr, "bench_spline: plan failed: %s\n", qo_status_str(st));
         exit(1);

@@ -77,7 +77,7 @@ int qo_cli_gimbal(int argc, char **argv)
         { NULL, 0, NULL, 0 },
     };
     const double deg = 3.14159265358979323846 / 180.0;
-    qo_gimbal_settings_f32 gs = qo_gimbal_settings_default_f32;
+    qo_gimbal_settings_f32 gs = qo_gimbal_settings_default;
     qo_path_interp interp = QO_PATH_SLERP;
     double rate = 100.0, band_deg = 1.0, vmax = INFINITY, amax = 0.0, jmax = INFINITY, v;
     int degrees = 0, ch, rc = 1, unsettled = 0;
@@ -92,7 +92,7 @@ int qo_cli_gimbal(int argc, char **argv)
     unsigned long lineno = 0;
     qo_orient_path_f32 path;
     qo_gimbal_f32 g;
-    qo_gimbal_track_settings_f32 ts = qo_gimbal_track_settings_default_f32;
+    qo_gimbal_track_settings_f32 ts = qo_gimbal_track_settings_default;
     qo_gimbal_track_f32 tr;
     qo_status st;
 

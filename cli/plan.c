@@ -325,7 +325,7 @@ int qo_cli_plan(int argc, char **argv)
         size_t tn = qo_spline_q16_len(p.n, p.tr.n_keys);
         qo_status st;
         w.table = tn ? malloc(tn * sizeof *w.table) : NULL;
-        st = w.table ? qo_spline_to_q16_f32(&p.tr.spline, w.table, tn, &w.sq) : QO_E_CAPACITY;
+        st = w.table ? qo_spline_export_q16(&p.tr.spline, &w.sq, w.table, tn) : QO_E_CAPACITY;
         if (st != QO_OK) {
             fprintf(stderr, "qorient plan: --fixed: %s\n", qo_status_str(st));
             rc = 1;

@@ -36,7 +36,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     qo_gimbal_sample_f32 o;
     qo_status st, sp;
     int steps, track = 0;
-    qo_gimbal_track_settings_f32 trs = qo_gimbal_track_settings_default_f32;
+    qo_gimbal_track_settings_f32 trs = qo_gimbal_track_settings_default;
     qo_gimbal_track_f32 tr, trb;
     qo_gimbal_track_sample_f32 to, tprev;
 
@@ -52,7 +52,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     if (sp != QO_OK) QO_FUZZ_CHECK(path.n == 0, "path_init error left n = %zu", path.n);
     else QO_FUZZ_CHECK(n >= 2 && (int)interp <= 1, "path_init accepted n %zu interp %d", n, (int)interp);
 
-    gs = qo_gimbal_settings_default_f32;
+    gs = qo_gimbal_settings_default;
     if (hdr & 0x80u) {
         gs.seq = (qo_euler_seq)(qo_fz_u8(&f) % 26u);
         gs.band = qo_fz_f32(&f);

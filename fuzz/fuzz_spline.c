@@ -110,7 +110,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     tl = qo_spline_q16_len(n, k);
     table = malloc((tl ? tl : 1) * sizeof *table);
     if (table == NULL) abort();
-    st = qo_spline_to_q16_f32(&sp, table, tl, &fx);
+    st = qo_spline_export_q16(&sp, &fx, table, tl);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_OVERFLOW || st == QO_E_ORDER, "spline_to_q16 status %d", (int)st);
     if (st == QO_OK) {
         qo_q16 pos[FUZZ_SP_MAXN], vel[FUZZ_SP_MAXN], acc[FUZZ_SP_MAXN];

@@ -164,38 +164,17 @@ static int64_t gram(const qo_mat3_q30 *m, int i, int j)
     return qo_fx_sum_round_i64(t, 3, 30);
 }
 
-qo_status qo_quat_from_mat3_q30(const qo_mat3_q30 *m, qo_quat_q30 *out)
+/* Shepperd: pivot on the largest of trace, m00, m11, m22, and use the quaternion scaled by
+ * 4 * (pivot component), whose entries are plain sums of matrix entries (no square root, no
+ * division); normalising afterwards removes the scale. Canonical sign. Returns 0 (and the
+ * identity) when that vector is zero, which no rotation gives. */
+static int shepperd(const qo_mat3_q30 *m, qo_quat_q30 *out)
 {
-    int64_t q[4], t[3], c0, c1, c2, det, tr, best;
+    int64_t q[4], tr, best;
     int64_t a00, a11, a22;
-    int i, j, pivot;
+    int i, pivot;
     uint64_t mx;
     qo_quat_q30 r;
-    qo_status st;
-    if (out == NULL) return QO_E_NULL;
-    *out = qo_quat_identity_q30();
-    if (m == NULL) return QO_E_NULL;
-    for (i = 0; i < 3; i++) {
-        for (j = i; j < 3; j++) {
-            int64_t d = gram(m, i, j) - (i == j ? QO_Q30_ONE : 0);
-            if (d > QO_MAT3_ROTATION_TOL_Q30 || d < -QO_MAT3_ROTATION_TOL_Q30) return QO_E_NOT_ROTATION;
-        }
-    }
-    /* Columns are unit within the tolerance, so every entry and cofactor is below ~1.0001:
-     * the determinant's products stay far inside int64. */
-    t[0] = P(m->m[1][1], m->m[2][2]); t[1] = -P(m->m[1][2], m->m[2][1]);
-    c0 = qo_fx_sum_round_i64(t, 2, 30);
-    t[0] = P(m->m[1][0], m->m[2][2]); t[1] = -P(m->m[1][2], m->m[2][0]);
-    c1 = qo_fx_sum_round_i64(t, 2, 30);
-    t[0] = P(m->m[1][0], m->m[2][1]); t[1] = -P(m->m[1][1], m->m[2][0]);
-    c2 = qo_fx_sum_round_i64(t, 2, 30);
-    t[0] = m->m[0][0] * c0; t[1] = -(m->m[0][1] * c1); t[2] = m->m[0][2] * c2;
-    det = qo_fx_sum_round_i64(t, 3, 30);
-    if (det < QO_Q30_ONE / 2) return QO_E_NOT_ROTATION;   /* det is ~ +-1 here */
-
-    /* Shepperd: pivot on the largest of trace, m00, m11, m22, and use the quaternion scaled
-     * by 4 * (pivot component), whose entries are plain sums of matrix entries (no square
-     * root, no division); normalising afterwards removes the scale. */
     a00 = m->m[0][0]; a11 = m->m[1][1]; a22 = m->m[2][2];
     tr = a00 + a11 + a22;
     pivot = 0; best = tr;
@@ -228,8 +207,9 @@ qo_status qo_quat_from_mat3_q30(const qo_mat3_q30 *m, qo_quat_q30 *out)
         q[3] = QO_Q30_ONE - a00 - a11 + a22;
         break;
     }
-    /* The pivot entry is in [1, 4] (2^30..2^32): halve with rounding until all fit int32
-     * (costs at most 2 bits of 2^32, far below an LSB of the normalised result). */
+    /* For a rotation the pivot entry is in [1, 4] (2^30..2^32); any Q1.30 matrix keeps every
+     * entry below 2^34: halve with rounding until all fit int32 (costs at most a few bits of
+     * 2^32, far below an LSB of the normalised result). */
     for (;;) {
         mx = 0;
         for (i = 0; i < 4; i++) if (qo_fx_abs_u64(q[i]) > mx) mx = qo_fx_abs_u64(q[i]);
@@ -237,10 +217,29 @@ qo_status qo_quat_from_mat3_q30(const qo_mat3_q30 *m, qo_quat_q30 *out)
         for (i = 0; i < 4; i++) q[i] = (q[i] + 1) >> 1;
     }
     r.w = (qo_q30)q[0]; r.x = (qo_q30)q[1]; r.y = (qo_q30)q[2]; r.z = (qo_q30)q[3];
-    st = qo_quat_normalize_q30(r, out);
-    if (st != QO_OK) { *out = qo_quat_identity_q30(); return QO_E_NOT_ROTATION; }
+    if (qo_quat_normalize_q30(r, out) != QO_OK) {
+        *out = qo_quat_identity_q30();
+        return 0;
+    }
     *out = qo_quat_canonical_q30(*out);
-    return QO_OK;
+    return 1;
+}
+
+qo_status qo_quat_from_mat3_q30(const qo_mat3_q30 *m, qo_quat_q30 *out)
+{
+    int i, j;
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_q30();
+    if (m == NULL) return QO_E_NULL;
+    for (i = 0; i < 3; i++) {
+        for (j = i; j < 3; j++) {
+            int64_t d = gram(m, i, j) - (i == j ? QO_Q30_ONE : 0);
+            if (d > QO_MAT3_ROTATION_TOL_Q30 || d < -QO_MAT3_ROTATION_TOL_Q30) return QO_E_NOT_ROTATION;
+        }
+    }
+    /* Orthonormal within the tolerance: det is +-1 +- 2e-4, so its sign is reliable. */
+    if (qo_mat3_det_q30(m) < QO_Q30_ONE / 2) return QO_E_NOT_ROTATION;
+    return shepperd(m, out) ? QO_OK : QO_E_NOT_ROTATION;
 }
 
 qo_vec3_q30 qo_mat3_mul_vec3_q30(const qo_mat3_q30 *m, qo_vec3_q30 v)
@@ -258,4 +257,167 @@ qo_vec3_q30 qo_mat3_mul_vec3_q30(const qo_mat3_q30 *m, qo_vec3_q30 v)
         *o[i] = entry(t, 3);
     }
     return r;
+}
+
+/* ---- matrix helpers and the remaining twins of convert.h (issue 16) ---- */
+
+qo_mat3_q30 qo_mat3_identity_q30(void)
+{
+    return mat3_identity();
+}
+
+qo_mat3_q30 qo_mat3_transpose_q30(const qo_mat3_q30 *m)
+{
+    qo_mat3_q30 r = { { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 } } };
+    int i, j;
+    if (m == NULL) return r;
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++) r.m[i][j] = m->m[j][i];
+    return r;
+}
+
+qo_mat3_q30 qo_mat3_mul_q30(const qo_mat3_q30 *a, const qo_mat3_q30 *b)
+{
+    qo_mat3_q30 r = { { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 } } };
+    int64_t t[3];
+    int i, j;
+    if (a == NULL || b == NULL) return r;
+    for (i = 0; i < 3; i++) {
+        for (j = 0; j < 3; j++) {
+            t[0] = P(a->m[i][0], b->m[0][j]);
+            t[1] = P(a->m[i][1], b->m[1][j]);
+            t[2] = P(a->m[i][2], b->m[2][j]);
+            r.m[i][j] = entry(t, 3);
+        }
+    }
+    return r;
+}
+
+/* Largest entry magnitude of m. */
+static uint64_t mat3_max_abs(const qo_mat3_q30 *m)
+{
+    uint64_t mx = 0;
+    int i, j;
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++)
+            if (qo_fx_abs_u64(m->m[i][j]) > mx) mx = qo_fx_abs_u64(m->m[i][j]);
+    return mx;
+}
+
+/* Entries up to this (1 + 1/16, every rounded rotation and everything near one) keep the
+ * first-row cofactors in Q1.30 (<= 2.26, int64) and each product with an entry below 2^62. */
+#define DET_DIRECT_MAX (((uint64_t)1 << 30) + ((uint64_t)1 << 26))
+
+qo_q30 qo_mat3_det_q30(const qo_mat3_q30 *m)
+{
+    const qo_q30 (*a)[3];
+    int64_t c[3], t[3];
+    unsigned sh;
+    if (m == NULL) return 0;
+    a = m->m;
+    /* Larger entries (up to 2): cofactors (<= 8) in Q3.28 instead, so the products stay
+     * below 2^62; the result is then rounded twice at Q3.28 (a few LSB of Q1.30). */
+    sh = mat3_max_abs(m) <= DET_DIRECT_MAX ? 30u : 32u;
+    t[0] = P(a[1][1], a[2][2]); t[1] = -P(a[1][2], a[2][1]);
+    c[0] = qo_fx_sum_round_i64(t, 2, sh);
+    t[0] = P(a[1][2], a[2][0]); t[1] = -P(a[1][0], a[2][2]);
+    c[1] = qo_fx_sum_round_i64(t, 2, sh);
+    t[0] = P(a[1][0], a[2][1]); t[1] = -P(a[1][1], a[2][0]);
+    c[2] = qo_fx_sum_round_i64(t, 2, sh);
+    t[0] = a[0][0] * c[0]; t[1] = a[0][1] * c[1]; t[2] = a[0][2] * c[2];
+    return qo_fx_sat_i32(qo_fx_sum_round_i64(t, 3, 60u - sh));
+}
+
+qo_status qo_quat_from_mat3_trusted_q30(const qo_mat3_q30 *m, qo_quat_q30 *out)
+{
+    if (out == NULL) return QO_E_NULL;
+    *out = qo_quat_identity_q30();
+    if (m == NULL) return QO_E_NULL;
+    return shepperd(m, out) ? QO_OK : QO_E_NOT_ROTATION;
+}
+
+/* det(M / |M|_F) at or below this (Q1.30 raw 2^16 = 2^-14) is refused: singular, too close to
+ * singular (smallest singular value of M/|M|_F below 2 * 2^-14 = 1.2e-4 at the worst) or a
+ * reflection. Above it the iteration below reaches the polar factor in at most ~30 steps. */
+#define ORTHO_DET_MIN ((qo_q30)1 << 16)
+#define ORTHO_MAX_ITER 48
+/* Stop when no entry moved by more than this (LSB): the iteration has reached its rounding. */
+#define ORTHO_STEP_TOL 2
+
+qo_status qo_mat3_orthonormalize_q30(const qo_mat3_q30 *m, qo_mat3_q30 *out)
+{
+    qo_mat3_q30 x, xn;
+    int64_t x0[3][3], h[3][3], t[3];
+    uint64_t mx, f2 = 0, f;
+    int i, j, k, it, shl = 0, shr = 0;
+    if (out == NULL) return QO_E_NULL;
+    if (m == NULL) {
+        *out = mat3_identity();
+        return QO_E_NULL;
+    }
+    /* The polar factor does not change under uniform scaling. Bring the largest entry into
+     * [2^28, 2^29) (exact for small entries; entries >= 2^29 lose at most 3 low bits), then
+     * divide by the Frobenius norm: X = M / |M|_F has every singular value in (0, 1]. */
+    mx = mat3_max_abs(m);
+    if (mx == 0) {
+        *out = mat3_identity();
+        return QO_E_NOT_ROTATION;
+    }
+    while ((mx << shl) < ((uint64_t)1 << 28)) shl++;
+    while ((mx >> shr) >= ((uint64_t)1 << 29)) shr++;
+    for (i = 0; i < 3; i++) {
+        for (j = 0; j < 3; j++) {
+            int64_t v = (int64_t)m->m[i][j] * ((int64_t)1 << shl);
+            x0[i][j] = shr ? qo_fx_rshift_round_up(v, (unsigned)shr) : v;
+            f2 += (uint64_t)(x0[i][j] * x0[i][j]);
+        }
+    }
+    *out = mat3_identity();   /* m may alias out: x0 holds the input from here on */
+    f = qo_fx_sqrt_u64(f2);
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++)
+            x.m[i][j] = (qo_q30)qo_fx_div_round_away(x0[i][j] * ((int64_t)1 << 30), f);
+    if (qo_mat3_det_q30(&x) <= ORTHO_DET_MIN) return QO_E_NOT_ROTATION;
+    /* Newton-Schulz (Bjorck) iteration X <- X (3I - X^T X) / 2: no inverse and no division,
+     * every product of entries <= 1, so all of it is exact 64-bit sums rounded once per entry.
+     * Each singular value s maps to s (3 - s^2) / 2: quadratic convergence to 1 near 1, growth
+     * by 1.5x per step from below; the polar factor is the fixed point. (convert.c uses
+     * Higham's scaled Newton iteration, which needs an inverse per step.) */
+    for (it = 0; it < ORTHO_MAX_ITER; it++) {
+        int64_t step = 0;
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 3; j++)   /* (3I - G) in Q1.30 read as (3I - G)/2 in Q1.31 */
+                h[i][j] = (i == j ? 3 * (int64_t)QO_Q30_ONE : 0) - gram(&x, i, j);
+        for (i = 0; i < 3; i++) {
+            for (j = 0; j < 3; j++) {
+                int64_t d;
+                for (k = 0; k < 3; k++) t[k] = x.m[i][k] * h[k][j];
+                xn.m[i][j] = qo_fx_sat_i32(qo_fx_sum_round_i64(t, 3, 31));
+                d = (int64_t)xn.m[i][j] - x.m[i][j];
+                if (d < 0) d = -d;
+                if (d > step) step = d;
+            }
+        }
+        x = xn;
+        if (step <= ORTHO_STEP_TOL) break;
+    }
+    for (i = 0; i < 3; i++) {
+        for (j = i; j < 3; j++) {
+            int64_t d = gram(&x, i, j) - (i == j ? QO_Q30_ONE : 0);
+            if (d > QO_MAT3_ROTATION_TOL_Q30 || d < -QO_MAT3_ROTATION_TOL_Q30) return QO_E_NOT_ROTATION;
+        }
+    }
+    if (qo_mat3_det_q30(&x) < QO_Q30_ONE / 2) return QO_E_NOT_ROTATION;
+    *out = x;
+    return QO_OK;
+}
+
+qo_status qo_quat_from_mat3_ortho_q30(const qo_mat3_q30 *m, qo_quat_q30 *out)
+{
+    qo_mat3_q30 r;
+    qo_status st = qo_mat3_orthonormalize_q30(m, &r);
+    if (out == NULL) return QO_E_NULL;
+    if (st == QO_OK) return qo_quat_from_mat3_q30(&r, out);
+    *out = qo_quat_identity_q30();
+    return st;
 }

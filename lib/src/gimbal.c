@@ -6,7 +6,7 @@
 #include "qorient/interp.h"
 #include "qorient/quat.h"
 
-const qo_gimbal_settings_f32 qo_gimbal_settings_default_f32 = {
+const qo_gimbal_settings_f32 qo_gimbal_settings_default = {
     QO_EULER_ZYX,
     0.017453292f, /* 1 degree: wide enough that a path through the singularity never sees the
                      free angle swing, narrow enough that the held split is still within
@@ -89,7 +89,7 @@ qo_status qo_gimbal_init_f32(qo_gimbal_f32 *g, const qo_gimbal_settings_f32 *s)
 {
     qo_status st;
     if (g == NULL) return QO_E_NULL;
-    g->s = qo_gimbal_settings_default_f32;
+    g->s = qo_gimbal_settings_default;
     g->prev.a1 = g->prev.a2 = g->prev.a3 = 0.0f;
     g->t_prev = 0.0f;
     g->prev2 = g->prev;
@@ -198,7 +198,7 @@ qo_status qo_gimbal_step_f32(qo_gimbal_f32 *g, float t, qo_quat_f32 q, qo_gimbal
     return QO_OK;
 }
 
-const qo_gimbal_track_settings_f32 qo_gimbal_track_settings_default_f32 = {
+const qo_gimbal_track_settings_f32 qo_gimbal_track_settings_default = {
     10.0f,    /* rad/s^2: a small camera head; the caller sets its mechanism's figure */
     INFINITY, /* acceleration-limited (TRAPEZOID) unless a jerk limit is asked for */
     INFINITY,
@@ -223,7 +223,7 @@ qo_status qo_gimbal_track_init_f32(qo_gimbal_track_f32 *tr, const qo_gimbal_trac
 {
     int i;
     if (tr == NULL) return QO_E_NULL;
-    tr->s = qo_gimbal_track_settings_default_f32;
+    tr->s = qo_gimbal_track_settings_default;
     tr->pl.joints = NULL;
     tr->pl.n = 0; /* the planner is set up at the first step, at the path's angles */
     for (i = 0; i < 3; i++) tr->path_prev[i] = 0.0f;

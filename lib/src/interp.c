@@ -275,7 +275,8 @@ qo_status qo_quat_slerp_long_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_
 qo_status qo_quat_slerp_rate_f32(qo_quat_f32 a, qo_quat_f32 b, float duration,
                                  qo_vec3_f32 *omega)
 {
-    qo_quat_f32 ua, ub, lg;
+    qo_quat_f32 ua, ub;
+    qo_vec3_f32 lg;
     qo_status st;
     float k;
     if (omega == NULL) return QO_E_NULL;
@@ -529,18 +530,18 @@ qo_status qo_quat_squad_f32(qo_quat_f32 q0, qo_quat_f32 s0, qo_quat_f32 s1, qo_q
     return QO_OK;
 }
 
-/* log of a unit quaternion as its pure part (the ln|q| ~ 1e-8 scalar part is rounding). */
-static qo_quat_f32 log_unit(qo_quat_f32 q)
+/* log of a unit quaternion (its vector part; cannot fail for a unit q). */
+static qo_vec3_f32 log_unit(qo_quat_f32 q)
 {
-    qo_quat_f32 l;
+    qo_vec3_f32 l;
     (void)qo_quat_log_f32(q, &l);
-    l.w = 0.0f;
     return l;
 }
 
 qo_status qo_quat_squad_controls_f32(const qo_quat_f32 *keys, size_t n, qo_quat_f32 *s)
 {
-    qo_quat_f32 qm, qc, qn, qci, l1, l2, e, arg;
+    qo_quat_f32 qm, qc, qn, qci, e;
+    qo_vec3_f32 l1, l2, arg;
     qo_status st;
     size_t i;
     if (keys == NULL || s == NULL) {
@@ -562,7 +563,6 @@ qo_status qo_quat_squad_controls_f32(const qo_quat_f32 *keys, size_t n, qo_quat_
         /* Aligned keys: both relative rotations have w >= 0, so the logs are the short ones. */
         l1 = log_unit(qo_quat_mul_f32(qci, qn));
         l2 = log_unit(qo_quat_mul_f32(qci, qm));
-        arg.w = 0.0f;
         arg.x = -0.25f * (l1.x + l2.x);
         arg.y = -0.25f * (l1.y + l2.y);
         arg.z = -0.25f * (l1.z + l2.z);

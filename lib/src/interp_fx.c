@@ -263,10 +263,13 @@ qo_status qo_quat_nlerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 
     return QO_OK;
 }
 
-qo_status qo_quat_slerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out)
+/* Short (longway == 0) or long (longway != 0) slerp, as slerp_common in interp.c. */
+static qo_status slerp_common(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, int longway,
+                              qo_quat_q30 *out)
 {
     qo_quat_q30 ua, ub;
     qo_status st;
+    qo_q28 th;
     if (out == NULL) return QO_E_NULL;
     st = unit_in2(a, b, &ua, &ub);
     if (st != QO_OK) {
@@ -276,15 +279,26 @@ qo_status qo_quat_slerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 
     *out = ua;
     if (check_t(t) != QO_OK) return QO_E_RANGE;
     /* The flipped copy is what every step below uses, so a and -a interpolate to a unit
-     * quaternion, never through the origin. */
-    ub = align_to(ub, ua);
+     * quaternion, never through the origin. The long way puts b' on the far side of a
+     * (dot == 0, exact in 64 bits, keeps b: both ways are 180 deg). */
+    if (longway ? dot60(ua, ub) > 0 : dot60(ua, ub) < 0) ub = neg_q(ub);
+    th = angle4(ua, ub);
+    /* Long way between the same rotation (phi below 2e-3 rad): a full turn about an axis the
+     * inputs no longer define (the rule and limit of qo_quat_slerp_long_f32). */
+    if (longway && QO_Q28_PI - th < QO_SLERP_NEAR_PI_Q28) return QO_E_DEGENERATE;
     if (t == 0) return QO_OK;
     if (t == QO_Q30_ONE) {
         *out = ub;
         return QO_OK;
     }
-    *out = slerp_weights(ua, ub, angle4(ua, ub), t);
+    /* th <= pi/2 (short) or in [pi/2, pi - 1e-3] (long, slerp_weights' rotation branch). */
+    *out = slerp_weights(ua, ub, th, t);
     return QO_OK;
+}
+
+qo_status qo_quat_slerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out)
+{
+    return slerp_common(a, b, t, 0, out);
 }
 
 /* round(p / 2^30) of an exact product sum (ties up). */
@@ -618,5 +632,42 @@ qo_status qo_quat_squad_controls_q30(const qo_quat_q30 *keys, size_t n, qo_quat_
         (void)unit_in(qo_quat_mul_q30(qc, e), &s[i]);
     }
     s[n - 1] = qn;
+    return QO_OK;
+}
+
+/* ---- the remaining twins of interp.h (issue 16) ---- */
+
+qo_status qo_quat_slerp_long_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out)
+{
+    return slerp_common(a, b, t, 1, out);
+}
+
+qo_status qo_quat_slerp_rate_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q16 duration,
+                                 qo_vec3_q16 *omega)
+{
+    qo_quat_q30 ua, ub;
+    qo_vec3_q28 lg;
+    qo_status st;
+    int64_t r[3];
+    int i;
+    if (omega == NULL) return QO_E_NULL;
+    omega->x = omega->y = omega->z = 0;
+    st = unit_in2(a, b, &ua, &ub);
+    if (st != QO_OK) return st;
+    if (duration <= 0) return QO_E_RANGE;
+    ub = align_to(ub, ua);
+    /* conj(a)*b' has w = dot >= 0, so its log is the short rotation's phi/2 * axis (Q3.28,
+     * |lg| <= pi/2). omega = 2 lg / duration: Q3.28 * 2 / Q16.16 -> Q16.16 is
+     * lg_raw * 2^(1 + 16 + 16 - 28) / duration_raw = lg_raw * 32 / duration_raw, one rounded
+     * division (|lg_raw * 32| < 2^34). */
+    (void)qo_quat_log_q30(qo_quat_mul_q30(qo_quat_conj_q30(ua), ub), &lg);
+    r[0] = qo_fx_div_round_away((int64_t)lg.x * 32, (uint64_t)duration);
+    r[1] = qo_fx_div_round_away((int64_t)lg.y * 32, (uint64_t)duration);
+    r[2] = qo_fx_div_round_away((int64_t)lg.z * 32, (uint64_t)duration);
+    for (i = 0; i < 3; i++)
+        if (r[i] > INT32_MAX || r[i] < -INT32_MAX) return QO_E_RANGE;   /* a tiny duration */
+    omega->x = (qo_q16)r[0];
+    omega->y = (qo_q16)r[1];
+    omega->z = (qo_q16)r[2];
     return QO_OK;
 }

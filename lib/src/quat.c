@@ -115,38 +115,35 @@ static float sinc_f32(float r)
     return qo_fm_sin_f32(r) / r;
 }
 
-qo_status qo_quat_exp_f32(qo_quat_f32 q, qo_quat_f32 *out)
+qo_status qo_quat_exp_f32(qo_vec3_f32 v, qo_quat_f32 *out)
 {
-    float r, ew, k;
+    float r, k;
     if (out == NULL) return QO_E_NULL;
     *out = qo_quat_identity_f32();
-    if (!qo_quat_is_finite_f32(q)) return QO_E_NONFINITE;
-    r = sqrtf(q.x * q.x + q.y * q.y + q.z * q.z);
+    if (!isfinite(v.x) || !isfinite(v.y) || !isfinite(v.z)) return QO_E_NONFINITE;
+    r = sqrtf(v.x * v.x + v.y * v.y + v.z * v.z);
     if (isinf(r)) return QO_E_NONFINITE;
-    ew = qo_fm_exp_f32(q.w);
-    if (isinf(ew)) return QO_E_NONFINITE;
-    k = ew * sinc_f32(r);
-    out->w = ew * qo_fm_cos_f32(r);
-    out->x = k * q.x; out->y = k * q.y; out->z = k * q.z;
+    k = sinc_f32(r);
+    out->w = qo_fm_cos_f32(r);
+    out->x = k * v.x; out->y = k * v.y; out->z = k * v.z;
     return QO_OK;
 }
 
-qo_status qo_quat_log_f32(qo_quat_f32 q, qo_quat_f32 *out)
+qo_status qo_quat_log_f32(qo_quat_f32 q, qo_vec3_f32 *out)
 {
-    float n, vn, ang, m, lnscale = 0.0f;
+    float n, vn, ang, m;
     qo_quat_f32 v;
     if (out == NULL) return QO_E_NULL;
-    out->w = out->x = out->y = out->z = 0.0f;
+    out->x = out->y = out->z = 0.0f;
     if (!qo_quat_is_finite_f32(q)) return QO_E_NONFINITE;
-    /* Huge components: |q| or |v| would overflow. Scale by 2^-64 (exact) and add 64 ln 2 back
-     * to ln|q|; the angle and the axis do not depend on the scale. */
+    /* Huge components: |q| or |v| would overflow. Scale by 2^-64 (exact); the angle and the
+     * axis do not depend on the scale. */
     m = fabsf(q.w);
     if (fabsf(q.x) > m) m = fabsf(q.x);
     if (fabsf(q.y) > m) m = fabsf(q.y);
     if (fabsf(q.z) > m) m = fabsf(q.z);
     if (m > 1e18f) {
         q.w *= 0x1p-64f; q.x *= 0x1p-64f; q.y *= 0x1p-64f; q.z *= 0x1p-64f;
-        lnscale = 44.3614196f; /* 64 ln 2 */
     }
     n = qo_quat_norm_f32(q);
     if (!(n > 0.0f)) return QO_E_DEGENERATE;
@@ -154,10 +151,9 @@ qo_status qo_quat_log_f32(qo_quat_f32 q, qo_quat_f32 *out)
      * which dropped the vector part (and near w = -1 replaced its axis by the fallback x). */
     v.w = 0.0f; v.x = q.x; v.y = q.y; v.z = q.z;
     vn = qo_quat_norm_f32(v);
-    out->w = qo_fm_log_f32(n) + lnscale;
     if (vn == 0.0f) {
-        /* Real quaternion: log of a positive real is real; of a negative real the angle is pi
-         * about an arbitrary axis - we take x and say so in the header. */
+        /* Real quaternion: no rotation for w > 0; for w < 0 the angle is pi about an arbitrary
+         * axis - we take x and say so in the header. */
         if (q.w < 0.0f) out->x = 3.14159265358979f;
         return QO_OK;
     }
@@ -169,7 +165,8 @@ qo_status qo_quat_log_f32(qo_quat_f32 q, qo_quat_f32 *out)
 
 qo_status qo_quat_integrate_f32(qo_quat_f32 q, qo_vec3_f32 omega, float dt, qo_quat_f32 *out)
 {
-    qo_quat_f32 half, dq, qn;
+    qo_quat_f32 dq, qn;
+    qo_vec3_f32 half;
     qo_status st;
     if (out == NULL) return QO_E_NULL;
     st = qo_quat_normalize_f32(q, &qn);
@@ -177,7 +174,6 @@ qo_status qo_quat_integrate_f32(qo_quat_f32 q, qo_vec3_f32 omega, float dt, qo_q
     if (st != QO_OK) return st;
     if (!isfinite(omega.x) || !isfinite(omega.y) || !isfinite(omega.z) || !isfinite(dt))
         return QO_E_NONFINITE;
-    half.w = 0.0f;
     half.x = 0.5f * omega.x * dt; half.y = 0.5f * omega.y * dt; half.z = 0.5f * omega.z * dt;
     st = qo_quat_exp_f32(half, &dq);
     if (st != QO_OK) return st;

@@ -496,26 +496,26 @@ static int32_t limit_q16(float x, int32_t sat)
     return sat;
 }
 
-qo_status qo_spline_to_q16_f32(const qo_spline_f32 *s, int32_t *table, size_t table_len,
-                               qo_spline_q16 *out)
+qo_status qo_spline_export_q16(const qo_spline_f32 *s, qo_spline_q16 *table, int32_t *words,
+                               size_t cap)
 {
     size_t nj, nk, need, j, k, n;
     int32_t *jt, *ct;
-    if (out == NULL) return QO_E_NULL;
-    out->n_joints = s ? s->n_joints : 0;
-    out->n_keys = 0;
-    out->wrap_output = 0;
-    out->table = NULL;
-    if (s == NULL || table == NULL) return QO_E_NULL;
+    if (table == NULL) return QO_E_NULL;
+    table->n_joints = s ? s->n_joints : 0;
+    table->n_keys = 0;
+    table->wrap_output = 0;
+    table->table = NULL;
+    if (s == NULL || words == NULL) return QO_E_NULL;
     if (s->n_keys < 2 || s->coef == NULL) return QO_E_STATE;
     nj = s->n_joints;
     nk = s->n_keys;
     need = qo_spline_q16_len(nj, nk);
-    if (need == 0 || table_len < need) return QO_E_CAPACITY;
-    jt = table + QO_SPLINE_Q16_KEY_WORDS * nk;
+    if (need == 0 || cap < need) return QO_E_CAPACITY;
+    jt = words + QO_SPLINE_Q16_KEY_WORDS * nk;
     ct = jt + QO_SPLINE_Q16_JOINT_WORDS * nj;
     for (k = 0; k < nk; k++) {
-        int32_t *kr = table + QO_SPLINE_Q16_KEY_WORDS * k;
+        int32_t *kr = words + QO_SPLINE_Q16_KEY_WORDS * k;
         if (!to_q16(s->coef[k], &kr[0])) return QO_E_OVERFLOW;
         kr[1] = kr[2] = kr[3] = kr[4] = 0;
         if (k > 0) {
@@ -556,8 +556,8 @@ qo_status qo_spline_to_q16_f32(const qo_spline_f32 *s, int32_t *table, size_t ta
             q[COEF_W] = f;
         }
     }
-    out->n_keys = nk;
-    out->wrap_output = s->wrap_output;
-    out->table = table;
+    table->n_keys = nk;
+    table->wrap_output = s->wrap_output;
+    table->table = words;
     return QO_OK;
 }

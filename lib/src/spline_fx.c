@@ -141,7 +141,7 @@ qo_status qo_spline_sample_q16(const qo_spline_q16 *s, qo_q16 t, qo_q16 *pos, qo
             int32_t f = b[6]; /* extra fractional bits of this row, [0, 14] */
             int64_t dv, dh;
             int big = 0;
-            /* keeps the shifts defined; tables not made by qo_spline_to_q16_f32() are not
+            /* keeps the shifts defined; tables not made by qo_spline_export_q16() are not
              * supported */
             if (f < 0 || f > QO_SPLINE_Q16_MAX_FRAC) f = 0;
             x = rshift_round(horner(b, w_pos, 0, sn), f);

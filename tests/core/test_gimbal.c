@@ -116,7 +116,7 @@ static void test_path_keys_and_between(void **state)
  * free angle in the band, and recompose to the requested orientation. */
 static void test_gimbal_through_singularity(void **state)
 {
-    qo_gimbal_settings_f32 s = qo_gimbal_settings_default_f32;
+    qo_gimbal_settings_f32 s = qo_gimbal_settings_default;
     qo_gimbal_f32 g;
     qo_gimbal_sample_f32 o;
     const double yaw = 30 * DEG, roll = -20 * DEG, dt = 0.002;
@@ -174,7 +174,7 @@ static void test_gimbal_through_singularity(void **state)
  * position limits, both move at vmax per second and set the clipped bits. */
 static void test_gimbal_rate_and_position_limits(void **state)
 {
-    qo_gimbal_settings_f32 s = qo_gimbal_settings_default_f32;
+    qo_gimbal_settings_f32 s = qo_gimbal_settings_default;
     qo_gimbal_f32 g;
     qo_gimbal_sample_f32 o;
     qo_euler_f32 start = { 0.0f, 0.0f, 0.0f };
@@ -220,7 +220,7 @@ static void test_gimbal_rate_and_position_limits(void **state)
 
 static void test_gimbal_errors_hold(void **state)
 {
-    qo_gimbal_settings_f32 s = qo_gimbal_settings_default_f32;
+    qo_gimbal_settings_f32 s = qo_gimbal_settings_default;
     qo_gimbal_f32 g;
     qo_gimbal_sample_f32 o;
     qo_quat_f32 q = ref_quat_to_f32(ref_zyx(0.3, 0.2, 0.1));
@@ -232,17 +232,17 @@ static void test_gimbal_errors_hold(void **state)
     assert_int_equal(qo_gimbal_init_f32(&g, &s), QO_E_LIMIT);
     s.vmax = NAN;
     assert_int_equal(qo_gimbal_init_f32(&g, &s), QO_E_LIMIT);
-    s = qo_gimbal_settings_default_f32;
+    s = qo_gimbal_settings_default;
     s.band = -0.1f;
     assert_int_equal(qo_gimbal_init_f32(&g, &s), QO_E_RANGE);
-    s = qo_gimbal_settings_default_f32;
+    s = qo_gimbal_settings_default;
     s.min[0] = 1.0f; s.max[0] = -1.0f;
     assert_int_equal(qo_gimbal_init_f32(&g, &s), QO_E_LIMIT);
-    s = qo_gimbal_settings_default_f32;
+    s = qo_gimbal_settings_default;
     s.seq = QO_EULER_SEQ_COUNT_;
     assert_int_equal(qo_gimbal_init_f32(&g, &s), QO_E_ARG);
 
-    assert_int_equal(qo_gimbal_init_f32(&g, &qo_gimbal_settings_default_f32), QO_OK);
+    assert_int_equal(qo_gimbal_init_f32(&g, &qo_gimbal_settings_default), QO_OK);
     assert_int_equal(qo_gimbal_step_f32(&g, 0.0f, q, &o), QO_OK);
     held = o.angles;
     assert_true(recompose_err(held, ref_quat_from_f32(q)) < 1e-6);
@@ -297,8 +297,8 @@ static void test_track_random_paths(void **state)
         float kt[K];
         qo_quat_f32 keys[K], ks[K], ca[K], cb[K];
         qo_orient_path_f32 pa;
-        qo_gimbal_settings_f32 gs = qo_gimbal_settings_default_f32;
-        qo_gimbal_track_settings_f32 ts = qo_gimbal_track_settings_default_f32;
+        qo_gimbal_settings_f32 gs = qo_gimbal_settings_default;
+        qo_gimbal_track_settings_f32 ts = qo_gimbal_track_settings_default;
         qo_gimbal_f32 g;
         qo_gimbal_track_f32 tr;
         qo_gimbal_sample_f32 o;
@@ -412,7 +412,7 @@ static void test_track_steady(void **state)
     qo_euler_f32 e = { 0.5f, -0.25f, 1.0f };
     int i;
     (void)state;
-    assert_int_equal(qo_gimbal_track_init_f32(&tr, &qo_gimbal_track_settings_default_f32), QO_OK);
+    assert_int_equal(qo_gimbal_track_init_f32(&tr, &qo_gimbal_track_settings_default), QO_OK);
     for (i = 0; i < 50; i++) {
         assert_int_equal(qo_gimbal_track_step_f32(&tr, 0.01f * (float)i, e, &to), QO_OK);
         assert_true(to.angles.a1 == e.a1 && to.angles.a2 == e.a2 && to.angles.a3 == e.a3 && to.settled == 1);
@@ -430,7 +430,7 @@ static void test_track_steady(void **state)
 
 static void test_track_errors(void **state)
 {
-    qo_gimbal_track_settings_f32 s = qo_gimbal_track_settings_default_f32;
+    qo_gimbal_track_settings_f32 s = qo_gimbal_track_settings_default;
     qo_gimbal_track_f32 tr, before;
     qo_gimbal_track_sample_f32 to;
     qo_euler_f32 e = { 0.1f, 0.2f, 0.3f }, bad = e;
@@ -440,22 +440,22 @@ static void test_track_errors(void **state)
     assert_int_equal(qo_gimbal_track_init_f32(NULL, &s), QO_E_NULL);
     assert_int_equal(qo_gimbal_track_init_f32(&tr, NULL), QO_E_NULL);
     for (i = 0; i < sizeof badv / sizeof badv[0]; i++) {
-        s = qo_gimbal_track_settings_default_f32; s.amax = badv[i];
+        s = qo_gimbal_track_settings_default; s.amax = badv[i];
         assert_int_equal(qo_gimbal_track_init_f32(&tr, &s), QO_E_LIMIT);
         assert_int_equal(qo_gimbal_track_step_f32(&tr, 0.0f, e, &to), QO_E_STATE);
         assert_true(to.angles.a1 == 0.0f && to.err == 0.0f && to.settled == 0);
-        s = qo_gimbal_track_settings_default_f32; s.gain = badv[i];
+        s = qo_gimbal_track_settings_default; s.gain = badv[i];
         assert_int_equal(qo_gimbal_track_init_f32(&tr, &s), QO_E_LIMIT);
         if (!isinf(badv[i])) { /* jmax and vmax take +INFINITY for "none" */
-            s = qo_gimbal_track_settings_default_f32; s.jmax = badv[i];
+            s = qo_gimbal_track_settings_default; s.jmax = badv[i];
             assert_int_equal(qo_gimbal_track_init_f32(&tr, &s), QO_E_LIMIT);
-            s = qo_gimbal_track_settings_default_f32; s.vmax = badv[i];
+            s = qo_gimbal_track_settings_default; s.vmax = badv[i];
             assert_int_equal(qo_gimbal_track_init_f32(&tr, &s), QO_E_LIMIT);
         }
     }
-    s = qo_gimbal_track_settings_default_f32; s.vmax = -INFINITY;
+    s = qo_gimbal_track_settings_default; s.vmax = -INFINITY;
     assert_int_equal(qo_gimbal_track_init_f32(&tr, &s), QO_E_LIMIT);
-    s = qo_gimbal_track_settings_default_f32; s.jmax = 100.0f;
+    s = qo_gimbal_track_settings_default; s.jmax = 100.0f;
     assert_int_equal(qo_gimbal_track_init_f32(&tr, &s), QO_OK);
     /* before the first step: errors give zeros and do not start the filter */
     bad.a2 = NAN;

@@ -86,7 +86,7 @@ static void run_case(int c)
     uint64_t s = 0x51DEB175ULL + (uint64_t)c;
     uint32_t *h;
     qo_quat_f32 a = rand_q(&s), b = rand_q(&s), q0, q1, q2, q3, r, keys[4], ctl[4];
-    qo_vec3_f32 v, ax;
+    qo_vec3_f32 v, ax, v1;
     qo_mat3_f32 m;
     qo_euler_f32 e;
     qo_euler_info_f32 info;
@@ -115,8 +115,9 @@ static void run_case(int c)
     r = q0;
     mix_f(h, qo_quat_rotate_f32(r, v).x); mix_f(h, qo_quat_rotate_f32(r, v).y);
     mix_f(h, qo_quat_angle_between_f32(a, b));
-    mix_u32(h, (uint32_t)qo_quat_exp_f32(a, &q1)); mix_q(h, q1);
-    mix_u32(h, (uint32_t)qo_quat_log_f32(a, &q1)); mix_q(h, q1);
+    v1.x = a.x; v1.y = a.y; v1.z = a.z;
+    mix_u32(h, (uint32_t)qo_quat_exp_f32(v1, &q1)); mix_q(h, q1);
+    mix_u32(h, (uint32_t)qo_quat_log_f32(a, &v1)); mix_f(h, v1.x); mix_f(h, v1.y); mix_f(h, v1.z);
     mix_u32(h, (uint32_t)qo_quat_integrate_f32(a, v, 0.01f * x, &q1)); mix_q(h, q1);
 
     h = &digest[F_CONVERT][c];

@@ -80,7 +80,7 @@ static void fixed_vs_float(int exact_times, uint64_t seed)
             set.end = (trial & 1) ? QO_SPLINE_END_NATURAL : QO_SPLINE_END_CLAMPED;
             assert_int_equal(qo_spline_init_f32((size_t)N, (size_t)K, t, p, &set, coef, CAP, &sp),
                              QO_OK);
-            assert_int_equal(qo_spline_to_q16_f32(&sp, table, CAP, &fx), QO_OK);
+            assert_int_equal(qo_spline_export_q16(&sp, &fx, table, CAP), QO_OK);
             order = set.profile == QO_SPLINE_LINEAR ? 0
                   : (set.profile == QO_SPLINE_CUBIC_C2 || set.profile == QO_SPLINE_QUINTIC) ? 2 : 1;
             for (i = 0; i < 300; i++) {
@@ -169,7 +169,7 @@ static void test_fixed_vs_closed_form(void **state)
     for (prof = 0; prof < 2; prof++) {
         set.profile = prof ? QO_SPLINE_QUINTIC : QO_SPLINE_LINEAR;
         assert_int_equal(qo_spline_init_f32(1, 2, t, p, &set, coef, CAP, &sp), QO_OK);
-        assert_int_equal(qo_spline_to_q16_f32(&sp, table, CAP, &fx), QO_OK);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, CAP), QO_OK);
         for (i = 0; i <= 2000; i++) {
             qo_q16 tq = (qo_q16)(32768 + i * 65);
             double tt = tq / 65536.0, s = (tt - 0.5) / 2.0, d = 10.0, rp, rv, ra;
@@ -206,7 +206,7 @@ static void test_fixed_small_move_precision(void **state)
     (void)state;
     set.profile = QO_SPLINE_QUINTIC;
     assert_int_equal(qo_spline_init_f32(1, 2, t, p, &set, coef, CAP, &sp), QO_OK);
-    assert_int_equal(qo_spline_to_q16_f32(&sp, table, CAP, &fx), QO_OK);
+    assert_int_equal(qo_spline_export_q16(&sp, &fx, table, CAP), QO_OK);
     assert_int_equal(table[5 * 2 + 3 * 1 + 6], 12); /* f of the only segment */
     for (i = 0; i <= 32768; i += 7) {
         double s = i / 32768.0, d = 0.25, rp, rv;
@@ -241,7 +241,7 @@ static void test_fixed_ends_wrap_limits(void **state)
     set.pos_min = lo;
     set.pos_max = hi;
     assert_int_equal(qo_spline_init_f32(2, 3, t, p, &set, coef, CAP, &sp), QO_OK);
-    assert_int_equal(qo_spline_to_q16_f32(&sp, table, CAP, &fx), QO_OK);
+    assert_int_equal(qo_spline_export_q16(&sp, &fx, table, CAP), QO_OK);
     /* before / after: keys at rest; exact end: last key */
     assert_int_equal(qo_spline_sample_q16(&fx, INT32_MIN, pos, vel, acc, cl), QO_OK);
     assert_int_equal(pos[0], (qo_q16)lrint(3.0 * 65536));
@@ -296,17 +296,17 @@ static void test_fixed_edges(void **state)
     assert_int_equal(qo_spline_q16_len(1, 1), 0);
     assert_int_equal(qo_spline_q16_len(SIZE_MAX / 4, 4), 0);
     assert_int_equal(qo_spline_init_f32(1, 2, t, p, &set, coef, CAP, &sp), QO_OK);
-    assert_int_equal(qo_spline_to_q16_f32(&sp, table, need - 1, &fx), QO_E_CAPACITY);
+    assert_int_equal(qo_spline_export_q16(&sp, &fx, table, need - 1), QO_E_CAPACITY);
     assert_int_equal(fx.n_keys, 0);
     assert_int_equal(qo_spline_sample_q16(&fx, 0, &pos, &vel, &acc, &cl), QO_E_NULL); /* no table */
     assert_true(pos == 0 && vel == 0 && acc == 0 && cl == 0);
-    assert_int_equal(qo_spline_to_q16_f32(NULL, table, CAP, &fx), QO_E_NULL);
-    assert_int_equal(qo_spline_to_q16_f32(&sp, NULL, CAP, &fx), QO_E_NULL);
-    assert_int_equal(qo_spline_to_q16_f32(&sp, table, CAP, NULL), QO_E_NULL);
+    assert_int_equal(qo_spline_export_q16(NULL, &fx, table, CAP), QO_E_NULL);
+    assert_int_equal(qo_spline_export_q16(&sp, &fx, NULL, CAP), QO_E_NULL);
+    assert_int_equal(qo_spline_export_q16(&sp, NULL, table, CAP), QO_E_NULL);
     assert_int_equal(qo_spline_init_f32(1, 1, t, p, &set, coef, CAP, &empty), QO_E_TOO_FEW);
-    assert_int_equal(qo_spline_to_q16_f32(&empty, table, CAP, &fx), QO_E_STATE);
+    assert_int_equal(qo_spline_export_q16(&empty, &fx, table, CAP), QO_E_STATE);
     /* a usable table, then a fake failed one: STATE with zeroed outputs */
-    assert_int_equal(qo_spline_to_q16_f32(&sp, table, need, &fx), QO_OK);
+    assert_int_equal(qo_spline_export_q16(&sp, &fx, table, need), QO_OK);
     assert_int_equal(qo_spline_sample_q16(&fx, 32768, &pos, &vel, &acc, &cl), QO_OK);
     assert_int_equal(pos, 32768);
     assert_int_equal(vel, 65536);
@@ -314,7 +314,7 @@ static void test_fixed_edges(void **state)
     assert_int_equal(qo_spline_sample_q16(&fx, 32768, &pos, &vel, &acc, &cl), QO_E_STATE);
     assert_true(pos == 0 && vel == 0 && acc == 0 && cl == 0);
     assert_int_equal(qo_spline_sample_q16(NULL, 0, &pos, &vel, &acc, &cl), QO_E_NULL);
-    assert_int_equal(qo_spline_to_q16_f32(&sp, table, need, &fx), QO_OK);
+    assert_int_equal(qo_spline_export_q16(&sp, &fx, table, need), QO_OK);
     vel = 5;
     assert_int_equal(qo_spline_sample_q16(&fx, 0, NULL, &vel, NULL, NULL), QO_E_NULL);
     assert_int_equal(vel, 0);
@@ -323,12 +323,12 @@ static void test_fixed_edges(void **state)
         const float pbig[2] = { 0.0f, 40000.0f }, tbig[2] = { 0.0f, 40000.0f };
         const float tclose[2] = { 0.0f, 1e-6f };
         assert_int_equal(qo_spline_init_f32(1, 2, t, pbig, &set, coef, CAP, &sp), QO_OK);
-        assert_int_equal(qo_spline_to_q16_f32(&sp, table, CAP, &fx), QO_E_OVERFLOW);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, CAP), QO_E_OVERFLOW);
         assert_int_equal(fx.n_keys, 0);
         assert_int_equal(qo_spline_init_f32(1, 2, tbig, p, &set, coef, CAP, &sp), QO_OK);
-        assert_int_equal(qo_spline_to_q16_f32(&sp, table, CAP, &fx), QO_E_OVERFLOW);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, CAP), QO_E_OVERFLOW);
         assert_int_equal(qo_spline_init_f32(1, 2, tclose, p, &set, coef, CAP, &sp), QO_OK);
-        assert_int_equal(qo_spline_to_q16_f32(&sp, table, CAP, &fx), QO_E_ORDER);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, CAP), QO_E_ORDER);
     }
     /* a velocity beyond Q16.16 (rest-to-rest quintic over 2000 units in 10 ms: peak 3.75e5
      * units/s) saturates and says so; the position is still right */
@@ -337,7 +337,7 @@ static void test_fixed_edges(void **state)
         qo_q16 half = (qo_q16)lrint(0.01 * 65536) / 2; /* s = 0.5 of the rounded segment */
         set.profile = QO_SPLINE_QUINTIC;
         assert_int_equal(qo_spline_init_f32(1, 2, tf, pf, &set, coef, CAP, &sp), QO_OK);
-        assert_int_equal(qo_spline_to_q16_f32(&sp, table, CAP, &fx), QO_OK);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, CAP), QO_OK);
         assert_int_equal(qo_spline_sample_q16(&fx, half, &pos, &vel, &acc, NULL), QO_E_OVERFLOW);
         assert_int_equal(vel, INT32_MAX);
         {
@@ -347,20 +347,20 @@ static void test_fixed_edges(void **state)
                 fail_msg("saturated-velocity sample: pos %.9g, want %.9g", pos / 65536.0, want);
         }
         assert_int_equal(qo_spline_init_f32(1, 2, tf, pn, &set, coef, CAP, &sp), QO_OK);
-        assert_int_equal(qo_spline_to_q16_f32(&sp, table, CAP, &fx), QO_OK);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, CAP), QO_OK);
         assert_int_equal(qo_spline_sample_q16(&fx, half, &pos, &vel, NULL, NULL), QO_E_OVERFLOW);
         assert_int_equal(vel, INT32_MIN);
         /* linear: the end state holds the same slope, so the conversion already refuses */
         set.profile = QO_SPLINE_LINEAR;
         assert_int_equal(qo_spline_init_f32(1, 2, tf, pf, &set, coef, CAP, &sp), QO_OK);
-        assert_int_equal(qo_spline_to_q16_f32(&sp, table, CAP, &fx), QO_E_OVERFLOW);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, CAP), QO_E_OVERFLOW);
     }
     /* the shortest segment Q16.16 can hold (1 LSB of time) and a long one (hours) */
     {
         const float ts[3] = { 0.0f, 1.0f / 65536.0f, 20000.0f }, ps[3] = { 0.0f, 0.0f, 1.0f };
         set.profile = QO_SPLINE_CUBIC_C2;
         assert_int_equal(qo_spline_init_f32(1, 3, ts, ps, &set, coef, CAP, &sp), QO_OK);
-        assert_int_equal(qo_spline_to_q16_f32(&sp, table, CAP, &fx), QO_OK);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, CAP), QO_OK);
         assert_int_equal(qo_spline_sample_q16(&fx, 10000 * 65536, &pos, &vel, &acc, NULL), QO_OK);
         assert_true(abs(pos - 32768) <= 8);
     }

@@ -74,7 +74,7 @@ int main(void)
         check(qo_spline_sample_f32(&s, 1.0f, pos, NULL, NULL, NULL) == QO_OK, "sample", 0, 0);
         check(fabs(pos[0] - 2.0) < 1e-6 && fabs(pos[1] + 1.0) < 1e-6, "float sample at key 1",
               pos[0], 2.0);
-        check(qo_spline_to_q16_f32(&s, table, 96, &sq) == QO_OK, "qo_spline_to_q16_f32", 0, 0);
+        check(qo_spline_export_q16(&s, &sq, table, 96) == QO_OK, "qo_spline_export_q16", 0, 0);
         check(qo_spline_sample_q16(&sq, 5 * QO_Q16_ONE / 2, pq, NULL, NULL, NULL) == QO_OK,
               "qo_spline_sample_q16 status", 0, 0);
         check(pq[0] == QO_Q16_ONE / 2 && pq[1] == QO_Q16_ONE / 4, "fixed sample at the last key",

@@ -4,7 +4,7 @@
  * with the fixed-point keyframe sampler (spline_fx.h).
  *
  *   start-up:  a C2 cubic spline through five keyframes of two joints (float32, once:
- *              qo_spline_init_f32), converted to a Q16.16 table (qo_spline_to_q16_f32);
+ *              qo_spline_init_f32), converted to a Q16.16 table (qo_spline_export_q16);
  *   interrupt: qo_spline_sample_q16 at the tick's time in the pattern (integer only), the two
  *              angles written as servo pulses.
  * The pattern starts and ends at rest at the same pose, so repeating it never jumps.
@@ -118,7 +118,7 @@ static int app_init(void)
     if (qo_spline_init_f32(QO_EX_JOINTS, QO_EX_KEYS, g_key_t, g_key_p, &qo_spline_settings_default,
                            coef, sizeof coef / sizeof coef[0], &plan) != QO_OK)
         return -1;
-    if (qo_spline_to_q16_f32(&plan, g_table, sizeof g_table / sizeof g_table[0], &g_plan) != QO_OK)
+    if (qo_spline_export_q16(&plan, &g_plan, g_table, sizeof g_table / sizeof g_table[0]) != QO_OK)
         return -1;
     __asm__ volatile ("" ::: "memory"); /* the table is complete before the flag is set */
     g_plan_ready = 1;

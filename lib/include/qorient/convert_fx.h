@@ -5,14 +5,14 @@
  *   convert.to_rotvec          qo_quat_to_rotvec_q30
  *   convert.to_mat3            qo_quat_to_mat3_q30
  *   convert.from_mat3          qo_quat_from_mat3_q30
- *   convert.from_mat3_trusted  - not yet (issue 16): the checked qo_quat_from_mat3_q30 only
- *   convert.from_mat3_ortho    - not yet (issue 16): repair matrices in float32 first
- *   mat3.identity              - not yet (issue 16): no fixed-point caller so far
- *   mat3.transpose             - not yet (issue 16): no fixed-point caller so far
- *   mat3.mul                   - not yet (issue 16): no fixed-point caller so far
+ *   convert.from_mat3_trusted  qo_quat_from_mat3_trusted_q30
+ *   convert.from_mat3_ortho    qo_quat_from_mat3_ortho_q30
+ *   mat3.identity              qo_mat3_identity_q30
+ *   mat3.transpose             qo_mat3_transpose_q30
+ *   mat3.mul                   qo_mat3_mul_q30
  *   mat3.mul_vec3              qo_mat3_mul_vec3_q30
- *   mat3.det                   - not yet (issue 16): no fixed-point caller so far
- *   mat3.orthonormalize        - not yet (issue 16): repair matrices in float32 first
+ *   mat3.det                   qo_mat3_det_q30 (Q1.30, saturating)
+ *   mat3.orthonormalize        qo_mat3_orthonormalize_q30 (Newton-Schulz, no division)
  */
 /*
  * qorient/convert_fx.h - conversions between rotation representations in fixed point.
@@ -33,7 +33,14 @@
  *   qo_quat_to_rotvec_q30         quaternion -> rotation vector, |rv| in [0, pi]
  *   qo_quat_to_mat3_q30           quaternion -> rotation matrix
  *   qo_quat_from_mat3_q30         rotation matrix -> canonical unit quaternion (strict check)
+ *   qo_mat3_orthonormalize_q30    nearest rotation matrix (orthogonal polar factor)
+ *   qo_quat_from_mat3_ortho_q30   orthonormalise, then convert (for drifted matrices)
+ *   qo_quat_from_mat3_trusted_q30 no rotation check (for matrices known to be rotations)
  *   qo_mat3_mul_vec3_q30          M v
+ *   qo_mat3_mul_q30               A B
+ *   qo_mat3_transpose_q30         M^T
+ *   qo_mat3_identity_q30          I
+ *   qo_mat3_det_q30               det M (Q1.30, saturating)
  *
  * Signs: qo_quat_from_mat3_q30 returns the canonical sign (w >= 0, ties as
  * qo_quat_canonical_q30); qo_quat_from_axis_angle_q30 and qo_quat_from_rotvec_q30 return
@@ -116,6 +123,59 @@ qo_status qo_quat_from_mat3_q30(const qo_mat3_q30 *m, qo_quat_q30 *out);
 /* M v, each component the exact sum of three products rounded once, saturated.
  * m == NULL gives (0, 0, 0) (there is no status to return; do not pass NULL). */
 qo_vec3_q30 qo_mat3_mul_vec3_q30(const qo_mat3_q30 *m, qo_vec3_q30 v);
+
+/*
+ * The rotation matrix nearest *m in the Frobenius norm (the orthogonal factor R of the polar
+ * decomposition M = R S), the twin of qo_mat3_orthonormalize_f32 by another algorithm: M is
+ * scaled to X = M / |M|_F (exact power-of-two pre-scaling, one rounded division), then the
+ * Newton-Schulz (Bjorck) iteration X <- X (3I - X^T X) / 2 runs until no entry moves by more
+ * than 2 LSB (at most 48 steps): no inverse, no division, every entry an exact 64-bit sum
+ * rounded once. A uniformly scaled rotation gives that rotation back (to a few LSB); m and
+ * out may point to the same matrix. The result is orthonormal to a few LSB (max
+ * |R^T R - I| checked against QO_MAT3_ROTATION_TOL_Q30) and within ~1e-8 rad of the exact
+ * nearest rotation for a drifted or noisy rotation (tests/core/test_twins.c).
+ * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NOT_ROTATION if M is zero, a reflection,
+ * singular or too close to singular (det(M / |M|_F) <= 2^-14, which keeps every singular
+ * value of M / |M|_F above 1.2e-4: the float core's limit is a condition number of 3e3). *out
+ * is the identity matrix on every error.
+ */
+qo_status qo_mat3_orthonormalize_q30(const qo_mat3_q30 *m, qo_mat3_q30 *out);
+
+/*
+ * Canonical unit quaternion of the rotation nearest *m: qo_mat3_orthonormalize_q30 followed
+ * by qo_quat_from_mat3_q30 (for a matrix KNOWN to be a drifted or noisy rotation).
+ * Returns QO_OK, QO_E_NULL, QO_E_NOT_ROTATION (as qo_mat3_orthonormalize_q30). *out is the
+ * identity on every error.
+ */
+qo_status qo_quat_from_mat3_ortho_q30(const qo_mat3_q30 *m, qo_quat_q30 *out);
+
+/*
+ * Canonical unit quaternion of *m for a matrix KNOWN to be a rotation: the Shepperd formula
+ * of qo_quat_from_mat3_q30 and one normalisation, without its rotation check. A matrix that
+ * is not a rotation gives an unspecified unit quaternion.
+ * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NOT_ROTATION only when the pivot
+ * quaternion is zero (no rotation gives that: e.g. M = -I/3). *out is the identity on every
+ * error.
+ */
+qo_status qo_quat_from_mat3_trusted_q30(const qo_mat3_q30 *m, qo_quat_q30 *out);
+
+/* A B, each entry the exact sum of three products rounded once (<= 0.5 LSB), saturated to the
+ * Q1.30 range (only possible for entries beyond a rotation's). As rotations B first, then A.
+ * a or b NULL gives the zero matrix (there is no status to return; do not pass NULL). */
+qo_mat3_q30 qo_mat3_mul_q30(const qo_mat3_q30 *a, const qo_mat3_q30 *b);
+
+/* M^T (exact): the inverse of a rotation matrix. m NULL gives the zero matrix. */
+qo_mat3_q30 qo_mat3_transpose_q30(const qo_mat3_q30 *m);
+
+/* The identity matrix (QO_Q30_ONE on the diagonal). */
+qo_mat3_q30 qo_mat3_identity_q30(void);
+
+/* Determinant in Q1.30 (cofactor expansion along the first row): 1.0 (QO_Q30_ONE) for a
+ * rotation, -1.0 for a reflection. Exact 64-bit products, the cofactors and the sum each
+ * rounded once: within 2 LSB when no entry exceeds 1 + 1/16 in magnitude; larger entries
+ * (up to the format's 2) are handled with Q3.28 cofactors (within 12 LSB), and a determinant
+ * beyond [-2, 2) saturates. m NULL gives 0. */
+qo_q30 qo_mat3_det_q30(const qo_mat3_q30 *m);
 
 #ifdef __cplusplus
 }

@@ -109,7 +109,7 @@ typedef struct qo_gimbal_settings_f32 {
 } qo_gimbal_settings_f32;
 
 /* ZYX (yaw-pitch-roll head), band 1 degree, no rate limit, no position limits. */
-extern const qo_gimbal_settings_f32 qo_gimbal_settings_default_f32;
+extern const qo_gimbal_settings_f32 qo_gimbal_settings_default;
 
 /* A gimbal: its settings and the previous sample. */
 typedef struct qo_gimbal_f32 {
@@ -211,7 +211,7 @@ typedef struct qo_gimbal_track_settings_f32 {
 } qo_gimbal_track_settings_f32;
 
 /* amax 10 rad/s^2, jmax +INFINITY, vmax +INFINITY, gain 10 /s. */
-extern const qo_gimbal_track_settings_f32 qo_gimbal_track_settings_default_f32;
+extern const qo_gimbal_track_settings_f32 qo_gimbal_track_settings_default;
 
 /* One filtered sample. */
 typedef struct qo_gimbal_track_sample_f32 {

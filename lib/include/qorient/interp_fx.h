@@ -3,8 +3,8 @@
  *   interp.nlerp            qo_quat_nlerp_q30
  *   interp.slerp            qo_quat_slerp_q30
  *   interp.slerp_fast       qo_quat_slerp_fast_q30
- *   interp.slerp_long       - not yet (issue 16)
- *   interp.slerp_rate       - not yet (issue 16)
+ *   interp.slerp_long       qo_quat_slerp_long_q30
+ *   interp.slerp_rate       qo_quat_slerp_rate_q30 (duration Q16.16 s, omega Q16.16 rad/s)
  *   interp.align_keys       qo_quat_align_keys_q30
  *   interp.bezier           qo_quat_bezier_q30
  *   interp.bezier3          qo_quat_bezier3_q30
@@ -30,6 +30,8 @@
  *   qo_quat_nlerp_q30           normalised lerp, short way
  *   qo_quat_slerp_q30           spherical linear interpolation, short way, exact endpoints
  *   qo_quat_slerp_fast_q30      the same to ~5e-8 rad with no square root or division (fast tier)
+ *   qo_quat_slerp_long_q30      spherical linear interpolation the long way
+ *   qo_quat_slerp_rate_q30      constant angular velocity of the slerp over a duration
  *   qo_quat_align_keys_q30      copy of keyframes, normalised and made sign-continuous
  *   qo_quat_bezier_q30          Bezier curve on the sphere (de Casteljau with slerp), n points
  *   qo_quat_bezier3_q30         cubic Bezier on the sphere (4 control points)
@@ -144,6 +146,30 @@ qo_status qo_quat_slerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 
  * tests/core/test_interp_fx.c and measured by bench/accuracy_interp_fx.c), never beyond +-1.0.
  * a == b' to rounding gives unit a. */
 qo_status qo_quat_slerp_fast_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out);
+
+/* Spherical linear interpolation the LONG way, the twin of qo_quat_slerp_long_f32: like
+ * qo_quat_slerp_q30 but b' = (dot(a, b) > 0) ? -b : b, so the path is the rotation of angle
+ * 2 pi - phi (phi the short rotation angle) about the opposite sense of the same axis. For
+ * dot == 0 (exact in 64 bits) b is kept. When a and b are the same rotation within 2e-3 rad
+ * (phi < 2 * 1e-3, the 4-D angle of a and b' within QO_SLERP_NEAR_PI_Q28 of pi) the plane of
+ * the full turn is undefined: QO_E_DEGENERATE with *out = unit a (the float32 rule and limit).
+ * Endpoints: t == 0 gives unit a, t == QO_Q30_ONE unit b' exactly.
+ * Returns QO_OK; QO_E_NULL (out NULL, nothing written); QO_E_DEGENERATE if a or b is zero
+ * (*out = identity) or the same rotation (*out = unit a); QO_E_RANGE if t is outside
+ * [0, QO_Q30_ONE] (*out = unit a). */
+qo_status qo_quat_slerp_long_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out);
+
+/* Angular velocity of qo_quat_slerp_q30(a, b, t) when t runs from 0 to 1 in `duration`
+ * (Q16.16 seconds), the twin of qo_quat_slerp_rate_f32: constant, in the BODY frame,
+ * omega = 2 log(conj(a) b') / duration (Q16.16 rad/s, b' the short-way b); |omega| = rotation
+ * angle / duration. The half-angle vector comes from qo_quat_log_q30 (Q3.28) and is divided
+ * once, rounded to nearest: within 1 LSB of Q16.16 (1.5e-5 rad/s) plus the log's 1.5 LSB of
+ * Q3.28 scaled by 2/duration.
+ * Returns QO_OK; QO_E_NULL (omega NULL, nothing written); QO_E_DEGENERATE (a or b zero);
+ * QO_E_RANGE (duration <= 0, or a rate beyond the Q16.16 range: a duration below about
+ * pi / 32768 s). *omega = (0, 0, 0) on every error. */
+qo_status qo_quat_slerp_rate_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q16 duration,
+                                 qo_vec3_q16 *omega);
 
 /* Writes out[i] = keys[i] normalised and sign-aligned: out[0] = unit keys[0] and each
  * following key is negated when its dot product with the previous ALIGNED key is negative.

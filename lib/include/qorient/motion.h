@@ -37,9 +37,10 @@
  *   qo_motion_export_q16            the current plan as a fixed-point table (see motion_fx.h)
  *
  * What it does. Each joint is a scalar in the user's unit (rad, deg, counts: "u") with limits
- * vmax [u/s], amax [u/s^2], jmax [u/s^3], an optional position range [pmin, pmax] and an
- * optional wrap period (continuous joint). A plan takes every joint from its current state
- * (position p0, velocity v0, acceleration a0) to its target position AT REST (v = 0, a = 0):
+ * vmax [u/s], amax [u/s^2], jmax [u/s^3] (optionally asymmetric: vmin, amin), an optional
+ * position range [pmin, pmax] and an optional wrap period (continuous joint). A plan takes
+ * every joint from its current state (position p0, velocity v0, acceleration a0) to its target
+ * position, at rest (v = 0, a = 0) or in a target state (v, a) (qo_motion_set_target_state_f32):
  *   - QO_MOTION_TRAPEZOID: acceleration-limited, the velocity is a trapezoid (or triangle);
  *     the acceleration jumps between -amax, 0 and +amax (jerk unlimited, jmax unused).
  *   - QO_MOTION_SCURVE: jerk-limited seven-phase profile: acceleration ramps at +-jmax, so
@@ -49,7 +50,15 @@
  *
  * Profile structure and why it is time-optimal. A minimum-time control for a chain of
  * integrators with box bounds is bang-bang (Pontryagin): the highest derivative sits at a bound
- * (+-jmax, or +-amax for TRAPEZOID) or the path rides a state bound (|a| = amax, |v| = vmax).
+ * (+-jmax, or amax / amin for TRAPEZOID) or the path rides a state bound (a = amax or amin,
+ * v = vmax or vmin). Below, "vmax" and "amax" stand for the bound on the side of the motion
+ * (a rising velocity uses amax, a falling one amin; a positive cruise vmax, a negative vmin).
+ * Target states: the stop to rest becomes the fastest transfer from (vc, 0) to (v, a) (the
+ * time reversal of a velocity change), the velocity 0 that splits the monotone pieces below
+ * becomes v - a|a|/(2 jmax), and a target acceleration adds the shapes without an acceleration
+ * zero at either end: three jerk ramps a0 -> am -> peak -> a (the "dips", at the start and, by
+ * time reversal, at the end, am over the whole acceleration range) and a0 to one acceleration
+ * bound and held, to the other and held, to a.
  * With the target at rest, every such profile is: a fastest velocity change from (v0, a0) to a
  * velocity extremum vc with a = 0 (<= 3 phases: ramp, hold amax, ramp), a cruise at vc (only
  * when |vc| = vmax), and a fastest stop from (vc, 0) to (0, 0) (<= 3 phases). The planner finds
@@ -69,16 +78,22 @@
  * direct stop (velocity extremum checked against vmax). The shortest candidate wins. For TRAPEZOID this family
  * provably contains the minimum-time solution (double integrator, state bound on v). For SCURVE
  * it contains the minimum-time rest-to-rest solution (checked against the closed form in
- * tests/test_motion.c). Evidence for moving SCURVE starts within the limits:
- * tests/test_motion_oracle.c compares every joint with an independent double-precision
+ * tests/core/test_motion.c). Evidence for moving SCURVE starts within the limits:
+ * tests/core/test_motion_oracle.c compares every joint with an independent double-precision
  * reference (tests/common/motion_ref.c: exhaustive search over every two-pulse profile with
- * optional cruise, i.e. every 7-phase bang-bang jerk profile) on 31,500 random joints in
- * `make test` (1,000,000 in `make check-motion`): none more than 0.1 % slower, none over a limit
- * by 1e-5. A general proof is NOT claimed, and starts beyond the limits are only checked
- * against the extremum-velocity family.
+ * optional cruise, i.e. every 7-phase bang-bang jerk profile) on 42,000 random joints in
+ * `make test` (10,500 per sync mode, with moving starts, asymmetric limits and moving target
+ * states; 1,000,000 per mode in `make check-motion`): none more than 0.1 % slower, none over
+ * a limit by 1e-5. A general proof is NOT claimed, and starts beyond the limits are only
+ * checked against the extremum-velocity family.
  *
- * Synchronisation (settings.sync):
+ * Synchronisation (settings.sync, or per joint with qo_motion_set_joint_sync_f32):
  *   - QO_MOTION_SYNC_NONE: each joint takes its own minimum time.
+ *   - QO_MOTION_SYNC_TIME_IF_NECESSARY: TIME for the joints whose target state moves (nonzero
+ *     target velocity or acceleration: arriving early would carry such a joint past its target
+ *     before the others arrive), NONE for the joints whose target is at rest.
+ *   With per-joint sync the TIME and PHASE joints share one duration (the PHASE joints' straight
+ *   line stretched to it when a TIME joint is slower; if the line cannot be, they go as TIME).
  *   - QO_MOTION_SYNC_TIME: every joint arrives at the slowest joint's minimum time T. A faster
  *     joint gets a profile of exactly T by lowering its extremum velocity vc (bracketed root search
  *     on vc in (0, vc*], at most QO_MOTION_BISECT_ITERS steps; any T above the joint's minimum is reachable
@@ -89,8 +104,9 @@
  *     in planner.unsynced (seen once in 40,000 random 4-joint cases with limits spread over
  *     1e-3..1e3; never in bench/bench_motion.c's cases).
  *   - QO_MOTION_SYNC_PHASE: straight line in joint space: p_i(t) = p0_i + d_i s(t), one scalar
- *     profile s: 0 -> 1 with limits min_i(vmax_i/|d_i|) etc. Possible only when every joint's
- *     (v0, a0) is proportional to its displacement d_i (all at rest is the usual case), within
+ *     profile s: 0 -> 1 with limits min_i(vmax_i/|d_i|) etc. (vmin_i for a joint moving the
+ *     other way). Possible only when every joint's (v0, a0) and target (v, a) are proportional
+ *     to its displacement d_i (all at rest is the usual case), within
  *     1e-6 of max(vmax, |v0|) and max(amax, |a0|), which bounds the velocity / acceleration
  *     step the straight line may introduce, and when the scalar limits min_i(vmax_i/|d_i|)...
  *     lie in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] (a tiny d_i makes them overflow
@@ -123,7 +139,8 @@
  *
  * Safety: a non-finite target, or an attempt to set bad limits, returns a status and switches
  * the planner to a braking profile from the current state at t_now (each joint stops as fast as
- * its valid limits allow, no jump). Sampling after the end returns the final positions at rest.
+ * its valid limits allow, no jump). Sampling after the end returns the final positions at rest
+ * (target states and the velocity interface: moving on, see qo_motion_set_target_state_f32).
  *
  * Numerics: float32, -ffp-contract=off. Each phase keeps its exact duration d and the next
  * phase starts from the state integrated over d, so p, v (and a) are continuous at every
@@ -134,10 +151,12 @@
  * rest; the remaining step is the solver residual (~1e-7 relative in position, float32
  * rounding in v and a).
  * Absolute times are float32 too: keep the caller's time origin recent (ulp(1000 s) = 61 us).
- * Resources (arm-none-eabi-gcc -O2, Cortex-M4F): ~13.8 KB code (text of motion.o), worst stack
- * of a re-plan ~1.4 KB (-fstack-usage along plan_goals, solve_min, root, resid; independent of
- * N: per-joint scratch lives in the joint struct), 248 B per joint; no heap, no
- * static mutable state: planners never interfere. A re-plan costs O(N) root searches.
+ * Resources: code and stack per module in docs/FIGURES.md (section sizes: motion.o the planner,
+ * motion_solver.o the one-joint solver, motion_export.o the Q16.16 export; tools/size-report.sh).
+ * The stack of a re-plan does not grow with N: the solver works on small per-call structs, and
+ * between its two passes a plan keeps each joint's solve in that joint's own phase storage.
+ * sizeof(qo_motion_joint_f32) per joint; no heap, no static mutable state: planners never
+ * interfere. A re-plan costs O(N) root searches.
  */
 #ifndef QORIENT_MOTION_H
 #define QORIENT_MOTION_H
@@ -252,7 +271,9 @@ typedef struct qo_motion_planner_f32 {
     qo_motion_settings_f32 settings;
     float t0;                      /* absolute time of the last (re-)plan, seconds */
     float duration;                /* max joint duration of the current plan */
-    qo_motion_sync sync_used;      /* what the current plan used */
+    qo_motion_sync sync_used;      /* what the current plan used: PHASE if its PHASE joints got the
+                                    * straight line, else TIME if any joint was synchronised,
+                                    * else NONE */
     uint32_t unsynced;             /* bit i: joint i could not be given the common duration
                                     * (it arrives earlier, at its own minimum time; see above) */
     int braking;                   /* 1 if the current plan is a safety stop */
@@ -267,8 +288,9 @@ typedef struct qo_motion_planner_f32 {
  * Start positions are not clamped to the range (the first target will be).
  * Returns QO_OK; QO_E_NULL (pl, joints, limits or start NULL); QO_E_TOO_FEW (n == 0);
  * QO_E_CAPACITY (n > QO_MOTION_MAX_JOINTS); QO_E_ARG (unknown profile or sync);
- * QO_E_LIMIT (a vmax/amax/jmax outside [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] or NaN,
- * pmin > pmax or NaN, wrap < 0, NaN or above QO_MOTION_POS_MAX); QO_E_NONFINITE (a start
+ * QO_E_LIMIT (a vmax/amax/jmax outside [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] or NaN, a
+ * vmin/amin neither 0 nor in [-QO_MOTION_LIMIT_MAX, -QO_MOTION_LIMIT_MIN], pmin > pmax or NaN,
+ * wrap < 0, NaN or above QO_MOTION_POS_MAX); QO_E_NONFINITE (a start
  * position or t0 not finite); QO_E_RANGE (a start position beyond +-QO_MOTION_POS_MAX).
  * On any error (pl non-NULL) the planner is left with n = 0, so every later call returns
  * QO_E_STATE: it never moves anything.
@@ -342,12 +364,12 @@ qo_status qo_motion_set_joint_sync_f32(qo_motion_planner_f32 *pl, size_t i, qo_m
  * which qo_motion_done_f32 is 1 and samples continue the straight line p = final + vend*(t - end)
  * (joint field vend). The position range is NOT applied (nothing stops the joint but a later
  * call): set_target and brake leave velocity mode, and set_limits re-plans toward the same
- * velocities (clamped to the new vmax). Positions stay float32: re-plan or shift time before a
+ * velocities (clamped into the new [vmin, vmax]). Positions stay float32: re-plan or shift time before a
  * long run loses resolution (ulp(1000 s) = 61 us, ulp(1e4 u) = 1e-3 u). The Q16.16 export
  * carries the end velocity in its rest segment.
  * Returns QO_OK; QO_E_NULL (pl or vel NULL); QO_E_STATE; QO_E_ORDER (t_now < t0: unchanged);
  * QO_E_NONFINITE (t_now non-finite: unchanged; a velocity NaN/Inf: every joint brakes to rest
- * from t_now); QO_E_RANGE (some |vel[i]| > vmax: refused, the plan is unchanged; or the plan
+ * from t_now); QO_E_RANGE (some vel[i] outside [vmin, vmax]: refused, the plan is unchanged; or the plan
  * would not be finite: brake, as for set_target).
  */
 qo_status qo_motion_set_velocity_f32(qo_motion_planner_f32 *pl, float t_now, const float *vel);
@@ -360,7 +382,8 @@ qo_status qo_motion_set_velocity_f32(qo_motion_planner_f32 *pl, float t_now, con
  * joint brakes to rest from t_now); QO_E_RANGE (a goal clamped into a range end beyond
  * +-QO_MOTION_POS_MAX, or the plan would not be finite: the new limits stay and every joint
  * brakes, or is held, as for set_target). A goal outside a new, narrower range is clamped
- * again.
+ * again; a target velocity outside the new [vmin, vmax] is clamped into it, and a target
+ * acceleration the new limits cannot hold (see qo_motion_set_target_state_f32) becomes 0.
  */
 qo_status qo_motion_set_limits_f32(qo_motion_planner_f32 *pl, float t_now, size_t i,
                                    const qo_motion_limits_f32 *limits);

@@ -12,7 +12,7 @@
  *   quat.mul_checked     - float32 overflow gives Inf, which qo_quat_is_finite_f32 reports
  *   quat.rotate          qo_quat_rotate_f32
  *   quat.angle_between   qo_quat_angle_between_f32
- *   quat.exp             qo_quat_exp_f32 (takes a quaternion)
+ *   quat.exp             qo_quat_exp_f32
  *   quat.log             qo_quat_log_f32
  *   quat.integrate       qo_quat_integrate_f32
  *   quat.is_finite       qo_quat_is_finite_f32
@@ -33,8 +33,8 @@
  *   qo_quat_canonical_f32    the sign with w >= 0 (ties broken by the first non-zero of x, y, z)
  *   qo_quat_rotate_f32       rotate a vector by a unit quaternion: q v q*
  *   qo_quat_angle_between_f32  rotation angle from a to b, in [0, pi]
- *   qo_quat_exp_f32          exponential of a quaternion
- *   qo_quat_log_f32          natural logarithm of a quaternion
+ *   qo_quat_exp_f32          exp of a pure quaternion (0, v), v in radians
+ *   qo_quat_log_f32          log of a quaternion, vector part in radians
  *   qo_quat_integrate_f32    advance an orientation by a body-frame angular velocity over dt
  *   qo_quat_is_finite_f32    all four components finite
  *   qo_quat_normalize_full_f32  the out-of-line complete path of qo_quat_normalize_f32
@@ -47,6 +47,9 @@
  * clang honours the #pragma STDC FP_CONTRACT OFF below; gcc ignores it, and contracts by
  * default in its GNU modes (-std=gnu99/gnu11) on FMA targets (aarch64, x86-64 with -mfma):
  * there compile with -ffp-contract=off (or -std=c99/c11) for bit-identical results.
+ * On SSE2 targets (x86-64) mul, rotate, normalize and qo_quat_to_mat3_f32 have 4-wide bodies
+ * with the scalar code's per-component rounding order, so the bits are the same (see
+ * QO_SIMD_SSE2 below; tests/core/test_quat.c compares both bodies on 1e6 inputs).
  */
 #ifndef QORIENT_QUAT_H
 #define QORIENT_QUAT_H
@@ -56,6 +59,20 @@
 
 #include "qorient/status.h"
 #include "qorient/types.h"
+
+/* QO_SIMD_SSE2: the inline bodies use SSE2 4-wide arithmetic (a compiler header, not an OS one)
+ * where the compiler targets it; define QO_NO_SIMD to get the scalar bodies everywhere. Both
+ * paths round every component in the same order, so the results are bit-identical (NaN
+ * results stay NaN; IEEE 754 leaves the sign and payload of a NaN result unspecified). */
+#if defined(__SSE2__) && !defined(QO_NO_SIMD)
+#define QO_SIMD_SSE2 1
+#include <emmintrin.h>
+/* Lanes of v picked by the constant imm (_MM_SHUFFLE order) with pshufd, which unlike shufps
+ * leaves its source intact (no register copies); a macro because imm must be a constant. */
+#define QO_SIMD_SHUFFLE_PS(v, imm) _mm_castsi128_ps(_mm_shuffle_epi32(_mm_castps_si128(v), (imm)))
+#else
+#define QO_SIMD_SSE2 0
+#endif
 
 #ifdef __cplusplus
 extern "C" {
@@ -77,20 +94,25 @@ qo_status qo_quat_inverse_f32(qo_quat_f32 q, qo_quat_f32 *out);
  * tiny angles (no acos), and the same for b and -b. */
 float qo_quat_angle_between_f32(qo_quat_f32 a, qo_quat_f32 b);
 
-/* Quaternion exponential exp(q) = e^w (cos|v|, sin|v| v/|v|), v = (x, y, z). For a pure
- * quaternion (0, theta/2 * axis) it is the unit rotation by theta about axis. Uses a Taylor
- * series for sin|v|/|v| at small |v|.
- * Returns QO_OK, QO_E_NULL, QO_E_NONFINITE (NaN/Inf input, or e^w overflowing float);
- * *out is the identity on error. */
-qo_status qo_quat_exp_f32(qo_quat_f32 q, qo_quat_f32 *out);
+/* exp of the pure quaternion (0, v), v in radians: (cos|v|, sin|v| v/|v|), the unit
+ * rotation by 2|v| about v (so v = theta/2 * axis gives the rotation by theta). v = 0 gives the
+ * identity; a Taylor series for sin|v|/|v| keeps a tiny v exact, (1, v). The shape of
+ * qo_quat_exp_q30: a rotation has no use for a scalar part (it would scale by e^w), so both
+ * cores take the vector.
+ * Returns QO_OK; QO_E_NULL (out NULL); QO_E_NONFINITE (a NaN/Inf component, or |v|
+ * overflowing float). *out is the identity on error. */
+qo_status qo_quat_exp_f32(qo_vec3_f32 v, qo_quat_f32 *out);
 
-/* Quaternion logarithm log(q) = (ln|q|, atan2(|v|, w) v/|v|). For a unit quaternion the
- * result is pure, (0, theta/2 * axis), with theta in [0, 2pi]; canonicalise q first for the
- * short rotation. For v == 0 and w < 0 (a rotation by 2pi about an undefined axis) the
- * vector part is (pi, 0, 0) - a documented choice of axis x.
- * Returns QO_OK, QO_E_NULL, QO_E_NONFINITE, QO_E_DEGENERATE for q == 0 (log 0 undefined);
- * *out is (0,0,0,0) on error. */
-qo_status qo_quat_log_f32(qo_quat_f32 q, qo_quat_f32 *out);
+/* Vector part of log(q / |q|): atan2(|u|, w) u/|u|, u = (x, y, z), in radians: for a unit
+ * quaternion theta/2 * axis with theta in [0, 2pi] (canonicalise q first for the short
+ * rotation: then |result| <= pi/2). The scalar part ln|q| is not returned (q is taken as a
+ * rotation; measure it with qo_quat_norm_f32), the shape of qo_quat_log_q30. Any non-zero
+ * finite q, components up to FLT_MAX and subnormal vector parts included. For u == 0:
+ * (0, 0, 0) if w > 0, and (pi, 0, 0) if w < 0 (a rotation by 2pi about an undefined axis - a
+ * documented choice of axis x).
+ * Returns QO_OK; QO_E_NULL (out NULL); QO_E_NONFINITE (NaN/Inf component); QO_E_DEGENERATE for
+ * q == 0. *out is (0, 0, 0) on error. */
+qo_status qo_quat_log_f32(qo_quat_f32 q, qo_vec3_f32 *out);
 
 /* Integrates a constant BODY-frame angular velocity omega (rad/s, about the body's own axes)
  * over dt seconds: out = q * exp((0, omega*dt/2)), then normalised. This is exact for constant
@@ -124,6 +146,26 @@ qo_quat_f32 qo_quat_canonical_f32(qo_quat_f32 q);
 #pragma STDC FP_CONTRACT OFF
 #endif
 
+#if QO_SIMD_SSE2
+/* Lane 0 of the result is ((v0 + v1) + v2) + v3, the left-to-right order of the scalar sums
+ * (a pairwise horizontal add would round differently). An internal helper, not API. */
+static inline __m128 qo_simd_sum4_ss(__m128 v)
+{
+    __m128 s = _mm_add_ss(QO_SIMD_SHUFFLE_PS(v, 0x55), v);   /* x + w: addition commutes */
+    s = _mm_add_ss(s, QO_SIMD_SHUFFLE_PS(v, 0xaa));
+    return _mm_add_ss(s, QO_SIMD_SHUFFLE_PS(v, 0xff));
+}
+#endif
+
+#if QO_SIMD_SSE2
+/* u x b in lanes (x, y, z) as u.yzx * b.zxy - u.zxy * b.yzx, given u's two rotations. */
+static inline __m128 qo_simd_cross_ps(__m128 uyzx, __m128 uzxy, __m128 b)
+{
+    return _mm_sub_ps(_mm_mul_ps(uyzx, QO_SIMD_SHUFFLE_PS(b, _MM_SHUFFLE(3, 1, 0, 2))),
+                      _mm_mul_ps(uzxy, QO_SIMD_SHUFFLE_PS(b, _MM_SHUFFLE(3, 0, 2, 1))));
+}
+#endif
+
 /* The identity rotation (1, 0, 0, 0). */
 QO_QUAT_INLINE qo_quat_f32 qo_quat_identity_f32(void)
 {
@@ -136,10 +178,28 @@ QO_QUAT_INLINE qo_quat_f32 qo_quat_identity_f32(void)
 QO_QUAT_INLINE qo_quat_f32 qo_quat_mul_f32(qo_quat_f32 a, qo_quat_f32 b)
 {
     qo_quat_f32 r;
+#if QO_SIMD_SSE2
+    /* Lane j of term k is the k-th product of component j below, with its sign, so each lane
+     * sums ((t0 + t1) + t2) + t3 exactly as the scalar code (x - y == x + (-y) exactly).
+     * The loads read the four floats of a quaternion (the struct has no padding). */
+    const __m128 a4 = _mm_loadu_ps(&a.w), b4 = _mm_loadu_ps(&b.w);
+    const __m128 s1 = _mm_castsi128_ps(_mm_set_epi32(0, INT32_MIN, 0, INT32_MIN));
+    const __m128 s2 = _mm_castsi128_ps(_mm_set_epi32(INT32_MIN, 0, 0, INT32_MIN));
+    const __m128 s3 = _mm_castsi128_ps(_mm_set_epi32(0, 0, INT32_MIN, INT32_MIN));
+    __m128 t0 = _mm_mul_ps(QO_SIMD_SHUFFLE_PS(a4, 0x00), b4);
+    __m128 t1 = _mm_mul_ps(QO_SIMD_SHUFFLE_PS(a4, 0x55), QO_SIMD_SHUFFLE_PS(b4, 0xb1)); /* xwzy */
+    __m128 t2 = _mm_mul_ps(QO_SIMD_SHUFFLE_PS(a4, 0xaa), QO_SIMD_SHUFFLE_PS(b4, 0x4e)); /* yzwx */
+    __m128 t3 = _mm_mul_ps(QO_SIMD_SHUFFLE_PS(a4, 0xff), QO_SIMD_SHUFFLE_PS(b4, 0x1b)); /* zyxw */
+    t0 = _mm_add_ps(t0, _mm_xor_ps(t1, s1));
+    t0 = _mm_add_ps(t0, _mm_xor_ps(t2, s2));
+    t0 = _mm_add_ps(t0, _mm_xor_ps(t3, s3));
+    _mm_storeu_ps(&r.w, t0);
+#else
     r.w = a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z;
     r.x = a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y;
     r.y = a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x;
     r.z = a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w;
+#endif
     return r;
 }
 
@@ -170,6 +230,24 @@ QO_QUAT_INLINE int qo_quat_is_finite_f32(qo_quat_f32 q)
  * first). 15 multiplies, 15 adds: t = 2 u x v; v' = v + w t + u x t. */
 QO_QUAT_INLINE qo_vec3_f32 qo_quat_rotate_f32(qo_quat_f32 q, qo_vec3_f32 v)
 {
+#if QO_SIMD_SSE2
+    /* Lanes (x, y, z, unused): both cross products as a.yzx * b.zxy - a.zxy * b.yzx, then
+     * (v + w t) + u x t, each lane in the scalar order; 2 * (...) is exact. v and the result
+     * are moved as 8 + 4 bytes (never past the vector's 12). */
+    const __m128 q4 = _mm_loadu_ps(&q.w);
+    const __m64 *vxy = (const __m64 *)(const void *)&v.x;
+    const __m128 v4 = _mm_movelh_ps(_mm_loadl_pi(_mm_setzero_ps(), vxy), _mm_load_ss(&v.z));
+    const __m128 uyzx = QO_SIMD_SHUFFLE_PS(q4, _MM_SHUFFLE(0, 1, 3, 2));
+    const __m128 uzxy = QO_SIMD_SHUFFLE_PS(q4, _MM_SHUFFLE(0, 2, 1, 3));
+    __m128 t = qo_simd_cross_ps(uyzx, uzxy, v4), r4;
+    qo_vec3_f32 r;
+    t = _mm_add_ps(t, t);
+    r4 = _mm_add_ps(v4, _mm_mul_ps(QO_SIMD_SHUFFLE_PS(q4, 0x00), t));
+    r4 = _mm_add_ps(r4, qo_simd_cross_ps(uyzx, uzxy, t));
+    _mm_storel_pi((__m64 *)(void *)&r.x, r4);
+    _mm_store_ss(&r.z, _mm_movehl_ps(r4, r4));
+    return r;
+#else
     float tx = 2.0f * (q.y * v.z - q.z * v.y);
     float ty = 2.0f * (q.z * v.x - q.x * v.z);
     float tz = 2.0f * (q.x * v.y - q.y * v.x);
@@ -178,6 +256,7 @@ QO_QUAT_INLINE qo_vec3_f32 qo_quat_rotate_f32(qo_quat_f32 q, qo_vec3_f32 v)
     r.y = v.y + q.w * ty + (q.z * tx - q.x * tz);
     r.z = v.z + q.w * tz + (q.x * ty - q.y * tx);
     return r;
+#endif
 }
 
 /* Unit quaternion q/|q|.
@@ -189,12 +268,25 @@ QO_QUAT_INLINE qo_vec3_f32 qo_quat_rotate_f32(qo_quat_f32 q, qo_vec3_f32 v)
  * full path computes); anything else goes to qo_quat_normalize_full_f32. */
 QO_QUAT_INLINE qo_status qo_quat_normalize_f32(qo_quat_f32 q, qo_quat_f32 *out)
 {
+#if QO_SIMD_SSE2
+    /* The same operations lane for lane: squares 4-wide, the sum in lane 0 in the scalar order,
+     * sqrtss (correctly rounded like sqrtf, and without libm's errno branch: n > 0 here). */
+    const __m128 q4 = _mm_loadu_ps(&q.w);
+    const __m128 n4 = qo_simd_sum4_ss(_mm_mul_ps(q4, q4));
+    const float n = _mm_cvtss_f32(n4);
+    if (out != NULL && n >= 1e-30f && !(n > 1e30f)) {   /* NaN fails the first test */
+        __m128 inv = _mm_div_ss(_mm_set_ss(1.0f), _mm_sqrt_ss(n4));
+        _mm_storeu_ps(&out->w, _mm_mul_ps(q4, _mm_shuffle_ps(inv, inv, 0)));
+        return QO_OK;
+    }
+#else
     float n = q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z;
     if (out != NULL && n >= 1e-30f && n <= 1e30f) {
         float inv = 1.0f / sqrtf(n);
         out->w = q.w * inv; out->x = q.x * inv; out->y = q.y * inv; out->z = q.z * inv;
         return QO_OK;
     }
+#endif
     return qo_quat_normalize_full_f32(q, out);
 }
 

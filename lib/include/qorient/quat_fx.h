@@ -11,9 +11,9 @@
  *   quat.mul_checked     qo_quat_mul_q30_checked
  *   quat.rotate          qo_quat_rotate_q30
  *   quat.angle_between   qo_quat_angle_between_q30
- *   quat.exp             qo_quat_exp_q30 (takes a Q3.28 rotation vector, not a quaternion)
+ *   quat.exp             qo_quat_exp_q30
  *   quat.log             qo_quat_log_q30
- *   quat.integrate       qo_quat_integrate_q30
+ *   quat.integrate       qo_quat_integrate_q30 (takes the increment omega*dt, Q3.28 rad: a Q16.16 dt times a rate would lose the small steps)
  *   quat.is_finite       - a fixed-point value is always finite
  */
 /*
@@ -125,7 +125,8 @@ qo_q28 qo_quat_angle_between_q30(qo_quat_q30 a, qo_quat_q30 b);
 /*
  * exp of the pure quaternion (0, v) with v in Q3.28 radians: (cos|v|, sin|v| v/|v|), the
  * unit rotation by 2|v| about v. (The scalar part of a general exponent would scale by e^w,
- * which has no Q1.30 meaning for a unit rotation, so the fixed API takes the vector only.)
+ * which has no Q1.30 meaning for a unit rotation: both cores take the vector only, see
+ * qo_quat_exp_f32.)
  * v = 0 gives the identity. Each component within ~2 LSB.
  * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_RANGE if a component of v is 4 rad or more in
  * magnitude (|v| <= pi already reaches every rotation) - *out is the identity then.

@@ -1,7 +1,7 @@
 /* parity float32 (tools/parity.sh writes docs/PARITY.md from these blocks):
  *   spline.plan    qo_spline_init_f32
  *   spline.sample  qo_spline_sample_f32
- *   spline.export  qo_spline_to_q16_f32 (float32 code: writes the fixed core's table)
+ *   spline.export  qo_spline_export_q16 (float32 code: writes the fixed core's table)
  */
 /*
  * qorient/spline.h - multi-joint trajectories through keyframes, float32.
@@ -16,7 +16,7 @@
  *   qo_spline_coef_len()        floats of storage a plan of N joints and K keyframes needs
  *   qo_spline_init_f32()        validate keyframes and plan the per-segment polynomials
  *   qo_spline_sample_f32()      position, velocity, acceleration of every joint at time t
- *   qo_spline_to_q16_f32()      convert a plan once into the fixed-point table (spline_fx.h)
+ *   qo_spline_export_q16()      the plan as a fixed-point table, once (spline_fx.h)
  *
  * Model. N joints (scalars in the caller's unit: rad, deg, counts) pass through K keyframes:
  * key k is reached at time t[k] (seconds, strictly increasing) with positions p[k*N + j]
@@ -194,22 +194,24 @@ qo_status qo_spline_sample_f32(const qo_spline_f32 *s, float t, float *pos, floa
                                float *acc, int8_t *clamped);
 
 /*
- * Converts a float32 plan into the fixed-point table of qorient/spline_fx.h (float code: run
- * it once at plan time). Times, positions, limits and wrap periods are rounded to Q16.16,
+ * Exports a float32 plan to the fixed-point table of qorient/spline_fx.h (float code: run it
+ * once at plan time), with the argument pattern of qo_motion_export_q16: the float plan, the
+ * table handle, its caller storage `words` of cap int32 entries, needing
+ * qo_spline_q16_len(N, K). Times, positions, limits and wrap periods are rounded to Q16.16,
  * coefficients to Q16.16, 1/h and 1/h^2 to 24-bit mantissa + exponent computed from the
  * ROUNDED key times (so s reaches exactly 1 at the next key). Limits beyond the Q16.16 range
  * (and +-Inf) become INT32_MIN / INT32_MAX. Note the normalised coefficients are larger than
  * the positions: up to ~3x the step between keys for cubics and ~15x (b4 = -15 d for a
  * rest-to-rest quintic) for QUINTIC, and the end state holds the end velocity and
  * acceleration; all must fit Q16.16 (steps up to ~2000 units for QUINTIC).
- * Returns QO_OK; QO_E_NULL (s, table or out NULL); QO_E_STATE (s->n_keys == 0);
- * QO_E_CAPACITY (table_len < qo_spline_q16_len(N, K)); QO_E_OVERFLOW (a time, coefficient,
+ * Returns QO_OK; QO_E_NULL (s, table or words NULL); QO_E_STATE (s->n_keys == 0);
+ * QO_E_CAPACITY (cap < qo_spline_q16_len(N, K)); QO_E_OVERFLOW (a time, coefficient,
  * end velocity/acceleration or wrap period does not fit Q16.16); QO_E_ORDER (two key times
- * round to the same Q16.16 value). On error *out is the empty table (n_keys == 0) and the
- * contents of table are unspecified.
+ * round to the same Q16.16 value). On error *table is the empty table (n_keys == 0) and the
+ * contents of words are unspecified. (Named qo_spline_to_q16_f32 before issue 16.)
  */
-qo_status qo_spline_to_q16_f32(const qo_spline_f32 *s, int32_t *table, size_t table_len,
-                               qo_spline_q16 *out);
+qo_status qo_spline_export_q16(const qo_spline_f32 *s, qo_spline_q16 *table, int32_t *words,
+                               size_t cap);
 
 #ifdef __cplusplus
 }

@@ -1,7 +1,7 @@
 /* parity fixed (tools/parity.sh writes docs/PARITY.md from these blocks):
  *   spline.plan    - planned in float32 (host or main loop): the fixed core samples the export
  *   spline.sample  qo_spline_sample_q16
- *   spline.export  - qo_spline_sample_q16 reads the table qo_spline_to_q16_f32 writes
+ *   spline.export  - qo_spline_sample_q16 reads the table qo_spline_export_q16 writes
  */
 /*
  * qorient/spline_fx.h - fixed-point (Q16.16) sampling of a keyframe trajectory, no float.
@@ -11,7 +11,7 @@
  *   qo_spline_q16_len()      int32 words the table needs for N joints and K keyframes
  *   qo_spline_sample_q16()   position, velocity, acceleration of every joint at time t
  *
- * The table is made ONCE from a float32 plan by qo_spline_to_q16_f32() (qorient/spline.h,
+ * The table is made ONCE from a float32 plan by qo_spline_export_q16() (qorient/spline.h,
  * float code, run at plan time on the host or in the main loop); sampling here uses integers
  * only (int32 storage, int64 intermediates) and is meant for FPU-less cores and interrupts.
  *
@@ -64,7 +64,7 @@ extern "C" {
 /* Most extra fractional bits of a coefficient row. */
 #define QO_SPLINE_Q16_MAX_FRAC    14
 
-/* A keyframe trajectory for the fixed-point sampler. Made by qo_spline_to_q16_f32(); n_keys
+/* A keyframe trajectory for the fixed-point sampler. Made by qo_spline_export_q16(); n_keys
  * == 0 marks a table that is not usable (a failed conversion). The table memory belongs to
  * the caller and must outlive this struct. Read-only while sampling: several interrupts may
  * sample the same plan concurrently. */

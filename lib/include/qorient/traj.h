@@ -100,7 +100,7 @@ typedef enum qo_traj_kind {
     QO_TRAJ_TARGETS = 2  /* queue of timed targets, qorient/motion.h profiles */
 } qo_traj_kind;
 
-/* The trajectory. Fields are readable (e.g. the spline for qo_spline_to_q16_f32, the planner
+/* The trajectory. Fields are readable (e.g. the spline for qo_spline_export_q16, the planner
  * for qo_motion_export_q16 after a re-plan); change them only through the functions. */
 typedef struct qo_traj {
     qo_traj_kind kind;

@@ -64,6 +64,10 @@ typedef struct qo_vec3_q28 { qo_q28 x, y, z; } qo_vec3_q28;
 /* 3x3 matrix with Q1.30 components, row-major, acting on column vectors. */
 typedef struct qo_mat3_q30 { qo_q30 m[3][3]; } qo_mat3_q30;
 
+/* 3-vector with Q16.16 components (rates in user units per second, e.g. rad/s: range
+ * [-32768, 32768), LSB 1.5e-5). */
+typedef struct qo_vec3_q16 { qo_q16 x, y, z; } qo_vec3_q16;
+
 #ifdef __cplusplus
 }
 #endif
