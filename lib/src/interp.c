@@ -213,15 +213,19 @@ static qo_status slerp_common(qo_quat_f32 a, qo_quat_f32 b, float t, int longway
     /* The flipped copy is what every branch below uses (including the series branch), so a
      * and -a interpolate to a unit quaternion, never through the origin. */
     if (longway ? (d > 0.0f) : (d < 0.0f)) ub = neg_q(ub);
-    /* the short way once the inputs are unit (qo_quat_slerp_f32's one-pass case) */
-    if (!longway) return qo_quat_slerp_f32(ua, ub, t, out);
+    /* the short way once the inputs are unit (qo_quat_slerp_f32's one-pass case); its
+     * endpoints are the unit inputs as normalised here (normalising twice can move the last
+     * bit) */
+    if (!longway) {
+        if (t == 0.0f) return QO_OK;          /* *out is ua */
+        if (t == 1.0f) {
+            *out = ub;
+            return QO_OK;
+        }
+        return qo_quat_slerp_f32(ua, ub, t, out);
+    }
     th = angle4(ua, ub, &sin_th);
     if (QO_PI_F - th < QO_SLERP_SERIES_ANGLE) return QO_E_DEGENERATE;
-    if (t == 0.0f) return QO_OK;
-    if (t == 1.0f) {
-        *out = ub;
-        return QO_OK;
-    }
     *out = slerp_weights(ua, ub, th, sin_th, t);
     return QO_OK;
 }
@@ -229,7 +233,6 @@ static qo_status slerp_common(qo_quat_f32 a, qo_quat_f32 b, float t, int longway
 qo_status qo_quat_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out)
 {
     float na = qo_quat_dot_f32(a, a), nb = qo_quat_dot_f32(b, b), ia, ib, x, c, h, u, wa, wb;
-    qo_quat_f32 r;
     /* The common case in one pass: both squared norms in qo_quat_normalize_f32's fast range
      * (so finite and non-zero) and t in [0, 1]. Everything else - every error, NaN t, inputs
      * that need scaling - takes slerp_common (same contract; its endpoints are these bits). */
@@ -241,9 +244,13 @@ qo_status qo_quat_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *
     x = qo_quat_dot_f32(a, b) * (ia * ib);           /* cos th */
     if (x < 0.0f) { ib = -ib; x = -x; }              /* short way: b' = -b */
     if (t == 0.0f || t == 1.0f) {
-        r = t == 0.0f ? a : b;
-        u = t == 0.0f ? ia : ib;
-        out->w = r.w * u; out->x = r.x * u; out->y = r.y * u; out->z = r.z * u;
+        /* the endpoints are qo_quat_normalize_f32's bits (its fast path scales by 1/|q| only
+         * in part of this range; outside it, it rescales first), b' = -b negated after it
+         * (negation is exact) */
+        (void)qo_quat_normalize_f32(t == 0.0f ? a : b, out);   /* cannot fail: na, nb checked */
+        if (t == 1.0f && ib < 0.0f) {
+            out->w = -out->w; out->x = -out->x; out->y = -out->y; out->z = -out->z;
+        }
         return QO_OK;
     }
     /* The unit midpoint m = (a' + b') / (2 c), c = cos(th/2) = sqrt((1 + x)/2) >= 0.707,
