@@ -277,15 +277,33 @@ static float maxf(float a, float b)
  * start and end states with their acceleration ramps (v), the stop from v (at most v t with
  * t = v/A + 2 sqrt(v/J) + |a0|/J), then the distance L = |dp| + 2 v t covered from rest, whose
  * peak is at most min(sqrt(A L), (L sqrt(J))^(2/3)). */
+static float vscale_bound(const mprob *p, float lim);
+
 static float vscale(const mprob *p)
 {
     const mlim *l = &p->l;
-    float J = l->j, A = maxf(l->ap, l->an), lim = maxf(l->vp, l->vn);
+    float J = l->j, A = maxf(l->ap, l->an), lim = maxf(l->vp, l->vn), D = fabsf(p->dp), q = 0.03125f * lim;
+    /* The bound is used only where it is 8x below the limit (else the limit, as before issue
+     * 11's fix: ordinary limits keep their results and speed). Both bounds at or above lim / 8
+     * already for L = |dp| (L is larger): the limit, without a division or root. */
+    if (A * D >= q * q && D * D * J >= q * q * q) return lim;
+    return vscale_bound(p, lim);
+}
+
+static float vscale_bound(const mprob *p, float lim)
+{
+    const mlim *l = &p->l;
+    float J = l->j, A = maxf(l->ap, l->an), q = 0.03125f * lim;
     float v = fabsf(p->v0) + fabsf(p->vf) + (p->a0 * p->a0 + p->af * p->af) / (2.0f * J);
     float t = v / A + 2.0f * sqrtf(v / J) + (fabsf(p->a0) + fabsf(p->af)) / J;
-    float L = fabsf(p->dp) + 2.0f * v * t, u = cbrt_pos(L * sqrtf(J));
-    float r = 4.0f * (v + fminf(sqrtf(A * L), u * u));
-    return r < lim ? r : lim; /* also the limit where r is NaN or infinite */
+    float L = fabsf(p->dp) + 2.0f * v * t, r = 4.0f * (v + sqrtf(A * L)), w = q - v;
+    /* the jerk bound 4 (v + u^2), u^2 = (L sqrt(J))^(2/3), is below the limit only where
+     * L^2 J < w^3: the cube root is needed there only (the solver's hot path skips it) */
+    if (w > 0.0f && L * L * J < w * w * w) {
+        float u = cbrt_pos(L * sqrtf(J)), rj = 4.0f * (v + u * u);
+        if (!(r <= rj)) r = rj;
+    }
+    return r < 0.125f * lim ? r : lim; /* also the limit where r is NaN or infinite */
 }
 
 static rctx rctx_make(const mprob *p, int mode, float T)
@@ -297,7 +315,11 @@ static rctx rctx_make(const mprob *p, int mode, float T)
     c.T = T;
     c.vs = vscale(p);
     /* accelerations: those of the states, or the peak sqrt(J v) a velocity change needs */
-    c.as = fminf(maxf(p->l.ap, p->l.an), 4.0f * (fabsf(p->a0) + fabsf(p->af) + sqrtf(p->l.j * c.vs)));
+    c.as = maxf(p->l.ap, p->l.an);
+    if (p->l.j * c.vs < 0.0009765625f * c.as * c.as) { /* sqrt(J vs) < as / 32 */
+        float as = 4.0f * (fabsf(p->a0) + fabsf(p->af) + sqrtf(p->l.j * c.vs));
+        if (as < 0.125f * c.as) c.as = as; /* as vscale: only 8x below the limit */
+    }
     return c;
 }
 
