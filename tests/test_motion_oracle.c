@@ -474,9 +474,12 @@ static void test_oracle_wide(void **state)
     g_wide = 1;
     g.s = 1107;
     for (m = 0; m < 4; m++) {
-        int b = 0;
-        for (cs = 0; cs < groups && b < 20; cs++) b += check_group(&g, cs, modes[m], NULL);
-        print_message("wide limits, sync %d: %d groups of %d joints, %d failures\n", (int)modes[m], cs, NJ, b);
+        int b = 0, first = env_int("QO_MOTION_ORACLE_FIRST", 0), end = groups, num = env_int("QO_MOTION_ORACLE_NUM", groups);
+        for (cs = 0; cs < first && cs < groups; cs++) skip_group(&g);
+        if (num < end - cs) end = cs + num;
+        for (; cs < end && b < 20; cs++) b += check_group(&g, cs, modes[m], NULL);
+        for (; cs < groups; cs++) skip_group(&g); /* the next mode's cases as in a full run */
+        print_message("wide limits, sync %d: %d groups of %d joints, %d failures\n", (int)modes[m], end - first, NJ, b);
         bad += b;
     }
     g_wide = 0;

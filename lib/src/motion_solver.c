@@ -282,10 +282,10 @@ static float vscale_bound(const mprob *p, float lim);
 static float vscale(const mprob *p)
 {
     const mlim *l = &p->l;
-    float J = l->j, A = maxf(l->ap, l->an), lim = maxf(l->vp, l->vn), D = fabsf(p->dp), q = 0.03125f * lim;
-    /* The bound is used only where it is 8x below the limit (else the limit, as before issue
-     * 11's fix: ordinary limits keep their results and speed). Both bounds at or above lim / 8
-     * already for L = |dp| (L is larger): the limit, without a division or root. */
+    float J = l->j, A = maxf(l->ap, l->an), lim = maxf(l->vp, l->vn), D = fabsf(p->dp), q = 0.25f * lim;
+    /* Both bounds at or above the limit already for L = |dp| (L is larger): the limit, without
+     * a division or root (most joints with ordinary limits). Not only where the limit is far
+     * above (8x was tried: a joint with vmax 33 moving at 0.07 then jumped at its end). */
     if (A * D >= q * q && D * D * J >= q * q * q) return lim;
     return vscale_bound(p, lim);
 }
@@ -293,7 +293,7 @@ static float vscale(const mprob *p)
 static float vscale_bound(const mprob *p, float lim)
 {
     const mlim *l = &p->l;
-    float J = l->j, A = maxf(l->ap, l->an), q = 0.03125f * lim;
+    float J = l->j, A = maxf(l->ap, l->an), q = 0.25f * lim;
     float v = fabsf(p->v0) + fabsf(p->vf) + (p->a0 * p->a0 + p->af * p->af) / (2.0f * J);
     float t = v / A + 2.0f * sqrtf(v / J) + (fabsf(p->a0) + fabsf(p->af)) / J;
     float L = fabsf(p->dp) + 2.0f * v * t, r = 4.0f * (v + sqrtf(A * L)), w = q - v;
@@ -303,7 +303,7 @@ static float vscale_bound(const mprob *p, float lim)
         float u = cbrt_pos(L * sqrtf(J)), rj = 4.0f * (v + u * u);
         if (!(r <= rj)) r = rj;
     }
-    return r < 0.125f * lim ? r : lim; /* also the limit where r is NaN or infinite */
+    return r < lim ? r : lim; /* also the limit where r is NaN or infinite */
 }
 
 static rctx rctx_make(const mprob *p, int mode, float T)
@@ -316,9 +316,9 @@ static rctx rctx_make(const mprob *p, int mode, float T)
     c.vs = vscale(p);
     /* accelerations: those of the states, or the peak sqrt(J v) a velocity change needs */
     c.as = maxf(p->l.ap, p->l.an);
-    if (p->l.j * c.vs < 0.0009765625f * c.as * c.as) { /* sqrt(J vs) < as / 32 */
+    if (p->l.j * c.vs < 0.0625f * c.as * c.as) { /* sqrt(J vs) < as / 4 */
         float as = 4.0f * (fabsf(p->a0) + fabsf(p->af) + sqrtf(p->l.j * c.vs));
-        if (as < 0.125f * c.as) c.as = as; /* as vscale: only 8x below the limit */
+        if (as < c.as) c.as = as;
     }
     return c;
 }
