@@ -8,7 +8,9 @@
 #                            the same program with 10,500 per mode)
 #   make check-motion-long   10,000,000 per sync mode
 # QO_MOTION_ORACLE_FILTER=test_oracle_time (a cmocka name pattern) runs one part, e.g. the modes
-# in parallel on a machine with cores to spare.
+# in parallel on a machine with cores to spare. QO_MOTION_ORACLE_FIRST=n QO_MOTION_ORACLE_NUM=m
+# run only groups n..n+m-1 of each mode (the same cases as the full run: a failure reproduced
+# by its case number). test_oracle_wide runs limits log-uniform over [1e-3, 1e9].
 #
 # Each prints one line per mode "sync N: G groups of 7 joints, F failures" and fails on any
 # failure (a joint or plan more than 0.1 % slower or faster than the reference, a limit

@@ -250,6 +250,8 @@ static void eval_vc(const mprob *p, float vc, float *disp, float *dur)
     eval_segs(p->v0, p->a0, g, n, disp, dur);
 }
 
+static float cbrt_pos(float a);
+
 /* What a root search evaluates at extremum velocity vc. mode 0 (minimum time): displacement of
  * the zero-cruise profile minus dp, aux = its duration. mode 1 (time sync): position reached in
  * exactly T with the cruise filling the rest, minus dp, aux = that cruise time. mode 2: the dip
@@ -267,6 +269,43 @@ static float maxf(float a, float b)
     return a > b ? a : b;
 }
 
+/* Velocity scale of a problem: a bound (with a margin of 4) on the velocities of the profiles
+ * that can reach dp in about the minimum time, or the velocity limit if that is smaller. The
+ * solver's tolerances are float32 rounding of positions, i.e. relative to the velocities
+ * actually flown: with the limit itself as the scale, a vmax of 1e8 made a 0.4 miss look like
+ * rounding and the plan lost its target (a position jump at the end). Bound: the speed of the
+ * start and end states with their acceleration ramps (v), the stop from v (at most v t with
+ * t = v/A + 2 sqrt(v/J) + |a0|/J), then the distance L = |dp| + 2 v t covered from rest, whose
+ * peak is at most min(sqrt(A L), (L sqrt(J))^(2/3)). */
+static float vscale_bound(const mprob *p, float lim);
+
+static float vscale(const mprob *p)
+{
+    const mlim *l = &p->l;
+    float J = l->j, A = maxf(l->ap, l->an), lim = maxf(l->vp, l->vn), D = fabsf(p->dp), q = 0.25f * lim;
+    /* Both bounds at or above the limit already for L = |dp| (L is larger): the limit, without
+     * a division or root (most joints with ordinary limits). Not only where the limit is far
+     * above (8x was tried: a joint with vmax 33 moving at 0.07 then jumped at its end). */
+    if (A * D >= q * q && D * D * J >= q * q * q) return lim;
+    return vscale_bound(p, lim);
+}
+
+static float vscale_bound(const mprob *p, float lim)
+{
+    const mlim *l = &p->l;
+    float J = l->j, A = maxf(l->ap, l->an), q = 0.25f * lim;
+    float v = fabsf(p->v0) + fabsf(p->vf) + (p->a0 * p->a0 + p->af * p->af) / (2.0f * J);
+    float t = v / A + 2.0f * sqrtf(v / J) + (fabsf(p->a0) + fabsf(p->af)) / J;
+    float L = fabsf(p->dp) + 2.0f * v * t, r = 4.0f * (v + sqrtf(A * L)), w = q - v;
+    /* the jerk bound 4 (v + u^2), u^2 = (L sqrt(J))^(2/3), is below the limit only where
+     * L^2 J < w^3: the cube root is needed there only (the solver's hot path skips it) */
+    if (w > 0.0f && L * L * J < w * w * w) {
+        float u = cbrt_pos(L * sqrtf(J)), rj = 4.0f * (v + u * u);
+        if (!(r <= rj)) r = rj;
+    }
+    return r < lim ? r : lim; /* also the limit where r is NaN or infinite */
+}
+
 static rctx rctx_make(const mprob *p, int mode, float T)
 {
     rctx c;
@@ -274,8 +313,13 @@ static rctx rctx_make(const mprob *p, int mode, float T)
     c.mode = mode;
     c.dp = p->dp;
     c.T = T;
-    c.vs = maxf(p->l.vp, p->l.vn);
+    c.vs = vscale(p);
+    /* accelerations: those of the states, or the peak sqrt(J v) a velocity change needs */
     c.as = maxf(p->l.ap, p->l.an);
+    if (p->l.j * c.vs < 0.0625f * c.as * c.as) { /* sqrt(J vs) < as / 4 */
+        float as = 4.0f * (fabsf(p->a0) + fabsf(p->af) + sqrtf(p->l.j * c.vs));
+        if (as < c.as) c.as = as;
+    }
     return c;
 }
 
@@ -548,6 +592,7 @@ static void solve_holds(const mprob *p, msol *sol)
     const mlim *l = &p->l;
     float J = l->j, vnat = p->v0 + p->a0 * fabsf(p->a0) / (2.0f * J);
     float vbp = maxf(l->vp, vnat) * (1.0f + 1e-6f), vbn = maxf(l->vn, -vnat) * (1.0f + 1e-6f);
+    float vs = vscale(p);
     int fam;
     for (fam = 3; fam <= 4; fam++) {
         float B1 = fam == 3 ? l->ap : -l->an, B2 = fam == 3 ? -l->an : l->ap;
@@ -586,7 +631,7 @@ static void solve_holds(const mprob *p, msol *sol)
         if (h2 < 0.0f) h2 = 0.0f; /* rounding at h0 */
         build_holds(p, fam, h1, h2, g);
         eval_segs(p->v0, p->a0, g, 5, &d, &dur);
-        if (!(fabsf(d - p->dp) <= 1e-6f * (fabsf(p->dp) + (fabsf(p->v0) + maxf(l->vp, l->vn)) * dur))) continue;
+        if (!(fabsf(d - p->dp) <= 1e-6f * (fabsf(p->dp) + (fabsf(p->v0) + vs) * dur))) continue;
         if (!(dur < sol->t) || !segs_within(p->v0, p->a0, g, 5, vbp, vbn)) continue;
         sol->x = h1;
         sol->tc = h2;
@@ -830,8 +875,11 @@ int qo_motion_solve_time(const mprob *p, float vcs, float T, msol *sol)
         xs[n++] = vcs;
         xs[n++] = fminf(fmaxf(vn, -l->vn), l->vp);
         xs[n++] = fminf(fmaxf(ve, -l->vn), l->vp);
+        /* the grid spans the velocities a profile can use (the limits, or the problem's
+         * scale where that is smaller: a grid over +-1e8 misses a root near 1) */
+        float gn = fminf(l->vn, c.vs), gp = fminf(l->vp, c.vs);
         for (k = 0; k < QO_MOTION_SYNC_SCAN; k++)
-            xs[n++] = -l->vn + (l->vp + l->vn) * (float)k / (float)(QO_MOTION_SYNC_SCAN - 1);
+            xs[n++] = -gn + (gp + gn) * (float)k / (float)(QO_MOTION_SYNC_SCAN - 1);
         for (i = 1; i < n; i++) {
             float x = xs[i];
             k = i;

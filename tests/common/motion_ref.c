@@ -80,6 +80,7 @@ typedef struct rprob {
     const mref_lim *l;
     double p0, v0, a0, pf, vf, af;
     double tol; /* position residual accepted as a root */
+    double vs, vfloor; /* velocity scale of the move and its smallest (mref_min_time) */
 } rprob;
 
 /* Position residual of the profile through junction (vm, am) with a cruise of tc, its
@@ -109,14 +110,22 @@ static double eval(const rprob *q, double vm, double am, double tc, double *T, i
 /* Every vm root of the position residual at junction acceleration am; keeps the fastest valid
  * profile in *best. */
 #define MREF_NV 48
+#define MREF_NEST 6 /* nested grids at most (wide limits) */
 static double ramp_vm(const rprob *q, int side, double am);
 
 static void scan_am(const rprob *q, double am, double *best)
 {
     const mref_lim *l = q->l;
-    double xs[MREF_NV + 5], fs[MREF_NV + 5], T, f, J = l->jmax;
+    double xs[(MREF_NEST + 1) * (MREF_NV + 1) + 4], fs[(MREF_NEST + 1) * (MREF_NV + 1) + 4], T, f, J = l->jmax, s;
     int i, k, n = 0, ok;
     for (i = 0; i <= MREF_NV; i++) xs[n++] = l->vmin + (l->vmax - l->vmin) * i / MREF_NV;
+    /* Limits far above what the move uses (vmax 1e8 for a move at 2 units/s): the same grid
+     * over +-vs, vs/8, vs/64, ... down to the move's own speed, else its spacing hides roots. */
+    for (s = q->vs, k = 0; k < MREF_NEST && s >= q->vfloor; s *= 0.125, k++) {
+        double lo = fmax(l->vmin, -s), hi = fmin(l->vmax, s);
+        if (hi - lo >= 0.125 * (l->vmax - l->vmin)) continue;
+        for (i = 0; i <= MREF_NV; i++) xs[n++] = lo + (hi - lo) * i / MREF_NV;
+    }
     /* The junction velocities where a transfer changes from one pulse to the other (a single
      * ramp) and the start's and the end's zero-acceleration velocities: two roots of the
      * residual can lie between two grid points there (check-motion found a joint the grid
@@ -208,11 +217,25 @@ static void scan_ramps(const rprob *q, double *best)
 
 double mref_min_time(const mref_lim *l, double p0, double v0, double a0, double pf, double vf, double af)
 {
-    rprob q = { l, p0, v0, a0, pf, vf, af, 1e-9 * (1.0 + fabs(p0) + fabs(pf)) };
-    double best = INFINITY, bam = 0.0, T, f, h;
+    rprob q = { l, p0, v0, a0, pf, vf, af, 1e-9 * (1.0 + fabs(p0) + fabs(pf)), 0.0, 0.0 };
+    double best = INFINITY, bam = 0.0, T, f, h, as, ah, afloor;
     int i, ok, lev;
     double special[5];
     if (p0 == pf && v0 == vf && a0 == af) return 0.0;
+    {
+        /* Velocities and accelerations a near-optimal profile can use, with a wide margin:
+         * the states' speeds (with their acceleration ramps), a stop from them, then the
+         * distance back from rest at the acceleration or jerk limit. */
+        double A = fmax(l->amax, -l->amin), J = l->jmax;
+        double w = fabs(v0) + fabs(vf) + (a0 * a0 + af * af) / J;
+        double ts = w / A + 3.0 * sqrt(w / J) + (fabs(a0) + fabs(af)) / J;
+        double L = fabs(pf - p0) + 2.0 * w * ts;
+        double D = fabs(pf - p0);
+        q.vs = 8.0 * (w + fmin(sqrt(A * L), cbrt(L * L * J)));
+        q.vfloor = 0.5 * (w + fmin(sqrt(A * D), cbrt(D * D * J)));
+        as = 8.0 * (fabs(a0) + fabs(af) + sqrt(J * q.vs));
+        afloor = 0.5 * (fabs(a0) + fabs(af) + sqrt(J * q.vfloor));
+    }
     /* Cruise on a velocity bound (junction (vmax, 0) or (vmin, 0)). */
     f = eval(&q, l->vmax, 0.0, 0.0, &T, &ok);
     if (ok && f <= 0.0) best = fmin(best, T - f / l->vmax);
@@ -234,8 +257,22 @@ double mref_min_time(const mref_lim *l, double p0, double v0, double a0, double 
         scan_am(&q, am, &best);
         if (best < b) bam = am;
     }
-    /* Refine the junction acceleration around the best so far. */
-    h = (l->amax - l->amin) / MREF_NV;
+    /* Limits far above what the move uses: the same scan over the accelerations it can use. */
+    ah = (l->amax - l->amin) / MREF_NV;
+    for (lev = 0; lev < MREF_NEST && as >= afloor; as *= 0.125, lev++) {
+        double lo = fmax(l->amin, -as), hi = fmin(l->amax, as);
+        if (hi - lo >= 0.125 * (l->amax - l->amin)) continue;
+        for (i = 0; i <= MREF_NV; i++) {
+            double am = lo + (hi - lo) * i / MREF_NV, b = best;
+            scan_am(&q, am, &best);
+            if (best < b) {
+                bam = am;
+                ah = (hi - lo) / MREF_NV;
+            }
+        }
+    }
+    /* Refine the junction acceleration around the best so far (on the grid it came from). */
+    h = ah;
     for (lev = 0; lev < 3; lev++) {
         double c = bam;
         for (i = -10; i <= 10; i++) {
