@@ -224,6 +224,24 @@ static int run_one(const struct CMUnitTest *t, void *group_state)
     return result;
 }
 
+static const char *g_filter;
+
+void cmocka_set_test_filter(const char *pattern) { g_filter = pattern; }
+
+/* glob match of s against p: * any run (also empty), ? one character; bounded by the lengths */
+static int glob_match(const char *p, const char *s)
+{
+    const char *star = NULL, *resume = NULL;
+    while (*s) {
+        if (*p == '?' || *p == *s) { p++; s++; }
+        else if (*p == '*') { star = p++; resume = s; }
+        else if (star) { p = star + 1; s = ++resume; }
+        else return 0;
+    }
+    while (*p == '*') p++;
+    return *p == '\0';
+}
+
 int _cmocka_run_group_tests(const char *group_name, const struct CMUnitTest *tests, size_t count,
                             CMFixtureFunction group_setup, CMFixtureFunction group_teardown)
 {
@@ -242,7 +260,7 @@ int _cmocka_run_group_tests(const char *group_name, const struct CMUnitTest *tes
         const struct CMUnitTest *t = &tests[i];
         int r;
         clock_t t0, dt;
-        if (t->test_func == NULL) continue;
+        if (t->test_func == NULL || (g_filter && !glob_match(g_filter, t->name))) continue;
         print_message("[ RUN      ] %s\n", t->name);
         t0 = clock();
         r = run_one(t, group_state);

@@ -11,7 +11,7 @@
  *   assert_true / false, assert_int_equal / not_equal, assert_ptr_equal / not_equal,
  *   assert_null / non_null, assert_string_equal / not_equal, assert_float_equal / not_equal,
  *   assert_in_range / not_in_range, assert_memory_equal / not_equal, assert_return_code
- *   fail, fail_msg, skip, print_error, print_message
+ *   fail, fail_msg, skip, print_error, print_message, cmocka_set_test_filter (glob: * and ?)
  *
  * Not provided (no test uses them): mocks (will_return, expect_*), test_malloc leak checks.
  * A failing assert prints the check and its file:line, then longjmp()s out of the test (newlib
@@ -112,6 +112,9 @@ void print_error(const char *format, ...) __attribute__((format(printf, 1, 2)));
 
 int _cmocka_run_group_tests(const char *group_name, const struct CMUnitTest *tests, size_t count,
                             CMFixtureFunction group_setup, CMFixtureFunction group_teardown);
+
+/* Runs only the tests whose name matches pattern (* any run, ? one character), as cmocka. */
+void cmocka_set_test_filter(const char *pattern);
 
 void _assert_true(LargestIntegralType result, const char *expression, const char *file, int line);
 void _assert_return_code(LargestIntegralType result, size_t rlen, LargestIntegralType error,
