@@ -1053,7 +1053,7 @@ static void test_after_end(void **state)
     int cs;
     (void)state;
     g.s = 2201;
-    for (cs = 0; cs < 300; cs++) {
+    for (cs = 0; cs < ORACLE_GROUPS(300); cs++) {
         qo_motion_planner_f32 pl;
         qo_motion_joint_f32 jts[NJ];
         qo_motion_limits_f32 l[NJ];
@@ -1117,7 +1117,7 @@ static void test_joint_sync(void **state)
     int cs, nline = 0, nunsynced = 0;
     (void)state;
     g.s = 2202;
-    for (cs = 0; cs < 400; cs++) {
+    for (cs = 0; cs < ORACLE_GROUPS(400); cs++) {
         qo_motion_planner_f32 pl;
         qo_motion_joint_f32 jts[NJ];
         qo_motion_limits_f32 l[NJ];
@@ -1193,9 +1193,13 @@ static void test_joint_sync(void **state)
         assert_true(T >= 0.0);
     }
     /* the straight line was used in a share of the plans, and the sync gap stayed rare */
-    print_message("joint sync: %d of 400 plans on a straight line, %d with an unsynced joint\n", nline, nunsynced);
-    assert_true(nline >= 20);
-    assert_true(nunsynced <= 4);
+    print_message("joint sync: %d of %d plans on a straight line, %d with an unsynced joint\n", nline,
+                  (int)ORACLE_GROUPS(400), nunsynced);
+    /* shares of the full run; the emulated Cortex-M sample (a few plans) checks the plans only */
+    if (ORACLE_GROUPS(400) == 400) {
+        assert_true(nline >= 20);
+        assert_true(nunsynced <= 4);
+    }
 }
 
 static void test_joint_sync_args(void **state)
