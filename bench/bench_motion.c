@@ -22,21 +22,13 @@
 
 #include "qorient/motion.h"
 #include "qorient/motion_fx.h"
+#include "common/ref.h"
 
 #define NJ 7
 
-static uint64_t rng_s = 20261126;
-static uint64_t rng_next(void)
-{
-    uint64_t z = (rng_s += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
-static double urand(double lo, double hi)
-{
-    return lo + (hi - lo) * ((double)(rng_next() >> 11) * (1.0 / 9007199254740992.0));
-}
+/* the shared splitmix64 of tests/common/ref.c, fixed seed */
+static ref_rng rng = { 20261126 };
+static double urand(double lo, double hi) { return ref_rng_range(&rng, lo, hi); }
 static double lrand(double lo, double hi) { return exp(urand(log(lo), log(hi))); }
 
 /* Wall clock (vDSO, cheap to read) for single re-plans, best of 5 per case. */
