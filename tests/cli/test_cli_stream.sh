@@ -5,14 +5,8 @@
 # a rate the serial line cannot carry.
 Q=${QORIENT:-build/qorient}
 MAP=examples/maps/six_int32.ini
-pass=0; fail=0
 T=${TMPDIR:-/tmp}/qo-cli-stream.$$
-mkdir -p "$T"
-SIMPID=""
-cleanup() { [ -n "$SIMPID" ] && kill "$SIMPID" 2>/dev/null; wait 2>/dev/null; rm -rf "$T"; }
-trap cleanup EXIT INT TERM
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+. tests/common/sh/prelude.sh
 
 # A simulator on an ephemeral port: start_sim [LOG [SIM OPTIONS]] (default LOG $T/log.csv,
 # listening on tcp://127.0.0.1:0); waits (bounded) for its 'listening' line, sets PORT and HOST.

@@ -9,14 +9,8 @@ Q=${QORIENT:-build/qorient}
 B=$(dirname "$Q")
 MAP=examples/maps/six_int32.ini
 PKG_CONFIG=${PKG_CONFIG:-pkg-config}
-pass=0; fail=0
 T=${TMPDIR:-/tmp}/qo-example-pi.$$
-mkdir -p "$T"
-SIMPID=""
-cleanup() { [ -n "$SIMPID" ] && kill "$SIMPID" 2>/dev/null; wait 2>/dev/null; rm -rf "$T"; }
-trap cleanup EXIT INT TERM
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+. tests/common/sh/prelude.sh
 
 # last logged value of each joint j1..j6 (joint units), as "v1 v2 ... v6"
 finals() {
