@@ -244,13 +244,10 @@ qo_status qo_quat_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *
     x = qo_quat_dot_f32(a, b) * (ia * ib);           /* cos th */
     if (x < 0.0f) { ib = -ib; x = -x; }              /* short way: b' = -b */
     if (t == 0.0f || t == 1.0f) {
-        /* the endpoints are qo_quat_normalize_f32's bits (its fast path scales by 1/|q| only
-         * in part of this range; outside it, it rescales first), b' = -b negated after it
-         * (negation is exact) */
-        (void)qo_quat_normalize_f32(t == 0.0f ? a : b, out);   /* cannot fail: na, nb checked */
-        if (t == 1.0f && ib < 0.0f) {
-            out->w = -out->w; out->x = -out->x; out->y = -out->y; out->z = -out->z;
-        }
+        /* the endpoints are qo_quat_normalize_f32's own result (na, nb are in its fast range,
+         * so it cannot fail), b' = -b negated after it (negation is exact) */
+        (void)qo_quat_normalize_f32(t == 0.0f ? a : b, out);
+        if (t == 1.0f && ib < 0.0f) *out = neg_q(*out);
         return QO_OK;
     }
     /* The unit midpoint m = (a' + b') / (2 c), c = cos(th/2) = sqrt((1 + x)/2) >= 0.707,
