@@ -164,8 +164,8 @@ test-run: tests-build
 
 # The GPIO sink against the kernel's gpio-sim in a QEMU VM (needs root-free qemu, downloads
 # Debian's kernel packages once into build/vm).
-test-vm:
-	sh tests/vm/run-gpiosim.sh
+test-vm: $(BUILD)/libqorient.a $(BUILD)/libqorient_ports.a
+	BUILD=$(BUILD) sh tests/vm/run-gpiosim.sh
 
 # The main job with no hardware: simulated drives, a planned arm move and a gimbal path
 # streamed over loopback Modbus, and a picture of what the drives received.

@@ -144,12 +144,17 @@ pkg-config --atleast-version=2 libgpiod 2>/dev/null && API=v2
 LIBA=$(pkg-config --variable=libdir libgpiod 2>/dev/null)/libgpiod.a
 [ -f "$LIBA" ] || skip "no static $LIBA (libgpiod-dev)"
 CC=${CC:-cc}
+# The port and core archives `make test-vm` builds first: the linker takes what gpio_sink and the
+# streamer need from them, so a new source file in ports/ cannot be forgotten here.
+BUILD=${BUILD:-$ROOT/build}
+for a in libqorient_ports.a libqorient.a; do
+    [ -f "$BUILD/$a" ] || { echo "run-gpiosim: $BUILD/$a missing (run make test-vm)" >&2; exit 1; }
+done
 DEF=-DQO_GPIOD_V1
 [ $API = v2 ] && DEF=-DQO_GPIOD_V2
 $CC -std=c99 -O2 -Wall -Wextra -Werror -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE $DEF \
     $(pkg-config --cflags libgpiod) -I"$ROOT/lib/include" -I"$ROOT/ports" -static -o "$W/gpiosim_stream" \
-    "$VM/gpiosim_stream.c" "$ROOT/ports/linux/gpio_sink.c" "$ROOT/ports/linux/streamer.c" \
-    "$ROOT/lib/src/status.c" "$LIBA" -lm -pthread
+    "$VM/gpiosim_stream.c" "$BUILD/libqorient_ports.a" "$BUILD/libqorient.a" "$LIBA" -lm -pthread
 
 # ---- initramfs ----
 R=$(mktemp -d)
