@@ -666,6 +666,7 @@ static void test_slerp_rate(void **state)
     assert_true(v_norm(w) <= c->tol_long);
     assert_int_equal(c->slerp_rate(a, dq_neg(a), 1.0, &w), QO_OK);
     assert_true(v_norm(w) <= c->tol_long);
+    assert_true(fabs(w.x) + fabs(w.y) + fabs(w.z) <= (c->fixed ? 1.5 / Q16 : 1e-6));
     /* 90 deg about x in 0.5 s: pi rad/s about x */
     assert_int_equal(c->slerp_rate(ID, c->q_in(dq_axis_angle(1, 0, 0, PI / 2)), 0.5, &w), QO_OK);
     assert_true(fabs(w.x - PI) <= 2e-5 && fabs(w.y) <= 2e-5 && fabs(w.z) <= 2e-5);
@@ -1649,6 +1650,10 @@ static void test_f32_nan(void **state)
     assert_int_equal(qo_quat_squad_f32(k[0], k[1], k[2], k[3], NAN, &out), QO_E_NONFINITE);
     k[2].y = NAN;
     assert_int_equal(qo_quat_align_keys_f32(k, 4, ka), QO_E_NONFINITE);
+    kb[0] = k[0];
+    kb[1] = zero; /* NaN wins over a zero key */
+    kb[2] = k[2];
+    assert_int_equal(qo_quat_align_keys_f32(kb, 3, ka), QO_E_NONFINITE);
     for (i = 0; i < 4; i++) assert_true(f_bits_equal(ka[i], id));
     assert_int_equal(qo_quat_bezier_f32(k, 3, 0.5f, &out), QO_E_NONFINITE);
     assert_true(f_bits_equal(out, id));

@@ -31,9 +31,12 @@
 #include "qorient/spline_fx.h"
 #include "common/ref.h"
 
-#define MAXK 16
-#define MAXN 6
-#define COEF_CAP 2048
+#define MAXK 12   /* keys of the random plans (2 + trial % 11 at most) */
+#define MAXN 4    /* joints of the random plans */
+/* Coefficient storage of one plan, K + 3N + 6KN floats: the largest plan of the tests that use
+ * it has 10 keys of 4 joints (262). The program also runs on the Cortex-M0 board (microbit,
+ * 16 KB of RAM, stack included), so every buffer is sized to what the tests use. */
+#define COEF_CAP 320
 
 /* ---- deterministic PRNG ---- */
 static uint64_t rng_state;
@@ -240,11 +243,15 @@ static int seg_of(const keys *ks, double t)
 /* Two plans at once (slot 0 and 1: a limited plan and its free twin). */
 #define SLOTS 2
 #define Q16 65536.0
+/* Q16.16 table words of one plan: 5K + 3N + 7KN, at most 375 here (11 keys, 4 joints) */
+#define X_CAP 384
 static qo_spline_f32 f_plans[SLOTS];
 static qo_spline_q16 x_plans[SLOTS];
-static int32_t x_tables[SLOTS][COEF_CAP];
-/* the Q16.16 table of the fixed-only bodies */
-static int32_t table[COEF_CAP];
+static int32_t x_tables[SLOTS][X_CAP];
+/* the Q16.16 table of the fixed-only bodies (they do not use the adapters' slot 0 meanwhile) */
+static int32_t *const table = x_tables[0];
+/* a second plan's coefficients (limited and free plans; re-planning) */
+static float coef2[COEF_CAP];
 
 typedef struct core {
     const char *name;
@@ -292,7 +299,7 @@ static double x_in(double x) { return x_t(x) / Q16; }
 static double x_back(qo_q16 x) { return x / Q16; }
 static qo_status x_use(int slot, const qo_spline_f32 *sp)
 {
-    return qo_spline_export_q16(sp, &x_plans[slot], x_tables[slot], COEF_CAP);
+    return qo_spline_export_q16(sp, &x_plans[slot], x_tables[slot], X_CAP);
 }
 DEFINE_SAMPLER(x, q16, qo_q16, x_t, x_back)
 
@@ -482,7 +489,6 @@ static void test_limits_clamp_and_report(void **state)
     const core *c = CORE(state);
     keys ks;
     float lo[3] = { -4.0f, -INFINITY, -1.0f }, hi[3] = { 4.0f, 2.0f, INFINITY };
-    static float coef2[COEF_CAP];
     int i, j, seen_lo = 0, seen_hi = 0;
     qo_spline_settings_f32 set = qo_spline_settings_default;
     qo_spline_f32 lim, free_sp;
@@ -556,7 +562,7 @@ static void fixed_vs_float(int exact_times, uint64_t seed)
             set.end = (trial & 1) ? QO_SPLINE_END_NATURAL : QO_SPLINE_END_CLAMPED;
             assert_int_equal(qo_spline_init_f32((size_t)N, (size_t)K, t, p, &set, coef, COEF_CAP,
                                                 &sp), QO_OK);
-            assert_int_equal(qo_spline_export_q16(&sp, &fx, table, COEF_CAP), QO_OK);
+            assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_OK);
             order = set.profile == QO_SPLINE_LINEAR ? 0
                   : (set.profile == QO_SPLINE_CUBIC_C2 || set.profile == QO_SPLINE_QUINTIC) ? 2 : 1;
             for (i = 0; i < 300; i++) {
@@ -645,7 +651,7 @@ static void test_fixed_small_move_precision(void **state)
     (void)state;
     set.profile = QO_SPLINE_QUINTIC;
     assert_int_equal(qo_spline_init_f32(1, 2, t, p, &set, coef, COEF_CAP, &sp), QO_OK);
-    assert_int_equal(qo_spline_export_q16(&sp, &fx, table, COEF_CAP), QO_OK);
+    assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_OK);
     assert_int_equal(table[5 * 2 + 3 * 1 + 6], 12); /* f of the only segment */
     for (i = 0; i <= 32768; i += 7) {
         double s = i / 32768.0, d = 0.25, rp, rv;
@@ -680,7 +686,7 @@ static void test_fixed_ends_wrap_limits(void **state)
     set.pos_min = lo;
     set.pos_max = hi;
     assert_int_equal(qo_spline_init_f32(2, 3, t, p, &set, coef, COEF_CAP, &sp), QO_OK);
-    assert_int_equal(qo_spline_export_q16(&sp, &fx, table, COEF_CAP), QO_OK);
+    assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_OK);
     /* before / after: keys at rest; exact end: last key */
     assert_int_equal(qo_spline_sample_q16(&fx, INT32_MIN, pos, vel, acc, cl), QO_OK);
     assert_int_equal(pos[0], (qo_q16)lrint(3.0 * 65536));
@@ -739,11 +745,11 @@ static void test_fixed_edges(void **state)
     assert_int_equal(fx.n_keys, 0);
     assert_int_equal(qo_spline_sample_q16(&fx, 0, &pos, &vel, &acc, &cl), QO_E_NULL); /* no table */
     assert_true(pos == 0 && vel == 0 && acc == 0 && cl == 0);
-    assert_int_equal(qo_spline_export_q16(NULL, &fx, table, COEF_CAP), QO_E_NULL);
+    assert_int_equal(qo_spline_export_q16(NULL, &fx, table, X_CAP), QO_E_NULL);
     assert_int_equal(qo_spline_export_q16(&sp, &fx, NULL, COEF_CAP), QO_E_NULL);
-    assert_int_equal(qo_spline_export_q16(&sp, NULL, table, COEF_CAP), QO_E_NULL);
+    assert_int_equal(qo_spline_export_q16(&sp, NULL, table, X_CAP), QO_E_NULL);
     assert_int_equal(qo_spline_init_f32(1, 1, t, p, &set, coef, COEF_CAP, &empty), QO_E_TOO_FEW);
-    assert_int_equal(qo_spline_export_q16(&empty, &fx, table, COEF_CAP), QO_E_STATE);
+    assert_int_equal(qo_spline_export_q16(&empty, &fx, table, X_CAP), QO_E_STATE);
     /* a usable table, then a fake failed one: STATE with zeroed outputs */
     assert_int_equal(qo_spline_export_q16(&sp, &fx, table, need), QO_OK);
     assert_int_equal(qo_spline_sample_q16(&fx, 32768, &pos, &vel, &acc, &cl), QO_OK);
@@ -762,12 +768,12 @@ static void test_fixed_edges(void **state)
         const float pbig[2] = { 0.0f, 40000.0f }, tbig[2] = { 0.0f, 40000.0f };
         const float tclose[2] = { 0.0f, 1e-6f };
         assert_int_equal(qo_spline_init_f32(1, 2, t, pbig, &set, coef, COEF_CAP, &sp), QO_OK);
-        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, COEF_CAP), QO_E_OVERFLOW);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_E_OVERFLOW);
         assert_int_equal(fx.n_keys, 0);
         assert_int_equal(qo_spline_init_f32(1, 2, tbig, p, &set, coef, COEF_CAP, &sp), QO_OK);
-        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, COEF_CAP), QO_E_OVERFLOW);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_E_OVERFLOW);
         assert_int_equal(qo_spline_init_f32(1, 2, tclose, p, &set, coef, COEF_CAP, &sp), QO_OK);
-        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, COEF_CAP), QO_E_ORDER);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_E_ORDER);
     }
     /* a velocity beyond Q16.16 (rest-to-rest quintic over 2000 units in 10 ms: peak 3.75e5
      * units/s) saturates and says so; the position is still right */
@@ -776,7 +782,7 @@ static void test_fixed_edges(void **state)
         qo_q16 half = (qo_q16)lrint(0.01 * 65536) / 2; /* s = 0.5 of the rounded segment */
         set.profile = QO_SPLINE_QUINTIC;
         assert_int_equal(qo_spline_init_f32(1, 2, tf, pf, &set, coef, COEF_CAP, &sp), QO_OK);
-        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, COEF_CAP), QO_OK);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_OK);
         assert_int_equal(qo_spline_sample_q16(&fx, half, &pos, &vel, &acc, NULL), QO_E_OVERFLOW);
         assert_int_equal(vel, INT32_MAX);
         {
@@ -786,20 +792,20 @@ static void test_fixed_edges(void **state)
                 fail_msg("saturated-velocity sample: pos %.9g, want %.9g", pos / 65536.0, want);
         }
         assert_int_equal(qo_spline_init_f32(1, 2, tf, pn, &set, coef, COEF_CAP, &sp), QO_OK);
-        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, COEF_CAP), QO_OK);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_OK);
         assert_int_equal(qo_spline_sample_q16(&fx, half, &pos, &vel, NULL, NULL), QO_E_OVERFLOW);
         assert_int_equal(vel, INT32_MIN);
         /* linear: the end state holds the same slope, so the conversion already refuses */
         set.profile = QO_SPLINE_LINEAR;
         assert_int_equal(qo_spline_init_f32(1, 2, tf, pf, &set, coef, COEF_CAP, &sp), QO_OK);
-        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, COEF_CAP), QO_E_OVERFLOW);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_E_OVERFLOW);
     }
     /* the shortest segment Q16.16 can hold (1 LSB of time) and a long one (hours) */
     {
         const float ts[3] = { 0.0f, 1.0f / 65536.0f, 20000.0f }, ps[3] = { 0.0f, 0.0f, 1.0f };
         set.profile = QO_SPLINE_CUBIC_C2;
         assert_int_equal(qo_spline_init_f32(1, 3, ts, ps, &set, coef, COEF_CAP, &sp), QO_OK);
-        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, COEF_CAP), QO_OK);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_OK);
         assert_int_equal(qo_spline_sample_q16(&fx, 10000 * 65536, &pos, &vel, &acc, NULL), QO_OK);
         assert_true(abs(pos - 32768) <= 8);
     }
@@ -1267,22 +1273,27 @@ static void test_edges(void **state)
 
 /* Many joints and keys, the ordinary size classes of a hexapod (18 joints): every key exact
  * and samples finite, with a binary-searched segment at every t. */
+#if defined(__ARM_ARCH_6M__)
+#define MANY_KEYS 4   /* Cortex-M0 board: 16 KB of RAM; 200 keys need 87 KB */
+#else
+#define MANY_KEYS 200
+#endif
 static void test_many_joints_keys(void **state)
 {
-    static float t[200], p[200 * 18], buf[200 + 3 * 18 + 6 * 200 * 18];
+    static float t[MANY_KEYS], p[MANY_KEYS * 18], buf[MANY_KEYS + 3 * 18 + 6 * MANY_KEYS * 18];
     qo_spline_settings_f32 set = qo_spline_settings_default;
     qo_spline_f32 sp;
     int i, j;
     (void)state;
     rng_state = 808;
     t[0] = 0.0f;
-    for (i = 1; i < 200; i++) t[i] = t[i - 1] + (float)urand(0.01, 0.1);
-    for (i = 0; i < 200 * 18; i++) p[i] = (float)urand(-3.0, 3.0);
+    for (i = 1; i < MANY_KEYS; i++) t[i] = t[i - 1] + (float)urand(0.01, 0.1);
+    for (i = 0; i < MANY_KEYS * 18; i++) p[i] = (float)urand(-3.0, 3.0);
     set.profile = QO_SPLINE_QUINTIC;
-    assert_int_equal(qo_spline_coef_len(18, 200), sizeof buf / sizeof buf[0]);
-    assert_int_equal(qo_spline_init_f32(18, 200, t, p, &set, buf, sizeof buf / sizeof buf[0], &sp),
-                     QO_OK);
-    for (i = 0; i < 200; i++) {
+    assert_int_equal(qo_spline_coef_len(18, MANY_KEYS), sizeof buf / sizeof buf[0]);
+    assert_int_equal(qo_spline_init_f32(18, MANY_KEYS, t, p, &set, buf, sizeof buf / sizeof buf[0],
+                                        &sp), QO_OK);
+    for (i = 0; i < MANY_KEYS; i++) {
         float pos[18];
         assert_int_equal(qo_spline_sample_f32(&sp, t[i], pos, NULL, NULL, NULL), QO_OK);
         for (j = 0; j < 18; j++)
@@ -1298,7 +1309,6 @@ static void test_replan_continues(void **state)
     keys ks;
     qo_spline_settings_f32 set = qo_spline_settings_default;
     qo_spline_f32 a, b;
-    static float coef_b[COEF_CAP];
     int trial, j;
     (void)state;
     rng_state = 909;
@@ -1322,7 +1332,7 @@ static void test_replan_continues(void **state)
         }
         set.end = QO_SPLINE_END_CLAMPED;
         set.end_vel = ev;
-        assert_int_equal(qo_spline_init_f32(3, 3, tb, keyb, &set, coef_b, COEF_CAP, &b), QO_OK);
+        assert_int_equal(qo_spline_init_f32(3, 3, tb, keyb, &set, coef2, COEF_CAP, &b), QO_OK);
         set.end_vel = NULL;
         sample(&b, ts, pb, vb, NULL);
         for (j = 0; j < 3; j++) {
