@@ -35,15 +35,6 @@
 #define Q30 1073741824.0
 #define Q28 268435456.0
 
-/* Random case counts: the emulated Cortex-M targets run the double reference in software
- * (Cortex-M0: float32 too), so there every random loop takes a share of the host's cases (the
- * same seeds, so the first cases of each loop are the host's); the edges are all kept. */
-#if defined(__arm__) && !defined(__linux__)
-#define NR(n) ((n) / 10 + 1)
-#else
-#define NR(n) (n)
-#endif
-
 /* The enum order is ABI: the test keeps its own copy of the names and derives the axes from
  * the letters, so the reference shares nothing with the code under test. */
 static const char *const k_names[24] = {
@@ -280,7 +271,7 @@ static void test_from_euler_random_all24(void **state)
     int seq, n;
     rng.s = 0x1234567ull;
     for (seq = 0; seq < 24; seq++) {
-        for (n = 0; n < NR(500); n++) {
+        for (n = 0; n < 500; n++) {
             /* Most in one turn; some wider, as the angles are periodic: to 10 rad, or to the
              * end of Q3.28 ([-8, 8)). */
             double span = (n % 5 == 0) ? fmin(10.0, c->a_max - 0.01) : PI_D, a[3], err, sum, ang;
@@ -419,7 +410,7 @@ static void test_to_euler_random_rotations_all24(void **state)
     int seq, n;
     rng.s = 42;
     for (seq = 0; seq < 24; seq++) {
-        for (n = 0; n < NR(500); n++) {
+        for (n = 0; n < 500; n++) {
             /* the reference is the rounded input itself */
             dq q = held(c, random_unit()), qn = dq_neg(q);
             double e[3], e2[3], err;
@@ -453,7 +444,7 @@ static void test_to_euler_recovers_angles_all24(void **state)
     int seq, n;
     rng.s = 7;
     for (seq = 0; seq < 24; seq++) {
-        for (n = 0; n < NR(300); n++) {
+        for (n = 0; n < 300; n++) {
             double a1 = ref_rng_range(&rng, -PI_D, PI_D), a3 = ref_rng_range(&rng, -PI_D, PI_D), a2, margin;
             double e[3];
             dq q;
@@ -615,7 +606,7 @@ static void test_exactly_singular_all24(void **state)
     rng.s = 99;
     for (seq = 0; seq < 24; seq++)
         for (which = 0; which < 2; which++)
-            for (n = 0; n < NR(200); n++) {
+            for (n = 0; n < 200; n++) {
                 double a1 = ref_rng_range(&rng, -PI_D, PI_D), a3 = ref_rng_range(&rng, -PI_D, PI_D);
                 double a2 = singular_value(seq, which), e[3], en[3], s[3], err;
                 dq q = held(c, ref_quat_from_euler(k_names[seq], a1, a2, a3)), qs;
@@ -716,7 +707,7 @@ static void test_just_off_singular_all24(void **state)
     for (seq = 0; seq < 24; seq++)
         for (which = 0; which < 2; which++)
             for (side = 0; side < 2; side++)
-                for (n = 0; n < NR(20); n++) {
+                for (n = 0; n < 20; n++) {
                     double a1 = ref_rng_range(&rng, -PI_D, PI_D), a3 = ref_rng_range(&rng, -PI_D, PI_D);
                     double s = singular_value(seq, which);
                     /* toward the inside of the range; past the end (side 1) is the other
@@ -1103,7 +1094,7 @@ static void test_fx_random_raw_inputs(void **state)
     (void)state;
     rng.s = 0xF1C5EDull;
     for (seq = 0; seq < 24; seq++)
-        for (n = 0; n < NR(400); n++) {
+        for (n = 0; n < 400; n++) {
             qo_quat_q30 q;
             qo_euler_q28 e, prev, o;
             qo_euler_info_q28 info;
