@@ -116,6 +116,10 @@ run "$T/s2" stream --gpio gpiochip0 --lines 1:2,3:4 --steps-per-unit nan --dry-r
 want "stream --dry-run --steps-per-unit nan" 2 "steps-per-unit: value 1 (nan) is not a number"
 run "$T/s2" stream --gpio gpiochip0 --lines 1:2,3:4 --step-rate -1 --dry-run
 want "stream --dry-run --step-rate -1" 2 "step-rate: value 1 (-1) is not a number"
+for l in -1:2,3:4 1e30:2,3:4 1.5:2,3:4 1:2,3; do
+    run "$T/s2" stream --gpio gpiochip0 --lines $l --dry-run
+    want "stream --lines $l" 2 "lines: '$l' is not STEP:DIR"
+done
 run "$T/s2" stream --gpio gpiochip0 --lines 1:2,3:4 --steps-per-unit 100,200 --dry-run
 [ "$rc" = 0 ] && ok || bad "stream --dry-run with good --steps-per-unit: exit $rc"
 
