@@ -123,5 +123,21 @@ done
 run "$T/s2" stream --gpio gpiochip0 --lines 1:2,3:4 --steps-per-unit 100,200 --dry-run
 [ "$rc" = 0 ] && ok || bad "stream --dry-run with good --steps-per-unit: exit $rc"
 
+# ---- output that cannot be written (a full disk) is not a success ----
+printf '0,0\n1,1\n' > "$T/p"
+printf '0 1 0 0 0\n1 0 0 0 1\n' > "$T/g"
+for c in "convert quat quat" "slerp" "plan" "gimbal" "--help" "--version" "convert --help"; do
+    case $c in
+    convert\ quat*) echo '1 0 0 0' > "$T/in" ;;
+    slerp) echo '1 0 0 0 0 0 0 1 0.5' > "$T/in" ;;
+    plan) cp "$T/p" "$T/in" ;;
+    gimbal) cp "$T/g" "$T/in" ;;
+    *) : > "$T/in" ;;
+    esac
+    timeout 20 $Q $c < "$T/in" > /dev/full 2> "$T/e"; rc=$?
+    [ "$rc" = 1 ] && grep -q "standard output: write error" "$T/e" && ok ||
+        bad "qorient $c > /dev/full: exit $rc: $(head -c 200 "$T/e")"
+done
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
