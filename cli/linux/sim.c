@@ -233,7 +233,11 @@ int qo_cli_sim(int argc, char **argv)
     (void)qo_sim_get_stats(sim, &st);
     qo_sim_stop(sim);
     pthread_sigmask(SIG_UNBLOCK, &sigs, NULL);
-    if (log != NULL && log != stdout) fclose(log);
+    /* a log that could not all be written (a full disk) is not a success; both run */
+    if (log != NULL && log != stdout && (ferror(log) | fclose(log)) != 0) {
+        fprintf(stderr, "qorient sim: log '%s': write error\n", log_path);
+        rc = 1;
+    }
     printf("requests %llu target_writes %llu faults %llu connections %llu bad_frames %llu\n",
            (unsigned long long)st.requests, (unsigned long long)st.target_writes,
            (unsigned long long)st.faults, (unsigned long long)st.connections,

@@ -138,6 +138,9 @@ for c in "convert quat quat" "slerp" "plan" "gimbal" "--help" "--version" "conve
     [ "$rc" = 1 ] && grep -q "standard output: write error" "$T/e" && ok ||
         bad "qorient $c > /dev/full: exit $rc: $(head -c 200 "$T/e")"
 done
+timeout 20 $Q sim --map $MAP --log /dev/full --duration 0 > "$T/o" 2> "$T/e"; rc=$?
+[ "$rc" = 1 ] && grep -q "log '/dev/full': write error" "$T/e" && ok ||
+    bad "sim --log /dev/full: exit $rc: $(head -c 200 "$T/e")"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
