@@ -32,6 +32,9 @@ int qo_cli_stream(int argc, char **argv);
  * message naming the option, the value, the range and its unit. */
 int qo_cli_number(const char *who, const char *opt, const char *arg, double lo, double hi,
                   const char *unit, double *out);
+/* A count option value (--max-samples): the whole of arg a whole number in [lo, hi]. Returns
+ * 0, or 2 after a message naming the option, the value and the range. */
+int qo_cli_count(const char *who, const char *opt, const char *arg, double lo, double hi, double *out);
 /* A list option value for n joints: one number (every joint) or n, each finite and in
  * [lo, hi], spread to n values in out. arg NULL: nothing to do, 0. Returns 0, or 2 after a
  * message naming the rule broken. */
@@ -185,10 +188,21 @@ void qo_cli_print_f32(FILE *f, float v);
  * "10000000.05", "3"): no float rounding at any magnitude. */
 void qo_cli_print_time(FILE *f, qo_traj_ns t);
 
-/* Reads one line of any length into *buf (grown with realloc). Returns the length or -1 at
- * end of input (or a read error: check ferror). The trailing newline (and CR) is removed. A
- * line with a NUL byte has strlen(*buf) < the length returned: callers refuse it. */
+/* The longest input line read, in characters without the newline: far above any record
+ * (QO_CLI_MAX_FIELDS numbers), low enough that an endless line (/dev/zero, a binary file)
+ * ends in a message at once instead of filling memory. */
+#define QO_CLI_LINE_MAX 1048576L
+
+/* Reads one line of up to QO_CLI_LINE_MAX characters into *buf (grown with realloc). Returns
+ * the length, -1 at end of input or on a read error (check ferror), QO_CLI_LINE_LONG for a
+ * longer line (the rest of it is left unread: callers stop reading there) or
+ * QO_CLI_LINE_NOMEM. The trailing newline (and CR) is removed. A line with a NUL byte has
+ * strlen(*buf) < the length returned: callers refuse it. */
+#define QO_CLI_LINE_LONG (-2L)
+#define QO_CLI_LINE_NOMEM (-3L)
 long qo_cli_getline(char **buf, size_t *cap, FILE *f);
+/* What a qo_cli_getline result below -1 means, for "line N: ..." messages. */
+const char *qo_cli_line_problem(long len);
 
 /* getopt_long's optind is global state: each subcommand resets it through this. */
 void qo_cli_reset_getopt(void);

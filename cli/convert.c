@@ -14,6 +14,7 @@
  */
 #include "cli.h"
 
+#include <errno.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
@@ -158,7 +159,7 @@ static int for_each_record(const char *cmd, size_t want, record_fn fn, void *ctx
     int failed = 0;
     double v[16];
     char msg[96];
-    long len;
+    long len = -1;
     while ((len = qo_cli_getline(&buf, &cap, stdin)) >= 0) {
         size_t n;
         int rc;
@@ -194,6 +195,15 @@ static int for_each_record(const char *cmd, size_t want, record_fn fn, void *ctx
                 failed = 1;
             }
         }
+    }
+    if (len < -1) {
+        /* an endless line (/dev/zero): said in its place, and nothing after it is read */
+        line_error(cmd, lineno + 1, qo_cli_line_problem(len));
+        failed = 1;
+    } else if (ferror(stdin)) {
+        /* a directory fails with EISDIR: not an empty input */
+        fprintf(stderr, "qorient %s: -: read error: %s\n", cmd, strerror(errno));
+        failed = 1;
     }
     free(buf);
     return failed;

@@ -6,6 +6,7 @@
 #include "cli.h"
 
 #include <errno.h>
+#include <float.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
@@ -45,11 +46,16 @@ static void gimbal_usage(FILE *f)
           "  -j, --jmax J        with --amax, also limit jerk to J, rad/s^3 (deg/s^3 with --degrees)\n"
           "  -d, --degrees       write angles and margin in degrees, read --vmax, --amax, --jmax in\n"
           "                      deg/s, deg/s^2, deg/s^3\n"
+          "      --max-samples N most rows printed, a whole number in [1, 1e10] (default 1000000):\n"
+          "                      a longer output (the path and the catch-up after it) is refused\n"
+          "                      before anything is printed\n"
           "  -h, --help          this text\n"
           "\n"
-          "Errors (non-monotonic times, wrong column count, non-numbers, a zero quaternion, bad\n"
-          "options) are reported on standard error naming the line; the exit status is then 1\n"
-          "(2 for usage errors) and nothing is written.\n"
+          "Errors (non-monotonic times, wrong column count, non-numbers, a zero quaternion, a line\n"
+          "longer than 1048576 characters, bad options) are reported on standard error naming the\n"
+          "line; the exit status is then 1 (2 for usage errors) and nothing is written. When the\n"
+          "joints have not caught up with the path's end after one hour of rows, the rows are\n"
+          "written, a message says so and the exit status is 1.\n"
           "\n"
           "example: pitch straight through the ZYX singularity\n"
           "  printf '0 1 0 0 0\\n2 0.7071068 0 0.7071068 0\\n4 0 0 1 0\\n' | qorient gimbal --rate 10\n", f);
@@ -73,6 +79,7 @@ int qo_cli_gimbal(int argc, char **argv)
         { "amax", required_argument, NULL, 'a' },
         { "jmax", required_argument, NULL, 'j' },
         { "degrees", no_argument, NULL, 'd' },
+        { "max-samples", required_argument, NULL, 'm' },
         { "help", no_argument, NULL, 'h' },
         { NULL, 0, NULL, 0 },
     };
@@ -80,13 +87,14 @@ int qo_cli_gimbal(int argc, char **argv)
     qo_gimbal_settings_f32 gs = qo_gimbal_settings_default;
     qo_path_interp interp = QO_PATH_SLERP;
     double rate = 100.0, band_deg = 1.0, vmax = INFINITY, amax = 0.0, jmax = INFINITY, v;
+    double max_samples = QO_CLI_MAX_SAMPLES_DEFAULT;
     int degrees = 0, ch, rc = 1, unsettled = 0;
     unsigned caught_up_not = 0;
     FILE *in = stdin;
     float *t = NULL;
     qo_quat_f32 *keys = NULL, *ks = NULL, *a = NULL, *b = NULL;
     size_t n = 0, cap = 0, lcap = 0;
-    long len;
+    long len = -1;
     qo_traj_ns t0n = 0;
     char *line = NULL;
     unsigned long lineno = 0;
@@ -106,6 +114,9 @@ int qo_cli_gimbal(int argc, char **argv)
             break;
         case 'r':
             if (qo_cli_number("gimbal", "--rate", optarg, QO_CLI_RATE_MIN, QO_CLI_RATE_MAX, "Hz", &rate)) return 2;
+            break;
+        case 'm':
+            if (qo_cli_count("gimbal", "--max-samples", optarg, 1.0, QO_CLI_MAX_SAMPLES_LIMIT, &max_samples)) return 2;
             break;
         case 'i':
             if (strcmp(optarg, "slerp") == 0) interp = QO_PATH_SLERP;
@@ -190,7 +201,9 @@ int qo_cli_gimbal(int argc, char **argv)
                     lineno, prc == -2 ? "more than " : "", m);
             goto out;
         }
-        if (!isfinite(f[0]) || !isfinite(f[1]) || !isfinite(f[2]) || !isfinite(f[3]) || !isfinite(f[4])) {
+        /* the quaternion goes to the float32 core: 1e39 is as non-finite there as inf */
+        if (!isfinite(f[0]) || !(fabs(f[1]) <= FLT_MAX) || !(fabs(f[2]) <= FLT_MAX) ||
+            !(fabs(f[3]) <= FLT_MAX) || !(fabs(f[4]) <= FLT_MAX)) {
             fprintf(stderr, "qorient gimbal: line %lu: %s\n", lineno, qo_status_str(QO_E_NONFINITE));
             goto out;
         }
@@ -225,6 +238,10 @@ int qo_cli_gimbal(int argc, char **argv)
         t[n] = rel;
         keys[n].w = (float)f[1]; keys[n].x = (float)f[2]; keys[n].y = (float)f[3]; keys[n].z = (float)f[4];
         n++;
+    }
+    if (len < -1) {
+        fprintf(stderr, "qorient gimbal: line %lu: %s\n", lineno + 1, qo_cli_line_problem(len));
+        goto out;
     }
     if (ferror(in)) {
         fprintf(stderr, "qorient gimbal: %s: read error: %s\n", in == stdin ? "-" : argv[optind], strerror(errno));
@@ -266,27 +283,49 @@ int qo_cli_gimbal(int argc, char **argv)
         unsigned long kcatch = kmax + (unsigned long)(3600.0 * rate < 1e9 ? 3600.0 * rate : 1e9);
         qo_gimbal_sample_f32 o;
         qo_gimbal_track_sample_f32 to;
-        o.clipped = 0;
-        to.settled = 1;
-        for (k = 0; k <= kmax + (unsigned long)extra || ((o.clipped || !to.settled) && k <= kcatch); k++) {
-            double tt = k <= kmax ? t0 + (double)k / rate : k == kmax + 1 && extra ? t1 : t0 + (double)(k - (unsigned long)extra) / rate;
-            qo_quat_f32 q;
-            st = qo_orient_path_sample_f32(&path, (float)tt, &q);
-            if (st == QO_OK) st = qo_gimbal_step_f32(&g, (float)tt, q, &o);
-            if (st == QO_OK && amax > 0.0) {
-                st = qo_gimbal_track_step_f32(&tr, (float)tt, o.angles, &to);
-                o.angles = to.angles;
-            }
-            if (st != QO_OK) {
-                fprintf(stderr, "qorient gimbal: t=%g: %s\n", tt, qo_status_str(st));
+        double rows = 0.0;
+        int pass;
+        /* Pass 0 counts the rows without printing (the catch-up makes the count unknown in
+         * advance), so that more than --max-samples is refused before anything is printed, as
+         * `qorient plan` does; pass 1, from the same initial state, prints them. */
+        for (pass = 0; pass < 2; pass++) {
+            st = qo_gimbal_init_f32(&g, &gs);
+            if (st == QO_OK && amax > 0.0) st = qo_gimbal_track_init_f32(&tr, &ts);
+            if (st != QO_OK) { /* accepted once above: only a broken invariant lands here */
+                fprintf(stderr, "qorient gimbal: %s\n", qo_status_str(st));
                 goto out;
             }
-            qo_cli_print_time(stdout, t0n + (qo_traj_ns)llround(tt * 1e9)); putchar(',');
-            qo_cli_print_f32(stdout, (float)(o.angles.a1 * s)); putchar(',');
-            qo_cli_print_f32(stdout, (float)(o.angles.a2 * s)); putchar(',');
-            qo_cli_print_f32(stdout, (float)(o.angles.a3 * s)); putchar(',');
-            qo_cli_print_f32(stdout, (float)(o.margin * s));
-            printf(",%d,%u\n", o.locked, o.clipped);
+            o.clipped = 0;
+            to.settled = 1;
+            for (k = 0; k <= kmax + (unsigned long)extra || ((o.clipped || !to.settled) && k <= kcatch); k++) {
+                double tt = k <= kmax ? t0 + (double)k / rate : k == kmax + 1 && extra ? t1 : t0 + (double)(k - (unsigned long)extra) / rate;
+                qo_quat_f32 q;
+                st = qo_orient_path_sample_f32(&path, (float)tt, &q);
+                if (st == QO_OK) st = qo_gimbal_step_f32(&g, (float)tt, q, &o);
+                if (st == QO_OK && amax > 0.0) {
+                    st = qo_gimbal_track_step_f32(&tr, (float)tt, o.angles, &to);
+                    o.angles = to.angles;
+                }
+                if (st != QO_OK) {
+                    fprintf(stderr, "qorient gimbal: t=%g: %s\n", tt, qo_status_str(st));
+                    goto out;
+                }
+                if (pass == 0) {
+                    if (++rows > max_samples) break;
+                    continue;
+                }
+                qo_cli_print_time(stdout, t0n + (qo_traj_ns)llround(tt * 1e9)); putchar(',');
+                qo_cli_print_f32(stdout, (float)(o.angles.a1 * s)); putchar(',');
+                qo_cli_print_f32(stdout, (float)(o.angles.a2 * s)); putchar(',');
+                qo_cli_print_f32(stdout, (float)(o.angles.a3 * s)); putchar(',');
+                qo_cli_print_f32(stdout, (float)(o.margin * s));
+                printf(",%d,%u\n", o.locked, o.clipped);
+            }
+            if (pass == 0 && rows > max_samples) {
+                fprintf(stderr, "qorient gimbal: the output is more than --max-samples %.0f rows at %g Hz: lower "
+                        "--rate or raise --max-samples\n", max_samples, rate);
+                goto out;
+            }
         }
         caught_up_not = o.clipped;
         unsettled = !to.settled;

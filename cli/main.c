@@ -1,6 +1,7 @@
 /* qorient: the command-line front end over the core and the ports. */
 #include "cli.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -33,6 +34,18 @@ static void usage(FILE *f)
           "'qorient --version' prints the version.\n", f);
 }
 
+/* The exit status once the output is out: a full disk or a closed descriptor (ENOSPC,
+ * EBADF) is found at the last flush at the latest, and a run whose output did not all get
+ * written is not a success. */
+static int finish(int rc)
+{
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        fprintf(stderr, "qorient: standard output: write error: %s\n", strerror(errno));
+        return rc != 0 ? rc : 1;
+    }
+    return rc;
+}
+
 int main(int argc, char **argv)
 {
     static char *hargv[3]; /* argv of `help CMD`: alive as long as argv */
@@ -42,11 +55,11 @@ int main(int argc, char **argv)
         return 2;
     }
     if (strcmp(argv[1], "--version") == 0 || strcmp(argv[1], "-V") == 0)
-        return qo_cli_version(1, argv + 1);
+        return finish(qo_cli_version(1, argv + 1));
     if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
         (strcmp(argv[1], "help") == 0 && argc == 2)) {
         usage(stdout);
-        return 0;
+        return finish(0);
     }
     if (strcmp(argv[1], "help") == 0) {
         /* `qorient help CMD` is exactly `qorient CMD --help`: the same entry point runs. */
@@ -66,7 +79,7 @@ int main(int argc, char **argv)
     for (i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
         if (strcmp(argv[0], cmds[i].name) == 0) {
             qo_cli_reset_getopt();
-            return cmds[i].fn(argc, argv);
+            return finish(cmds[i].fn(argc, argv));
         }
     }
     fprintf(stderr, "qorient: unknown command '%s'\n", argv[0]);

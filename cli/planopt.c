@@ -79,7 +79,7 @@ int qo_cli_plan_opt(const char *who, struct qo_cli_plan_opts *o, int opt, const 
     case QO_CLI_OPT_RATE:
         return qo_cli_number(who, "--rate", arg, QO_CLI_RATE_MIN, QO_CLI_RATE_MAX, "Hz", &o->rate);
     case QO_CLI_OPT_MAX_SAMPLES:
-        if (qo_cli_number(who, "--max-samples", arg, 1.0, QO_CLI_MAX_SAMPLES_LIMIT, "samples", &v))
+        if (qo_cli_count(who, "--max-samples", arg, 1.0, QO_CLI_MAX_SAMPLES_LIMIT, &v))
             return 2;
         o->max_samples = floor(v);
         return 0;
@@ -274,7 +274,7 @@ int qo_cli_rows_read(const char *who, const struct qo_cli_plan_opts *o, const ch
     const char *name = path ? path : "-";
     char *line = NULL;
     size_t cap = 0;
-    long len, lineno = 0;
+    long len = -1, lineno = 0;
     int rc = 0;
     if (path && strcmp(path, "-") != 0) {
         in = fopen(path, "r");
@@ -285,7 +285,10 @@ int qo_cli_rows_read(const char *who, const struct qo_cli_plan_opts *o, const ch
     }
     while (rc == 0 && (len = qo_cli_getline(&line, &cap, in)) >= 0)
         rc = qo_cli_rows_add(who, name, o, 1, ++lineno, line, len, r);
-    if (rc == 0 && ferror(in)) {
+    if (rc == 0 && len < -1) {
+        fprintf(stderr, "qorient %s: %s: line %ld: %s\n", who, name, lineno + 1, qo_cli_line_problem(len));
+        rc = 1;
+    } else if (rc == 0 && ferror(in)) {
         /* e.g. a directory: reading it fails with EISDIR, which is not an empty input */
         fprintf(stderr, "qorient %s: %s: read error: %s\n", who, name, strerror(errno));
         rc = 1;

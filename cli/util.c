@@ -1,6 +1,7 @@
 #include "cli.h"
 
 #include <errno.h>
+#include <float.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
@@ -47,10 +48,38 @@ void qo_cli_print_f32(FILE *f, float v)
 
 long qo_cli_getline(char **buf, size_t *cap, FILE *f)
 {
-    ssize_t n = getline(buf, cap, f);
-    if (n < 0) return -1;
-    while (n > 0 && ((*buf)[n - 1] == '\n' || (*buf)[n - 1] == '\r')) (*buf)[--n] = '\0';
+    size_t n = 0;
+    int c = EOF;
+    if (*buf == NULL || *cap < 2) {
+        char *nb = realloc(*buf, 256);
+        if (nb == NULL) return QO_CLI_LINE_NOMEM;
+        *buf = nb;
+        *cap = 256;
+    }
+    while ((c = getc(f)) != EOF && c != '\n') {
+        if (n >= (size_t)QO_CLI_LINE_MAX) {
+            (*buf)[n] = '\0';
+            return QO_CLI_LINE_LONG;
+        }
+        if (n + 1 >= *cap) {
+            size_t nc = *cap * 2 > (size_t)QO_CLI_LINE_MAX + 1 ? (size_t)QO_CLI_LINE_MAX + 1 : *cap * 2;
+            char *nb = realloc(*buf, nc);
+            if (nb == NULL) return QO_CLI_LINE_NOMEM;
+            *buf = nb;
+            *cap = nc;
+        }
+        (*buf)[n++] = (char)c;
+    }
+    /* a read error mid-line is not a short last line */
+    if (c == EOF && (n == 0 || ferror(f))) return -1;
+    (*buf)[n] = '\0';
+    while (n > 0 && (*buf)[n - 1] == '\r') (*buf)[--n] = '\0';
     return (long)n;
+}
+
+const char *qo_cli_line_problem(long len)
+{
+    return len == QO_CLI_LINE_LONG ? "longer than 1048576 characters" : "out of memory";
 }
 
 void qo_cli_reset_getopt(void)
@@ -93,6 +122,31 @@ int qo_cli_number(const char *who, const char *opt, const char *arg, double lo, 
     return 2;
 }
 
+int qo_cli_count(const char *who, const char *opt, const char *arg, double lo, double hi, double *out)
+{
+    char *end;
+    double v;
+    v = strtod(arg, &end);
+    *out = 0.0;
+    if (end != arg && *end == '\0' && v >= lo && v <= hi && v == floor(v)) {
+        *out = v;
+        return 0;
+    }
+    fprintf(stderr, "qorient %s: %s: '%s' is not a whole number in [%g, %g]\n", who, opt, arg, lo, hi);
+    return 2;
+}
+
+/* A list value in [lo, hi]. The lists hold limits for the float32 core, whose ends are float32
+ * (QO_MOTION_LIMIT_MAX is 1e12f = 999999995904): a value that rounds to the float32 value of
+ * an end, as the 1e12 the help names does, is in the range. */
+static int list_in_range(double v, double lo, double hi)
+{
+    if (!isfinite(v)) return 0;
+    if (v >= lo && v <= hi) return 1;
+    if (!(fabs(v) <= FLT_MAX)) return 0;
+    return (fabs(lo) <= FLT_MAX && (float)v == (float)lo) || (fabs(hi) <= FLT_MAX && (float)v == (float)hi);
+}
+
 int qo_cli_list(const char *who, const char *opt, const char *arg, size_t n, double lo, double hi,
                 double *out)
 {
@@ -118,7 +172,7 @@ int qo_cli_list(const char *who, const char *opt, const char *arg, size_t n, dou
     }
     range_text(range, sizeof range, lo, hi);
     for (i = 0; i < m; i++)
-        if (!isfinite(v[i]) || v[i] < lo || v[i] > hi) {
+        if (!list_in_range(v[i], lo, hi)) {
             fprintf(stderr, "qorient %s: %s: value %zu (%g) is not %s\n", who, opt, i + 1, v[i], range);
             return 2;
         }

@@ -129,10 +129,7 @@ int qo_cli_sim(int argc, char **argv)
         case 'm': map_path = optarg; break;
         case 'l': listen = optarg; break;
         case 'g':
-            if (parse_dbl(optarg, 0.0, 1e6, &set.lag_s) != 0) {
-                fprintf(stderr, "qorient sim: bad --lag '%s' (seconds >= 0)\n", optarg);
-                return 2;
-            }
+            if (qo_cli_number("sim", "--lag", optarg, 0.0, 1e6, "s", &set.lag_s)) return 2;
             break;
         case 'o': log_path = optarg; break;
         case 'R': set.rt_priority = 0; break;
@@ -168,10 +165,7 @@ int qo_cli_sim(int argc, char **argv)
             else set.seed = u;
             break;
         case 'd':
-            if (parse_dbl(optarg, 0.0, 1e9, &duration) != 0) {
-                fprintf(stderr, "qorient sim: bad --duration '%s' (seconds >= 0)\n", optarg);
-                return 2;
-            }
+            if (qo_cli_number("sim", "--duration", optarg, 0.0, 1e9, "s", &duration)) return 2;
             break;
         case 'h': sim_usage(stdout); return 0;
         default: sim_usage(stderr); return 2;
@@ -239,7 +233,11 @@ int qo_cli_sim(int argc, char **argv)
     (void)qo_sim_get_stats(sim, &st);
     qo_sim_stop(sim);
     pthread_sigmask(SIG_UNBLOCK, &sigs, NULL);
-    if (log != NULL && log != stdout) fclose(log);
+    /* a log that could not all be written (a full disk) is not a success; both run */
+    if (log != NULL && log != stdout && (ferror(log) | fclose(log)) != 0) {
+        fprintf(stderr, "qorient sim: log '%s': write error\n", log_path);
+        rc = 1;
+    }
     printf("requests %llu target_writes %llu faults %llu connections %llu bad_frames %llu\n",
            (unsigned long long)st.requests, (unsigned long long)st.target_writes,
            (unsigned long long)st.faults, (unsigned long long)st.connections,

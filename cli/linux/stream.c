@@ -47,7 +47,8 @@ static const char stream_usage[] =
     "joints at rest there; read before streaming begins); every later line is a new target,\n"
     "applied when it arrives and re-planned from the current position, velocity and\n"
     "acceleration. A bad line is reported (naming it) and skipped; the exit status is then 1.\n"
-    "At end of input the motion finishes, the hold runs and the command exits.\n"
+    "A longer line ends the input there. At end of input the motion finishes, the hold runs\n"
+    "and the command exits.\n"
     "\n"
     "Modbus (the register map gives slaves, registers, types, scale, limits, max_step):\n"
     "  --map FILE          register map (INI, see examples/maps); its joints, in file order,\n"
@@ -100,7 +101,8 @@ static const char stream_fields[] =
     "  skipped       TCP: slave-ticks not sent because that slave's previous request was\n"
     "                still unanswered (one outstanding request per slave, never queued)\n"
     "  readbacks     target registers read back to learn what a drive holds (after an\n"
-    "                unknown outcome or a reconnection; 0 in a fault-free run)\n"
+    "                unknown outcome or a reconnection; in a fault-free run only the\n"
+    "                settle's final confirmation, one per request)\n"
     "  exceptions    exception replies (the drive refused a request: nothing applied)\n"
     "  reconnects    links re-established after a broken or silent connection\n"
     "  rate_limited  joint values held back by the map's max_step\n"
@@ -171,13 +173,14 @@ static qo_status sample_traj(void *vctx, double t, float *targets, size_t n)
 static long read_live_line(char *buf, size_t cap, FILE *f)
 {
     size_t len = 0;
-    int ch, over = 0;
+    int ch;
     while ((ch = getc(f)) != EOF && ch != '\n') {
-        if (len + 1 < cap) buf[len++] = (char)ch;
-        else over = 1;
+        /* the rest is left unread and reading stops: skipping to the newline would never end
+         * on an endless line (/dev/zero) */
+        if (len + 1 >= cap) return -2;
+        buf[len++] = (char)ch;
     }
-    if (ch == EOF && len == 0 && !over) return -1;
-    if (over) return -2;
+    if (ch == EOF && (len == 0 || ferror(f))) return -1;
     buf[len] = '\0';
     if (len > 0 && buf[len - 1] == '\r') buf[--len] = '\0';
     return (long)len;
@@ -191,7 +194,8 @@ static void live_line(struct stream_ctx *c, char *buf, long len)
     qo_status s = QO_OK;
     c->lineno++;
     if (len == -2) {
-        fprintf(stderr, "qorient stream: -: line %ld: longer than %d characters\n", c->lineno, STREAM_LINE_MAX - 1);
+        fprintf(stderr, "qorient stream: -: line %ld: longer than %d characters: the input ends here\n",
+                c->lineno, STREAM_LINE_MAX - 1);
         c->bad_lines++;
         return;
     }
@@ -222,7 +226,10 @@ static void *live_reader(void *vctx)
     struct stream_ctx *c = vctx;
     char *buf = malloc(STREAM_LINE_MAX);
     long len;
-    while (buf != NULL && (len = read_live_line(buf, STREAM_LINE_MAX, stdin)) != -1) live_line(c, buf, len);
+    while (buf != NULL && (len = read_live_line(buf, STREAM_LINE_MAX, stdin)) != -1) {
+        live_line(c, buf, len);
+        if (len == -2) break; /* an over-long line ends the input */
+    }
     if (buf == NULL || ferror(stdin)) {
         fprintf(stderr, "qorient stream: standard input: read error\n");
         c->bad_lines++;
@@ -335,6 +342,8 @@ int qo_cli_stream(int argc, char **argv)
     double rate = 100.0, hold = 0.2, timeout_ms = -1, turnaround = 0, settle = -1;
     int dry = 0, no_rt = 0, quiet = 0, live = 0, c, rc = 1, reader = 0;
     static qo_regmap map; /* 20 KiB: not on the stack */
+    /* GPIO: step and dir line offsets per joint, steps per unit, step rates */
+    double sp[QO_GPIO_MAX_LINES], spu[QO_GPIO_MAX_JOINTS], sr[QO_GPIO_MAX_JOINTS];
     struct qo_cli_plan_opts po;
     struct qo_cli_rows rows;
     static struct qo_cli_plan plan;
@@ -446,18 +455,26 @@ int qo_cli_stream(int argc, char **argv)
             }
         }
     } else {
-        double sp[QO_GPIO_MAX_LINES];
-        size_t n;
+        size_t n, i;
         char buf[1024];
         char *p;
         if (strlen(lines) >= sizeof buf) goto usage;
         strcpy(buf, lines);
         for (p = buf; *p; p++) if (*p == ':') *p = ',';
-        if (qo_cli_parse_numbers(buf, sp, QO_GPIO_MAX_LINES, &n) != 0 || n == 0 || n % 2) {
-            fprintf(stderr, "qorient stream: --lines: '%s' is not STEP:DIR[,STEP:DIR...]\n", lines);
+        n = 0;
+        if (qo_cli_parse_numbers(buf, sp, QO_GPIO_MAX_LINES, &n) != 0 || n == 0 || n % 2) n = 0;
+        /* line offsets are unsigned: -1 or 1e30 would not convert (undefined behaviour) */
+        for (i = 0; i < n; i++)
+            if (!(sp[i] >= 0.0 && sp[i] <= 65535.0 && sp[i] == floor(sp[i]))) n = 0;
+        if (n == 0) {
+            fprintf(stderr, "qorient stream: --lines: '%s' is not STEP:DIR[,STEP:DIR...] (offsets 0..65535)\n", lines);
             goto usage;
         }
         n_joints = n / 2;
+        /* checked here, so that --dry-run checks them too */
+        if (qo_cli_list("stream", "--steps-per-unit", spu_s, n_joints, 1e-6, 1e9, spu) ||
+            qo_cli_list("stream", "--step-rate", step_rate_s, n_joints, 1e-3, 1e7, sr))
+            goto usage;
     }
 
     /* The plan, checked against the drives before anything is opened or written. */
@@ -530,16 +547,7 @@ int qo_cli_stream(int argc, char **argv)
         qo_gpio_joint jd;
         qo_gpio_backend be;
         static qo_gpio_libgpiod gstore;
-        double sp[QO_GPIO_MAX_LINES], spu[QO_GPIO_MAX_JOINTS], sr[QO_GPIO_MAX_JOINTS];
-        size_t n, nspu = 0, nsr = 0, j;
-        char buf[1024];
-        char *p;
-        strcpy(buf, lines);
-        for (p = buf; *p; p++) if (*p == ':') *p = ',';
-        qo_cli_parse_numbers(buf, sp, QO_GPIO_MAX_LINES, &n);
-        if (qo_cli_list("stream", "--steps-per-unit", spu_s, n_joints, 1e-6, 1e9, spu) ||
-            qo_cli_list("stream", "--step-rate", step_rate_s, n_joints, 1e-3, 1e7, sr))
-            goto usage;
+        size_t nspu = 0, nsr = 0, j;
         nspu = spu_s ? n_joints : 0;
         nsr = step_rate_s ? n_joints : 0;
         gc = qo_gpio_sink_config_default;

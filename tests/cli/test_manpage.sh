@@ -30,6 +30,11 @@ done
 v=$($Q version | sed -n 's/^qorient //p')
 grep -q "^\.TH QORIENT 1 .* \"qorient $v\"" "$MAN" && ok || bad "the .TH line does not say \"qorient $v\""
 
+# a paragraph request glued to the end of a text line is printed as text (".TP" in the
+# middle of the readbacks entry); groff does not warn about it
+g=$(grep -nE '[^[:space:]]\.(TP|PP|IP|SH|SS)$' "$MAN")
+[ -z "$g" ] && ok || bad "a request at the end of a text line: $g"
+
 if command -v groff >/dev/null 2>&1; then
     w=$(groff -man -Tutf8 -ww -z "$MAN" 2>&1)
     [ -z "$w" ] && ok || bad "groff -man -ww: $w"
