@@ -267,56 +267,73 @@ static float clamp_min(float v)
     return v > FLT_MIN ? v : FLT_MIN;
 }
 
-/* Shepperd's method on a matrix already known to be a rotation within tolerance. */
-static qo_quat_f32 mat3_to_quat_pivot(const qo_mat3_f32 *m)
+/* Shepperd's method with one square root and one divide. For a rotation, 4 w q = (4w^2,
+ * m21 - m12, m02 - m20, m10 - m01) with 4w^2 = 1 + trace, and likewise 4 x q, 4 y q, 4 z q
+ * from the other diagonal entries: so q is the normalised 4-vector of whichever of them has
+ * the largest pivot 4c^2 = 1 + (t, 2 m00 - t, 2 m11 - t or 2 m22 - t), the largest of
+ * t, m00, m11, m22 (the four pivots sum to 4, so it is >= 1 and the vector is never short).
+ * Normalising that vector in one step replaces sqrt(pivot) and the divide by it of the
+ * textbook form, and rounds less. The pivot is clamped at FLT_MIN, so a non-rotation cannot
+ * give the zero vector (whose direction does not exist). */
+static int mat3_pivot_vector(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     const float (*a)[3] = m->m;
     float t = a[0][0] + a[1][1] + a[2][2];
-    float r, s;
-    qo_quat_f32 q;
-    /* The pivot is the largest of 4w^2-1 = t, 4x^2-1 = 2 m00 - t, ... ; comparing t with the
-     * diagonal entries picks the same one. Its square root argument is then >= 1 for an exact
-     * rotation; clamping keeps round-off from producing sqrt of a negative number. */
+    qo_quat_f32 v;
+    int p = 0;
     if (t >= a[0][0] && t >= a[1][1] && t >= a[2][2]) {
-        r = sqrtf(clamp_min(1.0f + t));
-        s = 0.5f / r;
-        q.w = 0.5f * r;
-        q.x = (a[2][1] - a[1][2]) * s;
-        q.y = (a[0][2] - a[2][0]) * s;
-        q.z = (a[1][0] - a[0][1]) * s;
+        v.w = clamp_min(1.0f + t);
+        v.x = a[2][1] - a[1][2];
+        v.y = a[0][2] - a[2][0];
+        v.z = a[1][0] - a[0][1];
     } else if (a[0][0] >= a[1][1] && a[0][0] >= a[2][2]) {
-        r = sqrtf(clamp_min(1.0f + a[0][0] - a[1][1] - a[2][2]));
-        s = 0.5f / r;
-        q.w = (a[2][1] - a[1][2]) * s;
-        q.x = 0.5f * r;
-        q.y = (a[0][1] + a[1][0]) * s;
-        q.z = (a[0][2] + a[2][0]) * s;
+        p = 1;
+        v.w = a[2][1] - a[1][2];
+        v.x = clamp_min(1.0f + a[0][0] - a[1][1] - a[2][2]);
+        v.y = a[0][1] + a[1][0];
+        v.z = a[0][2] + a[2][0];
     } else if (a[1][1] >= a[2][2]) {
-        r = sqrtf(clamp_min(1.0f - a[0][0] + a[1][1] - a[2][2]));
-        s = 0.5f / r;
-        q.w = (a[0][2] - a[2][0]) * s;
-        q.x = (a[0][1] + a[1][0]) * s;
-        q.y = 0.5f * r;
-        q.z = (a[1][2] + a[2][1]) * s;
+        p = 2;
+        v.w = a[0][2] - a[2][0];
+        v.x = a[0][1] + a[1][0];
+        v.y = clamp_min(1.0f - a[0][0] + a[1][1] - a[2][2]);
+        v.z = a[1][2] + a[2][1];
     } else {
-        r = sqrtf(clamp_min(1.0f - a[0][0] - a[1][1] + a[2][2]));
-        s = 0.5f / r;
-        q.w = (a[1][0] - a[0][1]) * s;
-        q.x = (a[0][2] + a[2][0]) * s;
-        q.y = (a[1][2] + a[2][1]) * s;
-        q.z = 0.5f * r;
+        p = 3;
+        v.w = a[1][0] - a[0][1];
+        v.x = a[0][2] + a[2][0];
+        v.y = a[1][2] + a[2][1];
+        v.z = clamp_min(1.0f - a[0][0] - a[1][1] + a[2][2]);
     }
-    return q;
+    *out = v;
+    return p;
 }
 
-qo_status qo_quat_from_mat3_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
+/* The canonical unit quaternion of the pivot vector (a NaN/Inf vector, from entries so large
+ * that the formula overflows, is reported by the normaliser). The pivot component p of a
+ * rotation's result is positive (>= 1/2), so qo_quat_canonical_f32's choice of sign only
+ * looks at the components before it: none for the trace pivot (w). */
+static qo_status quat_from_pivot(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
-    qo_quat_f32 q;
+    qo_quat_f32 v;
+    int p = mat3_pivot_vector(m, &v), flip;
+    qo_status st = qo_quat_normalize_f32(v, out);
+    if (st != QO_OK) return st;
+    v = *out;
+    flip = p > 0 && (v.w < 0.0f || (v.w == 0.0f && p > 1 &&
+                                    (v.x < 0.0f || (v.x == 0.0f && p > 2 && v.y < 0.0f))));
+    if (flip) { v.w = -v.w; v.x = -v.x; v.y = -v.y; v.z = -v.z; }
+    /* -0.0 -> +0.0 as qo_quat_canonical_f32 */
+    out->w = v.w + 0.0f; out->x = v.x + 0.0f; out->y = v.y + 0.0f; out->z = v.z + 0.0f;
+    return QO_OK;
+}
+
+/* The full check of qo_quat_from_mat3_f32, for the matrices the fast test below does not pass. */
+static qo_status quat_from_mat3_checked(const qo_mat3_f32 *m, qo_quat_f32 *out)
+{
     qo_mat3_f32 r;
     float orth;
-    if (out == NULL) return QO_E_NULL;
     *out = qo_quat_identity_f32();
-    if (m == NULL) return QO_E_NULL;
     /* Every entry enters a diagonal dot product squared, so a NaN or Inf entry makes orth NaN
      * or Inf: the finiteness pass is only needed to tell the two errors apart. */
     orth = mat3_orthogonality_error(m);
@@ -332,26 +349,70 @@ qo_status qo_quat_from_mat3_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
         if (qo_mat3_orthonormalize_f32(m, &r) != QO_OK) return QO_E_NOT_ROTATION;
         m = &r;
     }
-    q = mat3_to_quat_pivot(m);
-    if (qo_quat_normalize_f32(q, &q) != QO_OK) return QO_E_NOT_ROTATION;
-    *out = qo_quat_canonical_f32(q);
-    return QO_OK;
+    return quat_from_pivot(m, out) == QO_OK ? QO_OK : QO_E_NOT_ROTATION;
+}
+
+/* 1 when every |(M^T M - I)_ij| <= CONV_SHEPPERD_DIRECT_TOL and det M > 0 (NaN fails): the
+ * matrices quat_from_mat3_checked sends straight to the pivot formula, decided with the same
+ * dot products and determinant in the same rounding order, so both paths give the same bits. */
+static int mat3_is_rotation_direct(const qo_mat3_f32 *m)
+{
+#if QO_SIMD_SSE2
+    /* Rows as lanes (x, y, z, unused): lane j of sum_i r_i * r_i is column j's squared norm,
+     * of sum_i r_i * r_i.yzx the dot of columns j and j+1 (mod 3), each summed over the rows
+     * in the scalar order. Row 2 is loaded from m[1][2] on, so no read passes the matrix. */
+    const __m128 r0 = _mm_loadu_ps(&m->m[0][0]), r1 = _mm_loadu_ps(&m->m[1][0]);
+    const __m128 r2 = QO_SIMD_SHUFFLE_PS(_mm_loadu_ps(&m->m[1][2]), _MM_SHUFFLE(3, 3, 2, 1));
+    const __m128 r1yzx = QO_SIMD_SHUFFLE_PS(r1, _MM_SHUFFLE(3, 0, 2, 1));
+    const __m128 r1zxy = QO_SIMD_SHUFFLE_PS(r1, _MM_SHUFFLE(3, 1, 0, 2));
+    const __m128 tol = _mm_set1_ps(CONV_SHEPPERD_DIRECT_TOL), abs = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+    __m128 d = _mm_add_ps(_mm_add_ps(_mm_mul_ps(r0, r0), _mm_mul_ps(r1, r1)), _mm_mul_ps(r2, r2));
+    __m128 o = _mm_add_ps(_mm_add_ps(_mm_mul_ps(r0, QO_SIMD_SHUFFLE_PS(r0, _MM_SHUFFLE(3, 0, 2, 1))),
+                                     _mm_mul_ps(r1, r1yzx)),
+                          _mm_mul_ps(r2, QO_SIMD_SHUFFLE_PS(r2, _MM_SHUFFLE(3, 0, 2, 1))));
+    __m128 ok, c;
+    d = _mm_and_ps(_mm_sub_ps(d, _mm_set1_ps(1.0f)), abs);
+    o = _mm_and_ps(o, abs);
+    ok = _mm_and_ps(_mm_cmple_ps(d, tol), _mm_cmple_ps(o, tol));
+    if ((_mm_movemask_ps(ok) & 7) != 7) return 0;
+    /* det = r0 . (r1 x r2), summed ((p0 + p1) + p2) as qo_mat3_det_f32 */
+    c = _mm_mul_ps(r0, qo_simd_cross_ps(r1yzx, r1zxy, r2));
+    c = _mm_add_ss(_mm_add_ss(c, QO_SIMD_SHUFFLE_PS(c, 0x55)), QO_SIMD_SHUFFLE_PS(c, 0xaa));
+    return _mm_comigt_ss(c, _mm_setzero_ps());
+#else
+    return mat3_orthogonality_error(m) <= CONV_SHEPPERD_DIRECT_TOL && qo_mat3_det_f32(m) > 0.0f;
+#endif
+}
+
+qo_status qo_quat_from_mat3_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
+{
+    if (out == NULL) return QO_E_NULL;
+    if (m == NULL) {
+        *out = qo_quat_identity_f32();
+        return QO_E_NULL;
+    }
+    /* A float32-rounded rotation (max |M^T M - I| ~ 2e-7) takes the direct test and the pivot
+     * formula; everything else the full check (tolerance, projection, error triage). */
+    if (mat3_is_rotation_direct(m) && quat_from_pivot(m, out) == QO_OK)
+        return QO_OK;
+    return quat_from_mat3_checked(m, out);
 }
 
 qo_status qo_quat_from_mat3_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
-    qo_status st;
     if (out == NULL) return QO_E_NULL;
-    *out = qo_quat_identity_f32();
-    if (m == NULL) return QO_E_NULL;
+    if (m == NULL) {
+        *out = qo_quat_identity_f32();
+        return QO_E_NULL;
+    }
     /* Each pivot branch combines all six off-diagonal entries, so a NaN/Inf there reaches q
-     * (and normalising reports it); the diagonal enters through clamped square roots, which
+     * (and normalising reports it); the diagonal enters through the clamped pivot, which
      * would hide a NaN: the trace catches any non-finite diagonal entry. */
-    if (!isfinite(m->m[0][0] + m->m[1][1] + m->m[2][2])) return QO_E_NONFINITE;
-    st = qo_quat_normalize_f32(mat3_to_quat_pivot(m), out);
-    if (st != QO_OK) return st;
-    *out = qo_quat_canonical_f32(*out);
-    return QO_OK;
+    if (!isfinite(m->m[0][0] + m->m[1][1] + m->m[2][2])) {
+        *out = qo_quat_identity_f32();
+        return QO_E_NONFINITE;
+    }
+    return quat_from_pivot(m, out);
 }
 
 qo_status qo_mat3_orthonormalize_f32(const qo_mat3_f32 *m, qo_mat3_f32 *out)

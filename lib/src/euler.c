@@ -11,6 +11,8 @@
 #include "qorient/quat.h"
 
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 #include "qorient/fmath.h"
 #include "euler_seq_internal.h"
@@ -206,17 +208,11 @@ static qo_status check_args(qo_quat_f32 q, qo_euler_seq seq, float band, qo_quat
     return QO_OK;
 }
 
-qo_status qo_quat_to_euler_band_f32(qo_quat_f32 q, qo_euler_seq seq, float band_rad,
-                                    qo_euler_f32 *out, qo_euler_info_f32 *info)
+/* The decomposition of a checked, scaled q (band in [0, pi/2]). */
+static void to_euler_checked(qo_quat_f32 qn, qo_euler_seq seq, float band_rad,
+                             qo_euler_f32 *out, qo_euler_info_f32 *info)
 {
-    qo_quat_f32 qn;
-    qo_status st;
-    decomp r;
-    if (out == NULL) return QO_E_NULL;
-    set_error_outputs(out, info);
-    st = check_args(q, seq, band_rad, &qn);
-    if (st != QO_OK) return st;
-    r = decompose(qn, seq, info == NULL ? band_rad : -1.0f);
+    decomp r = decompose(qn, seq, info == NULL ? band_rad : -1.0f);
     if (r.margin <= band_rad) {
         /* scipy's choice: a3 = 0, a1 takes the determined sum/difference. */
         r.e.a3 = 0.0f;
@@ -224,12 +220,44 @@ qo_status qo_quat_to_euler_band_f32(qo_quat_f32 q, qo_euler_seq seq, float band_
     }
     *out = r.e;
     if (info != NULL) { info->locked = r.margin <= band_rad; info->margin = r.margin; }
+}
+
+qo_status qo_quat_to_euler_band_f32(qo_quat_f32 q, qo_euler_seq seq, float band_rad,
+                                    qo_euler_f32 *out, qo_euler_info_f32 *info)
+{
+    qo_quat_f32 qn;
+    qo_status st;
+    if (out == NULL) return QO_E_NULL;
+    set_error_outputs(out, info);
+    st = check_args(q, seq, band_rad, &qn);
+    if (st != QO_OK) return st;
+    to_euler_checked(qn, seq, band_rad, out, info);
     return QO_OK;
+}
+
+/* |v|'s bits: as integers they order like the magnitudes, NaN above Inf above every finite. */
+static uint32_t abs_bits(float v)
+{
+    uint32_t u;
+    memcpy(&u, &v, sizeof u);
+    return u & 0x7fffffffu;
 }
 
 qo_status qo_quat_to_euler_f32(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f32 *out,
                                qo_euler_info_f32 *info)
 {
+    /* The common case without check_args' separate tests: the largest |component| in
+     * [2^-20, 2^20] means q is finite and non-zero and scale_pow2 would leave it as it is;
+     * the band is the constant. Everything else goes the checked way (same results). */
+    uint32_t m = abs_bits(q.w), b;
+    b = abs_bits(q.x); if (b > m) m = b;
+    b = abs_bits(q.y); if (b > m) m = b;
+    b = abs_bits(q.z); if (b > m) m = b;
+    if (out != NULL && (unsigned)seq < (unsigned)QO_EULER_SEQ_COUNT_ &&
+        m - 0x35800000u <= 0x49800000u - 0x35800000u) {   /* 2^-20 ... 2^20 */
+        to_euler_checked(q, seq, QO_EULER_LOCK_BAND_F32, out, info);
+        return QO_OK;
+    }
     return qo_quat_to_euler_band_f32(q, seq, QO_EULER_LOCK_BAND_F32, out, info);
 }
 

@@ -132,8 +132,10 @@ qo_status qo_quat_to_mat3_full_f32(qo_quat_f32 q, qo_mat3_f32 *out);
  * off by more than float32 rounding (max |M^T M - I| > 5e-7) is first projected with
  * qo_mat3_orthonormalize_f32, since the direct formula would land up to ~1.6 * that error
  * away. Robust at every angle: the pivot is the largest of trace, m00, m11, m22 (Shepperd),
- * so 180-degree rotations, where the trace is -1, lose no precision; square-root arguments
- * are clamped at 0 and the result is normalised.
+ * so 180-degree rotations, where the trace is -1, lose no precision; the result is the
+ * normalised pivot vector (e.g. (1 + trace, m21 - m12, m02 - m20, m10 - m01) / its length:
+ * one square root, one divide). A matrix within ~4 ulps of orthonormal (max |M^T M - I|
+ * <= 5e-7, det > 0) takes a fast path that decides with the same arithmetic.
  * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NONFINITE for a NaN/Inf entry;
  * QO_E_NOT_ROTATION for a matrix that is scaled, sheared, a reflection (det < 0) or singular.
  * *out is the identity on every error.
@@ -174,7 +176,7 @@ qo_status qo_quat_from_mat3_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 /*
  * Canonical unit quaternion of *m for callers whose matrix is KNOWN to be a rotation (built
  * from a quaternion or from rotations, to float rounding): the pivoting formula of
- * qo_quat_from_mat3_f32 (Shepperd: largest of trace, m00, m11, m22) and one normalisation,
+ * qo_quat_from_mat3_f32 (Shepperd: largest of trace, m00, m11, m22, normalised in one step),
  * without the rotation check (orthogonality, determinant) that costs most of
  * qo_quat_from_mat3_f32. For a float-rounded rotation the result is the same rotation to
  * ~2e-7 rad (bench/accuracy_convert.c). A matrix that is not a rotation gives an unspecified
