@@ -106,6 +106,16 @@ $(BUILD)/san/ports/%.o: ports/%.c
 	@mkdir -p $(@D)
 	$(CC) -MMD -MP $(STD) $(WARN) $(FPFLAGS) -O1 -g $(SAN) $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports $(PKG_CFLAGS) -c $< -o $@
 
+$(BUILD)/san/cli/%.o: cli/%.c
+	@mkdir -p $(@D)
+	$(CC) -MMD -MP $(STD) $(WARN) $(FPFLAGS) -O1 -g $(SAN) $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports -Icli $(PKG_CFLAGS) -c $< -o $@
+
+# The command as the shell tests run it: the same sources under ASan + UBSan, so a bad input
+# that reaches undefined behaviour in cli/ fails `make test`, not only a cmocka program.
+SCLI_OBJ := $(CLI_SRC:%.c=$(BUILD)/san/%.o)
+$(BUILD)/san/qorient: $(SCLI_OBJ) $(SPORT_OBJ) $(SCORE_OBJ)
+	$(CC) $(SAN) -o $@ $^ $(PKG_LIBS) -lm -pthread -lutil
+
 $(BUILD)/san/tests/%.o: tests/%.c
 	@mkdir -p $(@D)
 	$(CC) -MMD -MP $(STD) $(WARN) -Wno-double-promotion $(FPFLAGS) -O1 -g $(SAN) $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports -Itests $(PKG_CFLAGS) -c $< -o $@
@@ -150,7 +160,7 @@ parity:
 parity-check:
 	@sh tools/parity.sh --check
 
-tests-build: $(TEST_BIN) $(BUILD)/qorient
+tests-build: $(TEST_BIN) $(BUILD)/qorient $(BUILD)/san/qorient
 
 # `make test` first installs missing Debian packages (tools/deps.sh: sudo when not root), then
 # builds in a fresh make so pkg-config sees them. test-run: runs every cmocka program and every
@@ -160,7 +170,7 @@ test:
 	@$(MAKE) --no-print-directory test-run
 
 test-run: tests-build
-	@QORIENT=$(BUILD)/qorient sh tests/run.sh $(TEST_BIN) -- $(TEST_SH)
+	@QORIENT=$(BUILD)/san/qorient QORIENT_BUILD=$(BUILD) sh tests/run.sh $(TEST_BIN) -- $(TEST_SH)
 
 # The GPIO sink against the kernel's gpio-sim in a QEMU VM (needs root-free qemu, downloads
 # Debian's kernel packages once into build/vm).

@@ -6,7 +6,7 @@
 # usage errors exit 2; an unreachable drive, a missing serial device and an RTU rate above the
 # line's wire budget exit 1.
 Q=${QORIENT:-build/qorient}
-B=$(dirname "$Q")
+B=${QORIENT_BUILD:-$(dirname "$Q")}   # where the archives are (make test: build/)
 MAP=examples/maps/six_int32.ini
 PKG_CONFIG=${PKG_CONFIG:-pkg-config}
 T=${TMPDIR:-/tmp}/qo-example-pi.$$
