@@ -1,21 +1,296 @@
 /*
- * qorient/convert.h: every conversion against the double references of tests/common/ref.c,
- * over fixed-seed random rotations and an edge table (identity, 180 degrees about axes and
- * diagonals, each of the four Shepperd pivots, non-rotations, NaN/Inf, zero, NULL).
+ * tests/core/test_convert.c - the rotation conversions of qorient/convert.h (float32) and
+ * qorient/convert_fx.h (Q1.30): axis-angle, rotation vector, to/from rotation matrix and the
+ * mat3 helpers, one test program for the concept (docs/TESTING.md, "One body for both cores").
+ *
+ * First section: one body per behaviour both cores have, registered with BOTH against the
+ * adapter table of tests/common/cores.h: inputs rounded as each core receives them, the
+ * reference computed in double from those rounded values, each core with its own tolerance;
+ * the edges (identity, antipodal, zero, non-rotations, each core's out-of-range value) in the
+ * same body. Then the core-only behaviour: float32 (an edge table of 180-degree turns and
+ * the four Shepperd pivots, drifted and rank-deficient matrices, NaN/Inf, NULL) and Q1.30
+ * (results to the LSB, fxconv.h inputs, saturation, NULL outputs).
  */
 #include <float.h>
 #include <math.h>
-#include <setjmp.h>
-#include <stdarg.h>
-#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
-#include <cmocka.h>
 
+#include "common/cores.h"
 #include "common/ref.h"
 #include "qorient/convert.h"
+#include "qorient/convert_fx.h"
+#include "qorient/fxconv.h"
+#include "qorient/fxmath.h"
 #include "qorient/quat.h"
+#include "qorient/quat_fx.h"
+
+#define N_RANDOM 1000
+
+/* ==== one body, both cores (common/cores.h) ==================================== */
+
+static void test_axis_angle(void **state)
+{
+    const core *c = *state;
+    int n;
+    dq o;
+    ref_vec3 ax;
+    double ang;
+    rng_seed(106);
+    for (n = 0; n < N_RANDOM; n++) {
+        ref_vec3 axis = v_in(c, v_rand(-1, 1), 0);
+        double a = c->a_in(rng_range(-PI, PI));
+        dq want = ref_quat_from_axis_angle(axis, a), q, back;
+        if (v_norm(axis) < 1e-3) continue;
+        if (c->from_axis_angle(axis, a, &o) != QO_OK || dist4(o, want) > 4 * c->tol_abs)
+            fail_msg("%s from_axis_angle case %d: axis (%.10g %.10g %.10g) angle %.10g error %.3g",
+                     c->name, n, axis.x, axis.y, axis.z, a, dist4(o, want));
+        q = c->q_in(dq_scale(rand_unit(), rng_range(0.5, 1.5)));
+        if (c->to_axis_angle(q, &ax, &ang) != QO_OK || ang < 0 || ang > PI + c->tol_ang)
+            fail_msg("%s to_axis_angle case %d: q " QFMT " angle %.10g", c->name, n, QARG(q), ang);
+        back = ref_quat_from_axis_angle(ax, ang);
+        if (rot_err(back, q) > 4 * c->tol_ang || fabs(v_norm(ax) - 1) > 4 * c->tol_abs)
+            fail_msg("%s to_axis_angle case %d: q " QFMT " gives a rotation %.3g rad off",
+                     c->name, n, QARG(q), rot_err(back, q));
+    }
+    /* identity: axis (1, 0, 0), angle 0; -identity the same */
+    assert_int_equal(c->to_axis_angle(ID, &ax, &ang), QO_OK);
+    assert_true(ang == 0 && ax.x == 1 && ax.y == 0 && ax.z == 0);
+    assert_int_equal(c->to_axis_angle(dq_neg(ID), &ax, &ang), QO_OK);
+    assert_true(ang == 0 && ax.x == 1);
+    assert_int_equal(c->to_axis_angle(ZERO_Q, &ax, &ang), QO_E_DEGENERATE);
+    assert_true(ang == 0 && ax.x == 1 && ax.y == 0 && ax.z == 0);
+    assert_int_equal(c->from_axis_angle(v_make(0, 0, 0), 1.0, &o), QO_E_DEGENERATE);
+    assert_true(dq_is(o, ID));
+    /* out of range axis: Inf (float32) / saturated (fixed: a valid long axis) */
+    assert_int_equal(c->from_axis_angle(v_make(c->big, 0, 0), 1.0, &o),
+                     ST(c, QO_E_NONFINITE, QO_OK));
+    if (c->fixed) assert_true(rot_err(o, dq_axis_angle(1, 0, 0, 1.0)) <= 4 * c->tol_ang);
+}
+
+
+static void test_rotvec(void **state)
+{
+    const core *c = *state;
+    int n;
+    dq o;
+    ref_vec3 rv;
+    rng_seed(107);
+    for (n = 0; n < N_RANDOM; n++) {
+        ref_vec3 d = v_rand(-1, 1);
+        double s = (n % 4 ? rng_range(0, PI) : pow(10.0, rng_range(-7, -2))) / v_norm(d);
+        ref_vec3 r = v_in(c, v_make(d.x * s, d.y * s, d.z * s), 1);
+        dq want = ref_quat_from_axis_angle(r, v_norm(r)), q, back;
+        if (c->from_rotvec(r, &o) != QO_OK || dist4(o, want) > 4 * c->tol_abs)
+            fail_msg("%s from_rotvec case %d: rv (%.10g %.10g %.10g) error %.3g", c->name, n,
+                     r.x, r.y, r.z, dist4(o, want));
+        q = c->q_in(rand_unit());
+        if (c->to_rotvec(q, &rv) != QO_OK || v_norm(rv) > PI + 2 * c->tol_ang)
+            fail_msg("%s to_rotvec case %d: q " QFMT, c->name, n, QARG(q));
+        back = v_norm(rv) > 0 ? ref_quat_from_axis_angle(rv, v_norm(rv)) : ID;
+        if (rot_err(back, q) > 4 * c->tol_ang)
+            fail_msg("%s to_rotvec case %d: q " QFMT " gives a rotation %.3g rad off", c->name,
+                     n, QARG(q), rot_err(back, q));
+    }
+    assert_int_equal(c->from_rotvec(v_make(0, 0, 0), &o), QO_OK);
+    assert_true(dq_is(o, ID));
+    /* q and -q: the same rotation vector (canonical sign) */
+    o = c->q_in(dq_axis_angle(1, -2, 0.5, 2.0));
+    assert_int_equal(c->to_rotvec(o, &rv), QO_OK);
+    {
+        ref_vec3 rn;
+        assert_int_equal(c->to_rotvec(dq_neg(o), &rn), QO_OK);
+        assert_true(v_dist(rv, rn) <= 2 * c->tol_ang);
+    }
+    rv = v_make(9, 9, 9);
+    assert_int_equal(c->to_rotvec(ZERO_Q, &rv), QO_E_DEGENERATE);
+    assert_true(v_norm(rv) == 0);
+    /* out of range: Inf (float32) / saturated Q3.28 (fixed: |rv| ~ 8 rad, a valid turn) */
+    assert_int_equal(c->from_rotvec(v_make(c->big, 0, 0), &o), ST(c, QO_E_NONFINITE, QO_OK));
+    assert_true(fabs(dq_norm(o) - 1) <= 4 * c->tol_abs);
+}
+
+
+static void test_mat3_quat(void **state)
+{
+    const core *c = *state;
+    int n;
+    dq o;
+    ref_mat3 m;
+    rng_seed(108);
+    for (n = 0; n < N_RANDOM; n++) {
+        dq q = c->q_in(n % 5 ? rand_unit() : rand_axis_rot(rng_range(PI - 1e-3, PI)));
+        ref_mat3 want = ref_quat_to_mat3(q), mr;
+        dq wq;
+        if (c->to_mat3(q, &m) != QO_OK || m_dist(&m, &want) > 4 * c->tol_abs)
+            fail_msg("%s to_mat3 case %d: q " QFMT " error %.3g", c->name, n, QARG(q),
+                     m_dist(&m, &want));
+        mr = m_in(c, &want);
+        wq = ref_mat3_to_quat(&mr);
+        if (c->from_mat3(&mr, &o) != QO_OK || rot_err(o, wq) > 4 * c->tol_rot || o.w < 0)
+            fail_msg("%s from_mat3 case %d: q " QFMT " got " QFMT, c->name, n, QARG(q), QARG(o));
+        if (c->from_mat3_trusted(&mr, &o) != QO_OK || rot_err(o, wq) > 4 * c->tol_rot || o.w < 0)
+            fail_msg("%s from_mat3_trusted case %d: q " QFMT " got " QFMT, c->name, n, QARG(q),
+                     QARG(o));
+        if (c->from_mat3_ortho(&mr, &o) != QO_OK || rot_err(o, wq) > 4 * c->tol_rot || o.w < 0)
+            fail_msg("%s from_mat3_ortho case %d: q " QFMT " got " QFMT, c->name, n, QARG(q),
+                     QARG(o));
+    }
+    /* identity both ways; q and -q give the same matrix */
+    assert_int_equal(c->to_mat3(ID, &m), QO_OK);
+    assert_true(m_dist(&m, (const ref_mat3[]){ c->mat3_identity() }) == 0);
+    assert_int_equal(c->from_mat3(&m, &o), QO_OK);
+    assert_true(dq_is(o, ID));
+    {
+        ref_mat3 mn;
+        o = c->q_in(rand_unit());
+        assert_int_equal(c->to_mat3(o, &m), QO_OK);
+        assert_int_equal(c->to_mat3(dq_neg(o), &mn), QO_OK);
+        assert_true(m_dist(&m, &mn) <= c->tol_abs);
+    }
+    assert_int_equal(c->to_mat3(ZERO_Q, &m), QO_E_DEGENERATE);
+    assert_true(m_dist(&m, (const ref_mat3[]){ c->mat3_identity() }) == 0);
+    /* not rotations: scaled by 1.01, a reflection, zero */
+    m = c->mat3_identity();
+    m.m[1][1] = c->u_in(1.01);
+    assert_int_equal(c->from_mat3(&m, &o), QO_E_NOT_ROTATION);
+    assert_true(dq_is(o, ID));
+    m.m[1][1] = -1;
+    assert_int_equal(c->from_mat3(&m, &o), QO_E_NOT_ROTATION);
+    memset(&m, 0, sizeof m);
+    assert_int_equal(c->from_mat3(&m, &o), QO_E_NOT_ROTATION);
+    /* out of range entries: Inf (float32) / saturated (fixed: scaled, not a rotation) */
+    m = c->mat3_identity();
+    m.m[0][0] = c->big;
+    assert_int_equal(c->from_mat3(&m, &o), ST(c, QO_E_NONFINITE, QO_E_NOT_ROTATION));
+    assert_true(dq_is(o, ID));
+}
+
+
+static void test_mat3_ops(void **state)
+{
+    const core *c = *state;
+    int n, i, j;
+    ref_mat3 o, id = c->mat3_identity();
+    rng_seed(109);
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++) assert_true(id.m[i][j] == (i == j));
+    for (n = 0; n < N_RANDOM; n++) {
+        ref_mat3 a = m_rand_rot(c), b = m_rand_rot(c), want = ref_mat3_mul(&a, &b), g, t;
+        /* general matrices, entries up to 1.9: products saturate in fixed point */
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 3; j++) g.m[i][j] = c->u_in(rng_range(-1.9, 1.9));
+        o = c->mat3_mul(&a, &b);
+        if (m_dist(&o, &want) > 2 * c->tol_abs)
+            fail_msg("%s mat3_mul case %d: error %.3g", c->name, n, m_dist(&o, &want));
+        want = ref_mat3_mul(&g, &a);
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 3; j++) want.m[i][j] = clampd(want.m[i][j], c->u_min, c->u_max);
+        o = c->mat3_mul(&g, &a);
+        if (m_dist(&o, &want) > 4 * c->tol_abs * (1 + 3 * 1.9)) {
+            print_m("g", &g);
+            fail_msg("%s mat3_mul (general) case %d: error %.3g", c->name, n, m_dist(&o, &want));
+        }
+        t = c->mat3_transpose(&g);
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 3; j++) assert_true(t.m[i][j] == g.m[j][i]);
+        /* det: 1 for a rotation, -1 for a reflection, the general value (clamped) */
+        if (fabs(c->mat3_det(&a) - 1) > 4 * c->tol_abs)
+            fail_msg("%s mat3_det rotation case %d: %.12g", c->name, n, c->mat3_det(&a));
+        for (j = 0; j < 3; j++) a.m[1][j] = -a.m[1][j];
+        if (fabs(c->mat3_det(&a) + 1) > 4 * c->tol_abs)
+            fail_msg("%s mat3_det reflection case %d: %.12g", c->name, n, c->mat3_det(&a));
+        {
+            double wd = clampd(ref_mat3_det(&g), c->u_min, c->u_max), gd = c->mat3_det(&g);
+            /* float32: the cofactor expansion cancels (|terms| up to ~7 x 6e-8);
+             * fixed: Q3.28 cofactors for entries beyond 1 + 1/16 (<= ~8 LSB) */
+            if (fabs(gd - wd) > (c->fixed ? 16 / Q30 : 1e-5)) {
+                print_m("g", &g);
+                fail_msg("%s mat3_det case %d: %.12g want %.12g", c->name, n, gd, wd);
+            }
+        }
+    }
+    /* edges: det of I, of zero, of the largest entries */
+    assert_true(c->mat3_det(&id) == 1);
+    memset(&o, 0, sizeof o);
+    assert_true(c->mat3_det(&o) == 0);
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++) o.m[i][j] = c->u_in(i == j ? c->big : 0);
+    /* fixed: 8 saturates; float32: Inf * 0 in the cofactors, not finite */
+    if (c->fixed) assert_true(c->mat3_det(&o) == c->u_max);
+    else assert_true(!isfinite(c->mat3_det(&o)));
+}
+
+
+static void test_orthonormalize(void **state)
+{
+    const core *c = *state;
+    int n, i, j;
+    ref_mat3 o;
+    dq q;
+    double worst = 0;
+    rng_seed(110);
+    for (n = 0; n < N_RANDOM; n++) {
+        /* a rotation, drifted (noise 1e-6 .. 0.1) and uniformly scaled (0.3 .. 1.7) */
+        ref_mat3 m = ref_quat_to_mat3(rand_unit()), want;
+        double noise = pow(10.0, rng_range(-6, -1)), k = rng_range(0.3, 1.7), e;
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 3; j++) m.m[i][j] = k * m.m[i][j] + rng_range(-noise, noise);
+        m = m_in(c, &m);
+        want = ref_mat3_nearest_rotation(&m);
+        if (c->orthonormalize(&m, &o) != QO_OK) {
+            print_m("m", &m);
+            fail_msg("%s orthonormalize case %d: refused", c->name, n);
+        }
+        e = ref_mat3_rotation_distance(&o, &want);
+        worst = fmax(worst, e);
+        if (e > 4 * c->tol_rot || m_orth_err(&o) > 8 * c->tol_abs) {
+            print_m("m", &m);
+            fail_msg("%s orthonormalize case %d: %.3g rad from the nearest rotation, "
+                     "orthogonality error %.3g", c->name, n, e, m_orth_err(&o));
+        }
+        if (c->from_mat3_ortho(&m, &q) != QO_OK ||
+            rot_err(q, ref_mat3_to_quat(&want)) > 4 * c->tol_rot || q.w < 0)
+            fail_msg("%s from_mat3_ortho case %d: " QFMT, c->name, n, QARG(q));
+    }
+    print_message("%s orthonormalize: worst %.3g rad from the nearest rotation\n", c->name, worst);
+    /* a rotation comes back (within rounding); m and out may alias */
+    o = m_rand_rot(c);
+    {
+        ref_mat3 r;
+        assert_int_equal(c->orthonormalize(&o, &r), QO_OK);
+        assert_true(m_dist(&o, &r) <= 4 * c->tol_abs);
+        assert_int_equal(c->orthonormalize(&o, &o), QO_OK);
+        assert_true(m_dist(&o, &r) == 0);
+    }
+    /* refused: zero, rank 2, a reflection; the output is the identity */
+    {
+        ref_mat3 r;
+        memset(&o, 0, sizeof o);
+        assert_int_equal(c->orthonormalize(&o, &r), QO_E_NOT_ROTATION);
+        assert_true(m_dist(&r, (const ref_mat3[]){ c->mat3_identity() }) == 0);
+        o = c->mat3_identity();
+        o.m[2][2] = 0;
+        assert_int_equal(c->orthonormalize(&o, &r), QO_E_NOT_ROTATION);
+        o.m[2][2] = -1;
+        assert_int_equal(c->orthonormalize(&o, &r), QO_E_NOT_ROTATION);
+        assert_int_equal(c->from_mat3_ortho(&o, &q), QO_E_NOT_ROTATION);
+        assert_true(dq_is(q, ID));
+    }
+    /* out of range: Inf (float32) / every entry saturated (fixed: rank 1, refused) */
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++) o.m[i][j] = c->u_in(c->big);
+    assert_int_equal(c->orthonormalize(&o, &o), ST(c, QO_E_NONFINITE, QO_E_NOT_ROTATION));
+    /* a saturated diagonal (fixed: 2 - 2^-30 times the identity, a scaled rotation) */
+    o = c->mat3_identity();
+    for (i = 0; i < 3; i++) o.m[i][i] = c->u_in(fmin(c->u_max, 1.9));
+    assert_int_equal(c->orthonormalize(&o, &o), QO_OK);
+    assert_true(m_dist(&o, (const ref_mat3[]){ c->mat3_identity() }) <= 4 * c->tol_abs);
+}
+
+
+/* ==== float32 only: qorient/convert.h ====================================== */
 
 /* Rotation error budget for one float32 conversion: round-off is ~1e-7 rad. */
 #define TOL_RAD 1e-6
@@ -25,7 +300,7 @@
         if (st_ != QO_OK) fail_msg("%s: status %d in case %d", #call, (int)st_, (int)(n)); \
     } while (0)
 
-#define N_RANDOM 2000
+#define N_F32 2000
 
 static qo_quat_f32 qf(float w, float x, float y, float z)
 {
@@ -84,7 +359,7 @@ static void print_q(const char *name, qo_quat_f32 q)
     print_error("  %s = (%.9g, %.9g, %.9g, %.9g)\n", name, q.w, q.x, q.y, q.z);
 }
 
-static void print_m(const char *name, const qo_mat3_f32 *m)
+static void print_mf(const char *name, const qo_mat3_f32 *m)
 {
     print_error("  %s = [%.9g %.9g %.9g; %.9g %.9g %.9g; %.9g %.9g %.9g]\n", name, m->m[0][0],
                 m->m[0][1], m->m[0][2], m->m[1][0], m->m[1][1], m->m[1][2], m->m[2][0],
@@ -141,14 +416,14 @@ static ref_quat edge_quat(size_t k)
 
 /* ---- matrix helpers ---- */
 
-static void test_mat3_helpers_vs_double(void **state)
+static void test_f32_mat3_helpers_vs_double(void **state)
 {
     ref_rng rng = { 11 };
     int n, i, j;
     qo_mat3_f32 id = qo_mat3_identity_f32();
     (void)state;
     assert_true(is_identity_m(&id));
-    for (n = 0; n < N_RANDOM; n++) {
+    for (n = 0; n < N_F32; n++) {
         qo_mat3_f32 a, b, p, t;
         ref_mat3 ra, rb, rp;
         qo_vec3_f32 v = vf((float)ref_rng_range(&rng, -10, 10), (float)ref_rng_range(&rng, -10, 10),
@@ -170,8 +445,8 @@ static void test_mat3_helpers_vs_double(void **state)
         for (i = 0; i < 3; i++)
             for (j = 0; j < 3; j++) {
                 if (fabs(p.m[i][j] - rp.m[i][j]) > 1e-5 || t.m[i][j] != a.m[j][i]) {
-                    print_m("a", &a);
-                    print_m("b", &b);
+                    print_mf("a", &a);
+                    print_mf("b", &b);
                     fail_msg("mat3 mul/transpose case %d entry %d,%d: %.9g vs %.9g", n, i, j,
                              p.m[i][j], rp.m[i][j]);
                 }
@@ -181,7 +456,7 @@ static void test_mat3_helpers_vs_double(void **state)
                      rv[0], rv[1], rv[2]);
         det = ref_mat3_det(&ra);
         if (fabs(qo_mat3_det_f32(&a) - det) > 1e-5) {
-            print_m("a", &a);
+            print_mf("a", &a);
             fail_msg("mat3_det case %d: %.9g vs %.9g", n, qo_mat3_det_f32(&a), det);
         }
     }
@@ -195,12 +470,12 @@ static void test_mat3_helpers_vs_double(void **state)
 
 /* ---- quaternion -> matrix ---- */
 
-static void test_quat_to_mat3_vs_double(void **state)
+static void test_f32_quat_to_mat3_vs_double(void **state)
 {
     ref_rng rng = { 21 };
     int n, i, j;
     (void)state;
-    for (n = 0; n < N_RANDOM; n++) {
+    for (n = 0; n < N_F32; n++) {
         ref_quat rq = ref_rng_quat(&rng);
         /* Any non-zero scale and either sign: the matrix must not care. */
         double sc = (n % 3 == 0) ? ref_rng_range(&rng, 0.1, 10.0) : 1.0;
@@ -239,7 +514,7 @@ static void test_quat_to_mat3_vs_double(void **state)
     }
 }
 
-static void test_quat_to_mat3_errors(void **state)
+static void test_f32_quat_to_mat3_errors(void **state)
 {
     qo_mat3_f32 m;
     (void)state;
@@ -269,12 +544,12 @@ static void check_from_mat3(const char *name, int n, const qo_mat3_f32 *m, ref_q
     qo_status st = qo_quat_from_mat3_f32(m, &q);
     double err;
     if (st != QO_OK) {
-        print_m("m", m);
+        print_mf("m", m);
         fail_msg("quat_from_mat3 %s (case %d): status %d", name, n, (int)st);
     }
     err = ref_quat_angle_between(ref_quat_from_f32(q), expect);
     if (err > TOL_RAD || q.w < 0.0f || fabs(ref_quat_norm(ref_quat_from_f32(q)) - 1.0) > 1e-6) {
-        print_m("m", m);
+        print_mf("m", m);
         print_q("got", q);
         print_q("expected", ref_quat_to_f32(ref_quat_canonical(expect)));
         fail_msg("quat_from_mat3 %s (case %d): error %.3g rad (w must be >= 0, |q| 1)", name, n,
@@ -282,12 +557,12 @@ static void check_from_mat3(const char *name, int n, const qo_mat3_f32 *m, ref_q
     }
 }
 
-static void test_quat_from_mat3_random(void **state)
+static void test_f32_quat_from_mat3_random(void **state)
 {
     ref_rng rng = { 31 };
     int n;
     (void)state;
-    for (n = 0; n < N_RANDOM; n++) {
+    for (n = 0; n < N_F32; n++) {
         ref_quat rq;
         qo_mat3_f32 m = rand_rot_f32(&rng, &rq);
         check_from_mat3("random", n, &m, rq);
@@ -297,7 +572,7 @@ static void test_quat_from_mat3_random(void **state)
 /* The trusted variant: random rotations and the edge table (every pivot, 180 deg, tiny) against
  * the double quaternion; non-finite entries (diagonal and off-diagonal) and NULL refused with
  * the identity written; a non-rotation gives some unit quaternion, never NaN. */
-static void test_quat_from_mat3_trusted(void **state)
+static void test_f32_quat_from_mat3_trusted(void **state)
 {
     ref_rng rng = { 37 };
     int n, i;
@@ -305,21 +580,21 @@ static void test_quat_from_mat3_trusted(void **state)
     qo_quat_f32 q;
     qo_mat3_f32 m;
     (void)state;
-    for (n = 0; n < N_RANDOM + (int)N_EDGES; n++) {
+    for (n = 0; n < N_F32 + (int)N_EDGES; n++) {
         ref_quat rq;
         double err;
-        if (n < N_RANDOM) {
+        if (n < N_F32) {
             m = rand_rot_f32(&rng, &rq);
         } else {
             ref_mat3 r;
-            rq = edge_quat((size_t)(n - N_RANDOM));
+            rq = edge_quat((size_t)(n - N_F32));
             r = ref_quat_to_mat3(rq);
             m = ref_mat3_to_f32(&r);
         }
         assert_int_equal(qo_quat_from_mat3_trusted_f32(&m, &q), QO_OK);
         err = ref_quat_angle_between(ref_quat_from_f32(q), rq);
         if (err > TOL_RAD || q.w < 0.0f || fabs(ref_quat_norm(ref_quat_from_f32(q)) - 1.0) > 1e-6) {
-            print_m("m", &m);
+            print_mf("m", &m);
             print_q("got", q);
             fail_msg("quat_from_mat3_trusted case %d: error %.3g rad (w >= 0, |q| 1)", n, err);
         }
@@ -343,7 +618,7 @@ static void test_quat_from_mat3_trusted(void **state)
     assert_true(fabs(ref_quat_norm(ref_quat_from_f32(q)) - 1.0) < 1e-6);
 }
 
-static void test_quat_from_mat3_edges(void **state)
+static void test_f32_quat_from_mat3_edges(void **state)
 {
     size_t k;
     int pivots[4] = { 0, 0, 0, 0 };
@@ -398,7 +673,7 @@ static void test_quat_from_mat3_edges(void **state)
     }
 }
 
-static void test_quat_from_mat3_non_rotations(void **state)
+static void test_f32_quat_from_mat3_non_rotations(void **state)
 {
     struct { const char *name; qo_mat3_f32 m; qo_status st; } cases[13];
     qo_mat3_f32 r;
@@ -447,7 +722,7 @@ static void test_quat_from_mat3_non_rotations(void **state)
         qo_quat_f32 q = qf(9, 9, 9, 9);
         qo_status st = qo_quat_from_mat3_f32(&cases[k].m, &q);
         if (st != cases[k].st || (st != QO_OK && !is_identity_q(q))) {
-            print_m("m", &cases[k].m);
+            print_mf("m", &cases[k].m);
             print_q("out", q);
             fail_msg("quat_from_mat3 %s: status %d, expected %d (out must be identity on error)",
                      cases[k].name, (int)st, (int)cases[k].st);
@@ -463,7 +738,7 @@ static void test_quat_from_mat3_non_rotations(void **state)
 
 /* Accepted but drifted matrices (max |M^T M - I| up to the 1e-4 tolerance) give the quaternion
  * of their NEAREST rotation, not whatever the direct formula lands on. */
-static void test_quat_from_mat3_drifted(void **state)
+static void test_f32_quat_from_mat3_drifted(void **state)
 {
     static const double amp[] = { 1e-7, 3e-7, 1e-6, 1e-5, 3e-5 };
     ref_rng rng = { 45 };
@@ -484,12 +759,12 @@ static void test_quat_from_mat3_drifted(void **state)
     }
 }
 
-static void test_mat3_round_trip(void **state)
+static void test_f32_mat3_round_trip(void **state)
 {
     ref_rng rng = { 51 };
     int n;
     (void)state;
-    for (n = 0; n < N_RANDOM; n++) {
+    for (n = 0; n < N_F32; n++) {
         qo_quat_f32 q = ref_quat_to_f32(ref_rng_quat(&rng)), q2;
         qo_mat3_f32 m;
         double err;
@@ -505,7 +780,7 @@ static void test_mat3_round_trip(void **state)
 }
 
 /* Every conversion on the edge table, both signs of q: the rotation survives. */
-static void test_edges_all_conversions(void **state)
+static void test_f32_edges_all_conversions(void **state)
 {
     size_t k;
     int sgn;
@@ -554,15 +829,15 @@ static void check_ortho_tol(const char *name, int n, const qo_mat3_f32 *m, doubl
     qo_status st = qo_mat3_orthonormalize_f32(m, &r);
     double err, qerr;
     if (st != QO_OK) {
-        print_m("m", m);
+        print_mf("m", m);
         fail_msg("orthonormalize %s (case %d): status %d", name, n, (int)st);
     }
     ref = ref_mat3_nearest_rotation(&rm);
     got = ref_mat3_from_f32(&r);
     err = ref_mat3_rotation_distance(&ref, &got);
     if (err > tol || max_orth_error(&r) > 1e-6 || qo_mat3_det_f32(&r) < 0.999f) {
-        print_m("m", m);
-        print_m("got", &r);
+        print_mf("m", m);
+        print_mf("got", &r);
         fail_msg("orthonormalize %s (case %d): %.3g rad from the double polar factor, orth %.3g",
                  name, n, err, max_orth_error(&r));
     }
@@ -593,7 +868,7 @@ static qo_mat3_f32 rand_svd_f32(ref_rng *rng, double s1, double s2, double s3)
     return ref_mat3_to_f32(&t);
 }
 
-static void test_orthonormalize_perturbed(void **state)
+static void test_f32_orthonormalize_perturbed(void **state)
 {
     static const double amp[] = { 1e-7, 1e-5, 1e-3, 1e-2, 0.1, 0.3 };
     ref_rng rng = { 61 };
@@ -650,7 +925,7 @@ static void test_orthonormalize_perturbed(void **state)
     }
 }
 
-static void test_orthonormalize_rejects(void **state)
+static void test_f32_orthonormalize_rejects(void **state)
 {
     struct { const char *name; qo_mat3_f32 m; qo_status st; } cases[13];
     size_t n = 0, k;
@@ -693,7 +968,7 @@ static void test_orthonormalize_rejects(void **state)
         qo_status st = qo_mat3_orthonormalize_f32(&cases[k].m, &out);
         qo_status st2 = qo_quat_from_mat3_ortho_f32(&cases[k].m, &q);
         if (st != cases[k].st || !is_identity_m(&out) || st2 != cases[k].st || !is_identity_q(q)) {
-            print_m("m", &cases[k].m);
+            print_mf("m", &cases[k].m);
             fail_msg("orthonormalize %s: status %d / %d, expected %d, outputs must be identity",
                      cases[k].name, (int)st, (int)st2, (int)cases[k].st);
         }
@@ -717,13 +992,13 @@ static void test_orthonormalize_rejects(void **state)
 
 /* ---- axis-angle ---- */
 
-static void test_axis_angle_from_vs_double(void **state)
+static void test_f32_axis_angle_from_vs_double(void **state)
 {
     ref_rng rng = { 81 };
     static const double scale[] = { 1.0, 1e-30, 1e30, 3.7 };
     int n;
     (void)state;
-    for (n = 0; n < N_RANDOM; n++) {
+    for (n = 0; n < N_F32; n++) {
         double s = scale[n % 4];
         ref_vec3 ax = { ref_rng_range(&rng, -1, 1) * s, ref_rng_range(&rng, -1, 1) * s,
                         ref_rng_range(&rng, -1, 1) * s };
@@ -745,7 +1020,7 @@ static void test_axis_angle_from_vs_double(void **state)
     }
 }
 
-static void test_axis_angle_from_edges(void **state)
+static void test_f32_axis_angle_from_edges(void **state)
 {
     qo_quat_f32 q;
     (void)state;
@@ -776,12 +1051,12 @@ static void test_axis_angle_from_edges(void **state)
     assert_true(q.w == 1.0f && q.x == 0.0f && q.y == 0.0f && q.z == 0.0f);
 }
 
-static void test_axis_angle_to(void **state)
+static void test_f32_axis_angle_to(void **state)
 {
     ref_rng rng = { 91 };
     int n;
     (void)state;
-    for (n = 0; n < N_RANDOM; n++) {
+    for (n = 0; n < N_F32; n++) {
         ref_quat rq = ref_rng_quat(&rng);
         double sc = (n % 4 == 0) ? -3.0 : (n % 4 == 1) ? 1e-20 : 1.0;
         qo_quat_f32 q;
@@ -810,7 +1085,7 @@ static void test_axis_angle_to(void **state)
     }
 }
 
-static void test_axis_angle_to_edges(void **state)
+static void test_f32_axis_angle_to_edges(void **state)
 {
     qo_vec3_f32 ax;
     float ang;
@@ -857,12 +1132,12 @@ static ref_vec3 ref_rotvec(ref_quat q)
     return r;
 }
 
-static void test_rotvec_vs_double(void **state)
+static void test_f32_rotvec_vs_double(void **state)
 {
     ref_rng rng = { 101 };
     int n;
     (void)state;
-    for (n = 0; n < N_RANDOM; n++) {
+    for (n = 0; n < N_F32; n++) {
         /* from: random direction, |rv| up to 3 pi (beyond pi gives w < 0, same rotation). */
         ref_vec3 d = { ref_rng_range(&rng, -1, 1), ref_rng_range(&rng, -1, 1),
                        ref_rng_range(&rng, -1, 1) };
@@ -895,7 +1170,7 @@ static void test_rotvec_vs_double(void **state)
     }
 }
 
-static void test_rotvec_edges(void **state)
+static void test_f32_rotvec_edges(void **state)
 {
     qo_quat_f32 q;
     qo_vec3_f32 v;
@@ -970,12 +1245,12 @@ static void test_rotvec_edges(void **state)
     assert_int_equal(qo_quat_to_rotvec_f32(qf(1, 0, 0, 0), NULL), QO_E_NULL);
 }
 
-static void test_rotvec_round_trip(void **state)
+static void test_f32_rotvec_round_trip(void **state)
 {
     ref_rng rng = { 111 };
     int n;
     (void)state;
-    for (n = 0; n < N_RANDOM; n++) {
+    for (n = 0; n < N_F32; n++) {
         /* Short-way rotation vectors (|rv| < pi) come back unchanged. */
         ref_quat c = ref_quat_canonical(ref_rng_quat(&rng));
         qo_vec3_f32 rv = ref_vec3_to_f32(ref_rotvec(c)), back;
@@ -999,28 +1274,308 @@ static void test_rotvec_round_trip(void **state)
     }
 }
 
+/* ==== Q1.30 only: qorient/convert_fx.h ===================================== */
+
+#define TWO30 1073741824.0
+#define TWO28 268435456.0
+
+/* The fixed-seed PRNG of this section (tests/common/ref.c). */
+static ref_rng xrng;
+
+#define XFMT "(%ld %ld %ld %ld)"
+#define XARG(q) (long)(q).w, (long)(q).x, (long)(q).y, (long)(q).z
+
+static void test_q30_axis_angle(void **state)
+{
+    qo_quat_q30 r;
+    qo_vec3_q30 ax;
+    qo_q28 an;
+    int k;
+    (void)state;
+    /* Edges: zero axis, NULLs, identity, zero vector part, zero quaternion, exactly pi. */
+    assert_int_equal(qo_quat_from_axis_angle_q30((qo_vec3_q30){ 0, 0, 0 }, QO_Q28_ONE, &r), QO_E_DEGENERATE);
+    assert_int_equal(r.w, QO_Q30_ONE); assert_int_equal(r.x, 0);
+    assert_int_equal(qo_quat_from_axis_angle_q30((qo_vec3_q30){ 1, 0, 0 }, 0, NULL), QO_E_NULL);
+    assert_int_equal(qo_quat_to_axis_angle_q30(qo_quat_identity_q30(), &ax, &an), QO_OK);
+    assert_int_equal(ax.x, QO_Q30_ONE); assert_int_equal(ax.y, 0); assert_int_equal(ax.z, 0); assert_int_equal(an, 0);
+    assert_int_equal(qo_quat_to_axis_angle_q30((qo_quat_q30){ -77, 0, 0, 0 }, &ax, &an), QO_OK);
+    assert_int_equal(ax.x, QO_Q30_ONE); assert_int_equal(an, 0);
+    assert_int_equal(qo_quat_to_axis_angle_q30((qo_quat_q30){ 0, 0, 0, 0 }, &ax, &an), QO_E_DEGENERATE);
+    assert_int_equal(ax.x, QO_Q30_ONE); assert_int_equal(an, 0);
+    an = 99;
+    assert_int_equal(qo_quat_to_axis_angle_q30(qo_quat_identity_q30(), NULL, &an), QO_E_NULL);
+    assert_int_equal(an, 0);
+    assert_int_equal(qo_quat_to_axis_angle_q30((qo_quat_q30){ 0, 0, -QO_Q30_ONE, 0 }, &ax, &an), QO_OK);
+    assert_int_equal(ax.y, QO_Q30_ONE);   /* canonical sign at pi */
+    assert_true(an >= QO_Q28_PI - 2 && an <= QO_Q28_PI);
+    /* A 1-LSB axis keeps its direction. */
+    assert_int_equal(qo_quat_from_axis_angle_q30((qo_vec3_q30){ 0, -1, 0 }, QO_Q28_PI, &r), QO_OK);
+    assert_true(r.y <= -QO_Q30_ONE + 1 && r.x == 0 && r.z == 0 && r.w >= -1 && r.w <= 1);
+    xrng.s = 21;
+    for (k = 0; k < 20000; k++) {
+        double axd[3] = { ref_rng_range(&xrng, -1.0, 1.0), ref_rng_range(&xrng, -1.0, 1.0), ref_rng_range(&xrng, -1.0, 1.0) }, sc = ldexp(1.0, -(int)(ref_rng_next(&xrng) % 29u));
+        double angle = 7.99 * ref_rng_range(&xrng, -1.0, 1.0), n, s, e;
+        qo_vec3_f32 f;
+        qo_vec3_q30 a;
+        qo_q28 ang;
+        dq want, back;
+        f.x = (float)(axd[0] * sc); f.y = (float)(axd[1] * sc); f.z = (float)(axd[2] * sc);
+        a = qo_vec3_q30_from_f32(f);
+        ang = qo_q28_from_f32((float)angle);
+        if (a.x == 0 && a.y == 0 && a.z == 0) continue;
+        n = sqrt((double)a.x * a.x + (double)a.y * a.y + (double)a.z * a.z);
+        s = sin(ang / TWO28 / 2);
+        want.w = cos(ang / TWO28 / 2); want.x = s * a.x / n; want.y = s * a.y / n; want.z = s * a.z / n;
+        assert_int_equal(qo_quat_from_axis_angle_q30(a, ang, &r), QO_OK);
+        e = ref_quat_err_lsb_q30(r, want);
+        if (e > 1.5) fail_msg("from_axis_angle (%ld %ld %ld) %ld = " XFMT ": %.3f LSB", (long)a.x, (long)a.y, (long)a.z, (long)ang, XARG(r), e);
+        /* Back: axis and angle of a random quaternion against the double formula. */
+        r = fx_from(ref_rng_quat(&xrng));
+        back = ref_quat_canonical(ref_quat_normalize(ref_quat_from_q30(r)));
+        n = sqrt(back.x * back.x + back.y * back.y + back.z * back.z);
+        assert_int_equal(qo_quat_to_axis_angle_q30(r, &ax, &an), QO_OK);
+        e = fabs(an - 2 * atan2(n, back.w) * TWO28);
+        if (e > 3.0) fail_msg("to_axis_angle " XFMT " angle %ld: %.3f LSB", XARG(r), (long)an, e);
+        e = fabs(ax.x - back.x / n * TWO30);
+        if (fabs(ax.y - back.y / n * TWO30) > e) e = fabs(ax.y - back.y / n * TWO30);
+        if (fabs(ax.z - back.z / n * TWO30) > e) e = fabs(ax.z - back.z / n * TWO30);
+        if (e > 3.0) fail_msg("to_axis_angle " XFMT " axis: %.3f LSB", XARG(r), e);
+    }
+}
+
+static void test_q30_rotvec(void **state)
+{
+    qo_quat_q30 r;
+    qo_vec3_q28 v;
+    int k;
+    (void)state;
+    assert_int_equal(qo_quat_from_rotvec_q30((qo_vec3_q28){ 0, 0, 0 }, &r), QO_OK);
+    assert_int_equal(r.w, QO_Q30_ONE); assert_int_equal(r.x, 0); assert_int_equal(r.y, 0); assert_int_equal(r.z, 0);
+    assert_int_equal(qo_quat_from_rotvec_q30((qo_vec3_q28){ 0, 0, 0 }, NULL), QO_E_NULL);
+    /* Tiny: (1, rv/2) to the LSB. rv = 4 LSB of Q3.28 = 16 LSB of Q1.30 -> 8. */
+    assert_int_equal(qo_quat_from_rotvec_q30((qo_vec3_q28){ 0, 0, 4 }, &r), QO_OK);
+    assert_int_equal(r.w, QO_Q30_ONE); assert_int_equal(r.z, 8);
+    /* The largest rotation vector the format holds does not overflow anything. */
+    assert_int_equal(qo_quat_from_rotvec_q30((qo_vec3_q28){ INT32_MIN, INT32_MIN, INT32_MIN }, &r), QO_OK);
+    assert_int_equal(qo_quat_to_rotvec_q30((qo_quat_q30){ 0, 0, 0, 0 }, &v), QO_E_DEGENERATE);
+    assert_int_equal(v.x, 0); assert_int_equal(v.y, 0); assert_int_equal(v.z, 0);
+    assert_int_equal(qo_quat_to_rotvec_q30(qo_quat_identity_q30(), NULL), QO_E_NULL);
+    assert_int_equal(qo_quat_to_rotvec_q30((qo_quat_q30){ -QO_Q30_ONE, 0, 0, 0 }, &v), QO_OK);
+    assert_int_equal(v.x, 0);
+    /* Exactly pi about -z: canonical sign makes it +z. */
+    assert_int_equal(qo_quat_to_rotvec_q30((qo_quat_q30){ 0, 0, 0, -QO_Q30_ONE }, &v), QO_OK);
+    assert_true(v.z >= QO_Q28_PI - 2 && v.z <= QO_Q28_PI && v.x == 0 && v.y == 0);
+    xrng.s = 22;
+    for (k = 0; k < 20000; k++) {
+        double sc = k % 3 == 0 ? 1e-6 : k % 3 == 1 ? 3.1 : 7.9, n, s, e, a[3];
+        qo_vec3_f32 f;
+        qo_vec3_q28 rv;
+        dq want, q;
+        f.x = (float)(sc * ref_rng_range(&xrng, -1.0, 1.0)); f.y = (float)(sc * ref_rng_range(&xrng, -1.0, 1.0)); f.z = (float)(sc * ref_rng_range(&xrng, -1.0, 1.0));
+        rv = qo_vec3_q28_from_f32(f);
+        a[0] = rv.x / TWO28; a[1] = rv.y / TWO28; a[2] = rv.z / TWO28;
+        n = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+        s = n > 0 ? sin(n / 2) / n : 0.5;
+        want.w = cos(n / 2); want.x = s * a[0]; want.y = s * a[1]; want.z = s * a[2];
+        assert_int_equal(qo_quat_from_rotvec_q30(rv, &r), QO_OK);
+        e = ref_quat_err_lsb_q30(r, want);
+        if (e > 2.0) fail_msg("from_rotvec (%ld %ld %ld) = " XFMT ": %.3f LSB", (long)rv.x, (long)rv.y, (long)rv.z, XARG(r), e);
+        /* to_rotvec of random rotations, including near-identity and near-pi ones. */
+        q = ref_rng_quat(&xrng);
+        if (k % 4 == 1) { q.w = 1.0; q.x *= 1e-6; q.y *= 1e-6; q.z *= 1e-6; }
+        if (k % 4 == 2) { q.w *= 1e-6; }
+        r = fx_from(q);
+        q = ref_quat_canonical(ref_quat_from_q30(r));
+        n = sqrt(q.x * q.x + q.y * q.y + q.z * q.z);
+        s = n > 0 ? 2 * atan2(n, q.w) / n : 2.0 / q.w;
+        assert_int_equal(qo_quat_to_rotvec_q30(r, &v), QO_OK);
+        e = fabs(v.x - s * q.x * TWO28);
+        if (fabs(v.y - s * q.y * TWO28) > e) e = fabs(v.y - s * q.y * TWO28);
+        if (fabs(v.z - s * q.z * TWO28) > e) e = fabs(v.z - s * q.z * TWO28);
+        if (e > 3.0) fail_msg("to_rotvec " XFMT " = (%ld %ld %ld): %.3f LSB", XARG(r), (long)v.x, (long)v.y, (long)v.z, e);
+    }
+}
+
+static void test_q30_to_mat3_and_mul_vec3(void **state)
+{
+    qo_mat3_q30 m;
+    qo_vec3_q30 r;
+    int k, i, j;
+    (void)state;
+    assert_int_equal(qo_quat_to_mat3_q30((qo_quat_q30){ 0, 0, 0, 0 }, &m), QO_E_DEGENERATE);
+    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) assert_int_equal(m.m[i][j], i == j ? QO_Q30_ONE : 0);
+    assert_int_equal(qo_quat_to_mat3_q30(qo_quat_identity_q30(), NULL), QO_E_NULL);
+    r = qo_mat3_mul_vec3_q30(NULL, (qo_vec3_q30){ 1, 2, 3 });
+    assert_int_equal(r.x, 0); assert_int_equal(r.y, 0); assert_int_equal(r.z, 0);
+    xrng.s = 23;
+    for (k = 0; k < 20000; k++) {
+        qo_quat_q30 q = fx_from(ref_rng_quat(&xrng));
+        double d[3][3], e = 0, vx, vy, vz;
+        qo_vec3_q30 v, rq;
+        qo_vec3_f32 f;
+        long double ex, ey, ez;
+        if (k % 5 == 0) { q.w /= 1000; q.x /= 1000; q.y /= 1000; q.z /= 1000; }   /* non-unit */
+        dq_to_mat(ref_quat_normalize(ref_quat_from_q30(q)), d);
+        assert_int_equal(qo_quat_to_mat3_q30(q, &m), QO_OK);
+        for (i = 0; i < 3; i++) for (j = 0; j < 3; j++)
+            if (fabs(m.m[i][j] - d[i][j] * TWO30) > e) e = fabs(m.m[i][j] - d[i][j] * TWO30);
+        if (e > 3.0) fail_msg("to_mat3 " XFMT ": %.3f LSB", XARG(q), e);
+        /* M v against long double, and against rotate (same rotation). */
+        f.x = (float)(0.57 * ref_rng_range(&xrng, -1.0, 1.0)); f.y = (float)(0.57 * ref_rng_range(&xrng, -1.0, 1.0)); f.z = (float)(0.57 * ref_rng_range(&xrng, -1.0, 1.0));
+        v = qo_vec3_q30_from_f32(f);
+        r = qo_mat3_mul_vec3_q30(&m, v);
+        ex = ((long double)m.m[0][0] * v.x + (long double)m.m[0][1] * v.y + (long double)m.m[0][2] * v.z) / TWO30;
+        ey = ((long double)m.m[1][0] * v.x + (long double)m.m[1][1] * v.y + (long double)m.m[1][2] * v.z) / TWO30;
+        ez = ((long double)m.m[2][0] * v.x + (long double)m.m[2][1] * v.y + (long double)m.m[2][2] * v.z) / TWO30;
+        if (fabsl(r.x - ex) > 0.5L + 1e-6L || fabsl(r.y - ey) > 0.5L + 1e-6L || fabsl(r.z - ez) > 0.5L + 1e-6L)
+            fail_msg("mat3_mul_vec3 case %d: off by more than 0.5 LSB", k);
+        assert_int_equal(qo_quat_normalize_q30(q, &q), QO_OK);
+        rq = qo_quat_rotate_q30(q, v);
+        vx = fabs((double)rq.x - r.x); vy = fabs((double)rq.y - r.y); vz = fabs((double)rq.z - r.z);
+        if (vx > 8 || vy > 8 || vz > 8) fail_msg("to_mat3 vs rotate " XFMT ": %.0f %.0f %.0f LSB apart", XARG(q), vx, vy, vz);
+    }
+    /* Saturation of M v: (2, 2, 2) . (2, 2, 2) = 12. */
+    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) m.m[i][j] = INT32_MIN;
+    r = qo_mat3_mul_vec3_q30(&m, (qo_vec3_q30){ INT32_MIN, INT32_MIN, INT32_MIN });
+    assert_int_equal(r.x, INT32_MAX);
+}
+
+static void x_check_from_mat3(const qo_mat3_q30 *m, const char *what)
+{
+    double d[3][3], e;
+    int i, j;
+    qo_quat_q30 r;
+    dq want;
+    qo_status st = qo_quat_from_mat3_q30(m, &r);
+    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) d[i][j] = m->m[i][j] / TWO30;
+    want = dq_from_mat(d);
+    if (st != QO_OK) fail_msg("from_mat3 %s: status %d", what, st);
+    if (r.w < 0) fail_msg("from_mat3 %s: not canonical " XFMT, what, XARG(r));
+    e = ref_quat_err_lsb_q30(r, want);
+    /* At w == 0 (exact half turns) both signs are canonical candidates: compare either. */
+    if (e > 3.0) {
+        dq nw = { -want.w, -want.x, -want.y, -want.z };
+        if (!(fabs(want.w) < 1e-8 && ref_quat_err_lsb_q30(r, nw) <= 3.0)) fail_msg("from_mat3 %s = " XFMT ": %.3f LSB", what, XARG(r), e);
+    }
+}
+
+static void test_q30_from_mat3(void **state)
+{
+    static const double half_turns[][4] = {
+        { 0, 1, 0, 0 }, { 0, 0, 1, 0 }, { 0, 0, 0, 1 }, { 0, 0.70710678118654752, 0.70710678118654752, 0 },
+        { 0, 0.57735026918962576, -0.57735026918962576, 0.57735026918962576 }, { 1, 0, 0, 0 },
+        { 0.70710678118654752, 0.70710678118654752, 0, 0 }, { 1e-4, 0, 0.99999999500000, 0 },
+    };
+    qo_mat3_q30 m, bad;
+    qo_quat_q30 r;
+    double d[3][3];
+    size_t c;
+    int k, i, j;
+    (void)state;
+    assert_int_equal(qo_quat_from_mat3_q30(NULL, &r), QO_E_NULL);
+    assert_int_equal(r.w, QO_Q30_ONE);
+    assert_int_equal(qo_quat_from_mat3_q30(&m, NULL), QO_E_NULL);
+    for (c = 0; c < sizeof half_turns / sizeof half_turns[0]; c++) {
+        dq q = ref_quat_normalize((dq){ half_turns[c][0], half_turns[c][1], half_turns[c][2], half_turns[c][3] });
+        qo_mat3_f32 f;
+        dq_to_mat(q, d);
+        for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) f.m[i][j] = (float)d[i][j];
+        m = qo_mat3_q30_from_f32(&f);
+        x_check_from_mat3(&m, "edge");
+    }
+    /* Rejections: reflection, scale, shear, singular, and a just-inside / just-outside pair. */
+    dq_to_mat(ref_quat_normalize((dq){ 0.3, 0.5, -0.2, 0.7 }), d);
+    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) m.m[i][j] = qo_q30_from_f32((float)d[i][j]);
+    bad = m;
+    for (j = 0; j < 3; j++) bad.m[0][j] = -bad.m[0][j];
+    assert_int_equal(qo_quat_from_mat3_q30(&bad, &r), QO_E_NOT_ROTATION);
+    assert_int_equal(r.w, QO_Q30_ONE); assert_int_equal(r.x, 0);
+    bad = m;
+    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) bad.m[i][j] = qo_fx_mul_q30(bad.m[i][j], QO_Q30_ONE + QO_Q30_ONE / 1000);
+    assert_int_equal(qo_quat_from_mat3_q30(&bad, &r), QO_E_NOT_ROTATION);
+    bad = m; bad.m[0][1] += QO_Q30_ONE / 100;
+    assert_int_equal(qo_quat_from_mat3_q30(&bad, &r), QO_E_NOT_ROTATION);
+    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) bad.m[i][j] = 0;
+    assert_int_equal(qo_quat_from_mat3_q30(&bad, &r), QO_E_NOT_ROTATION);
+    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) bad.m[i][j] = INT32_MIN;
+    assert_int_equal(qo_quat_from_mat3_q30(&bad, &r), QO_E_NOT_ROTATION);
+    /* Identity scaled so the diagonal of M^T M is 1 + 0.9 tol (accepted) or 1 + 1.1 tol. */
+    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) bad.m[i][j] = 0;
+    for (i = 0; i < 3; i++) bad.m[i][i] = QO_Q30_ONE + (QO_MAT3_ROTATION_TOL_Q30 * 9) / 20;
+    assert_int_equal(qo_quat_from_mat3_q30(&bad, &r), QO_OK);
+    assert_int_equal(r.w, QO_Q30_ONE);
+    for (i = 0; i < 3; i++) bad.m[i][i] = QO_Q30_ONE + (QO_MAT3_ROTATION_TOL_Q30 * 11) / 20;
+    assert_int_equal(qo_quat_from_mat3_q30(&bad, &r), QO_E_NOT_ROTATION);
+    xrng.s = 24;
+    for (k = 0; k < 20000; k++) {
+        dq q = ref_rng_quat(&xrng);
+        qo_mat3_f32 f;
+        if (k % 4 == 1) { q.w *= 1e-5; q = ref_quat_normalize(q); }            /* near half turn */
+        if (k % 4 == 2) { q.x *= 1e-5; q.y *= 1e-5; q.z *= 1e-5; q = ref_quat_normalize(q); }  /* near identity */
+        dq_to_mat(q, d);
+        for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) f.m[i][j] = (float)d[i][j];
+        m = qo_mat3_q30_from_f32(&f);
+        x_check_from_mat3(&m, "random");
+    }
+}
+
+static void test_q30_round_trips(void **state)
+{
+    int k;
+    (void)state;
+    xrng.s = 25;
+    for (k = 0; k < 5000; k++) {
+        qo_quat_q30 q, back;
+        qo_mat3_q30 m;
+        qo_vec3_q28 rv;
+        qo_vec3_q30 ax;
+        qo_q28 an;
+        assert_int_equal(qo_quat_normalize_q30(fx_from(ref_rng_quat(&xrng)), &q), QO_OK);
+        q = qo_quat_canonical_q30(q);
+        assert_int_equal(qo_quat_to_mat3_q30(q, &m), QO_OK);
+        assert_int_equal(qo_quat_from_mat3_q30(&m, &back), QO_OK);
+        if (qo_quat_angle_between_q30(q, back) > 16) fail_msg("mat3 round trip " XFMT " -> " XFMT, XARG(q), XARG(back));
+        assert_int_equal(qo_quat_to_rotvec_q30(q, &rv), QO_OK);
+        assert_int_equal(qo_quat_from_rotvec_q30(rv, &back), QO_OK);
+        if (qo_quat_angle_between_q30(q, back) > 16) fail_msg("rotvec round trip " XFMT " -> " XFMT, XARG(q), XARG(back));
+        assert_int_equal(qo_quat_to_axis_angle_q30(q, &ax, &an), QO_OK);
+        assert_int_equal(qo_quat_from_axis_angle_q30(ax, an, &back), QO_OK);
+        if (qo_quat_angle_between_q30(q, back) > 16) fail_msg("axis-angle round trip " XFMT " -> " XFMT, XARG(q), XARG(back));
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_mat3_helpers_vs_double),
-        cmocka_unit_test(test_quat_to_mat3_vs_double),
-        cmocka_unit_test(test_quat_to_mat3_errors),
-        cmocka_unit_test(test_quat_from_mat3_random),
-        cmocka_unit_test(test_quat_from_mat3_edges),
-        cmocka_unit_test(test_quat_from_mat3_trusted),
-        cmocka_unit_test(test_quat_from_mat3_non_rotations),
-        cmocka_unit_test(test_quat_from_mat3_drifted),
-        cmocka_unit_test(test_edges_all_conversions),
-        cmocka_unit_test(test_mat3_round_trip),
-        cmocka_unit_test(test_orthonormalize_perturbed),
-        cmocka_unit_test(test_orthonormalize_rejects),
-        cmocka_unit_test(test_axis_angle_from_vs_double),
-        cmocka_unit_test(test_axis_angle_from_edges),
-        cmocka_unit_test(test_axis_angle_to),
-        cmocka_unit_test(test_axis_angle_to_edges),
-        cmocka_unit_test(test_rotvec_vs_double),
-        cmocka_unit_test(test_rotvec_edges),
-        cmocka_unit_test(test_rotvec_round_trip),
+        BOTH(test_axis_angle),
+        BOTH(test_rotvec),
+        BOTH(test_mat3_quat),
+        BOTH(test_mat3_ops),
+        BOTH(test_orthonormalize),
+        cmocka_unit_test(test_f32_mat3_helpers_vs_double),
+        cmocka_unit_test(test_f32_quat_to_mat3_vs_double),
+        cmocka_unit_test(test_f32_quat_to_mat3_errors),
+        cmocka_unit_test(test_f32_quat_from_mat3_random),
+        cmocka_unit_test(test_f32_quat_from_mat3_edges),
+        cmocka_unit_test(test_f32_quat_from_mat3_trusted),
+        cmocka_unit_test(test_f32_quat_from_mat3_non_rotations),
+        cmocka_unit_test(test_f32_quat_from_mat3_drifted),
+        cmocka_unit_test(test_f32_edges_all_conversions),
+        cmocka_unit_test(test_f32_mat3_round_trip),
+        cmocka_unit_test(test_f32_orthonormalize_perturbed),
+        cmocka_unit_test(test_f32_orthonormalize_rejects),
+        cmocka_unit_test(test_f32_axis_angle_from_vs_double),
+        cmocka_unit_test(test_f32_axis_angle_from_edges),
+        cmocka_unit_test(test_f32_axis_angle_to),
+        cmocka_unit_test(test_f32_axis_angle_to_edges),
+        cmocka_unit_test(test_f32_rotvec_vs_double),
+        cmocka_unit_test(test_f32_rotvec_edges),
+        cmocka_unit_test(test_f32_rotvec_round_trip),
+        cmocka_unit_test(test_q30_axis_angle),
+        cmocka_unit_test(test_q30_rotvec),
+        cmocka_unit_test(test_q30_to_mat3_and_mul_vec3),
+        cmocka_unit_test(test_q30_from_mat3),
+        cmocka_unit_test(test_q30_round_trips),
     };
     return cmocka_run_group_tests_name("convert", tests, NULL, NULL);
 }

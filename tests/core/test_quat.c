@@ -1,21 +1,192 @@
 /*
- * qorient/quat.h: every function against the double references of tests/common/ref.c over
- * fixed-seed random inputs, plus the edges (zero, NaN, Inf, FLT_MAX, subnormal, identical,
- * antipodal, tiny angles, canonical ties) and the lecture's worked examples.
+ * tests/core/test_quat.c - every qo_quat_* of qorient/quat.h (float32) and qorient/quat_fx.h
+ * (Q1.30), one test program for the concept (docs/TESTING.md, "One body for both cores").
+ *
+ * First section: one body per behaviour both cores have (exp/log, mul, conj, normalize,
+ * canonical, angle_between, integrate, rotate), registered with BOTH against the adapter
+ * table of tests/common/cores.h: inputs rounded as each core receives them, the reference
+ * computed in double from those rounded values, each core with its own tolerance; the edges
+ * (identity, identical, antipodal, zero, each core's out-of-range value) in the same body.
+ * Then the core-only behaviour, each against double / long double references over fixed
+ * seeds: float32 (norm over the whole exponent range and subnormals, inverse, is_finite, -0
+ * ties, NaN/Inf statuses, the lecture's worked examples, the SIMD bodies bit for bit against
+ * the scalar ones) and Q1.30 (results to the LSB, saturation, the fast normalisation tier,
+ * NULL outputs).
  */
 #include <float.h>
 #include <math.h>
-#include <setjmp.h>
-#include <stdarg.h>
-#include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <string.h>
-#include <cmocka.h>
 
+#include "common/cores.h"
 #include "common/ref.h"
 #include "common/scalar_inline.h"
 #include "qorient/convert.h"
+#include "qorient/fxconv.h"
+#include "qorient/fxmath.h"
 #include "qorient/quat.h"
+#include "qorient/quat_fx.h"
+
+#define N_RANDOM 1000
+
+/* ==== one body, both cores (common/cores.h) ==================================== */
+
+static void test_exp_log(void **state)
+{
+    const core *c = *state;
+    int n;
+    dq o;
+    ref_vec3 v, l;
+    rng_seed(103);
+    for (n = 0; n < N_RANDOM; n++) {
+        /* |v| up to pi (every rotation), down to 1e-7 */
+        ref_vec3 d = v_rand(-1, 1);
+        double s = (n % 4 ? rng_range(0, PI) : pow(10.0, rng_range(-7, -2))) / v_norm(d);
+        dq p, want, q;
+        v = v_in(c, v_make(d.x * s, d.y * s, d.z * s), 1);
+        p.w = 0; p.x = v.x; p.y = v.y; p.z = v.z;
+        want = dq_exp(p);
+        if (c->exp(v, &o) != QO_OK || dist4(o, want) > 2 * c->tol_abs)
+            fail_msg("%s exp case %d: v (%.10g %.10g %.10g) got " QFMT " error %.3g", c->name,
+                     n, v.x, v.y, v.z, QARG(o), dist4(o, want));
+        q = c->q_in(dq_scale(rand_unit(), rng_range(0.3, 1.9)));
+        want = dq_log(dq_unit(q));
+        if (c->log(q, &l) != QO_OK || v_dist(l, v_make(want.x, want.y, want.z)) > c->tol_ang)
+            fail_msg("%s log case %d: q " QFMT " got (%.10g %.10g %.10g) want (%.10g %.10g %.10g)",
+                     c->name, n, QARG(q), l.x, l.y, l.z, want.x, want.y, want.z);
+    }
+    assert_int_equal(c->exp(v_make(0, 0, 0), &o), QO_OK);
+    assert_true(dq_is(o, ID));
+    assert_int_equal(c->log(ID, &l), QO_OK);
+    assert_true(v_norm(l) == 0);
+    /* -1: 2 pi about the documented axis x */
+    assert_int_equal(c->log(dq_neg(ID), &l), QO_OK);
+    assert_true(fabs(l.x - PI) <= c->tol_ang && l.y == 0 && l.z == 0);
+    /* antipodal inputs give the same rotation: logs pi/2 apart in length, opposite axes */
+    o = c->q_in(dq_axis_angle(1, 2, 3, 1.0));
+    assert_int_equal(c->log(o, &v), QO_OK);
+    assert_int_equal(c->log(dq_neg(o), &l), QO_OK);
+    assert_true(fabs(v_norm(v) + v_norm(l) - PI) <= 2 * c->tol_ang);
+    l = v_make(9, 9, 9);
+    assert_int_equal(c->log(ZERO_Q, &l), QO_E_DEGENERATE);
+    assert_true(v_norm(l) == 0);
+    /* out of range: Inf (float32) / saturated Q3.28 component (~8 rad, fixed: QO_E_RANGE) */
+    assert_int_equal(c->exp(v_make(c->big, 0, 0), &o), ST(c, QO_E_NONFINITE, QO_E_RANGE));
+    assert_true(dq_is(o, ID));
+}
+
+
+static void test_mul_conj_normalize(void **state)
+{
+    const core *c = *state;
+    int n;
+    dq o;
+    rng_seed(104);
+    for (n = 0; n < N_RANDOM; n++) {
+        dq a = c->q_in(rand_unit()), b = c->q_in(rand_unit());
+        dq s = c->q_in(dq_scale(rand_unit(), pow(10.0, rng_range(-6, 0.2))));
+        dq want = dq_mul(a, b);
+        o = c->mul(a, b);
+        if (dist4(o, want) > 2 * c->tol_abs)
+            fail_msg("%s mul case %d: a " QFMT " b " QFMT " error %.3g", c->name, n, QARG(a),
+                     QARG(b), dist4(o, want));
+        if (!dq_is(c->conj(a), dq_conj(a)))
+            fail_msg("%s conj case %d: a " QFMT, c->name, n, QARG(a));
+        want = dq_unit(s);
+        if (c->normalize(s, &o) != QO_OK || dist4(o, want) > 2 * c->tol_abs)
+            fail_msg("%s normalize case %d: q " QFMT " got " QFMT, c->name, n, QARG(s), QARG(o));
+    }
+    /* identity is neutral; q (-q) is the identity rotation with w = -1 */
+    o = c->q_in(rand_unit());
+    assert_true(dist4(c->mul(ID, o), o) <= c->tol_abs);
+    assert_true(rot_err(c->mul(o, dq_neg(dq_conj(o))), ID) <= 4 * c->tol_rot);
+    assert_int_equal(c->normalize(ZERO_Q, &o), QO_E_DEGENERATE);
+    assert_true(dq_is(o, ID));
+    /* out of range: Inf (float32) / every component saturated (fixed: normalises) */
+    o.w = o.x = o.y = o.z = c->big;
+    assert_int_equal(c->normalize(o, &o), ST(c, QO_E_NONFINITE, QO_OK));
+    if (c->fixed) {
+        dq half = { 0.5, 0.5, 0.5, 0.5 };
+        assert_true(dist4(o, half) <= 2 * c->tol_abs);
+    }
+    /* a product beyond the format saturates in fixed point (float: exact, 4) */
+    o.w = o.x = o.y = o.z = c->u_in(1.0);
+    o = c->mul(o, dq_conj(o));
+    assert_true(fabs(o.w - fmin(4.0, c->u_max)) <= c->tol_abs);
+}
+
+
+static void test_canonical_angle_integrate(void **state)
+{
+    const core *c = *state;
+    int n;
+    dq o;
+    rng_seed(111);
+    for (n = 0; n < N_RANDOM; n++) {
+        dq a = c->q_in(rand_unit()), b = c->q_in(n % 4 ? rand_unit() : rand_axis_rot(1e-5));
+        ref_vec3 d = v_in(c, v_rand(-0.5, 0.5), 1);
+        dq p = { 0, d.x / 2, d.y / 2, d.z / 2 }, want;
+        double ang = ref_quat_angle_between(a, b);
+        o = c->canonical(a);
+        if (!dq_is(o, ref_quat_canonical(a)))
+            fail_msg("%s canonical case %d: " QFMT " got " QFMT, c->name, n, QARG(a), QARG(o));
+        if (fabs(c->angle_between(a, b) - ang) > 2 * c->tol_ang ||
+            c->angle_between(a, dq_neg(b)) != c->angle_between(a, b))
+            fail_msg("%s angle_between case %d: a " QFMT " b " QFMT " got %.12g want %.12g",
+                     c->name, n, QARG(a), QARG(b), c->angle_between(a, b), ang);
+        want = dq_unit(dq_mul(a, dq_exp(p)));
+        if (c->integrate(a, d, &o) != QO_OK || dist4(o, want) > 4 * c->tol_abs)
+            fail_msg("%s integrate case %d: q " QFMT " dtheta (%.10g %.10g %.10g) error %.3g",
+                     c->name, n, QARG(a), d.x, d.y, d.z, dist4(o, want));
+    }
+    /* identical: 0 (exactly in fixed point, as quat_fx.h says; float32 to rounding);
+     * antipodal: the same rotation, 0 too; -1 canonicalises to 1 */
+    o = c->q_in(rand_unit());
+    assert_true(c->angle_between(o, o) <= (c->fixed ? 0.0 : c->tol_ang));
+    assert_true(c->angle_between(o, dq_neg(o)) <= c->tol_ang);
+    assert_true(dq_is(c->canonical(dq_neg(ID)), ID));
+    /* w == 0: the first non-zero of x, y, z made positive */
+    {
+        dq h = { 0, 0, -0.5, 0.5 }, hc = { 0, 0, 0.5, -0.5 };
+        assert_true(dq_is(c->canonical(h), hc));
+    }
+    assert_int_equal(c->integrate(ID, v_make(0, 0, 0), &o), QO_OK);
+    assert_true(dq_is(o, ID));
+    assert_int_equal(c->integrate(ZERO_Q, v_make(0.1, 0, 0), &o), QO_E_DEGENERATE);
+    assert_true(dq_is(o, ID));
+    /* out of range: Inf (float32) / a saturated Q3.28 increment (fixed: ~8 rad, a valid turn) */
+    assert_int_equal(c->integrate(ID, v_make(c->big, 0, 0), &o), ST(c, QO_E_NONFINITE, QO_OK));
+    assert_true(fabs(dq_norm(o) - 1) <= 4 * c->tol_abs);
+}
+
+
+static void test_rotate(void **state)
+{
+    const core *c = *state;
+    int n;
+    ref_vec3 o;
+    rng_seed(105);
+    for (n = 0; n < N_RANDOM; n++) {
+        dq q = c->q_in(rand_unit());
+        ref_vec3 v = v_in(c, v_rand(-0.577, 0.577), 0), want = ref_quat_rotate(q, v);
+        o = c->rotate(q, v);
+        if (v_dist(o, want) > 4 * c->tol_abs)
+            fail_msg("%s rotate case %d: q " QFMT " v (%.10g %.10g %.10g) error %.3g", c->name,
+                     n, QARG(q), v.x, v.y, v.z, v_dist(o, want));
+        /* q and -q are the same rotation */
+        if (v_dist(c->rotate(dq_neg(q), v), o) > 2 * c->tol_abs)
+            fail_msg("%s rotate case %d: -q differs", c->name, n);
+    }
+    o = c->rotate(ID, v_make(0.5, -0.25, 0.125));
+    assert_true(o.x == 0.5 && o.y == -0.25 && o.z == 0.125);
+    /* 90 deg about z takes x to y */
+    o = c->rotate(c->q_in(dq_axis_angle(0, 0, 1, PI / 2)), v_make(1, 0, 0));
+    assert_true(fabs(o.x) <= 4 * c->tol_abs && fabs(o.y - 1) <= 4 * c->tol_abs);
+}
+
+
+/* ==== float32 only: qorient/quat.h ====================================== */
 
 /* A status check inside a loop over cases: names the call and the case on failure. */
 #define EXPECT_OK(call, n) do { \
@@ -23,7 +194,7 @@
         if (st_ != QO_OK) fail_msg("%s: status %d in case %d", #call, (int)st_, (int)(n)); \
     } while (0)
 
-#define N_RANDOM 2000
+#define N_F32 2000
 
 static qo_quat_f32 qf(float w, float x, float y, float z)
 {
@@ -78,13 +249,13 @@ static ref_quat rand_q_scaled(ref_rng *rng)
 
 /* ---- algebra ---- */
 
-static void test_identity_conj_dot(void **state)
+static void test_f32_identity_conj_dot(void **state)
 {
     ref_rng rng = { 1 };
     int n;
     (void)state;
     assert_true(is_identity_q(qo_quat_identity_f32()));
-    for (n = 0; n < N_RANDOM; n++) {
+    for (n = 0; n < N_F32; n++) {
         qo_quat_f32 a = ref_quat_to_f32(rand_q_scaled(&rng)), b = ref_quat_to_f32(rand_q_scaled(&rng));
         qo_quat_f32 c = qo_quat_conj_f32(a);
         double d = (double)a.w * b.w + (double)a.x * b.x + (double)a.y * b.y + (double)a.z * b.z;
@@ -99,12 +270,12 @@ static void test_identity_conj_dot(void **state)
     }
 }
 
-static void test_mul_vs_double(void **state)
+static void test_f32_mul_vs_double(void **state)
 {
     ref_rng rng = { 2 };
     int n;
     (void)state;
-    for (n = 0; n < N_RANDOM; n++) {
+    for (n = 0; n < N_F32; n++) {
         ref_quat ra = rand_q_scaled(&rng), rb = rand_q_scaled(&rng), rc = ref_rng_quat(&rng);
         qo_quat_f32 a = ref_quat_to_f32(ra), b = ref_quat_to_f32(rb), c = ref_quat_to_f32(rc);
         ref_quat ab = ref_quat_mul(ref_quat_from_f32(a), ref_quat_from_f32(b));
@@ -151,12 +322,12 @@ static void test_mul_vs_double(void **state)
     }
 }
 
-static void test_rotate_vs_double(void **state)
+static void test_f32_rotate_vs_double(void **state)
 {
     ref_rng rng = { 3 };
     int n;
     (void)state;
-    for (n = 0; n < N_RANDOM; n++) {
+    for (n = 0; n < N_F32; n++) {
         qo_quat_f32 a = ref_quat_to_f32(ref_rng_quat(&rng)), b = ref_quat_to_f32(ref_rng_quat(&rng));
         ref_vec3 rv = { ref_rng_range(&rng, -5, 5), ref_rng_range(&rng, -5, 5),
                         ref_rng_range(&rng, -5, 5) };
@@ -186,14 +357,14 @@ static void test_rotate_vs_double(void **state)
 
 /* ---- norm, normalise, inverse: overflow / underflow / zero / NaN ---- */
 
-static void test_norm_range(void **state)
+static void test_f32_norm_range(void **state)
 {
     ref_rng rng = { 4 };
     int n;
     (void)state;
     /* Random directions at scales from subnormal to near FLT_MAX / 2 (sum of squares would
      * overflow or underflow in naive float). */
-    for (n = 0; n < N_RANDOM; n++) {
+    for (n = 0; n < N_F32; n++) {
         double e = ref_rng_range(&rng, -44.0, 37.9);
         ref_quat rq = rscale(ref_rng_quat(&rng), pow(10.0, e));
         qo_quat_f32 q = ref_quat_to_f32(rq);
@@ -222,13 +393,13 @@ static void test_norm_range(void **state)
     assert_true(isinf(qo_quat_norm_f32(qf(0, 0, -INFINITY, 1))));
 }
 
-static void test_normalize(void **state)
+static void test_f32_normalize(void **state)
 {
     ref_rng rng = { 5 };
     int n;
     qo_quat_f32 u;
     (void)state;
-    for (n = 0; n < N_RANDOM; n++) {
+    for (n = 0; n < N_F32; n++) {
         double e = ref_rng_range(&rng, -44.0, 38.4);
         qo_quat_f32 q = ref_quat_to_f32(rscale(ref_rng_quat(&rng), pow(10.0, e)));
         ref_quat expect = ref_quat_normalize(ref_quat_from_f32(q));
@@ -267,13 +438,13 @@ static void test_normalize(void **state)
     assert_int_equal(qo_quat_normalize_f32(qf(1, 0, 0, 0), NULL), QO_E_NULL);
 }
 
-static void test_inverse(void **state)
+static void test_f32_inverse(void **state)
 {
     ref_rng rng = { 6 };
     int n;
     qo_quat_f32 u;
     (void)state;
-    for (n = 0; n < N_RANDOM; n++) {
+    for (n = 0; n < N_F32; n++) {
         /* |q| in [1e-18, 1e18]: 1/|q| is a normal float. */
         double e = ref_rng_range(&rng, -18.0, 18.0);
         qo_quat_f32 q = ref_quat_to_f32(rscale(ref_rng_quat(&rng), pow(10.0, e)));
@@ -319,7 +490,7 @@ static void test_inverse(void **state)
     assert_true(u.w == 0.0f && fabsf(u.x + 0.6f) < 1e-7f && fabsf(u.z + 0.8f) < 1e-7f);
 }
 
-static void test_canonical(void **state)
+static void test_f32_canonical(void **state)
 {
     static const struct { const char *name; float in[4], out[4]; } t[] = {
         { "w > 0 kept", { 0.5f, -0.5f, 0.5f, -0.5f }, { 0.5f, -0.5f, 0.5f, -0.5f } },
@@ -344,7 +515,7 @@ static void test_canonical(void **state)
             fail_msg("canonical %s: expected (%g %g %g %g)", t[k].name, e.w, e.x, e.y, e.z);
         }
     }
-    for (n = 0; n < N_RANDOM; n++) {
+    for (n = 0; n < N_F32; n++) {
         qo_quat_f32 q = ref_quat_to_f32(ref_rng_quat(&rng)), c = qo_quat_canonical_f32(q);
         qo_quat_f32 cn = qo_quat_canonical_f32(qf(-q.w, -q.x, -q.y, -q.z));
         int same = c.w == q.w && c.x == q.x && c.y == q.y && c.z == q.z;
@@ -356,14 +527,14 @@ static void test_canonical(void **state)
 
 /* ---- angle between ---- */
 
-static void test_angle_between(void **state)
+static void test_f32_angle_between(void **state)
 {
     ref_rng rng = { 8 };
     static const double tiny[] = { 1e-2, 1e-3, 1e-4, 1e-5, 1e-6 };
     int n;
     size_t k;
     (void)state;
-    for (n = 0; n < N_RANDOM; n++) {
+    for (n = 0; n < N_F32; n++) {
         qo_quat_f32 a = ref_quat_to_f32(ref_rng_quat(&rng)), b = ref_quat_to_f32(ref_rng_quat(&rng));
         double e = ref_quat_angle_between(ref_quat_from_f32(a), ref_quat_from_f32(b));
         float got = qo_quat_angle_between_f32(a, b);
@@ -404,13 +575,13 @@ static double vdiff(qo_vec3_f32 v, ref_vec3 e)
     return fmax(fabs(v.x - e.x), fmax(fabs(v.y - e.y), fabs(v.z - e.z)));
 }
 
-static void test_exp_vs_double(void **state)
+static void test_f32_exp_vs_double(void **state)
 {
     ref_rng rng = { 9 };
     int n;
     qo_quat_f32 o;
     (void)state;
-    for (n = 0; n < N_RANDOM; n++) {
+    for (n = 0; n < N_F32; n++) {
         /* |v| from 1e-9 to 10 (Taylor region and the closed form). */
         ref_vec3 d = { ref_rng_range(&rng, -1, 1), ref_rng_range(&rng, -1, 1),
                        ref_rng_range(&rng, -1, 1) };
@@ -443,13 +614,13 @@ static void test_exp_vs_double(void **state)
     assert_int_equal(qo_quat_exp_f32(vf(0, 0, 0), NULL), QO_E_NULL);
 }
 
-static void test_log_vs_double(void **state)
+static void test_f32_log_vs_double(void **state)
 {
     ref_rng rng = { 10 };
     int n;
     qo_vec3_f32 o;
     (void)state;
-    for (n = 0; n < N_RANDOM; n++) {
+    for (n = 0; n < N_F32; n++) {
         qo_quat_f32 q = ref_quat_to_f32(rand_q_scaled(&rng));
         ref_quat rq = ref_quat_from_f32(q);
         double vn = sqrt(rq.x * rq.x + rq.y * rq.y + rq.z * rq.z);
@@ -491,12 +662,12 @@ static void test_log_vs_double(void **state)
     assert_int_equal(qo_quat_log_f32(qf(1, 0, 0, 0), NULL), QO_E_NULL);
 }
 
-static void test_exp_log_round_trip(void **state)
+static void test_f32_exp_log_round_trip(void **state)
 {
     ref_rng rng = { 11 };
     int n;
     (void)state;
-    for (n = 0; n < N_RANDOM; n++) {
+    for (n = 0; n < N_F32; n++) {
         /* exp(log q) = q/|q| for any non-zero q. */
         qo_quat_f32 q = ref_quat_to_f32(rand_q_scaled(&rng)), back;
         qo_vec3_f32 l, p;
@@ -529,7 +700,7 @@ static void test_exp_log_round_trip(void **state)
 
 /* ---- integrate ---- */
 
-static void test_integrate(void **state)
+static void test_f32_integrate(void **state)
 {
     ref_rng rng = { 12 };
     int n, s;
@@ -595,7 +766,7 @@ static void test_integrate(void **state)
     assert_int_equal(qo_quat_integrate_f32(qf(1, 0, 0, 0), vf(0, 0, 1), 0.1f, NULL), QO_E_NULL);
 }
 
-static void test_is_finite(void **state)
+static void test_f32_is_finite(void **state)
 {
     (void)state;
     assert_int_equal(qo_quat_is_finite_f32(qf(1, -FLT_MAX, 0x1p-149f, 0)), 1);
@@ -607,7 +778,7 @@ static void test_is_finite(void **state)
 
 /* ---- the lecture's worked examples (numbers from the lecture notes, not from this code) ---- */
 
-static void test_lecture_examples(void **state)
+static void test_f32_lecture_examples(void **state)
 {
     qo_quat_f32 q;
     qo_vec3_f32 r;
@@ -678,7 +849,7 @@ static float rand_component(ref_rng *rng, int mode, float unit)
  * run (emulated Cortex-M is slow) only keeps the test itself honest. */
 #define SIMD_CASES (QO_SIMD_SSE2 ? 1000000L : 10000L)
 
-static void test_simd_same_bits_as_scalar(void **state)
+static void test_f32_simd_same_bits_as_scalar(void **state)
 {
     ref_rng rng = { 15 };
     long i, nan_in = 0;
@@ -729,24 +900,356 @@ static void test_simd_same_bits_as_scalar(void **state)
     assert_true(nan_in > SIMD_CASES / 10);
 }
 
+/* ==== Q1.30 only: qorient/quat_fx.h ===================================== */
+
+#define TWO30 1073741824.0
+#define TWO28 268435456.0
+
+/* The fixed-seed PRNG of this section (tests/common/ref.c). */
+static ref_rng xrng;
+
+#define XFMT "(%ld %ld %ld %ld)"
+#define XARG(q) (long)(q).w, (long)(q).x, (long)(q).y, (long)(q).z
+
+static void test_q30_identity_conj_inverse_canonical(void **state)
+{
+    qo_quat_q30 q = { -5, 6, -7, INT32_MIN }, c;
+    static const struct { qo_quat_q30 in, want; } canon[] = {
+        { { 1, -2, 3, -4 }, { 1, -2, 3, -4 } },
+        { { -1, -2, 3, -4 }, { 1, 2, -3, 4 } },
+        { { 0, -2, 3, -4 }, { 0, 2, -3, 4 } },
+        { { 0, 0, -3, 4 }, { 0, 0, 3, -4 } },
+        { { 0, 0, 0, -4 }, { 0, 0, 0, 4 } },
+        { { 0, 0, 0, 0 }, { 0, 0, 0, 0 } },
+        { { 0, 2, -3, 4 }, { 0, 2, -3, 4 } },
+        { { INT32_MIN, 0, 0, 0 }, { INT32_MAX, 0, 0, 0 } },
+    };
+    size_t i;
+    (void)state;
+    c = qo_quat_identity_q30();
+    assert_int_equal(c.w, QO_Q30_ONE); assert_int_equal(c.x, 0); assert_int_equal(c.y, 0); assert_int_equal(c.z, 0);
+    c = qo_quat_conj_q30(q);
+    assert_int_equal(c.w, -5); assert_int_equal(c.x, -6); assert_int_equal(c.y, 7);
+    assert_int_equal(c.z, INT32_MAX); /* -(-2.0) saturates */
+    c = qo_quat_inverse_q30(q);
+    assert_int_equal(c.x, -6); assert_int_equal(c.z, INT32_MAX);
+    for (i = 0; i < sizeof canon / sizeof canon[0]; i++) {
+        c = qo_quat_canonical_q30(canon[i].in);
+        if (c.w != canon[i].want.w || c.x != canon[i].want.x || c.y != canon[i].want.y || c.z != canon[i].want.z)
+            fail_msg("canonical" XFMT " = " XFMT, XARG(canon[i].in), XARG(c));
+    }
+}
+
+static void test_q30_mul_dot_norm(void **state)
+{
+    int k;
+    qo_quat_q30 r;
+    qo_quat_q30 big = { INT32_MIN, INT32_MIN, 0, 0 };
+    (void)state;
+    xrng.s = 11;
+    for (k = 0; k < 20000; k++) {
+        qo_quat_q30 a = fx_from(ref_rng_quat(&xrng)), b = fx_from(ref_rng_quat(&xrng));
+        long double w = (long double)a.w * b.w - (long double)a.x * b.x - (long double)a.y * b.y - (long double)a.z * b.z;
+        long double x = (long double)a.w * b.x + (long double)a.x * b.w + (long double)a.y * b.z - (long double)a.z * b.y;
+        long double y = (long double)a.w * b.y - (long double)a.x * b.z + (long double)a.y * b.w + (long double)a.z * b.x;
+        long double z = (long double)a.w * b.z + (long double)a.x * b.y - (long double)a.y * b.x + (long double)a.z * b.w;
+        long double d = (long double)a.w * b.w + (long double)a.x * b.x + (long double)a.y * b.y + (long double)a.z * b.z;
+        long double n = sqrtl((long double)a.w * a.w + (long double)a.x * a.x + (long double)a.y * a.y + (long double)a.z * a.z);
+        double e;
+        r = qo_quat_mul_q30(a, b);
+        e = (double)fabsl(r.w - w / TWO30);
+        if ((double)fabsl(r.x - x / TWO30) > e) e = (double)fabsl(r.x - x / TWO30);
+        if ((double)fabsl(r.y - y / TWO30) > e) e = (double)fabsl(r.y - y / TWO30);
+        if ((double)fabsl(r.z - z / TWO30) > e) e = (double)fabsl(r.z - z / TWO30);
+        if (e > 0.5 + 1e-6) fail_msg("mul " XFMT " * " XFMT ": %.3f LSB", XARG(a), XARG(b), e);
+        e = (double)fabsl(qo_quat_dot_q30(a, b) - d / TWO30);
+        if (e > 0.5 + 1e-6) fail_msg("dot " XFMT " . " XFMT ": %.3f LSB", XARG(a), XARG(b), e);
+        e = (double)fabsl(qo_quat_norm_q30(a) - n);
+        if (e > 0.5 + 1e-6) fail_msg("norm " XFMT ": %.3f LSB", XARG(a), e);
+    }
+    /* Saturation: non-unit inputs whose product leaves [-2, 2). */
+    assert_int_equal(qo_quat_mul_q30_checked(big, big, &r), QO_E_OVERFLOW);
+    assert_int_equal(r.x, INT32_MAX);   /* 2 * (-2)(-2) = 8 */
+    assert_int_equal(r.w, 0);           /* 4 - 4 */
+    r = qo_quat_mul_q30(big, big);
+    assert_int_equal(r.x, INT32_MAX);
+    assert_int_equal(qo_quat_mul_q30_checked(qo_quat_identity_q30(), big, &r), QO_OK);
+    assert_int_equal(r.w, INT32_MIN);
+    assert_int_equal(qo_quat_mul_q30_checked(big, big, NULL), QO_E_NULL);
+    assert_int_equal(qo_quat_dot_q30(big, big), INT32_MAX);
+    assert_int_equal(qo_quat_norm_q30(big), INT32_MAX);
+    {
+        qo_quat_q30 all = { INT32_MIN, INT32_MIN, INT32_MIN, INT32_MIN };
+        assert_int_equal(qo_quat_norm_q30(all), INT32_MAX);
+    }
+}
+
+/* The exact normalisation (1 LSB) and its fast tier (16 LSB, never beyond +-1.0) run through
+ * the same checks. */
+typedef struct norm_impl {
+    const char *name;
+    qo_status (*fn)(qo_quat_q30, qo_quat_q30 *);
+    double bound_lsb;
+} norm_impl;
+static const norm_impl norm_impls[] = {
+    { "normalize", qo_quat_normalize_q30, 1.0 },
+    { "normalize_fast", qo_quat_normalize_fast_q30, 16.0 },
+};
+
+static void check_normalize(const norm_impl *f, qo_quat_q30 q)
+{
+    qo_quat_q30 r;
+    dq want = ref_quat_normalize(ref_quat_from_q30(q));
+    double e;
+    assert_int_equal(f->fn(q, &r), QO_OK);
+    e = ref_quat_err_lsb_q30(r, want);
+    if (e > f->bound_lsb + 1e-6)
+        fail_msg("%s " XFMT " = " XFMT ": %.3f LSB", f->name, XARG(q), XARG(r), e);
+    if (r.w > QO_Q30_ONE || r.w < -QO_Q30_ONE || r.x > QO_Q30_ONE || r.x < -QO_Q30_ONE ||
+        r.y > QO_Q30_ONE || r.y < -QO_Q30_ONE || r.z > QO_Q30_ONE || r.z < -QO_Q30_ONE)
+        fail_msg("%s " XFMT " = " XFMT ": beyond 1", f->name, XARG(q), XARG(r));
+}
+
+static void test_q30_normalize(void **state)
+{
+    qo_quat_q30 r, z = { 0, 0, 0, 0 };
+    qo_quat_q30 edges[] = {
+        { 1, 0, 0, 0 }, { 0, 0, 0, -1 }, { 1, 1, 1, 1 }, { 1, -1, 2, 0 },
+        { INT32_MIN, INT32_MIN, INT32_MIN, INT32_MIN }, { INT32_MAX, INT32_MAX, INT32_MAX, INT32_MAX },
+        { INT32_MIN, 0, 0, 0 }, { INT32_MAX, INT32_MIN, 1, -1 }, { QO_Q30_ONE, 0, 0, 0 },
+        { 3, 4, 0, 0 }, { 1 << 29, 1 << 29, 1 << 29, 1 << 29 }, { (1 << 29) - 1, 0, 0, 0 },
+        { 0x3FFFFFFF, 0x3FFFFFFF, 0x3FFFFFFF, 0x3FFFFFFF }, { 0, 1 << 30, 0, 1 << 30 },
+        /* |q|^2 just below 2^60 (normalize_fast's 2^30 boundary of its scaled square) */
+        { 717548339, 401245721, 510734886, 464970573 }, { 1 << 29, 1, 1, 1 },
+    };
+    size_t i, f;
+    int k;
+    (void)state;
+    for (f = 0; f < sizeof norm_impls / sizeof norm_impls[0]; f++) {
+        const norm_impl *n = &norm_impls[f];
+        r.w = 7;
+        assert_int_equal(n->fn(z, &r), QO_E_DEGENERATE);
+        assert_int_equal(r.w, QO_Q30_ONE); assert_int_equal(r.x, 0);
+        assert_int_equal(n->fn(z, NULL), QO_E_NULL);
+        for (i = 0; i < sizeof edges / sizeof edges[0]; i++) check_normalize(n, edges[i]);
+        /* Sign kept (-1 exactly for the exact one). */
+        assert_int_equal(n->fn(edges[6], &r), QO_OK);
+        assert_true(r.w >= -QO_Q30_ONE && r.w <= -QO_Q30_ONE + (int32_t)n->bound_lsb);
+        if (n->bound_lsb <= 1.0) assert_int_equal(r.w, -QO_Q30_ONE);
+        xrng.s = 12;
+        for (k = 0; k < 20000; k++) {
+            /* Random directions at random scales, from a few LSB to the end of the range. */
+            dq d = ref_rng_quat(&xrng);
+            double s = ldexp(1.0, -(int)(ref_rng_next(&xrng) % 28u)) * (1.0 + ref_rng_unit(&xrng));
+            qo_quat_q30 q;
+            q.w = qo_q30_from_f32((float)(d.w * s)); q.x = qo_q30_from_f32((float)(d.x * s));
+            q.y = qo_q30_from_f32((float)(d.y * s)); q.z = qo_q30_from_f32((float)(d.z * s));
+            if (q.w == 0 && q.x == 0 && q.y == 0 && q.z == 0) continue;
+            check_normalize(n, q);
+        }
+        /* Raw int32 components of random magnitude (every scaling branch). */
+        for (k = 0; k < 200000; k++) {
+            unsigned sh = (unsigned)(ref_rng_next(&xrng) % 32u);
+            qo_quat_q30 q;
+            q.w = (int32_t)(uint32_t)ref_rng_next(&xrng) >> sh; q.x = (int32_t)(uint32_t)ref_rng_next(&xrng) >> sh;
+            q.y = (int32_t)(uint32_t)ref_rng_next(&xrng) >> sh; q.z = (int32_t)(uint32_t)ref_rng_next(&xrng) >> sh;
+            if (q.w == 0 && q.x == 0 && q.y == 0 && q.z == 0) continue;
+            check_normalize(n, q);
+        }
+    }
+}
+
+static void test_q30_rotate(void **state)
+{
+    int k;
+    qo_vec3_q30 r;
+    (void)state;
+    xrng.s = 13;
+    for (k = 0; k < 20000; k++) {
+        qo_quat_q30 q;
+        qo_vec3_q30 v;
+        qo_vec3_f32 vf;
+        dq dqq, p, out;
+        double e, ex, ey, ez, vn;
+        assert_int_equal(qo_quat_normalize_q30(fx_from(ref_rng_quat(&xrng)), &q), QO_OK);
+        vf.x = (float)ref_rng_range(&xrng, -1.0, 1.0); vf.y = (float)ref_rng_range(&xrng, -1.0, 1.0); vf.z = (float)ref_rng_range(&xrng, -1.0, 1.0);
+        vn = sqrt((double)vf.x * vf.x + (double)vf.y * vf.y + (double)vf.z * vf.z);
+        if (vn > 1.0) { vf.x = (float)(vf.x / vn); vf.y = (float)(vf.y / vn); vf.z = (float)(vf.z / vn); }
+        v = qo_vec3_q30_from_f32(vf);
+        /* Reference: the sandwich q (0, v) q* in double with the exact fixed inputs. */
+        dqq = ref_quat_from_q30(q);
+        p.w = 0; p.x = v.x / TWO30; p.y = v.y / TWO30; p.z = v.z / TWO30;
+        out = dq_mul(dq_mul(dqq, p), (dq){ dqq.w, -dqq.x, -dqq.y, -dqq.z });
+        r = qo_quat_rotate_q30(q, v);
+        ex = fabs(r.x - out.x * TWO30); ey = fabs(r.y - out.y * TWO30); ez = fabs(r.z - out.z * TWO30);
+        e = ex > ey ? ex : ey; if (ez > e) e = ez;
+        /* 2 LSB of rounding plus |q|^2 - 1 (within 2^-29 after normalisation) times |v|. */
+        if (e > 4.0) fail_msg("rotate " XFMT " (%ld %ld %ld): %.3f LSB", XARG(q), (long)v.x, (long)v.y, (long)v.z, e);
+    }
+    /* Identity leaves v alone exactly; saturation for absurd inputs stays defined. */
+    r = qo_quat_rotate_q30(qo_quat_identity_q30(), (qo_vec3_q30){ 123, INT32_MIN, INT32_MAX });
+    assert_int_equal(r.x, 123); assert_int_equal(r.y, INT32_MIN); assert_int_equal(r.z, INT32_MAX);
+    r = qo_quat_rotate_q30((qo_quat_q30){ INT32_MIN, INT32_MIN, INT32_MIN, INT32_MIN },
+                           (qo_vec3_q30){ INT32_MIN, INT32_MAX, INT32_MIN });
+    /* (The call above must merely be free of overflow UB: UBSan aborts the test otherwise.)
+     * The zero quaternion leaves v unchanged (t = 0). */
+    r = qo_quat_rotate_q30((qo_quat_q30){ 0, 0, 0, 0 }, (qo_vec3_q30){ 5, -6, 7 });
+    assert_int_equal(r.x, 5); assert_int_equal(r.y, -6); assert_int_equal(r.z, 7);
+    /* 90 degrees about z takes x to y. */
+    {
+        qo_quat_q30 qz = { 759250125, 0, 0, 759250125 };   /* (cos 45, 0, 0, sin 45) */
+        r = qo_quat_rotate_q30(qz, (qo_vec3_q30){ QO_Q30_ONE, 0, 0 });
+        assert_true(r.x >= -2 && r.x <= 2 && r.y >= QO_Q30_ONE - 2 && r.y <= QO_Q30_ONE + 2 && r.z == 0);
+    }
+}
+
+static void test_q30_angle_between(void **state)
+{
+    int k;
+    qo_quat_q30 a, na;
+    (void)state;
+    xrng.s = 14;
+    for (k = 0; k < 20000; k++) {
+        dq da = ref_rng_quat(&xrng), db, r;
+        qo_quat_q30 b;
+        double vn, want, e;
+        qo_q28 got;
+        a = fx_from(da);
+        /* Half the pairs close together (small angles), some near antipodal. */
+        if (k % 3 == 0) {
+            dq dd = { 1.0, 1e-5 * ref_rng_range(&xrng, -1.0, 1.0), 1e-5 * ref_rng_range(&xrng, -1.0, 1.0), 1e-5 * ref_rng_range(&xrng, -1.0, 1.0) };
+            db = dq_mul(da, ref_quat_normalize(dd));
+            if (k % 2) { db.w = -db.w; db.x = -db.x; db.y = -db.y; db.z = -db.z; }
+        } else {
+            db = ref_rng_quat(&xrng);
+        }
+        b = fx_from(db);
+        r = dq_mul((dq){ a.w / TWO30, -a.x / TWO30, -a.y / TWO30, -a.z / TWO30 }, ref_quat_from_q30(b));
+        vn = sqrt(r.x * r.x + r.y * r.y + r.z * r.z);
+        want = 2.0 * atan2(vn, fabs(r.w)) * TWO28;
+        got = qo_quat_angle_between_q30(a, b);
+        e = fabs(got - want);
+        if (e > 2.0 || got < 0 || got > QO_Q28_PI) fail_msg("angle_between " XFMT " " XFMT " = %ld: %.3f LSB", XARG(a), XARG(b), (long)got, e);
+    }
+    a = fx_from(ref_rng_quat(&xrng));
+    assert_int_equal(qo_quat_angle_between_q30(a, a), 0);
+    na.w = -a.w; na.x = -a.x; na.y = -a.y; na.z = -a.z;
+    assert_int_equal(qo_quat_angle_between_q30(a, na), 0);
+    /* Exactly pi: identity vs 180 degrees about x. */
+    assert_true(qo_quat_angle_between_q30(qo_quat_identity_q30(), (qo_quat_q30){ 0, QO_Q30_ONE, 0, 0 }) >= QO_Q28_PI - 2);
+}
+
+static void test_q30_exp_log(void **state)
+{
+    int k;
+    qo_quat_q30 r;
+    qo_vec3_q28 v;
+    (void)state;
+    /* Edges. */
+    assert_int_equal(qo_quat_exp_q30((qo_vec3_q28){ 0, 0, 0 }, &r), QO_OK);
+    assert_int_equal(r.w, QO_Q30_ONE); assert_int_equal(r.x, 0);
+    assert_int_equal(qo_quat_exp_q30((qo_vec3_q28){ 4 * QO_Q28_ONE, 0, 0 }, &r), QO_E_RANGE);
+    assert_int_equal(r.w, QO_Q30_ONE);
+    assert_int_equal(qo_quat_exp_q30((qo_vec3_q28){ 0, INT32_MIN, 0 }, &r), QO_E_RANGE);
+    assert_int_equal(qo_quat_exp_q30((qo_vec3_q28){ 0, 0, 0 }, NULL), QO_E_NULL);
+    assert_int_equal(qo_quat_log_q30((qo_quat_q30){ 0, 0, 0, 0 }, &v), QO_E_DEGENERATE);
+    assert_int_equal(v.x, 0); assert_int_equal(v.y, 0); assert_int_equal(v.z, 0);
+    assert_int_equal(qo_quat_log_q30((qo_quat_q30){ -QO_Q30_ONE, 0, 0, 0 }, &v), QO_OK);
+    assert_int_equal(v.x, QO_Q28_PI); assert_int_equal(v.y, 0);
+    assert_int_equal(qo_quat_log_q30((qo_quat_q30){ 5, 0, 0, 0 }, &v), QO_OK);
+    assert_int_equal(v.x, 0);
+    assert_int_equal(qo_quat_log_q30(qo_quat_identity_q30(), NULL), QO_E_NULL);
+    /* A tiny rotation: log (1, e) = (e) to the LSB. */
+    assert_int_equal(qo_quat_log_q30((qo_quat_q30){ QO_Q30_ONE, 64, 0, 0 }, &v), QO_OK);
+    assert_int_equal(v.x, 16);
+    xrng.s = 15;
+    for (k = 0; k < 20000; k++) {
+        double vx = 3.9 * ref_rng_range(&xrng, -1.0, 1.0) / (1 + (double)(k % 4) * 100), vy = 3.9 * ref_rng_range(&xrng, -1.0, 1.0), vz = 3.9 * ref_rng_range(&xrng, -1.0, 1.0);
+        qo_vec3_f32 f;
+        double n, s, e;
+        dq want, lq;
+        qo_quat_q30 q;
+        if (k % 2) { vy /= 1e4; vz /= 1e5; }
+        f.x = (float)vx; f.y = (float)vy; f.z = (float)vz;
+        v = qo_vec3_q28_from_f32(f);
+        vx = v.x / TWO28; vy = v.y / TWO28; vz = v.z / TWO28;
+        n = sqrt(vx * vx + vy * vy + vz * vz);
+        s = n > 0 ? sin(n) / n : 1.0;
+        want.w = cos(n); want.x = s * vx; want.y = s * vy; want.z = s * vz;
+        assert_int_equal(qo_quat_exp_q30(v, &r), QO_OK);
+        e = ref_quat_err_lsb_q30(r, want);
+        if (e > 2.0) fail_msg("exp(%ld %ld %ld) = " XFMT ": %.3f LSB", (long)v.x, (long)v.y, (long)v.z, XARG(r), e);
+        /* log of a random (non-canonical too) quaternion. */
+        q = fx_from(ref_rng_quat(&xrng));
+        lq = ref_quat_from_q30(q);
+        n = sqrt(lq.x * lq.x + lq.y * lq.y + lq.z * lq.z);
+        s = atan2(n, lq.w) / n;
+        assert_int_equal(qo_quat_log_q30(q, &v), QO_OK);
+        e = fabs(v.x - s * lq.x * TWO28);
+        if (fabs(v.y - s * lq.y * TWO28) > e) e = fabs(v.y - s * lq.y * TWO28);
+        if (fabs(v.z - s * lq.z * TWO28) > e) e = fabs(v.z - s * lq.z * TWO28);
+        if (e > 1.5) fail_msg("log " XFMT " = (%ld %ld %ld): %.3f LSB", XARG(q), (long)v.x, (long)v.y, (long)v.z, e);
+    }
+}
+
+static void test_q30_integrate(void **state)
+{
+    int k;
+    qo_quat_q30 r;
+    (void)state;
+    assert_int_equal(qo_quat_integrate_q30((qo_quat_q30){ 0, 0, 0, 0 }, (qo_vec3_q28){ 1, 2, 3 }, &r), QO_E_DEGENERATE);
+    assert_int_equal(r.w, QO_Q30_ONE); assert_int_equal(r.x, 0);
+    assert_int_equal(qo_quat_integrate_q30(qo_quat_identity_q30(), (qo_vec3_q28){ 1, 2, 3 }, NULL), QO_E_NULL);
+    /* Zero increment: q normalised. */
+    assert_int_equal(qo_quat_integrate_q30((qo_quat_q30){ 2 * 3, 0, 0, 0 }, (qo_vec3_q28){ 0, 0, 0 }, &r), QO_OK);
+    assert_int_equal(r.w, QO_Q30_ONE);
+    xrng.s = 16;
+    for (k = 0; k < 20000; k++) {
+        qo_quat_q30 q = fx_from(ref_rng_quat(&xrng));
+        qo_vec3_f32 f;
+        qo_vec3_q28 d;
+        dq dd, want;
+        double n, s, scale = k % 2 ? 1e-4 : 3.0;
+        f.x = (float)(scale * ref_rng_range(&xrng, -1.0, 1.0)); f.y = (float)(scale * ref_rng_range(&xrng, -1.0, 1.0)); f.z = (float)(scale * ref_rng_range(&xrng, -1.0, 1.0));
+        d = qo_vec3_q28_from_f32(f);
+        n = sqrt((double)d.x * d.x + (double)d.y * d.y + (double)d.z * d.z) / TWO28;
+        s = n > 0 ? sin(n / 2) / n : 0.5;
+        dd.w = cos(n / 2); dd.x = s * d.x / TWO28; dd.y = s * d.y / TWO28; dd.z = s * d.z / TWO28;
+        want = ref_quat_normalize(dq_mul(ref_quat_normalize(ref_quat_from_q30(q)), dd));
+        assert_int_equal(qo_quat_integrate_q30(q, d, &r), QO_OK);
+        if (ref_quat_err_lsb_q30(r, want) > 4.0) fail_msg("integrate " XFMT " by (%ld %ld %ld): %.3f LSB", XARG(q), (long)d.x, (long)d.y, (long)d.z, ref_quat_err_lsb_q30(r, want));
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_identity_conj_dot),
-        cmocka_unit_test(test_mul_vs_double),
-        cmocka_unit_test(test_rotate_vs_double),
-        cmocka_unit_test(test_norm_range),
-        cmocka_unit_test(test_normalize),
-        cmocka_unit_test(test_inverse),
-        cmocka_unit_test(test_canonical),
-        cmocka_unit_test(test_angle_between),
-        cmocka_unit_test(test_exp_vs_double),
-        cmocka_unit_test(test_log_vs_double),
-        cmocka_unit_test(test_exp_log_round_trip),
-        cmocka_unit_test(test_integrate),
-        cmocka_unit_test(test_is_finite),
-        cmocka_unit_test(test_lecture_examples),
-        cmocka_unit_test(test_simd_same_bits_as_scalar),
+        BOTH(test_exp_log),
+        BOTH(test_mul_conj_normalize),
+        BOTH(test_canonical_angle_integrate),
+        BOTH(test_rotate),
+        cmocka_unit_test(test_f32_identity_conj_dot),
+        cmocka_unit_test(test_f32_mul_vs_double),
+        cmocka_unit_test(test_f32_rotate_vs_double),
+        cmocka_unit_test(test_f32_norm_range),
+        cmocka_unit_test(test_f32_normalize),
+        cmocka_unit_test(test_f32_inverse),
+        cmocka_unit_test(test_f32_canonical),
+        cmocka_unit_test(test_f32_angle_between),
+        cmocka_unit_test(test_f32_exp_vs_double),
+        cmocka_unit_test(test_f32_log_vs_double),
+        cmocka_unit_test(test_f32_exp_log_round_trip),
+        cmocka_unit_test(test_f32_integrate),
+        cmocka_unit_test(test_f32_is_finite),
+        cmocka_unit_test(test_f32_lecture_examples),
+        cmocka_unit_test(test_f32_simd_same_bits_as_scalar),
+        cmocka_unit_test(test_q30_identity_conj_inverse_canonical),
+        cmocka_unit_test(test_q30_mul_dot_norm),
+        cmocka_unit_test(test_q30_normalize),
+        cmocka_unit_test(test_q30_rotate),
+        cmocka_unit_test(test_q30_angle_between),
+        cmocka_unit_test(test_q30_exp_log),
+        cmocka_unit_test(test_q30_integrate),
     };
     return cmocka_run_group_tests_name("quat", tests, NULL, NULL);
 }
