@@ -39,6 +39,9 @@
     }                                                                                         \
     static dq P##_mul(dq a, dq b) { return P##_qb(qo_quat_mul_##SFX(P##_q(a), P##_q(b))); }   \
     static dq P##_conj(dq q) { return P##_qb(qo_quat_conj_##SFX(P##_q(q))); }                 \
+    static dq P##_identity(void) { return P##_qb(qo_quat_identity_##SFX()); }                 \
+    static double P##_dot(dq a, dq b) { return P##_db(qo_quat_dot_##SFX(P##_q(a), P##_q(b))); } \
+    static double P##_norm(dq q) { return P##_db(qo_quat_norm_##SFX(P##_q(q))); }            \
     static ref_vec3 P##_rotate(dq q, ref_vec3 v)                                              \
     {                                                                                         \
         return P##_vb(qo_quat_rotate_##SFX(P##_q(q), P##_v(v)));                              \
@@ -64,7 +67,8 @@
     }
 
 #define QUAT_FIELDS(P)                                                                        \
-    .exp = P##_exp, .log = P##_log, .mul = P##_mul, .conj = P##_conj, .rotate = P##_rotate,   \
+    .exp = P##_exp, .log = P##_log, .mul = P##_mul, .conj = P##_conj,                  \
+    .identity = P##_identity, .dot = P##_dot, .norm = P##_norm, .rotate = P##_rotate,   \
     .normalize = P##_normalize, .canonical = P##_canonical,                                   \
     .angle_between = P##_angle_between, .integrate = P##_integrate
 

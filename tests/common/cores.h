@@ -17,7 +17,7 @@
  *   CORE_F32, CORE_Q30           the two tables (tests/common/cores.c)
  *   ST(c, st_f32, st_q30)        the status a body expects where the cores' documents differ
  *   BOTH(fn)                     two cmocka prestate entries: fn on CORE_F32, then CORE_Q30
- *   ID, ZERO_Q, dq_is            identity, zero, exact equality of reference quaternions
+ *   ID, ZERO_Q, dq_is, q_dist    identity, zero, exact equality, largest component difference
  *   v_make, v_norm, v_dist, v_in, v_rand      vectors (v_in rounds as the core receives)
  *   m_in, m_dist, m_orth_err, m_rand_rot      matrices
  *   clampd, print_m, QFMT, QARG  a clamp, failure printing
@@ -63,6 +63,9 @@ typedef struct core {
     qo_status (*log)(dq q, ref_vec3 *out);
     dq (*mul)(dq a, dq b);
     dq (*conj)(dq q);
+    dq (*identity)(void);
+    double (*dot)(dq a, dq b);
+    double (*norm)(dq q);
     ref_vec3 (*rotate)(dq q, ref_vec3 v);
     qo_status (*normalize)(dq q, dq *out);
     dq (*canonical)(dq q);
@@ -101,6 +104,11 @@ static const dq ID = { 1, 0, 0, 0 };
 static const dq ZERO_Q = { 0, 0, 0, 0 };
 
 static inline int dq_is(dq a, dq b) { return a.w == b.w && a.x == b.x && a.y == b.y && a.z == b.z; }
+/* largest component difference */
+static inline double q_dist(dq a, dq b)
+{
+    return fmax(fmax(fabs(a.w - b.w), fabs(a.x - b.x)), fmax(fabs(a.y - b.y), fabs(a.z - b.z)));
+}
 static inline double v_norm(ref_vec3 v) { return sqrt(v.x * v.x + v.y * v.y + v.z * v.z); }
 static inline double v_dist(ref_vec3 a, ref_vec3 b)
 {

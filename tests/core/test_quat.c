@@ -29,6 +29,7 @@
 #include "qorient/quat_fx.h"
 
 #define N_RANDOM 1000
+#define N_LONG 20000
 
 /* ==== one body, both cores (common/cores.h) ==================================== */
 
@@ -77,30 +78,83 @@ static void test_exp_log(void **state)
 }
 
 
-static void test_mul_conj_normalize(void **state)
+/* mul, conj, identity, dot and norm: one rounding per result against the double algebra of the
+ * ROUNDED operands; non-unit operands over each core's range (float32: |q| from 1e-3 to 1e3;
+ * Q1.30: up to 1.4, so that products stay below 2) */
+static void test_mul_conj_dot(void **state)
 {
     const core *c = *state;
+    const double hi = c->fixed ? log10(1.4) : 3.0;
+    /* Q1.30: half an LSB (1e-14 for the double reference's own rounding of 62-bit products) */
+    const double half_lsb = 0.5 / Q30 + 1e-14;
     int n;
     dq o;
     rng_seed(104);
-    for (n = 0; n < N_RANDOM; n++) {
-        dq a = c->q_in(rand_unit()), b = c->q_in(rand_unit());
-        dq s = c->q_in(dq_scale(rand_unit(), pow(10.0, rng_range(-6, 0.2))));
-        dq want = dq_mul(a, b);
+    for (n = 0; n < N_LONG; n++) {
+        dq a = c->q_in(dq_scale(rand_unit(), pow(10.0, rng_range(-3.0, hi))));
+        dq b = c->q_in(dq_scale(rand_unit(), pow(10.0, rng_range(-3.0, hi))));
+        dq u = c->q_in(rand_unit()), v = c->q_in(rand_unit()), w = c->q_in(rand_unit());
+        double mag = dq_norm(a) * dq_norm(b);
+        dq want = dq_mul(a, b), l, r;
         o = c->mul(a, b);
-        if (dist4(o, want) > 2 * c->tol_abs)
-            fail_msg("%s mul case %d: a " QFMT " b " QFMT " error %.3g", c->name, n, QARG(a),
-                     QARG(b), dist4(o, want));
+        if (q_dist(o, want) > (c->fixed ? half_lsb : 5e-7 * mag))
+            fail_msg("%s mul case %d: a " QFMT " b " QFMT " error %.3g (|a||b| = %.3g)", c->name,
+                     n, QARG(a), QARG(b), q_dist(o, want), mag);
+        /* norms multiply: the product's rounding plus the norm's */
+        if (fabs(c->norm(o) - mag) > (c->fixed ? 2 / Q30 : 1e-6 * mag))
+            fail_msg("%s mul case %d: |a*b| %.12g vs |a||b| %.12g", c->name, n, c->norm(o), mag);
+        if (fabs(c->dot(a, b) - dq_dot(a, b)) > (c->fixed ? half_lsb : 1e-6 * mag))
+            fail_msg("%s dot case %d: a " QFMT " b " QFMT " got %.12g want %.12g", c->name, n,
+                     QARG(a), QARG(b), c->dot(a, b), dq_dot(a, b));
+        if (fabs(c->norm(a) - dq_norm(a)) > (c->fixed ? half_lsb : 1e-6 * dq_norm(a)))
+            fail_msg("%s norm case %d: q " QFMT " got %.12g want %.12g", c->name, n, QARG(a),
+                     c->norm(a), dq_norm(a));
         if (!dq_is(c->conj(a), dq_conj(a)))
             fail_msg("%s conj case %d: a " QFMT, c->name, n, QARG(a));
-        want = dq_unit(s);
-        if (c->normalize(s, &o) != QO_OK || dist4(o, want) > 2 * c->tol_abs)
-            fail_msg("%s normalize case %d: q " QFMT " got " QFMT, c->name, n, QARG(s), QARG(o));
+        /* unit operands: the product, associativity, identity neutral (exactly), u conj(u) = 1 */
+        o = c->mul(u, v);
+        if (dist4(o, dq_mul(u, v)) > 2 * c->tol_abs)
+            fail_msg("%s mul (unit) case %d: error %.3g", c->name, n, dist4(o, dq_mul(u, v)));
+        l = c->mul(o, w);
+        r = c->mul(u, c->mul(v, w));
+        if (q_dist(l, r) > c->tol_abs)
+            fail_msg("%s mul associativity case %d: error %.3g", c->name, n, q_dist(l, r));
+        if (!dq_is(c->mul(c->identity(), u), u))
+            fail_msg("%s identity * q != q in case %d: q " QFMT, c->name, n, QARG(u));
+        o = c->mul(u, c->conj(u));
+        if (fabs(o.w - 1) > c->tol_abs || fmax(fabs(o.x), fmax(fabs(o.y), fabs(o.z))) > c->tol_abs / 10)
+            fail_msg("%s q * conj(q) case %d: " QFMT, c->name, n, QARG(o));
+    }
+    assert_true(dq_is(c->identity(), ID));
+    /* Hamilton's rules, exactly: i j = k, j k = i, k i = j, i i = -1 */
+    {
+        const dq i = { 0, 1, 0, 0 }, j = { 0, 0, 1, 0 }, k = { 0, 0, 0, 1 };
+        assert_true(dq_is(c->mul(i, j), k));
+        assert_true(dq_is(c->mul(j, k), i));
+        assert_true(dq_is(c->mul(k, i), j));
+        assert_true(dq_is(c->mul(i, i), dq_neg(ID)));
     }
     /* identity is neutral; q (-q) is the identity rotation with w = -1 */
     o = c->q_in(rand_unit());
     assert_true(dist4(c->mul(ID, o), o) <= c->tol_abs);
     assert_true(rot_err(c->mul(o, dq_neg(dq_conj(o))), ID) <= 4 * c->tol_rot);
+    /* a product beyond the format saturates in fixed point (float: exact, 4) */
+    o.w = o.x = o.y = o.z = c->u_in(1.0);
+    o = c->mul(o, dq_conj(o));
+    assert_true(fabs(o.w - fmin(4.0, c->u_max)) <= c->tol_abs);
+}
+
+static void test_normalize(void **state)
+{
+    const core *c = *state;
+    int n;
+    dq o;
+    rng_seed(113);
+    for (n = 0; n < N_RANDOM; n++) {
+        dq s = c->q_in(dq_scale(rand_unit(), pow(10.0, rng_range(-6, 0.2))));
+        if (c->normalize(s, &o) != QO_OK || dist4(o, dq_unit(s)) > 2 * c->tol_abs)
+            fail_msg("%s normalize case %d: q " QFMT " got " QFMT, c->name, n, QARG(s), QARG(o));
+    }
     assert_int_equal(c->normalize(ZERO_Q, &o), QO_E_DEGENERATE);
     assert_true(dq_is(o, ID));
     /* out of range: Inf (float32) / every component saturated (fixed: normalises) */
@@ -110,12 +164,7 @@ static void test_mul_conj_normalize(void **state)
         dq half = { 0.5, 0.5, 0.5, 0.5 };
         assert_true(dist4(o, half) <= 2 * c->tol_abs);
     }
-    /* a product beyond the format saturates in fixed point (float: exact, 4) */
-    o.w = o.x = o.y = o.z = c->u_in(1.0);
-    o = c->mul(o, dq_conj(o));
-    assert_true(fabs(o.w - fmin(4.0, c->u_max)) <= c->tol_abs);
 }
-
 
 static void test_canonical_angle_integrate(void **state)
 {
@@ -248,79 +297,6 @@ static ref_quat rand_q_scaled(ref_rng *rng)
 }
 
 /* ---- algebra ---- */
-
-static void test_f32_identity_conj_dot(void **state)
-{
-    ref_rng rng = { 1 };
-    int n;
-    (void)state;
-    assert_true(is_identity_q(qo_quat_identity_f32()));
-    for (n = 0; n < N_F32; n++) {
-        qo_quat_f32 a = ref_quat_to_f32(rand_q_scaled(&rng)), b = ref_quat_to_f32(rand_q_scaled(&rng));
-        qo_quat_f32 c = qo_quat_conj_f32(a);
-        double d = (double)a.w * b.w + (double)a.x * b.x + (double)a.y * b.y + (double)a.z * b.z;
-        double mag = ref_quat_norm(ref_quat_from_f32(a)) * ref_quat_norm(ref_quat_from_f32(b));
-        if (c.w != a.w || c.x != -a.x || c.y != -a.y || c.z != -a.z)
-            fail_msg("conj case %d wrong%s", n, "");
-        if (fabs(qo_quat_dot_f32(a, b) - d) > 1e-6 * mag) {
-            print_q("a", a);
-            print_q("b", b);
-            fail_msg("dot case %d: %.9g vs %.9g", n, qo_quat_dot_f32(a, b), d);
-        }
-    }
-}
-
-static void test_f32_mul_vs_double(void **state)
-{
-    ref_rng rng = { 2 };
-    int n;
-    (void)state;
-    for (n = 0; n < N_F32; n++) {
-        ref_quat ra = rand_q_scaled(&rng), rb = rand_q_scaled(&rng), rc = ref_rng_quat(&rng);
-        qo_quat_f32 a = ref_quat_to_f32(ra), b = ref_quat_to_f32(rb), c = ref_quat_to_f32(rc);
-        ref_quat ab = ref_quat_mul(ref_quat_from_f32(a), ref_quat_from_f32(b));
-        qo_quat_f32 p = qo_quat_mul_f32(a, b);
-        double mag = ref_quat_norm(ref_quat_from_f32(a)) * ref_quat_norm(ref_quat_from_f32(b));
-        qo_quat_f32 l, r;
-        if (qdiff(p, ab) > 5e-7 * mag) {
-            print_q("a", a);
-            print_q("b", b);
-            print_q("a*b", p);
-            fail_msg("mul case %d: error %.3g (|a||b| = %.3g)", n, qdiff(p, ab), mag);
-        }
-        /* Norms multiply. */
-        if (fabs(qo_quat_norm_f32(p) - mag) > 1e-6 * mag)
-            fail_msg("mul case %d: |a*b| %.9g vs |a||b| %.9g", n, qo_quat_norm_f32(p), mag);
-        /* Associativity (unit operands so the tolerance is absolute). */
-        a = ref_quat_to_f32(ref_rng_quat(&rng));
-        b = ref_quat_to_f32(ref_rng_quat(&rng));
-        l = qo_quat_mul_f32(qo_quat_mul_f32(a, b), c);
-        r = qo_quat_mul_f32(a, qo_quat_mul_f32(b, c));
-        if (qdiff(l, ref_quat_from_f32(r)) > 1e-6)
-            fail_msg("mul associativity case %d: error %.3g", n, qdiff(l, ref_quat_from_f32(r)));
-        /* Identity is neutral (exactly), q * conj(q) = |q|^2 (vector part ~0). */
-        p = qo_quat_mul_f32(qo_quat_identity_f32(), a);
-        if (memcmp(&p, &a, sizeof p) != 0 && !(p.w == a.w && p.x == a.x && p.y == a.y && p.z == a.z))
-            fail_msg("identity * q != q in case %d%s", n, "");
-        p = qo_quat_mul_f32(a, qo_quat_conj_f32(a));
-        if (fabs(p.w - 1.0) > 1e-6 || fabs(p.x) > 1e-7 || fabs(p.y) > 1e-7 || fabs(p.z) > 1e-7) {
-            print_q("q*conj(q)", p);
-            fail_msg("q * conj(q) case %d is not (1,0,0,0)%s", n, "");
-        }
-    }
-    /* Hamilton's rules: i j = k, j k = i, k i = j, i i = -1. */
-    {
-        qo_quat_f32 i = qf(0, 1, 0, 0), j = qf(0, 0, 1, 0), k = qf(0, 0, 0, 1), p;
-        p = qo_quat_mul_f32(i, j);
-        assert_true(p.w == 0.0f && p.x == 0.0f && p.y == 0.0f && p.z == 1.0f);
-        p = qo_quat_mul_f32(j, k);
-        assert_true(p.w == 0.0f && p.x == 1.0f && p.y == 0.0f && p.z == 0.0f);
-        p = qo_quat_mul_f32(k, i);
-        assert_true(p.w == 0.0f && p.x == 0.0f && p.y == 1.0f && p.z == 0.0f);
-        p = qo_quat_mul_f32(i, i);
-        assert_true(p.w == -1.0f && p.x == 0.0f && p.y == 0.0f && p.z == 0.0f);
-    }
-}
 
 static void test_f32_rotate_vs_double(void **state)
 {
@@ -940,33 +916,13 @@ static void test_q30_identity_conj_inverse_canonical(void **state)
     }
 }
 
-static void test_q30_mul_dot_norm(void **state)
+/* mul, dot and norm beyond the format: saturated, never wrapped; the checked mul says so
+ * (the rounding of each to half an LSB is test_mul_conj_dot, both cores) */
+static void test_q30_mul_saturation(void **state)
 {
-    int k;
     qo_quat_q30 r;
     qo_quat_q30 big = { INT32_MIN, INT32_MIN, 0, 0 };
     (void)state;
-    xrng.s = 11;
-    for (k = 0; k < 20000; k++) {
-        qo_quat_q30 a = fx_from(ref_rng_quat(&xrng)), b = fx_from(ref_rng_quat(&xrng));
-        long double w = (long double)a.w * b.w - (long double)a.x * b.x - (long double)a.y * b.y - (long double)a.z * b.z;
-        long double x = (long double)a.w * b.x + (long double)a.x * b.w + (long double)a.y * b.z - (long double)a.z * b.y;
-        long double y = (long double)a.w * b.y - (long double)a.x * b.z + (long double)a.y * b.w + (long double)a.z * b.x;
-        long double z = (long double)a.w * b.z + (long double)a.x * b.y - (long double)a.y * b.x + (long double)a.z * b.w;
-        long double d = (long double)a.w * b.w + (long double)a.x * b.x + (long double)a.y * b.y + (long double)a.z * b.z;
-        long double n = sqrtl((long double)a.w * a.w + (long double)a.x * a.x + (long double)a.y * a.y + (long double)a.z * a.z);
-        double e;
-        r = qo_quat_mul_q30(a, b);
-        e = (double)fabsl(r.w - w / TWO30);
-        if ((double)fabsl(r.x - x / TWO30) > e) e = (double)fabsl(r.x - x / TWO30);
-        if ((double)fabsl(r.y - y / TWO30) > e) e = (double)fabsl(r.y - y / TWO30);
-        if ((double)fabsl(r.z - z / TWO30) > e) e = (double)fabsl(r.z - z / TWO30);
-        if (e > 0.5 + 1e-6) fail_msg("mul " XFMT " * " XFMT ": %.3f LSB", XARG(a), XARG(b), e);
-        e = (double)fabsl(qo_quat_dot_q30(a, b) - d / TWO30);
-        if (e > 0.5 + 1e-6) fail_msg("dot " XFMT " . " XFMT ": %.3f LSB", XARG(a), XARG(b), e);
-        e = (double)fabsl(qo_quat_norm_q30(a) - n);
-        if (e > 0.5 + 1e-6) fail_msg("norm " XFMT ": %.3f LSB", XARG(a), e);
-    }
     /* Saturation: non-unit inputs whose product leaves [-2, 2). */
     assert_int_equal(qo_quat_mul_q30_checked(big, big, &r), QO_E_OVERFLOW);
     assert_int_equal(r.x, INT32_MAX);   /* 2 * (-2)(-2) = 8 */
@@ -1225,11 +1181,10 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         BOTH(test_exp_log),
-        BOTH(test_mul_conj_normalize),
+        BOTH(test_mul_conj_dot),
+        BOTH(test_normalize),
         BOTH(test_canonical_angle_integrate),
         BOTH(test_rotate),
-        cmocka_unit_test(test_f32_identity_conj_dot),
-        cmocka_unit_test(test_f32_mul_vs_double),
         cmocka_unit_test(test_f32_rotate_vs_double),
         cmocka_unit_test(test_f32_norm_range),
         cmocka_unit_test(test_f32_normalize),
@@ -1244,7 +1199,7 @@ int main(void)
         cmocka_unit_test(test_f32_lecture_examples),
         cmocka_unit_test(test_f32_simd_same_bits_as_scalar),
         cmocka_unit_test(test_q30_identity_conj_inverse_canonical),
-        cmocka_unit_test(test_q30_mul_dot_norm),
+        cmocka_unit_test(test_q30_mul_saturation),
         cmocka_unit_test(test_q30_normalize),
         cmocka_unit_test(test_q30_rotate),
         cmocka_unit_test(test_q30_angle_between),
