@@ -139,6 +139,11 @@
         *out = P##_mb(&o);                                                                    \
         return st;                                                                            \
     }                                                                                         \
+    static ref_vec3 P##_mat3_mul_vec3(const ref_mat3 *m, ref_vec3 v)                          \
+    {                                                                                         \
+        MT cm = P##_m(m);                                                                     \
+        return P##_vb(qo_mat3_mul_vec3_##SFX(&cm, P##_v(v)));                                 \
+    }                                                                                         \
     static ref_mat3 P##_mat3_mul(const ref_mat3 *a, const ref_mat3 *b)                        \
     {                                                                                         \
         MT ca = P##_m(a), cb = P##_m(b), o = qo_mat3_mul_##SFX(&ca, &cb);                     \
@@ -166,7 +171,7 @@
     .from_rotvec = P##_from_rotvec, .to_rotvec = P##_to_rotvec, .to_mat3 = P##_to_mat3,       \
     .from_mat3 = P##_from_mat3, .from_mat3_trusted = P##_from_mat3_trusted,                   \
     .from_mat3_ortho = P##_from_mat3_ortho, .orthonormalize = P##_orthonormalize,             \
-    .mat3_mul = P##_mat3_mul, .mat3_transpose = P##_mat3_transpose,                           \
+    .mat3_mul_vec3 = P##_mat3_mul_vec3, .mat3_mul = P##_mat3_mul, .mat3_transpose = P##_mat3_transpose,                           \
     .mat3_identity = P##_mat3_identity, .mat3_det = P##_mat3_det
 
 /* float32: a double rounded to float, the exact value back */

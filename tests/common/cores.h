@@ -82,6 +82,7 @@ typedef struct core {
     qo_status (*from_mat3_trusted)(const ref_mat3 *m, dq *out);
     qo_status (*from_mat3_ortho)(const ref_mat3 *m, dq *out);
     qo_status (*orthonormalize)(const ref_mat3 *m, ref_mat3 *out);
+    ref_vec3 (*mat3_mul_vec3)(const ref_mat3 *m, ref_vec3 v);   /* v: unit range */
     ref_mat3 (*mat3_mul)(const ref_mat3 *a, const ref_mat3 *b);
     ref_mat3 (*mat3_transpose)(const ref_mat3 *m);
     ref_mat3 (*mat3_identity)(void);
