@@ -361,17 +361,24 @@ static void test_mat3_ops(void **state)
 }
 
 
-/* U diag(s1, s2, s3) V^T with random rotations U, V, in double */
-static ref_mat3 svd_m(double s1, double s2, double s3)
+/* U diag(s1, s2, s3) V^T with U, V the rotations of u, v, in double */
+static ref_mat3 svd_of(dq u, dq v, double s1, double s2, double s3)
 {
-    ref_mat3 u = ref_quat_to_mat3(rand_unit()), v = ref_quat_to_mat3(rand_unit());
+    ref_mat3 mu = ref_quat_to_mat3(u), mv = ref_quat_to_mat3(v);
     ref_mat3 d = { { { 0 } } }, vt, t;
     int i, j;
     d.m[0][0] = s1; d.m[1][1] = s2; d.m[2][2] = s3;
     for (i = 0; i < 3; i++)
-        for (j = 0; j < 3; j++) vt.m[i][j] = v.m[j][i];
-    t = ref_mat3_mul(&u, &d);
+        for (j = 0; j < 3; j++) vt.m[i][j] = mv.m[j][i];
+    t = ref_mat3_mul(&mu, &d);
     return ref_mat3_mul(&t, &vt);
+}
+
+/* the same with random U, V */
+static ref_mat3 svd_m(double s1, double s2, double s3)
+{
+    dq u = rand_unit(), v = rand_unit();
+    return svd_of(u, v, s1, s2, s3);
 }
 
 /* m (as the core holds it) orthonormalised: within tol of the double polar factor (float32:
@@ -1015,14 +1022,8 @@ static void check_ortho(const char *name, int n, const qo_mat3_f32 *m)
 /* U diag(s1, s2, s3) V^T with random rotations U, V, rounded to float. */
 static qo_mat3_f32 rand_svd_f32(ref_rng *rng, double s1, double s2, double s3)
 {
-    ref_mat3 u = ref_quat_to_mat3(ref_rng_quat(rng)), v = ref_quat_to_mat3(ref_rng_quat(rng));
-    ref_mat3 d = { { { 0 } } }, vt, t;
-    int i, j;
-    d.m[0][0] = s1; d.m[1][1] = s2; d.m[2][2] = s3;
-    for (i = 0; i < 3; i++)
-        for (j = 0; j < 3; j++) vt.m[i][j] = v.m[j][i];
-    t = ref_mat3_mul(&u, &d);
-    t = ref_mat3_mul(&t, &vt);
+    ref_quat u = ref_rng_quat(rng), v = ref_rng_quat(rng);
+    ref_mat3 t = svd_of(u, v, s1, s2, s3);
     return ref_mat3_to_f32(&t);
 }
 
