@@ -387,6 +387,31 @@ static void test_mat3_ops(void **state)
 }
 
 
+/* quaternion -> matrix / rotation vector / axis-angle -> quaternion: the same rotation
+ * (float32: 1e-6 rad; Q1.30: 16 LSB of Q3.28), q canonical and as the core holds it */
+static void test_round_trips(void **state)
+{
+    const core *c = *state;
+    const double tol = c->fixed ? 16 / Q28 : 1e-6;
+    int n;
+    rng_seed(116);
+    for (n = 0; n < 5000; n++) {
+        dq q = c->q_in(ref_quat_canonical(rand_unit())), back;
+        ref_mat3 m;
+        ref_vec3 v;
+        double an;
+        if (c->to_mat3(q, &m) != QO_OK || c->from_mat3(&m, &back) != QO_OK || rot_err(q, back) > tol)
+            fail_msg("%s mat3 round trip case %d: " QFMT " -> " QFMT, c->name, n, QARG(q), QARG(back));
+        if (c->to_rotvec(q, &v) != QO_OK || c->from_rotvec(v, &back) != QO_OK || rot_err(q, back) > tol)
+            fail_msg("%s rotvec round trip case %d: " QFMT " -> " QFMT, c->name, n, QARG(q),
+                     QARG(back));
+        if (c->to_axis_angle(q, &v, &an) != QO_OK || c->from_axis_angle(v, an, &back) != QO_OK ||
+            rot_err(q, back) > tol)
+            fail_msg("%s axis-angle round trip case %d: " QFMT " -> " QFMT, c->name, n, QARG(q),
+                     QARG(back));
+    }
+}
+
 /* U diag(s1, s2, s3) V^T with U, V the rotations of u, v, in double */
 static ref_mat3 svd_of(dq u, dq v, double s1, double s2, double s3)
 {
@@ -898,26 +923,6 @@ static void test_f32_quat_from_mat3_drifted(void **state)
     }
 }
 
-static void test_f32_mat3_round_trip(void **state)
-{
-    ref_rng rng = { 51 };
-    int n;
-    (void)state;
-    for (n = 0; n < N_F32; n++) {
-        qo_quat_f32 q = ref_quat_to_f32(ref_rng_quat(&rng)), q2;
-        qo_mat3_f32 m;
-        double err;
-        EXPECT_OK(qo_quat_to_mat3_f32(q, &m), n);
-        EXPECT_OK(qo_quat_from_mat3_f32(&m, &q2), n);
-        err = ref_quat_angle_between(ref_quat_from_f32(q), ref_quat_from_f32(q2));
-        if (err > TOL_RAD) {
-            print_q("q", q);
-            print_q("back", q2);
-            fail_msg("quat -> mat3 -> quat case %d: error %.3g rad", n, err);
-        }
-    }
-}
-
 /* Every conversion on the edge table, both signs of q: the rotation survives. */
 static void test_f32_edges_all_conversions(void **state)
 {
@@ -1222,10 +1227,6 @@ static void test_f32_rotvec_edges(void **state)
 /* ==== Q1.30 only: qorient/convert_fx.h ===================================== */
 
 #define TWO30 1073741824.0
-#define TWO28 268435456.0
-
-/* The fixed-seed PRNG of this section (tests/common/ref.c). */
-static ref_rng xrng;
 
 #define XFMT "(%ld %ld %ld %ld)"
 #define XARG(q) (long)(q).w, (long)(q).x, (long)(q).y, (long)(q).z
@@ -1374,31 +1375,6 @@ static void test_q30_from_mat3_edges(void **state)
     assert_int_equal(qo_quat_from_mat3_q30(&bad, &r), QO_E_NOT_ROTATION);
 }
 
-static void test_q30_round_trips(void **state)
-{
-    int k;
-    (void)state;
-    xrng.s = 25;
-    for (k = 0; k < 5000; k++) {
-        qo_quat_q30 q, back;
-        qo_mat3_q30 m;
-        qo_vec3_q28 rv;
-        qo_vec3_q30 ax;
-        qo_q28 an;
-        assert_int_equal(qo_quat_normalize_q30(fx_from(ref_rng_quat(&xrng)), &q), QO_OK);
-        q = qo_quat_canonical_q30(q);
-        assert_int_equal(qo_quat_to_mat3_q30(q, &m), QO_OK);
-        assert_int_equal(qo_quat_from_mat3_q30(&m, &back), QO_OK);
-        if (qo_quat_angle_between_q30(q, back) > 16) fail_msg("mat3 round trip " XFMT " -> " XFMT, XARG(q), XARG(back));
-        assert_int_equal(qo_quat_to_rotvec_q30(q, &rv), QO_OK);
-        assert_int_equal(qo_quat_from_rotvec_q30(rv, &back), QO_OK);
-        if (qo_quat_angle_between_q30(q, back) > 16) fail_msg("rotvec round trip " XFMT " -> " XFMT, XARG(q), XARG(back));
-        assert_int_equal(qo_quat_to_axis_angle_q30(q, &ax, &an), QO_OK);
-        assert_int_equal(qo_quat_from_axis_angle_q30(ax, an, &back), QO_OK);
-        if (qo_quat_angle_between_q30(q, back) > 16) fail_msg("axis-angle round trip " XFMT " -> " XFMT, XARG(q), XARG(back));
-    }
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1407,13 +1383,13 @@ int main(void)
         BOTH(test_mat3_quat),
         BOTH(test_mat3_ops),
         BOTH(test_orthonormalize),
+        BOTH(test_round_trips),
         cmocka_unit_test(test_f32_quat_to_mat3_errors),
         cmocka_unit_test(test_f32_quat_from_mat3_edges),
         cmocka_unit_test(test_f32_quat_from_mat3_trusted),
         cmocka_unit_test(test_f32_quat_from_mat3_non_rotations),
         cmocka_unit_test(test_f32_quat_from_mat3_drifted),
         cmocka_unit_test(test_f32_edges_all_conversions),
-        cmocka_unit_test(test_f32_mat3_round_trip),
         cmocka_unit_test(test_f32_orthonormalize_scaled),
         cmocka_unit_test(test_f32_orthonormalize_rejects),
         cmocka_unit_test(test_f32_axis_angle_from_edges),
@@ -1423,7 +1399,6 @@ int main(void)
         cmocka_unit_test(test_q30_rotvec_edges),
         cmocka_unit_test(test_q30_to_mat3_edges),
         cmocka_unit_test(test_q30_from_mat3_edges),
-        cmocka_unit_test(test_q30_round_trips),
     };
     return cmocka_run_group_tests_name("convert", tests, NULL, NULL);
 }
