@@ -6,7 +6,7 @@
  * Each core provides the same conversions under its prefix P:
  *   P##_q / P##_qb     dq <-> quaternion          P##_a    angle (rad; Q3.28)
  *   P##_v / P##_vb     unit-range vector          P##_ab   angle back
- *   P##_av / P##_avb   angle vector (rad; Q3.28)  P##_db   determinant back
+ *   P##_av / P##_avb   angle vector (rad; Q3.28)  P##_db   unit-range scalar back (det, dot, norm)
  *   P##_m / P##_mb     matrix
  *   P##_integ          integrate by an increment (rad, body frame)
  * Adding a concept: a DEFINE_<CONCEPT>_ADAPTERS macro, a <CONCEPT>_FIELDS(P) list of
@@ -22,7 +22,7 @@
 
 /* ---- quat: exp, log, mul, conj, rotate, normalize, canonical, angle_between, integrate ---- */
 
-#define DEFINE_QUAT_ADAPTERS(P, SFX, QT, VT, AVT)                                     \
+#define DEFINE_QUAT_ADAPTERS(P, SFX, QT, VT, AVT)                                             \
     static qo_status P##_exp(ref_vec3 v, dq *out)                                             \
     {                                                                                         \
         QT o;                                                                                 \
@@ -40,8 +40,11 @@
     static dq P##_mul(dq a, dq b) { return P##_qb(qo_quat_mul_##SFX(P##_q(a), P##_q(b))); }   \
     static dq P##_conj(dq q) { return P##_qb(qo_quat_conj_##SFX(P##_q(q))); }                 \
     static dq P##_identity(void) { return P##_qb(qo_quat_identity_##SFX()); }                 \
-    static double P##_dot(dq a, dq b) { return P##_db(qo_quat_dot_##SFX(P##_q(a), P##_q(b))); } \
-    static double P##_norm(dq q) { return P##_db(qo_quat_norm_##SFX(P##_q(q))); }            \
+    static double P##_dot(dq a, dq b)                                                         \
+    {                                                                                         \
+        return P##_db(qo_quat_dot_##SFX(P##_q(a), P##_q(b)));                                 \
+    }                                                                                         \
+    static double P##_norm(dq q) { return P##_db(qo_quat_norm_##SFX(P##_q(q))); }             \
     static ref_vec3 P##_rotate(dq q, ref_vec3 v)                                              \
     {                                                                                         \
         return P##_vb(qo_quat_rotate_##SFX(P##_q(q), P##_v(v)));                              \
@@ -58,7 +61,7 @@
     {                                                                                         \
         return P##_ab(qo_quat_angle_between_##SFX(P##_q(a), P##_q(b)));                       \
     }                                                                                         \
-    static qo_status P##_integrate(dq q, ref_vec3 dtheta, dq *out)                          \
+    static qo_status P##_integrate(dq q, ref_vec3 dtheta, dq *out)                            \
     {                                                                                         \
         QT o;                                                                                 \
         qo_status st = P##_integ(P##_q(q), P##_av(dtheta), &o);                               \
@@ -67,8 +70,8 @@
     }
 
 #define QUAT_FIELDS(P)                                                                        \
-    .exp = P##_exp, .log = P##_log, .mul = P##_mul, .conj = P##_conj,                  \
-    .identity = P##_identity, .dot = P##_dot, .norm = P##_norm, .rotate = P##_rotate,   \
+    .exp = P##_exp, .log = P##_log, .mul = P##_mul, .conj = P##_conj,                         \
+    .identity = P##_identity, .dot = P##_dot, .norm = P##_norm, .rotate = P##_rotate,         \
     .normalize = P##_normalize, .canonical = P##_canonical,                                   \
     .angle_between = P##_angle_between, .integrate = P##_integrate
 
@@ -171,8 +174,9 @@
     .from_rotvec = P##_from_rotvec, .to_rotvec = P##_to_rotvec, .to_mat3 = P##_to_mat3,       \
     .from_mat3 = P##_from_mat3, .from_mat3_trusted = P##_from_mat3_trusted,                   \
     .from_mat3_ortho = P##_from_mat3_ortho, .orthonormalize = P##_orthonormalize,             \
-    .mat3_mul_vec3 = P##_mat3_mul_vec3, .mat3_mul = P##_mat3_mul, .mat3_transpose = P##_mat3_transpose,                           \
-    .mat3_identity = P##_mat3_identity, .mat3_det = P##_mat3_det
+    .mat3_mul_vec3 = P##_mat3_mul_vec3, .mat3_mul = P##_mat3_mul,                             \
+    .mat3_transpose = P##_mat3_transpose, .mat3_identity = P##_mat3_identity,                 \
+    .mat3_det = P##_mat3_det
 
 /* float32: a double rounded to float, the exact value back */
 static double f_u_in(double x) { return (double)(float)x; }
