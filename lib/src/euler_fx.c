@@ -410,7 +410,7 @@ qo_status qo_quat_to_euler_near_q30(qo_quat_q30 q, qo_euler_seq seq, qo_euler_q2
  * (Tait-Bryan, then eps t3), and the middle angle from |P|^2 and |Q|^2 with one square root of
  * their product. At lock the angle pair of the vanishing pair is noise, and a1 is twice the
  * argument of the other pair (no fit). Each angle carries up to three atan2 roundings plus the
- * halving of the components below: a few LSB of Q3.28 (measured in tests/core/test_euler_fx.c). */
+ * halving of the components below: a few LSB of Q3.28 (measured in tests/core/test_euler.c). */
 
 /* t in (-2 QO_Q28_TWO_PI, 2 QO_Q28_TWO_PI) wrapped into [-QO_Q28_PI, QO_Q28_PI] (one turn). */
 static qo_q28 wrap_turn(int32_t t)

@@ -1,6 +1,21 @@
-/* Keyframe splines, float32: keys interpolated exactly, continuity at every join measured on
- * samples, C2 / Catmull-Rom / quintic / Hermite against double-precision references written
- * here (dense Gaussian elimination, not the code's own formulas), limits, wrap, edges. */
+/* Keyframe splines (qorient/spline.h, qorient/spline_fx.h): a plan is made in float32
+ * (qo_spline_init_f32, the one planner) and sampled by either core, float32
+ * (qo_spline_sample_f32) or Q16.16 (qo_spline_sample_q16 on its qo_spline_export_q16 table).
+ *
+ * One body per behaviour both samplers have (docs/TESTING.md, "One body for both cores"):
+ * each body gets a `core` through cmocka's prestate whose adapters take the plan, a time and
+ * give back doubles; times and positions are rounded as the core receives them (float32, or
+ * Q16.16 rounded to nearest and saturated) and the reference is computed from those rounded
+ * values, each core judged with its own tolerance. The out-of-range time of each core goes
+ * through one field, `big` (Inf in float32, a saturated time in Q16.16).
+ *
+ * Sections: the adapter table; the shared bodies (keys reproduced exactly, closed forms,
+ * outside the keys and at the end, limits); fixed point only (the Q16.16 sampler against the
+ * float32 sampler of the same plan within the bound of spline_fx.h, small-move precision,
+ * ends / wrap / limits against float, conversion and sampling errors); float32 only
+ * (continuity at joins, C2 / Catmull-Rom / Hermite / quintic against double-precision
+ * references written here with dense Gaussian elimination, not the code's own formulas,
+ * wrap, init edges, many joints, re-planning, overflow, NaN). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -9,14 +24,19 @@
 #include <math.h>
 #include <float.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <cmocka.h>
 
 #include "qorient/spline.h"
+#include "qorient/spline_fx.h"
 #include "common/ref.h"
 
-#define MAXK 16
-#define MAXN 6
-#define COEF_CAP 2048
+#define MAXK 12   /* keys of the random plans (2 + trial % 11 at most) */
+#define MAXN 4    /* joints of the random plans */
+/* Coefficient storage of one plan, K + 3N + 6KN floats: the largest plan of the tests that use
+ * it has 10 keys of 4 joints (262). The program also runs on the Cortex-M0 board (microbit,
+ * 16 KB of RAM, stack included), so every buffer is sized to what the tests use. */
+#define COEF_CAP 320
 
 /* ---- deterministic PRNG ---- */
 static uint64_t rng_state;
@@ -200,7 +220,99 @@ static double coef_sum(const qo_spline_f32 *sp, int k, int j)
     return s;
 }
 
-/* ---- tests ---- */
+/* Tolerances of float32 against the double references: rounding budget in units of eps
+ * relative to the key scale P and the shortest segment. */
+static void check_close(const char *what, int trial, int j, double t, double got, double want,
+                        double tol)
+{
+    if (!(fabs(got - want) <= tol))
+        fail_msg("%s trial %d joint %d t=%.9g: got %.9g want %.9g (|diff| %.3g > tol %.3g)", what,
+                 trial, j, t, got, want, fabs(got - want), tol);
+}
+
+static int seg_of(const keys *ks, double t)
+{
+    int i = 0;
+    while (i + 2 < ks->k && t >= ks->t[i + 1]) i++;
+    return i;
+}
+
+
+/* ---- the two samplers behind one interface ---------------------------------------------- */
+
+/* Two plans at once (slot 0 and 1: a limited plan and its free twin). */
+#define SLOTS 2
+#define Q16 65536.0
+/* Q16.16 table words of one plan: 5K + 3N + 7KN, at most 375 here (11 keys, 4 joints) */
+#define X_CAP 384
+static qo_spline_f32 f_plans[SLOTS];
+static qo_spline_q16 x_plans[SLOTS];
+static int32_t x_tables[SLOTS][X_CAP];
+/* the Q16.16 table of the fixed-only bodies (they do not use the adapters' slot 0 meanwhile) */
+static int32_t *const table = x_tables[0];
+/* a second plan's coefficients (limited and free plans; re-planning) */
+static float coef2[COEF_CAP];
+
+typedef struct core {
+    const char *name;
+    int fixed;
+    double lsb;                 /* resolution of a value: 0 (float32) / 2^-16 (Q16.16) */
+    double big;                 /* a time beyond the core's range (Inf / saturated) */
+    double (*in)(double x);     /* a time or a position as the core receives it */
+    qo_status (*use)(int slot, const qo_spline_f32 *sp);   /* the core's copy of a plan */
+    /* samples the plan of a slot at t; NULL outputs are passed through */
+    qo_status (*sample)(int slot, double t, double *p, double *v, double *a, int8_t *cl);
+} core;
+
+#define ST(c, st_f32, st_q16) ((c)->fixed ? (st_q16) : (st_f32))
+#define CORE(state) ((const core *)*(state))
+
+/* The sampler of one core (prefix P), written once: VT its value type, TO_T its time. */
+#define DEFINE_SAMPLER(P, SFX, VT, TO_T, BACK)                                                \
+    static qo_status P##_sample(int slot, double t, double *p, double *v, double *a,          \
+                                int8_t *cl)                                                   \
+    {                                                                                         \
+        VT op[MAXN], ov[MAXN], oa[MAXN];                                                      \
+        size_t j, n = P##_plans[slot].n_joints;                                               \
+        qo_status st = qo_spline_sample_##SFX(&P##_plans[slot], TO_T(t), p ? op : NULL,       \
+                                              v ? ov : NULL, a ? oa : NULL, cl);              \
+        for (j = 0; j < n && j < MAXN; j++) {                                                 \
+            if (p) p[j] = BACK(op[j]);                                                        \
+            if (v) v[j] = BACK(ov[j]);                                                        \
+            if (a) a[j] = BACK(oa[j]);                                                        \
+        }                                                                                     \
+        return st;                                                                            \
+    }
+
+static double f_in(double x) { return (double)(float)x; }
+static float f_t(double t) { return (float)t; }
+static double f_back(float x) { return (double)x; }
+static qo_status f_use(int slot, const qo_spline_f32 *sp)
+{
+    f_plans[slot] = *sp;
+    return QO_OK;
+}
+DEFINE_SAMPLER(f, f32, float, f_t, f_back)
+
+static qo_q16 x_t(double t) { return ref_to_fixed(t, Q16); }
+static double x_in(double x) { return x_t(x) / Q16; }
+static double x_back(qo_q16 x) { return x / Q16; }
+static qo_status x_use(int slot, const qo_spline_f32 *sp)
+{
+    return qo_spline_export_q16(sp, &x_plans[slot], x_tables[slot], X_CAP);
+}
+DEFINE_SAMPLER(x, q16, qo_q16, x_t, x_back)
+
+static const core CORE_F32 = { "float32", 0, 0.0, 1e39, f_in, f_use, f_sample };
+static const core CORE_Q16 = { "q16", 1, 1.0 / Q16, 1e39, x_in, x_use, x_sample };
+
+/* A tolerance: float32's (its own rounding budget) or a number of Q16.16 LSB. */
+static double tol(const core *c, double f32_tol, double lsbs)
+{
+    return c->fixed ? lsbs * c->lsb : f32_tol;
+}
+
+/* ---- both cores ------------------------------------------------------------------------- */
 
 static const qo_spline_profile all_profiles[] = {
     QO_SPLINE_LINEAR, QO_SPLINE_CUBIC_HERMITE, QO_SPLINE_CATMULL_ROM, QO_SPLINE_CUBIC_C2,
@@ -208,17 +320,22 @@ static const qo_spline_profile all_profiles[] = {
 };
 #define NPROF (sizeof all_profiles / sizeof all_profiles[0])
 
-/* Every key is reproduced bit-exactly (t == t_k gives b0 == p_k), for every profile and
- * both end conditions, including the last key. */
+/* Every key is reproduced (the sample at the key time is the key as received: t == t_k gives
+ * b0 == p_k), for every profile and both end conditions, including the last key: bit-exact in
+ * float32, within 1 LSB in Q16.16 (b0 carries f extra bits, rounded once more: the bound of
+ * spline_fx.h at s = 0, 0.5 + 0.5 * 2^-f). */
 static void test_keys_interpolated_exactly(void **state)
 {
+    const core *c = CORE(state);
     size_t pi;
-    int trial, i, j, e;
-    (void)state;
+    int trial, i, j, e, checked = 0, refused = 0;
     rng_state = 101;
     for (trial = 0; trial < 20; trial++) {
         keys ks;
         random_keys(&ks, 3, 2 + trial % 9, 0.05, 2.0, 50.0);
+        /* key times the core holds exactly (Q16.16: multiples of 2^-16 s; float32 as drawn):
+         * a key time moved by rounding moves the sample off the key by |v| 2^-17 */
+        for (i = 0; i < ks.k; i++) ks.t[i] = (float)c->in(ks.t[i]);
         for (pi = 0; pi < NPROF; pi++)
             for (e = 0; e < 2; e++) {
                 qo_spline_settings_f32 set = qo_spline_settings_default;
@@ -227,20 +344,474 @@ static void test_keys_interpolated_exactly(void **state)
                 set.profile = all_profiles[pi];
                 set.end = e ? QO_SPLINE_END_NATURAL : QO_SPLINE_END_CLAMPED;
                 st = plan(&ks, &set, &sp);
-                if (st != QO_OK) fail_msg("%s trial %d: init status %d", prof_name(set.profile),
-                                          trial, (int)st);
+                if (st == QO_OK) st = c->use(0, &sp);
+                /* Q16.16 refuses a plan whose values do not fit (documented): counted */
+                if (c->fixed && st == QO_E_OVERFLOW) {
+                    refused++;
+                    continue;
+                }
+                if (st != QO_OK) fail_msg("%s %s trial %d: init/export status %d", c->name,
+                                          prof_name(set.profile), trial, (int)st);
+                checked++;
                 for (i = 0; i < ks.k; i++) {
-                    float p[MAXN], v[MAXN], a[MAXN];
-                    sample(&sp, ks.t[i], p, v, a);
+                    double p[MAXN], v[MAXN], a[MAXN];
+                    st = c->sample(0, c->in(ks.t[i]), p, v, a, NULL);
+                    /* Q16.16: a velocity or acceleration beyond the format saturates and says
+                     * so; the position is still valid (spline_fx.h) */
+                    if (!(st == QO_OK || (c->fixed && st == QO_E_OVERFLOW)))
+                        fail_msg("%s %s trial %d key %d: sample status %d", c->name,
+                                 prof_name(set.profile), trial, i, (int)st);
                     for (j = 0; j < ks.n; j++)
-                        if (p[j] != ks.p[i * ks.n + j])
-                            fail_msg("%s end %d trial %d key %d joint %d: %.9g != key %.9g",
-                                     prof_name(set.profile), e, trial, i, j, (double)p[j],
-                                     (double)ks.p[i * ks.n + j]);
+                        if (!(fabs(p[j] - c->in(ks.p[i * ks.n + j])) <= tol(c, 0.0, 1.0)))
+                            fail_msg("%s %s end %d trial %d key %d joint %d: %.9g != key %.9g",
+                                     c->name, prof_name(set.profile), e, trial, i, j, p[j],
+                                     c->in(ks.p[i * ks.n + j]));
                 }
             }
     }
+    print_message("%s: %d plans checked, %d refused by the Q16.16 export (overflow)\n",
+                  c->name, checked, refused);
+    assert_true(checked >= 100);
 }
+
+/* Linear: p0 + w (p1 - p0), slope (p1 - p0) / h, zero acceleration, against double on the key
+ * times and positions as the core received them. */
+static void test_linear_against_double(void **state)
+{
+    const core *c = CORE(state);
+    keys ks;
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    qo_spline_f32 sp;
+    int i, j;
+    rng_state = 606;
+    random_keys(&ks, 3, 6, 0.1, 1.0, 10.0);
+    set.profile = QO_SPLINE_LINEAR;
+    assert_int_equal(plan(&ks, &set, &sp), QO_OK);
+    assert_int_equal(c->use(0, &sp), QO_OK);
+    for (i = 0; i < 100; i++) {
+        double t = c->in(urand(ks.t[0], ks.t[ks.k - 1]));
+        double p[MAXN], v[MAXN], a[MAXN], t0, h;
+        int s = 0;
+        while (s + 2 < ks.k && t >= c->in(ks.t[s + 1])) s++;
+        t0 = c->in(ks.t[s]);
+        h = c->in(ks.t[s + 1]) - t0;
+        assert_int_equal(c->sample(0, t, p, v, a, NULL), QO_OK);
+        for (j = 0; j < ks.n; j++) {
+            double p0 = c->in(ks.p[s * ks.n + j]), p1 = c->in(ks.p[(s + 1) * ks.n + j]);
+            double w = (t - t0) / h;
+            char what[48];
+            snprintf(what, sizeof what, "%s linear pos", c->name);
+            check_close(what, i, j, t, p[j], p0 + w * (p1 - p0), tol(c, 32 * FLT_EPSILON * 20, 2));
+            snprintf(what, sizeof what, "%s linear vel", c->name);
+            check_close(what, i, j, t, v[j], (p1 - p0) / h, tol(c, 32 * FLT_EPSILON * 20 / 0.1, 8));
+            assert_true(a[j] == 0.0);
+        }
+    }
+}
+
+/* Closed forms in double: linear interpolation, and the rest-to-rest quintic
+ * p0 + d (10 s^3 - 15 s^4 + 6 s^5) with its derivatives (times and keys exact in both
+ * formats). */
+static void test_closed_form(void **state)
+{
+    const core *c = CORE(state);
+    const float t[2] = { 0.5f, 2.5f };
+    const float p[2] = { -3.0f, 7.0f };
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    qo_spline_f32 sp;
+    int prof, i;
+    for (prof = 0; prof < 2; prof++) {
+        set.profile = prof ? QO_SPLINE_QUINTIC : QO_SPLINE_LINEAR;
+        assert_int_equal(qo_spline_init_f32(1, 2, t, p, &set, coef, COEF_CAP, &sp), QO_OK);
+        assert_int_equal(c->use(0, &sp), QO_OK);
+        for (i = 0; i <= 2000; i++) {
+            double tt = (32768 + i * 65) / Q16, s = (tt - 0.5) / 2.0, d = 10.0, rp, rv, ra;
+            double pq, vq, aq;
+            if (prof) {
+                rp = -3.0 + d * (10 * s * s * s - 15 * s * s * s * s + 6 * pow(s, 5));
+                rv = d * (30 * s * s - 60 * s * s * s + 30 * pow(s, 4)) / 2.0;
+                ra = d * (60 * s - 180 * s * s + 120 * s * s * s) / 4.0;
+            } else {
+                rp = -3.0 + d * s;
+                rv = d / 2.0;
+                ra = 0.0;
+            }
+            assert_int_equal(c->sample(0, tt, &pq, &vq, &aq, NULL), QO_OK);
+            /* float32: a few ulp of the largest coefficient (d) and its derivative factors */
+            if (fabs(pq - rp) > tol(c, 32 * FLT_EPSILON * d, 8) ||
+                fabs(vq - rv) > tol(c, 32 * FLT_EPSILON * d * 5, 8) ||
+                fabs(aq - ra) > tol(c, 32 * FLT_EPSILON * d * 20, 8))
+                fail_msg("%s %s t=%.9g: (%.9g %.9g %.9g) vs double (%.9g %.9g %.9g)", c->name,
+                         prof ? "quintic" : "linear", tt, pq, vq, aq, rp, rv, ra);
+        }
+    }
+}
+
+/* Before the first key: first key at rest; after the last: last key at rest; at the last
+ * key: the end state of the last segment (a natural spline's non-zero end velocity). The
+ * out-of-range times: -big / +big (float32 -Inf / +Inf: QO_E_NONFINITE; Q16.16 INT32_MIN /
+ * INT32_MAX: before the start / after the end). */
+static void test_outside_and_end(void **state)
+{
+    const core *c = CORE(state);
+    const float t[3] = { 1.0f, 2.0f, 4.0f };
+    const float p[6] = { 0.0f, 5.0f, 1.0f, -2.0f, 3.0f, 3.0f };
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    qo_spline_f32 sp;
+    double pos[2], vel[2], acc[2];
+    set.end = QO_SPLINE_END_NATURAL;
+    assert_int_equal(qo_spline_init_f32(2, 3, t, p, &set, coef, COEF_CAP, &sp), QO_OK);
+    assert_int_equal(c->use(0, &sp), QO_OK);
+    assert_int_equal(c->sample(0, 0.5, pos, vel, acc, NULL), QO_OK);
+    assert_true(pos[0] == 0.0 && pos[1] == 5.0 && vel[0] == 0.0 && acc[1] == 0.0);
+    assert_int_equal(c->sample(0, 9.0, pos, vel, acc, NULL), QO_OK);
+    assert_true(pos[0] == 3.0 && pos[1] == 3.0 && vel[0] == 0.0 && acc[0] == 0.0);
+    assert_int_equal(c->sample(0, 4.0, pos, vel, acc, NULL), QO_OK);
+    assert_true(pos[0] == 3.0 && pos[1] == 3.0);
+    assert_true(fabs(vel[0]) > 0.1); /* natural end: moving */
+    assert_true(fabs(acc[0]) < tol(c, 1e-5, 4));
+    /* optional outputs may be NULL */
+    assert_int_equal(c->sample(0, 2.5, pos, NULL, NULL, NULL), QO_OK);
+    /* -big: the first key held at rest in both cores */
+    vel[0] = 7.0;
+    assert_int_equal(c->sample(0, -c->big, pos, vel, acc, NULL), ST(c, QO_E_NONFINITE, QO_OK));
+    assert_true(pos[0] == 0.0 && pos[1] == 5.0 && vel[0] == 0.0);
+    /* +big: float32 NONFINITE; Q16.16 after the end, the last key at rest */
+    assert_int_equal(c->sample(0, c->big, pos, vel, acc, NULL), ST(c, QO_E_NONFINITE, QO_OK));
+    assert_true(!c->fixed || (pos[0] == 3.0 && pos[1] == 3.0 && vel[1] == 0.0 && acc[1] == 0.0));
+}
+
+/* Limits: samples stay inside, clamped[] is -1/+1 exactly when the core's own unlimited
+ * sample is outside, and a clamped joint reports zero velocity and acceleration; an
+ * unclamped joint is the unlimited sample. */
+static void test_limits_clamp_and_report(void **state)
+{
+    const core *c = CORE(state);
+    keys ks;
+    float lo[3] = { -4.0f, -INFINITY, -1.0f }, hi[3] = { 4.0f, 2.0f, INFINITY };
+    int i, j, seen_lo = 0, seen_hi = 0;
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    qo_spline_f32 lim, free_sp;
+    rng_state = 707;
+    random_keys(&ks, 3, 8, 0.1, 1.0, 10.0);
+    set.profile = QO_SPLINE_QUINTIC;
+    assert_int_equal(plan(&ks, &set, &free_sp), QO_OK);
+    set.pos_min = lo;
+    set.pos_max = hi;
+    assert_int_equal(qo_spline_init_f32(3, (size_t)ks.k, ks.t, ks.p, &set, coef2, COEF_CAP, &lim),
+                     QO_OK);
+    assert_int_equal(c->use(0, &free_sp), QO_OK);
+    assert_int_equal(c->use(1, &lim), QO_OK);
+    for (i = 0; i < 400; i++) {
+        double t = c->in(urand(ks.t[0] - 0.5, ks.t[ks.k - 1] + 0.5));
+        double p[3], v[3], a[3], pf[3], vf[3], af[3];
+        int8_t cl[3];
+        assert_int_equal(c->sample(1, t, p, v, a, cl), QO_OK);
+        assert_int_equal(c->sample(0, t, pf, vf, af, NULL), QO_OK);
+        for (j = 0; j < 3; j++) {
+            int8_t want = pf[j] < lo[j] ? -1 : pf[j] > hi[j] ? 1 : 0;
+            if (cl[j] != want)
+                fail_msg("%s t=%.9g joint %d: clamped %d, want %d (free %.9g in [%g, %g])",
+                         c->name, t, j, cl[j], want, pf[j], (double)lo[j], (double)hi[j]);
+            if (want) {
+                assert_true(p[j] == (want < 0 ? lo[j] : hi[j]));
+                assert_true(v[j] == 0.0 && a[j] == 0.0);
+                if (want < 0) seen_lo = 1; else seen_hi = 1;
+            } else {
+                assert_true(p[j] == pf[j] && v[j] == vf[j] && a[j] == af[j]);
+            }
+        }
+    }
+    assert_true(seen_lo && seen_hi);
+}
+
+/* ---- fixed point only (Q16.16 sampler) ------------------------------------------------- */
+
+static double lsb(double x) { return x * 65536.0; }
+
+/* Fixed against float for every profile over random plans. exact_times: key times are
+ * multiples of 2^-10 s (exact in Q16.16), else arbitrary floats (the key-time rounding term
+ * of the bound applies, and samples within 2 LSB of a key skip the derivative orders the
+ * profile does not keep continuous). Prints the worst differences in LSB. */
+static void fixed_vs_float(int exact_times, uint64_t seed)
+{
+    size_t pi;
+    int trial, i, j;
+    double worst_p = 0, worst_v = 0, worst_a = 0;
+    rng_state = seed;
+    for (trial = 0; trial < 12; trial++) {
+        float t[MAXK], p[MAXK * MAXN], v[MAXK * MAXN];
+        int K = 2 + trial % 10, N = 4;
+        t[0] = (float)urand(-2.0, 2.0);
+        if (exact_times) t[0] = floorf(t[0] * 1024.0f) / 1024.0f;
+        for (i = 1; i < K; i++) {
+            t[i] = t[i - 1] + (float)urand(0.2, 1.0);
+            if (exact_times) t[i] = floorf(t[i] * 1024.0f) / 1024.0f;
+        }
+        for (i = 0; i < K * N; i++) {
+            p[i] = (float)urand(-20.0, 20.0);
+            v[i] = (float)urand(-20.0, 20.0);
+        }
+        for (pi = 0; pi < NPROF; pi++) {
+            qo_spline_settings_f32 set = qo_spline_settings_default;
+            qo_spline_f32 sp;
+            qo_spline_q16 fx;
+            int order;
+            set.profile = all_profiles[pi];
+            set.key_vel = v;
+            set.end = (trial & 1) ? QO_SPLINE_END_NATURAL : QO_SPLINE_END_CLAMPED;
+            assert_int_equal(qo_spline_init_f32((size_t)N, (size_t)K, t, p, &set, coef, COEF_CAP,
+                                                &sp), QO_OK);
+            assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_OK);
+            order = set.profile == QO_SPLINE_LINEAR ? 0
+                  : (set.profile == QO_SPLINE_CUBIC_C2 || set.profile == QO_SPLINE_QUINTIC) ? 2 : 1;
+            for (i = 0; i < 300; i++) {
+                qo_q16 tq = (qo_q16)lrint(urand(t[0] - 0.1, t[K - 1] + 0.1) * 65536.0);
+                float tf = (float)tq / 65536.0f; /* exact: |tq| < 2^24 */
+                float pf[MAXN], vf[MAXN], af[MAXN];
+                qo_q16 pq[MAXN], vq[MAXN], aq[MAXN];
+                size_t seg = 0;
+                double h, near = 1e30;
+                int k;
+                assert_int_equal(qo_spline_sample_f32(&sp, tf, pf, vf, af, NULL), QO_OK);
+                assert_int_equal(qo_spline_sample_q16(&fx, tq, pq, vq, aq, NULL), QO_OK);
+                for (k = 0; k < K; k++) {
+                    if (fabs((double)tf - t[k]) < near) near = fabs((double)tf - t[k]);
+                    if (k + 1 < K && tf >= t[k]) seg = (size_t)k;
+                }
+                h = (double)t[seg + 1] - t[seg];
+                for (j = 0; j < N; j++) {
+                    double S = coef_sum(&sp, (int)seg, j);
+                    double fb = 8 * FLT_EPSILON * S; /* float32's own rounding, units */
+                    double dp = fabs((double)pq[j] - lsb(pf[j]));
+                    double dv = fabs((double)vq[j] - lsb(vf[j]));
+                    double da = fabs((double)aq[j] - lsb(af[j]));
+                    double shift = exact_times ? 0.0 : 1.0 / 131072.0; /* key-time rounding, s */
+                    /* the row's extra fractional bits f, from the documented table layout */
+                    int32_t f = table[5 * K + 3 * N + 7 * ((int)seg * N + j) + 6];
+                    double g = ldexp(1.0, -f);
+                    /* bound of spline_fx.h + float32's own rounding + 1 LSB for the
+                     * float-to-LSB comparison itself */
+                    double tol_p = 0.5 + 5.5 * g + lsb(fb) + lsb(fabs(vf[j]) * shift) + 1;
+                    /* key-time rounding moves the sample by <= shift and changes h by
+                     * <= 2 shift (relative 2 shift / h, once for v, twice for a) */
+                    double tol_v = 10 * g / h + 0.5 + fabs(lsb(vf[j])) * 0x1p-22 + lsb(5 * fb / h) +
+                                   lsb(fabs(af[j]) * shift + fabs(vf[j]) * 2 * shift / h) + 1;
+                    double tol_a = 23 * g / (h * h) + 0.5 + fabs(lsb(af[j])) * 0x1p-22 +
+                                   lsb(20 * fb / (h * h)) + lsb(4 * 60 * S / (h * h * h) * shift +
+                                   fabs(af[j]) * 4 * shift / h) + 1;
+                    int skip_v = !exact_times && order < 1 && near < 2.0 / 65536.0;
+                    int skip_a = !exact_times && order < 2 && near < 2.0 / 65536.0;
+                    if (dp > worst_p) worst_p = dp;
+                    if (!skip_v && dv > worst_v) worst_v = dv;
+                    if (!skip_a && da > worst_a) worst_a = da;
+                    if (dp > tol_p)
+                        fail_msg("profile %d trial %d t=%.9g joint %d: pos fixed %.9g float %.9g, "
+                                 "%.1f LSB > %.1f", (int)set.profile, trial, (double)tf, j,
+                                 pq[j] / 65536.0, (double)pf[j], dp, tol_p);
+                    if (!skip_v && dv > tol_v)
+                        fail_msg("profile %d trial %d t=%.9g joint %d: vel fixed %.9g float %.9g, "
+                                 "%.1f LSB > %.1f", (int)set.profile, trial, (double)tf, j,
+                                 vq[j] / 65536.0, (double)vf[j], dv, tol_v);
+                    if (!skip_a && da > tol_a)
+                        fail_msg("profile %d trial %d t=%.9g joint %d: acc fixed %.9g float %.9g, "
+                                 "%.1f LSB > %.1f", (int)set.profile, trial, (double)tf, j,
+                                 aq[j] / 65536.0, (double)af[j], da, tol_a);
+                }
+            }
+        }
+    }
+    print_message("fixed vs float (%s key times): worst |diff| pos %.1f, vel %.1f, acc %.1f LSB\n",
+                  exact_times ? "Q16-exact" : "arbitrary", worst_p, worst_v, worst_a);
+}
+
+static void test_fixed_vs_float_exact_times(void **state)
+{
+    (void)state;
+    fixed_vs_float(1, 1001);
+}
+
+static void test_fixed_vs_float_arbitrary_times(void **state)
+{
+    (void)state;
+    fixed_vs_float(0, 2002);
+}
+
+/* A small move keeps extra fractional bits (f = 12 here: max |b| = 15 * 0.25): the fixed
+ * sample is then within 1 LSB of the double closed form in position and velocity. */
+static void test_fixed_small_move_precision(void **state)
+{
+    const float t[2] = { 0.0f, 0.5f };
+    const float p[2] = { 0.125f, 0.375f };
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    qo_spline_f32 sp;
+    qo_spline_q16 fx;
+    int i;
+    double worst_p = 0, worst_v = 0;
+    (void)state;
+    set.profile = QO_SPLINE_QUINTIC;
+    assert_int_equal(qo_spline_init_f32(1, 2, t, p, &set, coef, COEF_CAP, &sp), QO_OK);
+    assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_OK);
+    assert_int_equal(table[5 * 2 + 3 * 1 + 6], 12); /* f of the only segment */
+    for (i = 0; i <= 32768; i += 7) {
+        double s = i / 32768.0, d = 0.25, rp, rv;
+        qo_q16 pq, vq;
+        rp = 0.125 + d * (10 * pow(s, 3) - 15 * pow(s, 4) + 6 * pow(s, 5));
+        rv = d * (30 * s * s - 60 * pow(s, 3) + 30 * pow(s, 4)) / 0.5;
+        assert_int_equal(qo_spline_sample_q16(&fx, (qo_q16)i, &pq, &vq, NULL, NULL), QO_OK);
+        if (fabs(pq - lsb(rp)) > worst_p) worst_p = fabs(pq - lsb(rp));
+        if (fabs(vq - lsb(rv)) > worst_v) worst_v = fabs(vq - lsb(rv));
+        if (fabs(pq - lsb(rp)) > 1.0 || fabs(vq - lsb(rv)) > 1.0)
+            fail_msg("t=%.9g: fixed (%.9g, %.9g) vs double (%.9g, %.9g)", i / 65536.0, pq / 65536.0,
+                     vq / 65536.0, rp, rv);
+    }
+    print_message("small move vs double: worst pos %.2f, vel %.2f LSB\n", worst_p, worst_v);
+}
+
+/* Ends, wrap and limits in the fixed sampler. */
+static void test_fixed_ends_wrap_limits(void **state)
+{
+    const float t[3] = { 0.0f, 1.0f, 2.0f };
+    const float p[6] = { 3.0f, 0.0f, -3.0f, 5.0f, -2.5f, 1.0f };
+    const unsigned char wrap[2] = { 1, 0 };
+    const float lo[2] = { -10.0f, -1.0f }, hi[2] = { 10.0f, 4.0f };
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    qo_spline_f32 sp;
+    qo_spline_q16 fx;
+    qo_q16 pos[2], vel[2], acc[2];
+    int8_t cl[2];
+    int i, seen_clamp = 0;
+    (void)state;
+    set.wrap = wrap;
+    set.pos_min = lo;
+    set.pos_max = hi;
+    assert_int_equal(qo_spline_init_f32(2, 3, t, p, &set, coef, COEF_CAP, &sp), QO_OK);
+    assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_OK);
+    /* before / after: keys at rest; exact end: last key */
+    assert_int_equal(qo_spline_sample_q16(&fx, INT32_MIN, pos, vel, acc, cl), QO_OK);
+    assert_int_equal(pos[0], (qo_q16)lrint(3.0 * 65536));
+    assert_int_equal(vel[0], 0);
+    assert_int_equal(qo_spline_sample_q16(&fx, INT32_MAX, pos, vel, acc, cl), QO_OK);
+    assert_int_equal(pos[1], 65536);
+    assert_int_equal(vel[1], 0);
+    assert_int_equal(acc[1], 0);
+    assert_int_equal(qo_spline_sample_q16(&fx, 2 * 65536, pos, vel, acc, cl), QO_OK);
+    assert_true(abs(pos[0] - (qo_q16)lrint(-2.5 * 65536)) <= 1);
+    for (i = 0; i <= 200; i++) {
+        qo_q16 tq = (qo_q16)(i * 65536 / 100);
+        float pf[2], vf[2];
+        int8_t cf[2];
+        assert_int_equal(qo_spline_sample_q16(&fx, tq, pos, vel, acc, cl), QO_OK);
+        assert_int_equal(qo_spline_sample_f32(&sp, (float)tq / 65536.0f, pf, vf, NULL, cf), QO_OK);
+        /* wrapped joint: in (-pi, pi], near +-pi (the short way), same as float */
+        if (!(pos[0] > -205888 && pos[0] <= 205888) || fabs(fabs(pos[0] / 65536.0) - REF_PI) > 0.7)
+            fail_msg("t=%g: wrapped joint %.9g", tq / 65536.0, pos[0] / 65536.0);
+        /* equal, or one period apart when the two land on either side of +-pi */
+        if (fabs(pos[0] - lsb(pf[0])) > 16 && fabs(fabs(pos[0] - lsb(pf[0])) - lsb(2 * REF_PI)) > 16)
+            fail_msg("t=%g: wrapped fixed %.9g float %.9g", tq / 65536.0, pos[0] / 65536.0,
+                     (double)pf[0]);
+        /* limited joint: the same clamp decision as float (away from the limit itself) */
+        if (cl[1] != cf[1] && fabs(pf[1] - hi[1]) > 1e-3 && fabs(pf[1] - lo[1]) > 1e-3)
+            fail_msg("t=%g: clamp fixed %d float %d (float pos %.9g)", tq / 65536.0, cl[1], cf[1],
+                     (double)pf[1]);
+        if (cl[1]) {
+            seen_clamp = 1;
+            assert_true(pos[1] == (cl[1] > 0 ? 4 * 65536 : -65536));
+            assert_int_equal(vel[1], 0);
+            assert_int_equal(acc[1], 0);
+        }
+    }
+    assert_true(seen_clamp);
+}
+
+/* Conversion and sampling errors. */
+static void test_fixed_edges(void **state)
+{
+    const float t[2] = { 0.0f, 1.0f }, p[2] = { 0.0f, 1.0f };
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    qo_spline_f32 sp, empty;
+    qo_spline_q16 fx;
+    qo_q16 pos = 5, vel = 5, acc = 5;
+    int8_t cl = 3;
+    size_t need = qo_spline_q16_len(1, 2);
+    (void)state;
+    set.profile = QO_SPLINE_LINEAR;
+    assert_int_equal(need, 10 + 3 + 14);
+    assert_int_equal(qo_spline_q16_len(0, 2), 0);
+    assert_int_equal(qo_spline_q16_len(1, 1), 0);
+    assert_int_equal(qo_spline_q16_len(SIZE_MAX / 4, 4), 0);
+    assert_int_equal(qo_spline_init_f32(1, 2, t, p, &set, coef, COEF_CAP, &sp), QO_OK);
+    assert_int_equal(qo_spline_export_q16(&sp, &fx, table, need - 1), QO_E_CAPACITY);
+    assert_int_equal(fx.n_keys, 0);
+    assert_int_equal(qo_spline_sample_q16(&fx, 0, &pos, &vel, &acc, &cl), QO_E_NULL); /* no table */
+    assert_true(pos == 0 && vel == 0 && acc == 0 && cl == 0);
+    assert_int_equal(qo_spline_export_q16(NULL, &fx, table, X_CAP), QO_E_NULL);
+    assert_int_equal(qo_spline_export_q16(&sp, &fx, NULL, COEF_CAP), QO_E_NULL);
+    assert_int_equal(qo_spline_export_q16(&sp, NULL, table, X_CAP), QO_E_NULL);
+    assert_int_equal(qo_spline_init_f32(1, 1, t, p, &set, coef, COEF_CAP, &empty), QO_E_TOO_FEW);
+    assert_int_equal(qo_spline_export_q16(&empty, &fx, table, X_CAP), QO_E_STATE);
+    /* a usable table, then a fake failed one: STATE with zeroed outputs */
+    assert_int_equal(qo_spline_export_q16(&sp, &fx, table, need), QO_OK);
+    assert_int_equal(qo_spline_sample_q16(&fx, 32768, &pos, &vel, &acc, &cl), QO_OK);
+    assert_int_equal(pos, 32768);
+    assert_int_equal(vel, 65536);
+    fx.n_keys = 0;
+    assert_int_equal(qo_spline_sample_q16(&fx, 32768, &pos, &vel, &acc, &cl), QO_E_STATE);
+    assert_true(pos == 0 && vel == 0 && acc == 0 && cl == 0);
+    assert_int_equal(qo_spline_sample_q16(NULL, 0, &pos, &vel, &acc, &cl), QO_E_NULL);
+    assert_int_equal(qo_spline_export_q16(&sp, &fx, table, need), QO_OK);
+    vel = 5;
+    assert_int_equal(qo_spline_sample_q16(&fx, 0, NULL, &vel, NULL, NULL), QO_E_NULL);
+    assert_int_equal(vel, 0);
+    /* out of Q16.16: a position, a time; key times that round to the same Q16.16 value */
+    {
+        const float pbig[2] = { 0.0f, 40000.0f }, tbig[2] = { 0.0f, 40000.0f };
+        const float tclose[2] = { 0.0f, 1e-6f };
+        assert_int_equal(qo_spline_init_f32(1, 2, t, pbig, &set, coef, COEF_CAP, &sp), QO_OK);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_E_OVERFLOW);
+        assert_int_equal(fx.n_keys, 0);
+        assert_int_equal(qo_spline_init_f32(1, 2, tbig, p, &set, coef, COEF_CAP, &sp), QO_OK);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_E_OVERFLOW);
+        assert_int_equal(qo_spline_init_f32(1, 2, tclose, p, &set, coef, COEF_CAP, &sp), QO_OK);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_E_ORDER);
+    }
+    /* a velocity beyond Q16.16 (rest-to-rest quintic over 2000 units in 10 ms: peak 3.75e5
+     * units/s) saturates and says so; the position is still right */
+    {
+        const float tf[2] = { 0.0f, 0.01f }, pf[2] = { 0.0f, 2000.0f }, pn[2] = { 0.0f, -2000.0f };
+        qo_q16 half = (qo_q16)lrint(0.01 * 65536) / 2; /* s = 0.5 of the rounded segment */
+        set.profile = QO_SPLINE_QUINTIC;
+        assert_int_equal(qo_spline_init_f32(1, 2, tf, pf, &set, coef, COEF_CAP, &sp), QO_OK);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_OK);
+        assert_int_equal(qo_spline_sample_q16(&fx, half, &pos, &vel, &acc, NULL), QO_E_OVERFLOW);
+        assert_int_equal(vel, INT32_MAX);
+        {
+            double sd = (double)half / (double)lrint(0.01 * 65536);
+            double want = 2000.0 * (10 * pow(sd, 3) - 15 * pow(sd, 4) + 6 * pow(sd, 5));
+            if (fabs(pos - lsb(want)) > 8)
+                fail_msg("saturated-velocity sample: pos %.9g, want %.9g", pos / 65536.0, want);
+        }
+        assert_int_equal(qo_spline_init_f32(1, 2, tf, pn, &set, coef, COEF_CAP, &sp), QO_OK);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_OK);
+        assert_int_equal(qo_spline_sample_q16(&fx, half, &pos, &vel, NULL, NULL), QO_E_OVERFLOW);
+        assert_int_equal(vel, INT32_MIN);
+        /* linear: the end state holds the same slope, so the conversion already refuses */
+        set.profile = QO_SPLINE_LINEAR;
+        assert_int_equal(qo_spline_init_f32(1, 2, tf, pf, &set, coef, COEF_CAP, &sp), QO_OK);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_E_OVERFLOW);
+    }
+    /* the shortest segment Q16.16 can hold (1 LSB of time) and a long one (hours) */
+    {
+        const float ts[3] = { 0.0f, 1.0f / 65536.0f, 20000.0f }, ps[3] = { 0.0f, 0.0f, 1.0f };
+        set.profile = QO_SPLINE_CUBIC_C2;
+        assert_int_equal(qo_spline_init_f32(1, 3, ts, ps, &set, coef, COEF_CAP, &sp), QO_OK);
+        assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_OK);
+        assert_int_equal(qo_spline_sample_q16(&fx, 10000 * 65536, &pos, &vel, &acc, NULL), QO_OK);
+        assert_true(abs(pos - 32768) <= 8);
+    }
+}
+
+/* ---- float32 only ----------------------------------------------------------------------- */
 
 /* Continuity at every inner key: the sample just before t_k (the float below t_k) against
  * the sample at t_k. Tolerance: a float32 rounding budget from eps and the key scale P,
@@ -308,23 +879,6 @@ static void test_continuity_at_joins(void **state)
     }
     assert_true(seen_acc_jump);
     assert_true(seen_vel_jump);
-}
-
-/* Tolerances of float32 against the double references: rounding budget in units of eps
- * relative to the key scale P and the shortest segment. */
-static void check_close(const char *what, int trial, int j, double t, double got, double want,
-                        double tol)
-{
-    if (!(fabs(got - want) <= tol))
-        fail_msg("%s trial %d joint %d t=%.9g: got %.9g want %.9g (|diff| %.3g > tol %.3g)", what,
-                 trial, j, t, got, want, fabs(got - want), tol);
-}
-
-static int seg_of(const keys *ks, double t)
-{
-    int i = 0;
-    while (i + 2 < ks->k && t >= ks->t[i + 1]) i++;
-    return i;
 }
 
 /* Interpolating C2 cubic (natural and clamped ends) against the dense double solve. */
@@ -533,105 +1087,6 @@ static void test_hermite_quintic_against_double(void **state)
     }
 }
 
-/* Linear: the straight line between keys, slope as velocity, zero acceleration. */
-static void test_linear_against_double(void **state)
-{
-    keys ks;
-    qo_spline_settings_f32 set = qo_spline_settings_default;
-    qo_spline_f32 sp;
-    int i, j;
-    (void)state;
-    rng_state = 606;
-    random_keys(&ks, 3, 6, 0.1, 1.0, 10.0);
-    set.profile = QO_SPLINE_LINEAR;
-    assert_int_equal(plan(&ks, &set, &sp), QO_OK);
-    for (i = 0; i < 100; i++) {
-        float t = (float)urand(ks.t[0], ks.t[ks.k - 1]);
-        float p[MAXN], v[MAXN], a[MAXN];
-        int s = seg_of(&ks, t);
-        double h = (double)ks.t[s + 1] - ks.t[s];
-        sample(&sp, t, p, v, a);
-        for (j = 0; j < ks.n; j++) {
-            double p0 = ks.p[s * ks.n + j], p1 = ks.p[(s + 1) * ks.n + j];
-            double w = ((double)t - ks.t[s]) / h;
-            check_close("linear pos", i, j, t, p[j], p0 + w * (p1 - p0), 32 * FLT_EPSILON * 20);
-            check_close("linear vel", i, j, t, v[j], (p1 - p0) / h, 32 * FLT_EPSILON * 20 / 0.1);
-            assert_true(a[j] == 0.0f);
-        }
-    }
-}
-
-/* Before the first key: first key at rest; after the last: last key at rest; at the last
- * key: the end state of the last segment (e.g. a natural spline's non-zero end velocity). */
-static void test_outside_and_end(void **state)
-{
-    const float t[3] = { 1.0f, 2.0f, 4.0f };
-    const float p[6] = { 0.0f, 5.0f, 1.0f, -2.0f, 3.0f, 3.0f };
-    qo_spline_settings_f32 set = qo_spline_settings_default;
-    qo_spline_f32 sp;
-    float pos[2], vel[2], acc[2];
-    (void)state;
-    set.end = QO_SPLINE_END_NATURAL;
-    assert_int_equal(qo_spline_init_f32(2, 3, t, p, &set, coef, COEF_CAP, &sp), QO_OK);
-    assert_int_equal(qo_spline_sample_f32(&sp, 0.5f, pos, vel, acc, NULL), QO_OK);
-    assert_true(pos[0] == 0.0f && pos[1] == 5.0f && vel[0] == 0.0f && acc[1] == 0.0f);
-    assert_int_equal(qo_spline_sample_f32(&sp, 9.0f, pos, vel, acc, NULL), QO_OK);
-    assert_true(pos[0] == 3.0f && pos[1] == 3.0f && vel[0] == 0.0f && acc[0] == 0.0f);
-    assert_int_equal(qo_spline_sample_f32(&sp, 4.0f, pos, vel, acc, NULL), QO_OK);
-    assert_true(pos[0] == 3.0f && pos[1] == 3.0f);
-    assert_true(fabsf(vel[0]) > 0.1f); /* natural end: moving */
-    assert_true(fabsf(acc[0]) < 1e-5f);
-    /* optional outputs may be NULL */
-    assert_int_equal(qo_spline_sample_f32(&sp, 2.5f, pos, NULL, NULL, NULL), QO_OK);
-    /* NaN / Inf time: first key held, status says so */
-    vel[0] = 7.0f;
-    assert_int_equal(qo_spline_sample_f32(&sp, NAN, pos, vel, acc, NULL), QO_E_NONFINITE);
-    assert_true(pos[0] == 0.0f && pos[1] == 5.0f && vel[0] == 0.0f);
-    assert_int_equal(qo_spline_sample_f32(&sp, INFINITY, pos, vel, acc, NULL), QO_E_NONFINITE);
-}
-
-/* Limits: samples stay inside, clamped[] is -1/+1 exactly when the unlimited sample is
- * outside, and a clamped joint reports zero velocity and acceleration. */
-static void test_limits_clamp_and_report(void **state)
-{
-    keys ks;
-    float lo[3] = { -4.0f, -INFINITY, -1.0f }, hi[3] = { 4.0f, 2.0f, INFINITY };
-    float coef2[COEF_CAP];
-    int i, j, seen_lo = 0, seen_hi = 0;
-    qo_spline_settings_f32 set = qo_spline_settings_default;
-    qo_spline_f32 lim, free_sp;
-    (void)state;
-    rng_state = 707;
-    random_keys(&ks, 3, 8, 0.1, 1.0, 10.0);
-    set.profile = QO_SPLINE_QUINTIC;
-    assert_int_equal(plan(&ks, &set, &free_sp), QO_OK);
-    set.pos_min = lo;
-    set.pos_max = hi;
-    assert_int_equal(qo_spline_init_f32(3, (size_t)ks.k, ks.t, ks.p, &set, coef2, COEF_CAP, &lim),
-                     QO_OK);
-    for (i = 0; i < 400; i++) {
-        float t = (float)urand(ks.t[0] - 0.5, ks.t[ks.k - 1] + 0.5);
-        float p[3], v[3], a[3], pf[3], vf[3], af[3];
-        int8_t c[3];
-        assert_int_equal(qo_spline_sample_f32(&lim, t, p, v, a, c), QO_OK);
-        sample(&free_sp, t, pf, vf, af);
-        for (j = 0; j < 3; j++) {
-            int8_t want = pf[j] < lo[j] ? -1 : pf[j] > hi[j] ? 1 : 0;
-            if (c[j] != want)
-                fail_msg("t=%.9g joint %d: clamped %d, want %d (free %.9g in [%g, %g])", (double)t,
-                         j, c[j], want, (double)pf[j], (double)lo[j], (double)hi[j]);
-            if (want) {
-                assert_true(p[j] == (want < 0 ? lo[j] : hi[j]));
-                assert_true(v[j] == 0.0f && a[j] == 0.0f);
-                if (want < 0) seen_lo = 1; else seen_hi = 1;
-            } else {
-                assert_true(p[j] == pf[j] && v[j] == vf[j] && a[j] == af[j]);
-            }
-        }
-    }
-    assert_true(seen_lo && seen_hi);
-}
-
 /* Continuous joints: 3.0 -> -3.0 rad goes through +pi (0.283 rad), not through 0 (6 rad);
  * output wrapped into (-pi, pi] or unwrapped (monotonic from 3.0 to 2 pi - 3.0); degrees. */
 static void test_wrap_short_way(void **state)
@@ -818,22 +1273,27 @@ static void test_edges(void **state)
 
 /* Many joints and keys, the ordinary size classes of a hexapod (18 joints): every key exact
  * and samples finite, with a binary-searched segment at every t. */
+#if defined(__ARM_ARCH_6M__)
+#define MANY_KEYS 4   /* Cortex-M0 board: 16 KB of RAM; 200 keys need 87 KB */
+#else
+#define MANY_KEYS 200
+#endif
 static void test_many_joints_keys(void **state)
 {
-    static float t[200], p[200 * 18], buf[200 + 3 * 18 + 6 * 200 * 18];
+    static float t[MANY_KEYS], p[MANY_KEYS * 18], buf[MANY_KEYS + 3 * 18 + 6 * MANY_KEYS * 18];
     qo_spline_settings_f32 set = qo_spline_settings_default;
     qo_spline_f32 sp;
     int i, j;
     (void)state;
     rng_state = 808;
     t[0] = 0.0f;
-    for (i = 1; i < 200; i++) t[i] = t[i - 1] + (float)urand(0.01, 0.1);
-    for (i = 0; i < 200 * 18; i++) p[i] = (float)urand(-3.0, 3.0);
+    for (i = 1; i < MANY_KEYS; i++) t[i] = t[i - 1] + (float)urand(0.01, 0.1);
+    for (i = 0; i < MANY_KEYS * 18; i++) p[i] = (float)urand(-3.0, 3.0);
     set.profile = QO_SPLINE_QUINTIC;
-    assert_int_equal(qo_spline_coef_len(18, 200), sizeof buf / sizeof buf[0]);
-    assert_int_equal(qo_spline_init_f32(18, 200, t, p, &set, buf, sizeof buf / sizeof buf[0], &sp),
-                     QO_OK);
-    for (i = 0; i < 200; i++) {
+    assert_int_equal(qo_spline_coef_len(18, MANY_KEYS), sizeof buf / sizeof buf[0]);
+    assert_int_equal(qo_spline_init_f32(18, MANY_KEYS, t, p, &set, buf, sizeof buf / sizeof buf[0],
+                                        &sp), QO_OK);
+    for (i = 0; i < MANY_KEYS; i++) {
         float pos[18];
         assert_int_equal(qo_spline_sample_f32(&sp, t[i], pos, NULL, NULL, NULL), QO_OK);
         for (j = 0; j < 18; j++)
@@ -849,7 +1309,6 @@ static void test_replan_continues(void **state)
     keys ks;
     qo_spline_settings_f32 set = qo_spline_settings_default;
     qo_spline_f32 a, b;
-    static float coef_b[COEF_CAP];
     int trial, j;
     (void)state;
     rng_state = 909;
@@ -873,7 +1332,7 @@ static void test_replan_continues(void **state)
         }
         set.end = QO_SPLINE_END_CLAMPED;
         set.end_vel = ev;
-        assert_int_equal(qo_spline_init_f32(3, 3, tb, keyb, &set, coef_b, COEF_CAP, &b), QO_OK);
+        assert_int_equal(qo_spline_init_f32(3, 3, tb, keyb, &set, coef2, COEF_CAP, &b), QO_OK);
         set.end_vel = NULL;
         sample(&b, ts, pb, vb, NULL);
         for (j = 0; j < 3; j++) {
@@ -954,22 +1413,52 @@ static void test_range_overflow(void **state)
     assert_int_equal(qo_spline_sample_f32(&sp, 2.0f, pos, vel, acc, NULL), QO_OK);
 }
 
+/* NaN and Inf times, which Q16.16 cannot hold: QO_E_NONFINITE, the first key held at rest. */
+static void test_f32_nonfinite_time(void **state)
+{
+    const float t[3] = { 1.0f, 2.0f, 4.0f };
+    const float p[6] = { 0.0f, 5.0f, 1.0f, -2.0f, 3.0f, 3.0f };
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    qo_spline_f32 sp;
+    float pos[2], vel[2], acc[2];
+    (void)state;
+    set.end = QO_SPLINE_END_NATURAL;
+    assert_int_equal(qo_spline_init_f32(2, 3, t, p, &set, coef, COEF_CAP, &sp), QO_OK);
+    vel[0] = 7.0f;
+    assert_int_equal(qo_spline_sample_f32(&sp, NAN, pos, vel, acc, NULL), QO_E_NONFINITE);
+    assert_true(pos[0] == 0.0f && pos[1] == 5.0f && vel[0] == 0.0f);
+    assert_int_equal(qo_spline_sample_f32(&sp, INFINITY, pos, vel, acc, NULL), QO_E_NONFINITE);
+}
+
+#define BOTH(fn) cmocka_unit_test_prestate(fn, (void *)&CORE_F32), \
+                 cmocka_unit_test_prestate(fn, (void *)&CORE_Q16)
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_keys_interpolated_exactly),
+        /* both cores */
+        BOTH(test_keys_interpolated_exactly),
+        BOTH(test_linear_against_double),
+        BOTH(test_closed_form),
+        BOTH(test_outside_and_end),
+        BOTH(test_limits_clamp_and_report),
+        /* fixed point only */
+        cmocka_unit_test(test_fixed_vs_float_exact_times),
+        cmocka_unit_test(test_fixed_vs_float_arbitrary_times),
+        cmocka_unit_test(test_fixed_small_move_precision),
+        cmocka_unit_test(test_fixed_ends_wrap_limits),
+        cmocka_unit_test(test_fixed_edges),
+        /* float32 only */
         cmocka_unit_test(test_continuity_at_joins),
         cmocka_unit_test(test_c2_against_double),
         cmocka_unit_test(test_catmull_rom_against_double),
         cmocka_unit_test(test_hermite_quintic_against_double),
-        cmocka_unit_test(test_linear_against_double),
-        cmocka_unit_test(test_outside_and_end),
-        cmocka_unit_test(test_limits_clamp_and_report),
         cmocka_unit_test(test_wrap_short_way),
         cmocka_unit_test(test_edges),
         cmocka_unit_test(test_many_joints_keys),
         cmocka_unit_test(test_replan_continues),
         cmocka_unit_test(test_range_overflow),
+        cmocka_unit_test(test_f32_nonfinite_time),
     };
     return cmocka_run_group_tests_name("spline", tests, NULL, NULL);
 }

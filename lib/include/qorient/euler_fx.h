@@ -168,7 +168,7 @@ qo_status qo_quat_to_euler_near_q30(qo_quat_q30 q, qo_euler_seq seq, qo_euler_q2
  * of Q3.28. The composed result vs the Q1.30 input (bench/accuracy_euler_fx, 20000 cases x
  * 24 conventions): generic <= 6.0e-9 rad (goal 2e-7; the exact function 5.7e-9), exact lock
  * <= 5.5e-9, inside the band <= 2*margin (a1 is then twice the argument of the determined
- * component pair, not a fit); tests/core/test_euler_fx.c runs every shared to_euler test body on
+ * component pair, not a fit); tests/core/test_euler.c runs every shared to_euler test body on
  * it with a 5e-8 bound. q need not be unit (a component of +-1.0 or beyond costs one bit);
  * q and -q give the same bits. Pass QO_EULER_LOCK_BAND_Q28 for the default band. Under half
  * the exact function's instructions on Cortex-M0 (tools/qemu-icount.sh, docs/FIGURES.md).

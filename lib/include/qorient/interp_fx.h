@@ -143,7 +143,7 @@ qo_status qo_quat_slerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 
  * (sign flip to the short way, exact endpoints t == 0 -> unit a and t == 1 -> unit b',
  * statuses and outputs on error), but "unit" is normalize_fast's (within 16 LSB), and the
  * result is within 5e-8 rad of the exact slerp of the inputs (checked in
- * tests/core/test_interp_fx.c and measured by bench/accuracy_interp_fx.c), never beyond +-1.0.
+ * tests/core/test_interp.c and measured by bench/accuracy_interp_fx.c), never beyond +-1.0.
  * a == b' to rounding gives unit a. */
 qo_status qo_quat_slerp_fast_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out);
 
