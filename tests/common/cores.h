@@ -21,6 +21,8 @@
  *   v_make, v_norm, v_dist, v_in, v_rand      vectors (v_in rounds as the core receives)
  *   m_in, m_dist, m_orth_err, m_rand_rot      matrices
  *   clampd, print_m, QFMT, QARG  a clamp, failure printing
+ *   EXPECT_OK, qf, vf            for the core-only sections: a status check in a loop, float32
+ *                                literals
  *
  * Adding a concept (interp, euler, ...): its fields go in `core` under a comment naming the
  * concept, its wrappers in cores.c in a DEFINE_<CONCEPT>_ADAPTERS(P, SFX, ...) written once for
@@ -172,6 +174,24 @@ static inline void print_m(const char *what, const ref_mat3 *m)
     print_message("%s: [%.10g %.10g %.10g; %.10g %.10g %.10g; %.10g %.10g %.10g]\n", what,
                   m->m[0][0], m->m[0][1], m->m[0][2], m->m[1][0], m->m[1][1], m->m[1][2],
                   m->m[2][0], m->m[2][1], m->m[2][2]);
+}
+/* for the core-only sections: a status check inside a loop over cases (names the call and the
+ * case on failure), float32 literals */
+#define EXPECT_OK(call, n) do { \
+        qo_status st_ = (call); \
+        if (st_ != QO_OK) fail_msg("%s: status %d in case %d", #call, (int)st_, (int)(n)); \
+    } while (0)
+static inline qo_quat_f32 qf(float w, float x, float y, float z)
+{
+    qo_quat_f32 q;
+    q.w = w; q.x = x; q.y = y; q.z = z;
+    return q;
+}
+static inline qo_vec3_f32 vf(float x, float y, float z)
+{
+    qo_vec3_f32 v;
+    v.x = x; v.y = y; v.z = z;
+    return v;
 }
 #define QFMT "(%.10g %.10g %.10g %.10g)"
 #define QARG(q) (q).w, (q).x, (q).y, (q).z

@@ -566,27 +566,7 @@ static void test_orthonormalize(void **state)
 
 /* Rotation error budget for one float32 conversion: round-off is ~1e-7 rad. */
 #define TOL_RAD 1e-6
-/* A status check inside a loop over cases: names the call and the case on failure. */
-#define EXPECT_OK(call, n) do { \
-        qo_status st_ = (call); \
-        if (st_ != QO_OK) fail_msg("%s: status %d in case %d", #call, (int)st_, (int)(n)); \
-    } while (0)
-
 #define N_F32 2000
-
-static qo_quat_f32 qf(float w, float x, float y, float z)
-{
-    qo_quat_f32 q;
-    q.w = w; q.x = x; q.y = y; q.z = z;
-    return q;
-}
-
-static qo_vec3_f32 vf(float x, float y, float z)
-{
-    qo_vec3_f32 v;
-    v.x = x; v.y = y; v.z = z;
-    return v;
-}
 
 static qo_mat3_f32 mf(float a, float b, float c, float d, float e, float f, float g, float h,
                       float i)
