@@ -133,7 +133,7 @@ qo_vec3_q30 qo_mat3_mul_vec3_q30(const qo_mat3_q30 *m, qo_vec3_q30 v);
  * rounded once. A uniformly scaled rotation gives that rotation back (to a few LSB); m and
  * out may point to the same matrix. The result is orthonormal to a few LSB (max
  * |R^T R - I| checked against QO_MAT3_ROTATION_TOL_Q30) and within ~1e-8 rad of the exact
- * nearest rotation for a drifted or noisy rotation (tests/core/test_twins.c).
+ * nearest rotation for a drifted or noisy rotation (tests/core/test_convert.c).
  * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NOT_ROTATION if M is zero, a reflection,
  * singular or too close to singular (det(M / |M|_F) <= 2^-14, which keeps every singular
  * value of M / |M|_F above 1.2e-4: the float core's limit is a condition number of 3e3). *out

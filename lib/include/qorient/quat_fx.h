@@ -93,7 +93,7 @@ qo_status qo_quat_normalize_q30(qo_quat_q30 q, qo_quat_q30 *out);
  * without a 64-bit multiply or divider (Cortex-M0/M0+): q / |q| through one Newton reciprocal
  * square root (two steps, ~2^-26 relative) and four products in 32-bit words, no square root,
  * no division, no 64-bit arithmetic. Each component within 16 LSB (1.5e-8) of the exact unit
- * quaternion (checked in tests/core/test_quat_fx.c, worst seen 14 LSB, e.g. (0, 0, -1, 0) gives
+ * quaternion (checked in tests/core/test_quat.c, worst seen 14 LSB, e.g. (0, 0, -1, 0) gives
  * -(1 - 14 LSB); the exact function: 1 LSB), never beyond +-1.0; the sign of q is kept; any
  * non-zero q, as qo_quat_normalize_q30. About a third of the exact one's instructions on
  * Cortex-M0 (tools/qemu-icount.sh).
