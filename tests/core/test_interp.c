@@ -67,7 +67,7 @@ typedef struct core {
     double tol_rot;    /* slerp / nlerp / Bezier vs double, rad */
     double tol_norm;   /* | |q| - 1 | */
     double tol_key;    /* rad: an aligned key vs its input (one normalisation) */
-    double tol_long;   /* rad: slerp_long / slerp_rate (as test_twins.c judged them) */
+    double tol_long;   /* rad: slerp_long / slerp_rate (the bounds the former both-core twins test used) */
     double tol_abs;    /* absolute error of a unit-range component */
     double tol_ang;    /* rad: the log inside slerp_rate (fixed: Q3.28) */
     double tol_lerp;   /* lerp vs double, absolute per component */
@@ -245,7 +245,7 @@ ADAPT_2(x, slerp_fast, qo_quat_slerp_fast_q30, qo_quat_q30)
 
 /* Tolerances: float32 as measured by bench/accuracy_interp.c with a margin; fixed point
  * measured by bench/accuracy_interp_fx.c at 5e-9 rad (slerp) and 1e-9 (norm), checked here
- * with a margin; tol_long / tol_abs / tol_ang as test_twins.c judged slerp_long and
+ * with a margin; tol_long / tol_abs / tol_ang as the former twins test judged slerp_long and
  * slerp_rate. */
 static const core CORE_F32 = {
     "float32", 0, 1e-6, 1e-6, 1e-6, 2e-6, 1e-6, 2e-6, 1e-6, 1e3, 1e39,
