@@ -58,7 +58,10 @@
  * becomes v - a|a|/(2 jmax), and a target acceleration adds the shapes without an acceleration
  * zero at either end: three jerk ramps a0 -> am -> peak -> a (the "dips", at the start and, by
  * time reversal, at the end, am over the whole acceleration range) and a0 to one acceleration
- * bound and held, to the other and held, to a.
+ * bound and held, to the other and held, to a. A dip's displacement is not monotone in am:
+ * between two of its scan points, where the residual comes closest to zero without changing
+ * sign, a golden-section search looks for the pair of roots it may hide (make check-motion
+ * case 5781: 2.018 s planned where 0.809 s was possible).
  * With the target at rest, every such profile is: a fastest velocity change from (v0, a0) to a
  * velocity extremum vc with a = 0 (<= 3 phases: ramp, hold amax, ramp), a cruise at vc (only
  * when |vc| = vmax), and a fastest stop from (vc, 0) to (0, 0) (<= 3 phases). The planner finds
@@ -102,7 +105,11 @@
  *     the family may have exactly T (the achievable durations have a gap); that joint then
  *     keeps its own minimum-time profile, arrives early and waits at rest, and its bit is set
  *     in planner.unsynced (seen once in 40,000 random 4-joint cases with limits spread over
- *     1e-3..1e3; never in bench/bench_motion.c's cases).
+ *     1e-3..1e3; never in bench/bench_motion.c's cases). The exact-duration search uses the
+ *     extremum-velocity family only: a joint whose minimum is a dip or a two-holds shape (target
+ *     states) has no profile of that family between its minimum and the family's own shortest,
+ *     e.g. check-motion case 5781 joint 5: minimum 0.809 s, none between it and 2.018 s, so at
+ *     a common 1.560 s it is reported unsynced (tests/core/test_motion.c).
  *   - QO_MOTION_SYNC_PHASE: straight line in joint space: p_i(t) = p0_i + d_i s(t), one scalar
  *     profile s: 0 -> 1 with limits min_i(vmax_i/|d_i|) etc. (vmin_i for a joint moving the
  *     other way). Possible only when every joint's (v0, a0) and target (v, a) are proportional
@@ -191,11 +198,7 @@ extern "C" {
  * 10..500, vmin/vmax and amin/amax ratios 0.1..10). Beyond that (symmetric down to 1e-6 or up to
  * 1e12, or asymmetric limits far apart) plans are accepted but not guaranteed: up to 11 % slower
  * than optimal seen at 1e-6..1e12, and limit excesses up to 0.5 relative with vmin/vmax ~ 1e-3
- * over 1e-3..1e9 (not yet fixed; issue 11). Known open defect at ordinary limits (make
- * check-motion, TIME_IF_NECESSARY case 5781, QO_MOTION_ORACLE_FIRST=5781): vmax 3.4372437
- * vmin -3.4372437 amax 2.062994 amin -15.6111498 jmax 20.7182293, p0 -1.47362924 v0 2.52445889
- * a0 -11.3011713 to p -2.19661188 v -3.04818821 a -0.323818952 is planned in 2.01839 s where
- * the reference finds 0.809110 s (a missing shape to a target acceleration). */
+ * over 1e-3..1e9 (not yet fixed; issue 11). */
 #define QO_MOTION_LIMIT_MIN 1e-6f
 #define QO_MOTION_LIMIT_MAX 1e12f
 #define QO_MOTION_POS_MAX 1e18f
