@@ -1125,6 +1125,52 @@ static void test_supported_range(void **state)
     l.vmax = 1.0f;
     l.jmax = QO_MOTION_LIMIT_MAX * 2.0f;
     assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, p0, 0.0f, NULL), QO_E_LIMIT);
+    /* the range is what the oracle verifies (motion.h): 1e-4 and 1e10 are refused, the ends
+     * accepted; vmin / amin within a factor QO_MOTION_LIMIT_RATIO of -vmax / -amax */
+    {
+        static const float out[] = { 1e-4f, 1e10f, 1e12f, 1e-6f };
+        size_t k, f;
+        for (k = 0; k < sizeof out / sizeof out[0]; k++) {
+            for (f = 0; f < 5; f++) {
+                l = qo_motion_limits_default;
+                if (f == 0) l.vmax = out[k];
+                if (f == 1) l.amax = out[k];
+                if (f == 2) l.jmax = out[k];
+                if (f == 3) l.vmin = -out[k];
+                if (f == 4) l.amin = -out[k];
+                if (f >= 3) {
+                    /* keep the ratio within bounds: only the range is under test */
+                    l.vmax = l.amax = out[k] > 1.0f ? QO_MOTION_LIMIT_MAX : QO_MOTION_LIMIT_MIN;
+                }
+                if (qo_motion_init_f32(&pl, jts, 1, &l, p0, 0.0f, NULL) != QO_E_LIMIT || pl.n != 0)
+                    fail_msg("limit %zu = %g accepted", f, (double)out[k]);
+            }
+        }
+        l = qo_motion_limits_default;
+        l.vmax = l.amax = l.jmax = QO_MOTION_LIMIT_MAX;
+        l.vmin = l.amin = -QO_MOTION_LIMIT_MAX / QO_MOTION_LIMIT_RATIO;
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, p0, 0.0f, NULL), QO_OK);
+        l.vmax = l.amax = l.jmax = QO_MOTION_LIMIT_MIN;
+        l.vmin = l.amin = -QO_MOTION_LIMIT_MIN * QO_MOTION_LIMIT_RATIO;
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, p0, 0.0f, NULL), QO_OK);
+        /* ratio 10 accepted both ways, 10.01 refused, for vmin and for amin */
+        for (f = 0; f < 8; f++) {
+            float r = (f & 1u) ? 10.01f : 10.0f, x = (f & 2u) ? 2.0f * r : 2.0f / r;
+            l = qo_motion_limits_default;
+            l.vmax = l.amax = 2.0f;
+            if (f & 4u) l.amin = -x;
+            else l.vmin = -x;
+            assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, p0, 0.0f, NULL), (f & 1u) ? QO_E_LIMIT : QO_OK);
+        }
+        /* set_limits refuses the same, brakes, keeps the old limits */
+        l = qo_motion_limits_default;
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, p0, 0.0f, NULL), QO_OK);
+        bad = l;
+        bad.vmin = -11.0f;
+        assert_int_equal(qo_motion_set_limits_f32(&pl, 0.0f, 0, &bad), QO_E_LIMIT);
+        assert_true(pl.joints[0].lim.vmin == 0.0f && pl.braking == 1);
+        l = qo_motion_limits_default;
+    }
     /* the smallest vmax: a move of 1 takes ~1/vmax seconds (cruise), finite */
     l = qo_motion_limits_default;
     l.vmax = QO_MOTION_LIMIT_MIN;

@@ -204,11 +204,14 @@ static void edge_state(ref_rng *g, const mref_lim *r, float *v, float *a)
     *v = (float)vv;
     *a = (float)aa;
     /* float32 rounding may have put the pair a hair outside what the planner accepts (its
-     * check is in float32, motion.c state_ok): pull it in */
+     * check is in float32, motion.c state_ok) or outside what is reachable exactly (the
+     * reference's check, in double): pull it in until both hold */
     for (;;) {
         float hf = *a * fabsf(*a) / (2.0f * (float)J), vp = (float)r->vmax, vn = (float)r->vmin;
+        double hd = (double)*a * fabs(*a) / (2.0 * J);
         if (!(*v + hf > vp || *v + hf < vn || *v - hf > vp || *v - hf < vn || *v > vp || *v < vn ||
-              *a > (float)r->amax || *a < (float)r->amin))
+              *a > (float)r->amax || *a < (float)r->amin || *v + hd > r->vmax || *v + hd < r->vmin ||
+              *v - hd > r->vmax || *v - hd < r->vmin))
             break;
         *v = nextafterf(*v, 0.0f);
         *a = nextafterf(*a, 0.0f);
@@ -224,19 +227,39 @@ static int g_stress;
 /* A random joint as in issue 11 (moving start with probability 3/4). With `mix`, also
  * asymmetric limits (vmin U[-5,-0.5], amin U[-20,-1], each with probability 1/2) and a moving
  * target state (probability 1/2; of those a third with a = 0, a sixth with v = 0). */
-/* The wide group (test_oracle_wide): symmetric limits log-uniform over [WIDE_LO, WIDE_HI] and
- * random states drawn from state_box, so that positions stay meaningful in float32. The range
- * the planner is checked on (motion.h); wider (1e-6..1e12) it plans some joints up to 11 %
- * slower than the reference, and very asymmetric limits (vmin/vmax 1e-5) exceed a limit by up
- * to 1e-3 relative: not yet guaranteed. */
+/* The wide group (test_oracle_wide): limits log-uniform over the whole range the planner
+ * accepts, [WIDE_LO, WIDE_HI] = [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX], half of the joints
+ * with vmin and half with amin a factor log-uniform in [1/WIDE_RATIO, WIDE_RATIO] =
+ * QO_MOTION_LIMIT_RATIO from -vmax / -amax, and random states drawn from state_box, so that
+ * positions stay meaningful in float32. Wider (compile with -DWIDE_LO=1e-6 -DWIDE_HI=1e12, or
+ * -DWIDE_RATIO=1000) the planner was seen up to 3.1x slower than the reference, and limits
+ * exceeded by up to 6e-5 relative: the planner refuses those limits (motion.h). */
 static int g_wide;
-#define WIDE_LO 1e-3
-#define WIDE_HI 1e9
+#ifndef WIDE_LO
+#define WIDE_LO ((double)QO_MOTION_LIMIT_MIN)
+#endif
+#ifndef WIDE_HI
+#define WIDE_HI ((double)QO_MOTION_LIMIT_MAX)
+#endif
+#ifndef WIDE_RATIO
+#define WIDE_RATIO ((double)QO_MOTION_LIMIT_RATIO)
+#endif
 #define WIDE_REACH 4.0 /* largest stopping distance of a random state */
 
 static double log_uniform(ref_rng *g, double lo, double hi)
 {
     return exp(ref_rng_range(g, log(lo), log(hi)));
+}
+
+/* A negative limit a factor log-uniform in [1/WIDE_RATIO, WIDE_RATIO] from -pos, within
+ * [WIDE_LO, WIDE_HI], pulled toward -pos by float32 ulps where rounding of the factor put it
+ * outside the ratio the planner accepts (its float32 check, motion.c neg_limit_ok). */
+static float wide_neg(ref_rng *g, float pos)
+{
+    float x = (float)fmin(fmax(pos * log_uniform(g, 1.0 / WIDE_RATIO, WIDE_RATIO), WIDE_LO), WIDE_HI);
+    const float R = (float)WIDE_RATIO;
+    while (!(x <= R * pos && pos <= R * x)) x = nextafterf(x, pos);
+    return -x;
 }
 
 /* Where random start and target states are drawn: the limits, or in the wide group the part of
@@ -264,6 +287,9 @@ static void rand_case_mix(ref_rng *g, jcase *c, int mix)
         c->lim.vmax = (float)log_uniform(g, WIDE_LO, WIDE_HI);
         c->lim.amax = (float)log_uniform(g, WIDE_LO, WIDE_HI);
         c->lim.jmax = (float)log_uniform(g, WIDE_LO, WIDE_HI);
+        /* asymmetric on half the joints, each limit, kept within the range */
+        if (ref_rng_unit(g) < 0.5) c->lim.vmin = wide_neg(g, c->lim.vmax);
+        if (ref_rng_unit(g) < 0.5) c->lim.amin = wide_neg(g, c->lim.amax);
     } else {
         c->lim.vmax = (float)ref_rng_range(g, 0.5, 5.0);
         c->lim.amax = (float)ref_rng_range(g, 1.0, 20.0);
@@ -503,8 +529,9 @@ static void test_oracle_time_if_necessary(void **state)
     run_mode(QO_MOTION_SYNC_TIME_IF_NECESSARY, 1106);
 }
 
-/* Limits log-uniform over [1e-3, 1e9] (vmax, amax, jmax), moving starts and target states
- * within state_box, in every sync mode, 700 joints each (issue 11: with vmax 1e8 a re-plan lost
+/* Limits log-uniform over the accepted range [1e-3, 1e9] (vmax, amax, jmax; vmin, amin within
+ * a factor 10), moving starts and target states within state_box, in every sync mode, 700
+ * joints each (issue 11: with vmax 1e8 a re-plan lost
  * its target and jumped to it). */
 static void test_oracle_wide(void **state)
 {

@@ -182,25 +182,27 @@ extern "C" {
 #define QO_MOTION_MAX_JOINTS 32
 /* Phases of one joint's plan: 3 (velocity change) + 1 (cruise) + 3 (stop). */
 #define QO_MOTION_MAX_PHASES 7
-/* Supported range, so that no float32 product, ratio or duration of a plan can overflow:
- * vmax, amax, jmax in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] (subnormal or tiny limits
- * would give durations beyond float, huge ones overflowing products: QO_E_LIMIT); start
- * positions, targets (after clamping to [pmin, pmax]) and wrap periods within
+/* Supported range: what the planner accepts is what tests/core/test_motion_oracle.c verifies
+ * against its independent reference (test_oracle_wide: time-optimal to 0.1 %, within the limits
+ * to 1e-5, continuous, at the goal), and every other limit gets QO_E_LIMIT:
+ *   - vmax, amax, jmax in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] = [1e-3, 1e9] (checked
+ *     log-uniform over the whole range, in every sync mode, from moving starts and to moving
+ *     target states that can stop within a few units). Beyond it the float32 solver was seen
+ *     up to 3.1x slower than optimal (limits over 1e-6..1e12, issue 11); subnormal
+ *     or tiny limits would also give durations beyond float, huge ones overflowing products.
+ *   - vmin, amin: 0 (symmetric) or within a factor QO_MOTION_LIMIT_RATIO = 10 of -vmax, -amax
+ *     (and in [-QO_MOTION_LIMIT_MAX, -QO_MOTION_LIMIT_MIN]): checked with ratios log-uniform
+ *     over [0.1, 10] across the whole range; with ratios up to 1000 plans exceeded a limit by up
+ *     to 6e-5 relative (issue 11).
+ * Start positions, targets (after clamping to [pmin, pmax]) and wrap periods within
  * +-QO_MOTION_POS_MAX (QO_E_RANGE / QO_E_LIMIT). Every plan is also checked after it is made:
  * each phase's coefficients, its end state, the durations and the final positions must be
  * finite (positions within +-QO_MOTION_POS_MAX); a plan that is not gets QO_E_RANGE and the
  * safe state: a brake from the state at t_now, or, if even that is not finite, every joint
- * held at rest where it is.
- * Checked against the reference (tests/test_motion_oracle.c, test_oracle_wide): time-optimal to
- * 0.1 %, within the limits, continuous, at the goal, for symmetric limits anywhere in
- * [1e-3, 1e9] (each of vmax, amax, jmax log-uniform) with starts and target states that can stop
- * within a few units; asymmetric limits in the ordinary ranges (vmax 0.5..5, amax 1..20, jmax
- * 10..500, vmin/vmax and amin/amax ratios 0.1..10). Beyond that (symmetric down to 1e-6 or up to
- * 1e12, or asymmetric limits far apart) plans are accepted but not guaranteed: up to 11 % slower
- * than optimal seen at 1e-6..1e12, and limit excesses up to 0.5 relative with vmin/vmax ~ 1e-3
- * over 1e-3..1e9 (not yet fixed; issue 11). */
-#define QO_MOTION_LIMIT_MIN 1e-6f
-#define QO_MOTION_LIMIT_MAX 1e12f
+ * held at rest where it is. */
+#define QO_MOTION_LIMIT_MIN 1e-3f
+#define QO_MOTION_LIMIT_MAX 1e9f
+#define QO_MOTION_LIMIT_RATIO 10.0f
 #define QO_MOTION_POS_MAX 1e18f
 /* Range of qo_motion_set_timing_f32's durations [s]: a period below QO_MOTION_PERIOD_MIN
  * (1 us) would make T / period lose float32 resolution; the upper bound keeps every plan's
@@ -241,7 +243,8 @@ extern const qo_motion_settings_f32 qo_motion_settings_default;
  * vmin, amin: asymmetric limits, the most negative velocity [u/s] and acceleration [u/s^2]
  * allowed (e.g. vmin = -2 with vmax = 3). 0 (the default, and what an initializer of the first
  * six fields gives) means symmetric: vmin = -vmax, amin = -amax. Otherwise each must lie in
- * [-QO_MOTION_LIMIT_MAX, -QO_MOTION_LIMIT_MIN] (else QO_E_LIMIT). Every plan (all profiles and
+ * [-QO_MOTION_LIMIT_MAX, -QO_MOTION_LIMIT_MIN] and within a factor QO_MOTION_LIMIT_RATIO of
+ * -vmax / -amax (-vmin/vmax in [0.1, 10]; else QO_E_LIMIT, see above). Every plan (all profiles and
  * sync modes, braking, the velocity interface, target states) keeps v in [vmin, vmax] and a
  * in [amin, amax] (starts beyond them are first brought back, as for the symmetric limits). */
 typedef struct qo_motion_limits_f32 {
@@ -304,7 +307,8 @@ typedef struct qo_motion_planner_f32 {
  * Returns QO_OK; QO_E_NULL (pl, joints, limits or start NULL); QO_E_TOO_FEW (n == 0);
  * QO_E_CAPACITY (n > QO_MOTION_MAX_JOINTS); QO_E_ARG (unknown profile or sync);
  * QO_E_LIMIT (a vmax/amax/jmax outside [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] or NaN, a
- * vmin/amin neither 0 nor in [-QO_MOTION_LIMIT_MAX, -QO_MOTION_LIMIT_MIN], pmin > pmax or NaN,
+ * vmin/amin neither 0 nor in [-QO_MOTION_LIMIT_MAX, -QO_MOTION_LIMIT_MIN], or farther than a
+ * factor QO_MOTION_LIMIT_RATIO from -vmax/-amax, pmin > pmax or NaN,
  * wrap < 0, NaN or above QO_MOTION_POS_MAX); QO_E_NONFINITE (a start
  * position or t0 not finite); QO_E_RANGE (a start position beyond +-QO_MOTION_POS_MAX).
  * On any error (pl non-NULL) the planner is left with n = 0, so every later call returns
