@@ -1126,7 +1126,7 @@ static void test_supported_range(void **state)
     l.jmax = QO_MOTION_LIMIT_MAX * 2.0f;
     assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, p0, 0.0f, NULL), QO_E_LIMIT);
     /* the range is what the oracle verifies (motion.h): 1e-4 and 1e10 are refused, the ends
-     * accepted; vmin / amin within a factor QO_MOTION_LIMIT_RATIO of -vmax / -amax */
+     * accepted; vmin / amin within a factor QO_MOTION_LIMIT_RATIO (20) of -vmax / -amax */
     {
         static const float out[] = { 1e-4f, 1e10f, 1e12f, 1e-6f };
         size_t k, f;
@@ -1153,9 +1153,9 @@ static void test_supported_range(void **state)
         l.vmax = l.amax = l.jmax = QO_MOTION_LIMIT_MIN;
         l.vmin = l.amin = -QO_MOTION_LIMIT_MIN * QO_MOTION_LIMIT_RATIO;
         assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, p0, 0.0f, NULL), QO_OK);
-        /* ratio 10 accepted both ways, 10.01 refused, for vmin and for amin */
+        /* the ratio bound accepted both ways, 0.1 % beyond it refused, for vmin and for amin */
         for (f = 0; f < 8; f++) {
-            float r = (f & 1u) ? 10.01f : 10.0f, x = (f & 2u) ? 2.0f * r : 2.0f / r;
+            float r = (f & 1u) ? QO_MOTION_LIMIT_RATIO * 1.001f : QO_MOTION_LIMIT_RATIO, x = (f & 2u) ? 2.0f * r : 2.0f / r;
             l = qo_motion_limits_default;
             l.vmax = l.amax = 2.0f;
             if (f & 4u) l.amin = -x;
@@ -1166,7 +1166,7 @@ static void test_supported_range(void **state)
         l = qo_motion_limits_default;
         assert_int_equal(qo_motion_init_f32(&pl, jts, 1, &l, p0, 0.0f, NULL), QO_OK);
         bad = l;
-        bad.vmin = -11.0f;
+        bad.vmin = -1.01f * QO_MOTION_LIMIT_RATIO;
         assert_int_equal(qo_motion_set_limits_f32(&pl, 0.0f, 0, &bad), QO_E_LIMIT);
         assert_true(pl.joints[0].lim.vmin == 0.0f && pl.braking == 1);
         l = qo_motion_limits_default;

@@ -530,7 +530,7 @@ static void test_oracle_time_if_necessary(void **state)
 }
 
 /* Limits log-uniform over the accepted range [1e-3, 1e9] (vmax, amax, jmax; vmin, amin within
- * a factor 10), moving starts and target states within state_box, in every sync mode, 700
+ * a factor 20), moving starts and target states within state_box, in every sync mode, 700
  * joints each (issue 11: with vmax 1e8 a re-plan lost
  * its target and jumped to it). */
 static void test_oracle_wide(void **state)

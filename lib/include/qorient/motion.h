@@ -190,10 +190,11 @@ extern "C" {
  *     target states that can stop within a few units). Beyond it the float32 solver was seen
  *     up to 3.1x slower than optimal (limits over 1e-6..1e12, issue 11); subnormal
  *     or tiny limits would also give durations beyond float, huge ones overflowing products.
- *   - vmin, amin: 0 (symmetric) or within a factor QO_MOTION_LIMIT_RATIO = 10 of -vmax, -amax
+ *   - vmin, amin: 0 (symmetric) or within a factor QO_MOTION_LIMIT_RATIO = 20 of -vmax, -amax
  *     (and in [-QO_MOTION_LIMIT_MAX, -QO_MOTION_LIMIT_MIN]): checked with ratios log-uniform
- *     over [0.1, 10] across the whole range; with ratios up to 1000 plans exceeded a limit by up
- *     to 6e-5 relative (issue 11).
+ *     over [1/20, 20] across the whole range (and up to 20 in the ordinary ranges of make
+ *     check-motion); with ratios up to 1000 plans exceeded a limit by up to 6e-5 relative
+ *     (issue 11).
  * Start positions, targets (after clamping to [pmin, pmax]) and wrap periods within
  * +-QO_MOTION_POS_MAX (QO_E_RANGE / QO_E_LIMIT). Every plan is also checked after it is made:
  * each phase's coefficients, its end state, the durations and the final positions must be
@@ -202,7 +203,7 @@ extern "C" {
  * held at rest where it is. */
 #define QO_MOTION_LIMIT_MIN 1e-3f
 #define QO_MOTION_LIMIT_MAX 1e9f
-#define QO_MOTION_LIMIT_RATIO 10.0f
+#define QO_MOTION_LIMIT_RATIO 20.0f
 #define QO_MOTION_POS_MAX 1e18f
 /* Range of qo_motion_set_timing_f32's durations [s]: a period below QO_MOTION_PERIOD_MIN
  * (1 us) would make T / period lose float32 resolution; the upper bound keeps every plan's
@@ -244,7 +245,7 @@ extern const qo_motion_settings_f32 qo_motion_settings_default;
  * allowed (e.g. vmin = -2 with vmax = 3). 0 (the default, and what an initializer of the first
  * six fields gives) means symmetric: vmin = -vmax, amin = -amax. Otherwise each must lie in
  * [-QO_MOTION_LIMIT_MAX, -QO_MOTION_LIMIT_MIN] and within a factor QO_MOTION_LIMIT_RATIO of
- * -vmax / -amax (-vmin/vmax in [0.1, 10]; else QO_E_LIMIT, see above). Every plan (all profiles and
+ * -vmax / -amax (-vmin/vmax in [1/20, 20]; else QO_E_LIMIT, see above). Every plan (all profiles and
  * sync modes, braking, the velocity interface, target states) keeps v in [vmin, vmax] and a
  * in [amin, amax] (starts beyond them are first brought back, as for the symmetric limits). */
 typedef struct qo_motion_limits_f32 {
