@@ -13,7 +13,10 @@
  * missing a profile); any limit exceeded by more than 1e-5 relative in the phase coefficients
  * (jerk, acceleration at phase ends, velocity at phase ends and interior extrema) and in dense
  * samples, including the motion after the end; the end state equal to the target state;
- * continuity across a re-plan mid-way (to new target states).
+ * continuity across a re-plan mid-way (to new target states). Two more groups: test_oracle_wide
+ * (limits over the whole accepted range, asymmetric up to the accepted ratio) and
+ * test_oracle_stress (asymmetric limits and moving target states with nonzero accelerations on
+ * every joint, a quarter at the edge of what the limits hold).
  *
  * Also unit checks of asymmetric limits, full target states (refused ones leave the planner
  * bit-for-bit unchanged; the motion after the end against its closed form, float32 and Q16.16),
