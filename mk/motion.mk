@@ -10,7 +10,10 @@
 # QO_MOTION_ORACLE_FILTER=test_oracle_time (a cmocka name pattern) runs one part, e.g. the modes
 # in parallel on a machine with cores to spare. QO_MOTION_ORACLE_FIRST=n QO_MOTION_ORACLE_NUM=m
 # run only groups n..n+m-1 of each mode (the same cases as the full run: a failure reproduced
-# by its case number). test_oracle_wide runs limits log-uniform over [1e-3, 1e9].
+# by its case number). test_oracle_wide runs limits log-uniform over the whole accepted range
+# [1e-3, 1e9] with vmin/vmax, amin/amax ratios over [1/20, 20]; test_oracle_stress asymmetric
+# limits and moving target states with nonzero accelerations on every joint (200,000 joints
+# each in NONE, TIME, TIME_IF_NECESSARY).
 #
 # Each prints one line per mode "sync N: G groups of 7 joints, F failures" and fails on any
 # failure (a joint or plan more than 0.1 % slower or faster than the reference, a limit

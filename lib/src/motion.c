@@ -101,16 +101,18 @@ static int limit_in_range(float x)
     return x >= QO_MOTION_LIMIT_MIN && x <= QO_MOTION_LIMIT_MAX;
 }
 
-/* A negative limit vmin / amin: 0 (symmetric) or in [-QO_MOTION_LIMIT_MAX, -QO_MOTION_LIMIT_MIN]. */
-static int neg_limit_ok(float x)
+/* A negative limit vmin / amin: 0 (symmetric) or in [-QO_MOTION_LIMIT_MAX, -QO_MOTION_LIMIT_MIN]
+ * and within a factor QO_MOTION_LIMIT_RATIO of its positive counterpart pos (what the oracle
+ * verifies; motion.h). */
+static int neg_limit_ok(float x, float pos)
 {
-    return x == 0.0f || limit_in_range(-x);
+    return x == 0.0f || (limit_in_range(-x) && -x <= QO_MOTION_LIMIT_RATIO * pos && pos <= QO_MOTION_LIMIT_RATIO * -x);
 }
 
 static int limits_ok(const qo_motion_limits_f32 *l)
 {
     if (!limit_in_range(l->vmax) || !limit_in_range(l->amax) || !limit_in_range(l->jmax)) return 0;
-    if (!neg_limit_ok(l->vmin) || !neg_limit_ok(l->amin)) return 0;
+    if (!neg_limit_ok(l->vmin, l->vmax) || !neg_limit_ok(l->amin, l->amax)) return 0;
     if (isnan(l->pmin) || isnan(l->pmax) || l->pmin > l->pmax) return 0;
     if (l->pmin == INFINITY || l->pmax == -INFINITY) return 0;
     if (!(l->wrap >= 0.0f && l->wrap <= QO_MOTION_POS_MAX)) return 0;

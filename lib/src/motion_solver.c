@@ -534,18 +534,72 @@ static int segs_within(float v0, float a0, const mseg *g, unsigned n, float vbp,
     return 1;
 }
 
+/* Where the residual at scan points k-1, k, k+1 (those that exist) keeps one sign but comes
+ * closest to zero at k, a pair of roots may lie between them, hidden from the scan (issue 11,
+ * check-motion TIME_IF_NECESSARY case 5781: a dip to -7.5 found only between am = -8.5 and
+ * -5.7, 0.809 s where the scan gave 2.018 s). Golden section for the residual's extremum on
+ * [x[k-1], x[k+1]] toward zero, stopped as soon as it changes sign. Returns 1 with the point
+ * in *xe, *fe, *te if it does, else 0. */
+static int dip_bump(const rctx *c, const float *x, const float *f, unsigned k, unsigned n, float *xe, float *fe,
+                    float *te)
+{
+    const float g = 0.381966f;
+    float sg = f[k] < 0.0f ? 1.0f : -1.0f, a = x[k > 0 ? k - 1 : k], b = x[k < n ? k + 1 : k];
+    float x1 = a + g * (b - a), x2 = b - g * (b - a), f1, f2, t1, t2;
+    unsigned it;
+    if (k > 0 && !(sg * f[k] > sg * f[k - 1])) return 0;
+    if (k < n && !(sg * f[k] > sg * f[k + 1])) return 0;
+    f1 = resid(c, x1, &t1);
+    f2 = resid(c, x2, &t2);
+    for (it = 0; it < 20; it++) {
+        /* a NaN (no pulse to the end state there) counts as farthest from zero */
+        int left = !(sg * f2 >= sg * f1) || f2 != f2;
+        if (left ? sg * f1 > 0.0f : sg * f2 > 0.0f) break;
+        if (left) {
+            b = x2;
+            x2 = x1;
+            f2 = f1;
+            t2 = t1;
+            x1 = a + g * (b - a);
+            f1 = resid(c, x1, &t1);
+        } else {
+            a = x1;
+            x1 = x2;
+            f1 = f2;
+            t1 = t2;
+            x2 = b - g * (b - a);
+            f2 = resid(c, x2, &t2);
+        }
+    }
+    if (sg * f1 > 0.0f && !(sg * f2 > sg * f1 && f2 == f2)) {
+        *xe = x1;
+        *fe = f1;
+        *te = t1;
+        return 1;
+    }
+    if (sg * f2 > 0.0f) {
+        *xe = x2;
+        *fe = f2;
+        *te = t2;
+        return 1;
+    }
+    return 0;
+}
+
 /* Fastest dip profile (build_dip) with displacement dp: the residual is scanned at nscan + 1
  * (<= QO_MOTION_DIP_SCAN + 1) points of am in [e0, e1] (e.g. the extremum-velocity profile
- * through vn and the direct transfer) and every sign change is solved. Returns 0 if none. */
+ * through vn and the direct transfer) and every sign change is solved; with nscan > 1 (the
+ * residual not known to be monotone) also the pairs of roots between the points (dip_bump).
+ * Returns 0 if none. */
 #define QO_MOTION_DIP_SCAN 4
 static int solve_dip(const mprob *p, float e0, float e1, unsigned nscan, float *am, float *dur)
 {
     rctx c;
-    float x[QO_MOTION_DIP_SCAN + 1], f[QO_MOTION_DIP_SCAN + 1], t[QO_MOTION_DIP_SCAN + 1];
+    float x[2 * QO_MOTION_DIP_SCAN + 2], f[2 * QO_MOTION_DIP_SCAN + 2], t[2 * QO_MOTION_DIP_SCAN + 2];
     float v0 = p->v0, a0 = p->a0, dp = p->dp, J = p->l.j, vnat = v0 + a0 * fabsf(a0) / (2.0f * J);
     /* velocity bounds of the profile: the limits, or the start's own reach beyond them */
     float vbp = fmaxf(p->l.vp, vnat) * (1.0f + 1e-6f), vbn = fmaxf(p->l.vn, -vnat) * (1.0f + 1e-6f);
-    unsigned k;
+    unsigned k, n;
     c = rctx_make(p, 2, 0.0f);
     *am = 0.0f;
     *dur = INFINITY;
@@ -554,6 +608,29 @@ static int solve_dip(const mprob *p, float e0, float e1, unsigned nscan, float *
         x[k] = e0 + (e1 - e0) * (float)k / (float)nscan;
         f[k] = resid(&c, x[k], &t[k]);
     }
+    n = nscan;
+    if (nscan > 1) {
+        float xb[QO_MOTION_DIP_SCAN + 1], fb[QO_MOTION_DIP_SCAN + 1], tb[QO_MOTION_DIP_SCAN + 1];
+        unsigned nb = 0, i;
+        for (k = 0; k <= nscan; k++) {
+            if (f[k] == 0.0f || f[k] != f[k]) continue;
+            if (dip_bump(&c, x, f, k, nscan, &xb[nb], &fb[nb], &tb[nb])) nb++;
+        }
+        /* insert the sign-change points, keeping x sorted in the scan direction */
+        for (i = 0; i < nb; i++) {
+            k = ++n;
+            while (k > 0 && (e1 > e0 ? x[k - 1] > xb[i] : x[k - 1] < xb[i])) {
+                x[k] = x[k - 1];
+                f[k] = f[k - 1];
+                t[k] = t[k - 1];
+                k--;
+            }
+            x[k] = xb[i];
+            f[k] = fb[i];
+            t[k] = tb[i];
+        }
+    }
+    nscan = n;
     for (k = 0; k <= nscan; k++) {
         float r = x[k], tr = t[k], fr = f[k];
         if (fr != 0.0f) {
