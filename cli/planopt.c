@@ -376,6 +376,21 @@ int qo_cli_plan_build(const char *who, const struct qo_cli_plan_opts *o, size_t 
                 return 2;
             }
         }
+        /* The planner refuses an asymmetry beyond QO_MOTION_LIMIT_RATIO (motion.h: what its
+         * oracle verifies) with QO_E_LIMIT; say which option and joint, not only the status. */
+        for (j = 0; j < n; j++) {
+            const double r = QO_MOTION_LIMIT_RATIO;
+            if (o->vmin && (-vn[j] > r * v[j] || v[j] > r * -vn[j])) {
+                fprintf(stderr, "qorient %s: --vmin: joint %zu: %g is not within a factor %g of -vmax (%g)\n", who,
+                        j + 1, vn[j], r, -v[j]);
+                return 2;
+            }
+            if (o->amin && (-an[j] > r * a[j] || a[j] > r * -an[j])) {
+                fprintf(stderr, "qorient %s: --amin: joint %zu: %g is not within a factor %g of -amax (%g)\n", who,
+                        j + 1, an[j], r, -a[j]);
+                return 2;
+            }
+        }
         for (j = 0; j < n; j++) {
             p->lim[j] = qo_motion_limits_default;
             p->lim[j].vmax = (float)v[j];
