@@ -429,7 +429,9 @@ oom:
 int qo_cli_plan_push(const char *who, const char *name, struct qo_cli_plan *p, qo_traj_ns t,
                      const double *row, long lineno)
 {
-    float f[QO_CLI_MAX_FIELDS];
+    /* zeroed: only the first n * per fields are filled, and gcc 12 for arm64/armhf (not x86-64)
+     * warns that the const pointers passed to qo_traj_push may read the rest */
+    float f[QO_CLI_MAX_FIELDS] = { 0 };
     size_t j, per = p->tr.kind == QO_TRAJ_KEYS ? p->tr.key_cols : p->tr.target_cols, n = p->n;
     int start = p->tr.kind == QO_TRAJ_TARGETS && !p->tr.started;
     qo_status st;
