@@ -229,6 +229,7 @@ qo_status qo_gimbal_track_init_f32(qo_gimbal_track_f32 *tr, const qo_gimbal_trac
     for (i = 0; i < 3; i++) tr->path_prev[i] = 0.0f;
     tr->t_prev = 0.0f;
     tr->started = 0;
+    tr->holding = 0;
     tr->last.angles.a1 = tr->last.angles.a2 = tr->last.angles.a3 = 0.0f;
     for (i = 0; i < 3; i++) tr->last.rate[i] = tr->last.acc[i] = 0.0f;
     tr->last.err = 0.0f;
@@ -325,6 +326,7 @@ qo_status qo_gimbal_track_step_f32(qo_gimbal_track_f32 *tr, float t, qo_euler_f3
         for (i = 0; i < 3; i++) tr->path_prev[i] = in[i];
         tr->t_prev = t;
         tr->started = 1;
+        tr->holding = 0;
         out->angles = path;
         for (i = 0; i < 3; i++) out->rate[i] = out->acc[i] = 0.0f;
         out->settled = 1;
@@ -346,15 +348,27 @@ qo_status qo_gimbal_track_step_f32(qo_gimbal_track_f32 *tr, float t, qo_euler_f3
     }
     (void)qo_motion_shift_time_f32(&tr->pl, dt); /* finite dt, started planner: cannot fail */
     /* A path holding still is a position target: the joints arrive on it exactly, at rest,
-     * instead of approaching it forever. A joint state beyond the planner's position range
-     * (a fast joint over a long step) cannot be planned from: stop. */
+     * instead of approaching it forever. It is planned once and that plan runs to its end,
+     * where the planner snaps to the target at rest. Re-planning it at every step would be
+     * a limit cycle: sampled mid-plan the state carries float32 rounding, and the plan for
+     * the last ulp or so of a move (jerk-limited: longer than a step) from it ends an ulp
+     * off, so the next step re-plans again, forever (seen on targets whose libm rounds the
+     * path an ulp differently). The one exception is a plan that has ended off the path:
+     * the planner ends at p0 + (target - p0), which float32 rounds an ulp of |p0| away from
+     * the target after a long move; planned again from rest that near, the difference is
+     * exact (Sterbenz) and the next plan ends on the target. A joint state beyond the
+     * planner's position range (a fast joint over a long step) cannot be planned from: stop. */
     if (!(fabsf(p[0]) <= QO_MOTION_POS_MAX && fabsf(p[1]) <= QO_MOTION_POS_MAX && fabsf(p[2]) <= QO_MOTION_POS_MAX)) {
         (void)qo_motion_brake_f32(&tr->pl, 0.0f);
         st = QO_E_RANGE;
-    } else if (still)
-        st = qo_motion_set_target_f32(&tr->pl, 0.0f, in, NULL);
-    else
+    } else if (still) {
+        if (!tr->holding || (!settled && qo_motion_done_f32(&tr->pl, 0.0f)))
+            st = qo_motion_set_target_f32(&tr->pl, 0.0f, in, NULL);
+        else
+            st = QO_OK;
+    } else
         st = qo_motion_set_velocity_f32(&tr->pl, 0.0f, cmd);
+    tr->holding = still && st == QO_OK;
     for (i = 0; i < 3; i++) tr->path_prev[i] = in[i];
     tr->t_prev = t;
     out->angles.a1 = p[0]; out->angles.a2 = p[1]; out->angles.a3 = p[2];

@@ -185,8 +185,10 @@ qo_status qo_gimbal_step_f32(qo_gimbal_f32 *g, float t, qo_quat_f32 q, qo_gimbal
  * (the velocity from which half of amax stops the joint at the path: large errors close at
  * about amax/2, without overshoot from braking too late), capped at |e|/(2 dt) so a long step
  * never overshoots, and the sum clamped to +-vmax. While the path holds still (the same angle
- * twice in a row) the joint is instead planned to the path's position at rest: it arrives
- * exactly, in minimum time within the limits.
+ * twice in a row) the joint is instead planned, once, to the path's position at rest and that
+ * plan runs to its end: it arrives exactly, in minimum time within the limits. (Re-planning
+ * it at every step would chatter forever: a plan for the last ulp of a move, from a state
+ * carrying float32 rounding, ends an ulp off and starts again.)
  * What it costs: the output lags the path. While the path's rate changes faster than amax
  * (or its acceleration faster than jmax) the error grows: a rate step of dv leaves an error
  * of about dv^2/(2 amax) (plus dv*amax/(2 jmax) with jerk limiting), closed at gain
@@ -222,7 +224,7 @@ typedef struct qo_gimbal_track_sample_f32 {
     int settled;          /* 1 when the path holds still and every joint is on it at rest */
 } qo_gimbal_track_sample_f32;
 
-/* The filter's state: caller storage (880 bytes on x86-64: three planner joints of 248),
+/* The filter's state: caller storage (888 bytes on x86-64: three planner joints of 248),
  * written only by the functions. */
 typedef struct qo_gimbal_track_f32 {
     qo_gimbal_track_settings_f32 s;
@@ -232,6 +234,7 @@ typedef struct qo_gimbal_track_f32 {
     float t_prev;                     /* time of the last step, s */
     qo_gimbal_track_sample_f32 last;  /* the last step's output (what an error repeats) */
     int started;                      /* 0 until the first step */
+    int holding;                      /* 1 while the plan runs to path_prev at rest: not re-planned */
 } qo_gimbal_track_f32;
 
 /*
