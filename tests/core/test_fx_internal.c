@@ -1,0 +1,239 @@
+/* The fixed-point core's private integer helpers (lib/src/fx_internal.h), tested directly.
+ * Apart from tests/core/test_math.c (the public kernels of both cores) because the private
+ * header keeps this program off the emulated Cortex-M list (tests/qemu/run-target.sh runs only
+ * tests that include the public "qorient/..." and "common/..." headers). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <math.h>
+#include <cmocka.h>
+
+#include "qorient/fxmath.h"
+
+#include "../lib/src/fx_internal.h"
+#include "common/ref.h"
+
+#define TWO30 1073741824.0
+
+static uint64_t rng_state;
+static uint64_t rnd(void) { return ref_splitmix64(&rng_state); } /* tests/common/ref.c */
+
+/* ---- lib/src/fx_internal.h: each helper against a reference built from C's truncating
+ * division and remainder (a different algorithm from the shifts under test, and exact on
+ * every target, so these run on 32-bit ones too). ---- */
+
+/* floor(v / 2^s) and the remainder in [0, 2^s), for 1 <= s <= 62, from / and %. */
+static int64_t ref_floor(int64_t v, unsigned s, int64_t *rem)
+{
+    int64_t d = (int64_t)1 << s, q = v / d, r = v % d;
+    if (r < 0) { q -= 1; r += d; }
+    *rem = r;
+    return q;
+}
+
+static int64_t ref_round_up(int64_t v, unsigned s)
+{
+    int64_t r, q = ref_floor(v, s, &r);
+    return q + (r >= ((int64_t)1 << s) - r);   /* frac >= 1/2 rounds up */
+}
+
+/* Ties away from zero, on the magnitude (also s = 63 and v = INT64_MIN). */
+static int64_t ref_round_away(int64_t v, unsigned s)
+{
+    uint64_t m = v < 0 ? (uint64_t)0 - (uint64_t)v : (uint64_t)v;
+    uint64_t d = (uint64_t)1 << s, q = m / d, r = m % d;
+    q += (r >= d - r);
+    return v < 0 ? (int64_t)((uint64_t)0 - q) : (int64_t)q;
+}
+
+static void check_rshift(int64_t v, unsigned s)
+{
+    if (s <= 62 && v <= INT64_MAX - ((int64_t)1 << (s - 1))) {
+        int64_t got = qo_fx_rshift_round_up(v, s), want = ref_round_up(v, s);
+        if (got != want)
+            fail_msg("rshift_round_up(%lld, %u) = %lld, want %lld", (long long)v, s,
+                     (long long)got, (long long)want);
+    }
+    {
+        int64_t got = qo_fx_rshift_round_away(v, s), want = ref_round_away(v, s);
+        if (got != want)
+            fail_msg("rshift_round_away(%lld, %u) = %lld, want %lld", (long long)v, s,
+                     (long long)got, (long long)want);
+        /* odd: the property euler_fx.c relies on for q and -q */
+        if (v != INT64_MIN && qo_fx_rshift_round_away(-v, s) != -got)
+            fail_msg("rshift_round_away(%lld, %u) not odd", (long long)v, s);
+    }
+}
+
+static void test_internal_rshift_abs(void **state)
+{
+    static const int64_t e[] = { 0, 1, -1, 2, -2, 3, -3, 5, -5, 6, -6, 7, -7, INT64_MAX,
+                                 INT64_MIN, INT64_MAX - 1, INT64_MIN + 1, INT32_MAX, INT32_MIN,
+                                 (int64_t)1 << 62, -((int64_t)1 << 62) };
+    unsigned s, k;
+    size_t i;
+    int64_t v;
+    (void)state;
+    rng_state = 0x5EED0014u;
+    /* |v|: exact for every value, INT64_MIN included */
+    assert_true(qo_fx_abs_u64(INT64_MIN) == (uint64_t)1 << 63);
+    assert_true(qo_fx_abs_u64(INT64_MAX) == (uint64_t)INT64_MAX);
+    assert_true(qo_fx_abs_u64(-1) == 1u && qo_fx_abs_u64(0) == 0u && qo_fx_abs_u64(7) == 7u);
+    /* ties: the two roundings differ exactly on negative halves */
+    assert_true(qo_fx_rshift_round_up(-5, 1) == -2 && qo_fx_rshift_round_away(-5, 1) == -3);
+    assert_true(qo_fx_rshift_round_up(5, 1) == 3 && qo_fx_rshift_round_away(5, 1) == 3);
+    assert_true(qo_fx_rshift_round_up(-6, 2) == -1 && qo_fx_rshift_round_away(-6, 2) == -2);
+    assert_true(qo_fx_rshift_round_away(INT64_MIN, 63) == -1);
+    /* exhaustive on small values: every tie and every remainder of every shift up to 13 */
+    for (s = 1; s <= 13; s++)
+        for (v = -(1 << 14); v <= (1 << 14); v++) check_rshift(v, s);
+    /* edges and their neighbours of each power of two, every shift */
+    for (s = 1; s <= 63; s++) {
+        for (i = 0; i < sizeof e / sizeof e[0]; i++) check_rshift(e[i], s);
+        for (k = 1; k <= 62; k++) {
+            int64_t p = (int64_t)1 << k;
+            check_rshift(p, s); check_rshift(p - 1, s); check_rshift(p + 1, s);
+            check_rshift(-p, s); check_rshift(-p - 1, s); check_rshift(1 - p, s);
+            check_rshift(p / 2 * 3, s); check_rshift(-(p / 2 * 3), s);   /* ties at s = k */
+        }
+    }
+    /* random values of random magnitude */
+    for (i = 0; i < 400000; i++) {
+        v = (int64_t)rnd();
+        v >>= rnd() % 63u;
+        check_rshift(v, 1u + (unsigned)(rnd() % 63u));
+    }
+}
+
+static int64_t ref_div_away(int64_t num, uint64_t den)
+{
+    uint64_t m = num < 0 ? (uint64_t)0 - (uint64_t)num : (uint64_t)num;
+    uint64_t q = m / den, r = m % den;
+    q += (r >= den - r);
+    return num < 0 ? -(int64_t)q : (int64_t)q;
+}
+
+static void check_div_away(int64_t num, uint64_t den)
+{
+    int64_t got = qo_fx_div_round_away(num, den), want = ref_div_away(num, den);
+    if (got != want)
+        fail_msg("div_round_away(%lld, %llu) = %lld, want %lld", (long long)num,
+                 (unsigned long long)den, (long long)got, (long long)want);
+}
+
+static void test_internal_div_round_away(void **state)
+{
+    static const uint64_t d[] = { 1, 2, 3, 4, 5, 7, 10, 1u << 30, (1u << 30) + 1, 0xFFFFFFFFu,
+                                  (uint64_t)1 << 32, ((uint64_t)1 << 62) + 3 };
+    static const int64_t n[] = { 0, 1, -1, 2, -2, 3, -3, 5, -5, 15, -15, INT32_MAX, INT32_MIN,
+                                 ((int64_t)1 << 61) - 1, -((int64_t)1 << 61),
+                                 INT64_MAX / 2, -(INT64_MAX / 2) };
+    size_t i, j;
+    int64_t v;
+    (void)state;
+    rng_state = 0x5EED0015u;
+    assert_true(qo_fx_div_round_away(5, 2) == 3 && qo_fx_div_round_away(-5, 2) == -3);
+    assert_true(qo_fx_div_round_away(7, 2) == 4 && qo_fx_div_round_away(-7, 2) == -4);
+    assert_true(qo_fx_div_round_away(-4, 3) == -1 && qo_fx_div_round_away(-5, 3) == -2);
+    for (i = 0; i < sizeof n / sizeof n[0]; i++)
+        for (j = 0; j < sizeof d / sizeof d[0]; j++) check_div_away(n[i], d[j]);
+    /* exhaustive on small numerators and denominators (every tie of odd and even den) */
+    for (j = 1; j <= 64; j++)
+        for (v = -2000; v <= 2000; v++) check_div_away(v, j);
+    for (i = 0; i < 400000; i++) {
+        uint64_t den = rnd() >> (1u + rnd() % 63u);
+        int64_t num = (int64_t)(rnd() >> 2) - ((int64_t)1 << 61);   /* |num| <= 2^61 */
+        if (den == 0) den = 1;
+        check_div_away(num >> (rnd() % 62u), den);
+    }
+}
+
+/* The reciprocal estimates against the exact floor(2^62 / d) (a 64-bit division). */
+static void check_recip(uint32_t d)
+{
+    uint64_t ref = ((uint64_t)1 << 62) / d;
+    uint32_t r1 = qo_fx_recip62_u32(d), r2 = qo_fx_recip62_step(d, r1);
+    uint64_t e1 = r1 > ref ? r1 - ref : ref - r1, e2 = r2 > ref ? r2 - ref : ref - r2;
+    /* documented: ~2^-28 after qo_fx_recip62_u32, ~2^-31 after one more step (bounds with
+     * margin for the truncations: 2^-27 and 2^-29 relative) */
+    if ((e1 << 27) > ref || (e2 << 29) > ref)
+        fail_msg("recip62(%lu): %lu then %lu, want %lu", (unsigned long)d, (unsigned long)r1,
+                 (unsigned long)r2, (unsigned long)ref);
+}
+
+/* The reciprocal square root of the fast normalisation against double (53 bits): within
+ * 2^-26 relative over the whole domain (every top-20-bit value, both ends, random). */
+static void check_rsqrt32(uint32_t x)
+{
+    double want = 1073741824.0 / sqrt((double)x / 4294967296.0);
+    uint32_t got = qo_fx_rsqrt32_q30(x);
+    if (fabs((double)got - want) > want * ldexp(1.0, -26))
+        fail_msg("rsqrt32(%lu) = %lu, want %.1f", (unsigned long)x, (unsigned long)got, want);
+}
+
+/* Both Newton estimates over their whole domains: both ends, every value of the top 20 bits
+ * (with random low bits), random values, and both sides of every recip62 seed boundary. */
+static void test_internal_newton(void **state)
+{
+    uint32_t k, i;
+    (void)state;
+    rng_state = 0x5EED0016u;
+    check_recip(0x80000000u);
+    check_recip(0xFFFFFFFFu);
+    check_rsqrt32(0x40000000u);
+    check_rsqrt32(0xFFFFFFFFu);
+    for (k = 64; k < 128; k++) {   /* 64 intervals of 2^25 */
+        check_recip(k << 25);
+        check_recip((k << 25) + 1u);
+        if (k > 64) check_recip((k << 25) - 1u);
+    }
+    for (k = 1u << 18; k < (1u << 20); k++) {
+        uint32_t x = (k << 12) | (uint32_t)(rnd() & 0xFFFu);   /* [2^30, 2^32) */
+        check_rsqrt32(x);
+        if (x >= 0x80000000u) check_recip(x);
+    }
+    for (i = 0; i < 200000; i++) {
+        uint32_t x = (uint32_t)rnd();
+        check_recip(x | 0x80000000u);
+        check_rsqrt32(x < 0x40000000u ? x + 0x40000000u : x);
+    }
+}
+
+/* sin and cos of 2y (the fast slerp's) against double libm over all of y in [0, pi/4]:
+ * a strided sweep (every 997th value), both ends and random values; within 8 LSB. */
+static void check_sincos_2y(uint32_t y)
+{
+    qo_q30 s, c;
+    double a = 2.0 * (double)y / 2147483648.0, es, ec;
+    qo_fx_sincos_2y_q30(y, &s, &c);
+    es = fabs((double)s - sin(a) * TWO30);
+    ec = fabs((double)c - cos(a) * TWO30);
+    if (es > 8.0 || ec > 8.0)
+        fail_msg("sincos_2y(%lu): sin %ld (%.2f LSB), cos %ld (%.2f LSB)", (unsigned long)y,
+                 (long)s, es, (long)c, ec);
+}
+
+static void test_internal_sincos_2y(void **state)
+{
+    const uint32_t top = 1686629713u;   /* pi/4 in Q1.31, rounded up */
+    uint32_t y;
+    int i;
+    (void)state;
+    rng_state = 0x5EED0019u;
+    check_sincos_2y(0);
+    check_sincos_2y(top);
+    for (y = 1; y < top - 997u; y += 997u) check_sincos_2y(y);
+    for (i = 0; i < 100000; i++) check_sincos_2y((uint32_t)(rnd() % top));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_internal_rshift_abs),
+        cmocka_unit_test(test_internal_div_round_away),
+        cmocka_unit_test(test_internal_newton),
+        cmocka_unit_test(test_internal_sincos_2y),
+    };
+    return cmocka_run_group_tests_name("fx_internal", tests, NULL, NULL);
+}
