@@ -845,9 +845,9 @@ static void test_wrap(void **state)
     for (k = 0; k < 100000; k++) {
         qo_q28 a = k == 0 ? INT32_MAX : k == 1 ? INT32_MIN : k == 2 ? QO_Q28_PI + 1 : rnd_i32();
         qo_q28 r = qo_fx_wrap_pi_q28(a);
-        double want = remainder((double)a / TWO28, 2.0 * M_PI) * TWO28;
+        double want = remainder((double)a / TWO28, 2.0 * REF_PI) * TWO28;
         double err = (double)r - want;
-        if (fabs(err) > 2.0 * M_PI * TWO28 - 2.0) err = fabs(err) - 2.0 * M_PI * TWO28; /* +-pi ties */
+        if (fabs(err) > 2.0 * REF_PI * TWO28 - 2.0) err = fabs(err) - 2.0 * REF_PI * TWO28; /* +-pi ties */
         if (fabs(err) > 0.5 + 1e-3 || r > QO_Q28_PI || r < -QO_Q28_PI)
             fail_msg("wrap(%ld) = %ld, error %.3f LSB", (long)a, (long)r, err);
     }
