@@ -264,7 +264,7 @@ float qo_fm_cos_f32(float x)
 
 /* atan(u) - u = u^3 P(u^2) for |u| <= tan(pi/8): P of degree 4 interpolating at the Chebyshev
  * nodes of [0, tan^2(pi/8)], coefficients rounded to float (made by tools/fmath-fit-atan.c:
- * 2.8e-9 relative to atan(u), 0.05 ulp; checked with the rest by tests/core/test_fmath.c). */
+ * 2.8e-9 relative to atan(u), 0.05 ulp; checked with the rest by tests/core/test_math.c). */
 static float atan_tail(float u)
 {
     float z = u * u;

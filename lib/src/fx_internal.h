@@ -83,13 +83,13 @@ uint32_t qo_fx_recip62_u32(uint32_t d);
 
 /* About 2^30 / sqrt(x / 2^32) (Q2.30, in (2^30, 2^31)) for x in [2^30, 2^32): the 96-entry
  * seed of qo_fx_sqrt_u64, a 16-bit Newton step and one in 32x32 -> 64 products, within ~2^-28
- * relative (measured bound in tests/core/test_fxmath.c). Multiplications only. In fxmath_fx.c. */
+ * relative (measured bound in tests/core/test_fx_internal.c). Multiplications only. In fxmath_fx.c. */
 uint32_t qo_fx_rsqrt32_q30(uint32_t x);
 
 /* sin(2y) and cos(2y) in Q1.30 for y in [0, pi/4] given in Q1.31 (y * 2^31 <= 1686629713):
  * the Taylor sums of qo_fx_sincos_q60 at y in 32x32 -> 64 products and the angle-doubling
  * formulas, no range reduction and no 64-bit multiply or division (the fast tier of slerp;
- * within 8 LSB, tests/core/test_fxmath.c). In fxmath_fx.c. */
+ * within 8 LSB, tests/core/test_fx_internal.c). In fxmath_fx.c. */
 void qo_fx_sincos_2y_q30(uint32_t y, qo_q30 *s, qo_q30 *c);
 
 /* The unit quaternion of a rotation vector rv (Q3.28 radians, |rv| < 16): the kernel of

@@ -22,7 +22,7 @@
  * floating-point environment access) and total: NaN in gives NaN out, no input is UB.
  *
  * Methods and error bounds. "ulp" = units in the last place of the correctly rounded float
- * result; every bound is checked by tests/core/test_fmath.c against double-precision libm over
+ * result; every bound is checked by tests/core/test_math.c against double-precision libm over
  * dense sweeps of the float domain plus the edges (+-0, subnormals, +-Inf, NaN, FLT_MAX, the
  * floats nearest multiples of pi/2).
  *   sincos  range reduction x - k pi/2 EXACT for every float: x * 2/pi in integers with a
@@ -51,7 +51,7 @@
  *           bound 1 ulp.
  *           log(+-0) = -Inf, log(x < 0) = NaN, log(+Inf) = +Inf.
  * The bounds above are the ones the tests enforce; the measured worst cases are printed by
- * `build/tests/test_fmath`.
+ * `build/tests/test_math`.
  */
 #ifndef QORIENT_FMATH_H
 #define QORIENT_FMATH_H
