@@ -758,7 +758,7 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
     const mlim *l = &p->l;
     float v0 = p->v0, a0 = p->a0, dp = p->dp;
     float pt[5], fp[5], xp[5], vn, ve, lo, hi, bv = 0.0f, bt = 0.0f, bd = INFINITY, x, fz = NAN, fn0 = NAN, xn0 = 0.0f,
-          dipd = NAN;
+          dipd = NAN, dipx = NAN;
     unsigned np = 0, i;
     int scurve = p->scurve, atrest = p->vf == 0.0f && p->af == 0.0f;
     sol->fam = 0;
@@ -811,6 +811,7 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
             bv = am;
             bt = 0.0f;
             bd = dipd = dd;
+            dipx = am;
             sol->fam = 1;
         }
     }
@@ -826,6 +827,7 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
                 bv = am;
                 bt = 0.0f;
                 bd = dipd = dd;
+                dipx = am;
                 sol->fam = 1;
             }
         }
@@ -897,7 +899,13 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
             }
         }
     }
-    if (bd != dipd) sol->fam = 0; /* a later candidate (vs) was shorter */
+    /* A later candidate replaced the dip: the family goes back to 0. It may tie the dip's
+     * duration exactly (the profile through vs is where the dip family starts), so the test is
+     * on the value as well as the duration: with the duration alone, a tie left family 1 with
+     * the later candidate's extremum velocity read as the dip's acceleration, and a plan that
+     * broke vmax by 20 % (fuzz/regress/motion/vs-tie-dip: v0 -6.98, a0 -4.50, dp -8.60, vmax 9,
+     * amax 30, jmax 13). */
+    if (bd != dipd || bv != dipx) sol->fam = 0;
     if (!(bd < INFINITY)) {
         /* Not reachable for finite inputs (the pieces cover [-vn, vp] and the cruises the
          * rest); a defined answer. */
