@@ -3,7 +3,8 @@
  *   make build/bench/accuracy_euler && build/bench/accuracy_euler [N]
  *
  * For N (default 20000) fixed-seed random cases per convention it measures, against a
- * double-precision reference (products of elementary rotations, written here):
+ * double-precision reference (products of elementary rotations from the
+ * convention's letters, tests/common/ref.c):
  *   - from_euler: angle between the float quaternion and the double one;
  *   - to_euler, generic: uniformly random rotations; the returned angles composed in double
  *     vs the float input rotation (the "recomposition error");
@@ -31,22 +32,13 @@
 #include "qorient/euler.h"
 #include "qorient/quat.h"
 
-#define PI_D 3.14159265358979323846
-
-static const char *const k_names[24] = {
-    "xyz", "xzy", "yxz", "yzx", "zxy", "zyx", "xyx", "xzx", "yxy", "yzy", "zxz", "zyz",
-    "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX", "XYX", "XZX", "YXY", "YZY", "ZXZ", "ZYZ",
-};
-
-/* double reference and fixed-seed PRNG: tests/common/ref.c */
+/* double reference, the 24 convention names and fixed-seed PRNG: tests/common/ref.c */
 static ref_rng rng = { 0x5EED0E17ull };
 
 static double recomp(int seq, qo_euler_f32 e, dq q)
 {
-    return dq_angle(ref_quat_from_euler(k_names[seq], e.a1, e.a2, e.a3), q);
+    return dq_angle(ref_quat_from_euler(ref_euler_names[seq], e.a1, e.a2, e.a3), q);
 }
-
-static int proper(int seq) { return k_names[seq][0] == k_names[seq][2]; }
 
 static double now_s(void)
 {
@@ -63,7 +55,7 @@ static void upd(double *worst, double v, int seq, int *worst_seq)
 int main(int argc, char **argv)
 {
     static const double offs[] = { 1e-7, 5e-7, 1e-6, 1.5e-6, 3e-6, 1e-5, 1e-4, 1e-3, 0.01, 0.035 };
-    const double two_deg = 2.0 * PI_D / 180.0;
+    const double two_deg = 2.0 * REF_PI / 180.0;
     long n_per = argc > 1 ? atol(argv[1]) : 20000;
     double w_from = 0, w_gen = 0, w_lock = 0, w_near_in = 0, w_near_out = 0, w_nearfn = 0;
     double max_flag_margin = 0, max_exact_margin = 0, min_unflagged_nonexact = 1e9;
@@ -85,9 +77,9 @@ int main(int argc, char **argv)
             int k, which, side;
 
             /* from_euler */
-            e.a1 = (float)ref_rng_range(&rng, -PI_D, PI_D); e.a2 = (float)ref_rng_range(&rng, -PI_D, PI_D); e.a3 = (float)ref_rng_range(&rng, -PI_D, PI_D);
+            e.a1 = (float)ref_rng_range(&rng, -REF_PI, REF_PI); e.a2 = (float)ref_rng_range(&rng, -REF_PI, REF_PI); e.a3 = (float)ref_rng_range(&rng, -REF_PI, REF_PI);
             qo_quat_from_euler_f32((qo_euler_seq)seq, e, &qf);
-            upd(&w_from, dq_angle(dq_unit_from_f(qf), ref_quat_from_euler(k_names[seq], e.a1, e.a2, e.a3)), seq, &s_from);
+            upd(&w_from, dq_angle(dq_unit_from_f(qf), ref_quat_from_euler(ref_euler_names[seq], e.a1, e.a2, e.a3)), seq, &s_from);
 
             /* generic: uniform random rotation */
             do {
@@ -111,10 +103,10 @@ int main(int argc, char **argv)
             }
 
             /* exactly singular */
-            a1 = ref_rng_range(&rng, -PI_D, PI_D); a3 = ref_rng_range(&rng, -PI_D, PI_D);
+            a1 = ref_rng_range(&rng, -REF_PI, REF_PI); a3 = ref_rng_range(&rng, -REF_PI, REF_PI);
             which = (int)(ref_rng_next(&rng) & 1);
-            s = proper(seq) ? (which ? PI_D : 0.0) : (which ? PI_D / 2 : -PI_D / 2);
-            qf = f_from(ref_quat_from_euler(k_names[seq], a1, s, a3));
+            s = ref_euler_proper(seq) ? (which ? REF_PI : 0.0) : (which ? REF_PI / 2 : -REF_PI / 2);
+            qf = f_from(ref_quat_from_euler(ref_euler_names[seq], a1, s, a3));
             r = dq_unit_from_f(qf);
             qo_quat_to_euler_f32(qf, (qo_euler_seq)seq, &o, &info);
             n_exact++; n_cases++;
@@ -126,9 +118,9 @@ int main(int argc, char **argv)
              * nearest the singular middle angle (pi/2 itself is not a float) */
             {
                 qo_euler_f32 se;
-                se.a1 = (float)ref_rng_range(&rng, -PI_D, PI_D); se.a2 = (float)s; se.a3 = (float)ref_rng_range(&rng, -PI_D, PI_D);
+                se.a1 = (float)ref_rng_range(&rng, -REF_PI, REF_PI); se.a2 = (float)s; se.a3 = (float)ref_rng_range(&rng, -REF_PI, REF_PI);
                 qo_quat_from_euler_f32((qo_euler_seq)seq, se, &qf);
-                r = ref_quat_from_euler(k_names[seq], se.a1, s, se.a3);
+                r = ref_quat_from_euler(ref_euler_names[seq], se.a1, s, se.a3);
                 qo_quat_to_euler_f32(qf, (qo_euler_seq)seq, &o, &info);
                 n_exact++; n_cases++;
                 if (info.locked) { n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin, 0, NULL); }
@@ -141,7 +133,7 @@ int main(int argc, char **argv)
             {
                 int c;
                 float *comp[4];
-                qf = f_from(ref_quat_from_euler(k_names[seq], ref_rng_range(&rng, -PI_D, PI_D), s, ref_rng_range(&rng, -PI_D, PI_D)));
+                qf = f_from(ref_quat_from_euler(ref_euler_names[seq], ref_rng_range(&rng, -REF_PI, REF_PI), s, ref_rng_range(&rng, -REF_PI, REF_PI)));
                 comp[0] = &qf.w; comp[1] = &qf.x; comp[2] = &qf.y; comp[3] = &qf.z;
                 for (c = 0; c < 4; c++) {
                     int u = (int)(ref_rng_next(&rng) % 5) - 2;
@@ -160,8 +152,8 @@ int main(int argc, char **argv)
             k = (int)(ref_rng_next(&rng) % (sizeof offs / sizeof offs[0]));
             side = (int)(ref_rng_next(&rng) & 1);
             a2 = s + ((s > 0) ? -1.0 : 1.0) * (side ? -offs[k] : offs[k]);
-            a1 = ref_rng_range(&rng, -PI_D, PI_D); a3 = ref_rng_range(&rng, -PI_D, PI_D);
-            qf = f_from(ref_quat_from_euler(k_names[seq], a1, a2, a3));
+            a1 = ref_rng_range(&rng, -REF_PI, REF_PI); a3 = ref_rng_range(&rng, -REF_PI, REF_PI);
+            qf = f_from(ref_quat_from_euler(ref_euler_names[seq], a1, a2, a3));
             r = dq_unit_from_f(qf);
             qo_quat_to_euler_f32(qf, (qo_euler_seq)seq, &o, &info);
             n_cases++;
@@ -178,19 +170,19 @@ int main(int argc, char **argv)
 
     printf("accuracy_euler: %ld cases per convention x 24 conventions (seed 0x5EED0E17)\n", n_per);
     printf("  lock band QO_EULER_LOCK_BAND_F32      = %.3g rad\n", (double)QO_EULER_LOCK_BAND_F32);
-    printf("  from_euler worst error                 = %.3g rad (%s)   goal <= 1e-6\n", w_from, k_names[s_from]);
-    printf("  to_euler generic worst recomposition   = %.3g rad (%s)   goal <= 1e-6\n", w_gen, k_names[s_gen]);
+    printf("  from_euler worst error                 = %.3g rad (%s)   goal <= 1e-6\n", w_from, ref_euler_names[s_from]);
+    printf("  to_euler generic worst recomposition   = %.3g rad (%s)   goal <= 1e-6\n", w_gen, ref_euler_names[s_gen]);
     printf("  to_euler_near generic worst recomp.    = %.3g rad         goal <= 2e-6 (outputs beyond +-pi)\n", w_nearfn);
-    printf("  to_euler at exact lock worst recomp.   = %.3g rad (%s)   goal <= 1e-5\n", w_lock, k_names[s_lock]);
+    printf("  to_euler at exact lock worst recomp.   = %.3g rad (%s)   goal <= 1e-5\n", w_lock, ref_euler_names[s_lock]);
     printf("  near lock, flagged, worst recomp.      = %.3g rad         goal <= 1e-5\n", w_near_in);
-    printf("  near lock, not flagged, worst recomp.  = %.3g rad (%s)   goal <= 1e-5\n", w_near_out, k_names[s_near]);
+    printf("  near lock, not flagged, worst recomp.  = %.3g rad (%s)   goal <= 1e-5\n", w_near_out, ref_euler_names[s_near]);
     printf("  exactly singular inputs flagged        = %ld of %ld\n", n_exact_flagged, n_exact);
     printf("  largest margin at an exact singularity = %.3g rad (rounded from double), %.3g rad (via from_euler_f32)\n",
            max_exact_margin, max_exact_margin_f);
     printf("  singular + up to 2 ulp per component    = %ld of %ld flagged, largest margin %.3g rad\n",
            n_noisy_flagged, n_noisy, max_noisy_margin);
     printf("  largest margin at which lock flagged   = %.3g rad (%.3g deg)   goal <= 2 deg\n",
-           max_flag_margin, max_flag_margin * 180.0 / PI_D);
+           max_flag_margin, max_flag_margin * 180.0 / REF_PI);
     printf("  flagged in total                       = %ld of %ld decompositions\n", n_flagged_total, n_cases);
 
     /* speed (host, informative) */

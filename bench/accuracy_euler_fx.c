@@ -5,7 +5,8 @@
  *   make build/bench/accuracy_euler_fx && build/bench/accuracy_euler_fx [N]
  *
  * For N (default 20000, at least 10000) fixed-seed random cases per convention it measures,
- * against a double-precision reference (products of elementary rotations, written here):
+ * against a double-precision reference (products of elementary rotations from the
+ * convention's letters, tests/common/ref.c):
  *   - from_euler: angle between the Q1.30 quaternion and the double one of the same Q3.28
  *     angles, and the largest component error (LSB of Q1.30);
  *   - to_euler, generic: uniformly random rotations rounded to Q1.30; the returned Q3.28
@@ -33,24 +34,13 @@
 #include "qorient/euler_fx.h"
 #include "qorient/fxmath.h"
 
-#define PI_D 3.14159265358979323846
-#define Q30 1073741824.0
-#define Q28 268435456.0
-
-static const char *const k_names[24] = {
-    "xyz", "xzy", "yxz", "yzx", "zxy", "zyx", "xyx", "xzx", "yxy", "yzy", "zxz", "zyz",
-    "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX", "XYX", "XZX", "YXY", "YZY", "ZXZ", "ZYZ",
-};
-
-/* double reference and fixed-seed PRNG: tests/common/ref.c */
+/* double reference, the 24 convention names and fixed-seed PRNG: tests/common/ref.c */
 static ref_rng rng = { 0x5EED0E17ull };
 
 static double recomp(int seq, qo_euler_q28 e, dq q)
 {
-    return dq_angle(ref_quat_from_euler(k_names[seq], e.a1 / Q28, e.a2 / Q28, e.a3 / Q28), q);
+    return dq_angle(ref_quat_from_euler(ref_euler_names[seq], e.a1 / REF_Q28, e.a2 / REF_Q28, e.a3 / REF_Q28), q);
 }
-
-static int proper(int seq) { return k_names[seq][0] == k_names[seq][2]; }
 
 static double now_s(void)
 {
@@ -68,7 +58,7 @@ int main(int argc, char **argv)
 {
     static const double offs[] = { 1e-9, 5e-9, 2e-8, 5e-8, 1e-7, 1.5e-7, 3e-7, 1e-6, 1e-5,
                                    1e-4, 1e-3, 0.01, 0.035 };
-    const double two_deg = 2.0 * PI_D / 180.0;
+    const double two_deg = 2.0 * REF_PI / 180.0;
     long n_per = argc > 1 ? atol(argv[1]) : 20000;
     double w_from = 0, w_from_lsb = 0, w_gen = 0, w_lock = 0, w_near_in = 0, w_near_out = 0;
     double w_nearfn = 0, max_flag_margin = 0, max_exact_margin = 0, max_exact_margin_f = 0;
@@ -95,16 +85,16 @@ int main(int argc, char **argv)
 
             /* from_euler (every tenth case over the whole Q3.28 range, [-8, 8) rad) */
             {
-                double span = (i % 10 == 0) ? 7.999 : PI_D;
-                e.a1 = ref_to_fixed(ref_rng_range(&rng, -span, span), Q28); e.a2 = ref_to_fixed(ref_rng_range(&rng, -span, span), Q28);
-                e.a3 = ref_to_fixed(ref_rng_range(&rng, -span, span), Q28);
+                double span = (i % 10 == 0) ? 7.999 : REF_PI;
+                e.a1 = ref_to_fixed(ref_rng_range(&rng, -span, span), REF_Q28); e.a2 = ref_to_fixed(ref_rng_range(&rng, -span, span), REF_Q28);
+                e.a3 = ref_to_fixed(ref_rng_range(&rng, -span, span), REF_Q28);
                 if (qo_quat_from_euler_q30(sq, e, &qf) != QO_OK) n_bad_status++;
-                r = ref_quat_from_euler(k_names[seq], e.a1 / Q28, e.a2 / Q28, e.a3 / Q28);
+                r = ref_quat_from_euler(ref_euler_names[seq], e.a1 / REF_Q28, e.a2 / REF_Q28, e.a3 / REF_Q28);
                 upd(&w_from, dq_angle(ref_quat_normalize(ref_quat_from_q30(qf)), r), seq, &s_from);
-                d = fabs(qf.w - r.w * Q30);
-                if (fabs(qf.x - r.x * Q30) > d) d = fabs(qf.x - r.x * Q30);
-                if (fabs(qf.y - r.y * Q30) > d) d = fabs(qf.y - r.y * Q30);
-                if (fabs(qf.z - r.z * Q30) > d) d = fabs(qf.z - r.z * Q30);
+                d = fabs(qf.w - r.w * REF_Q30);
+                if (fabs(qf.x - r.x * REF_Q30) > d) d = fabs(qf.x - r.x * REF_Q30);
+                if (fabs(qf.y - r.y * REF_Q30) > d) d = fabs(qf.y - r.y * REF_Q30);
+                if (fabs(qf.z - r.z * REF_Q30) > d) d = fabs(qf.z - r.z * REF_Q30);
                 upd(&w_from_lsb, d, 0, NULL);
             }
 
@@ -119,7 +109,7 @@ int main(int argc, char **argv)
             r = ref_quat_normalize(ref_quat_from_q30(qf));
             if (qo_quat_to_euler_q30(qf, sq, &o, &info) != QO_OK) n_bad_status++;
             n_cases++;
-            if (info.locked) { n_flagged_total++; upd(&max_flag_margin, info.margin / Q28, 0, NULL); }
+            if (info.locked) { n_flagged_total++; upd(&max_flag_margin, info.margin / REF_Q28, 0, NULL); }
             upd(&w_gen, recomp(seq, o, r), seq, &s_gen);
             if (qo_quat_to_euler_fast_q30(qf, sq, QO_EULER_LOCK_BAND_Q28, &o, &info) != QO_OK) n_bad_status++;
             upd(&w_fast_gen, recomp(seq, o, r), seq, &s_fast_gen);
@@ -127,23 +117,23 @@ int main(int argc, char **argv)
             /* nearest-solution variant, generic, prev a random nearby-ish triple */
             {
                 qo_euler_q28 prev;
-                prev.a1 = o.a1 + ref_to_fixed(ref_rng_range(&rng, -2, 2), Q28); prev.a2 = o.a2 + ref_to_fixed(ref_rng_range(&rng, -2, 2), Q28);
-                prev.a3 = o.a3 + ref_to_fixed(ref_rng_range(&rng, -2, 2), Q28);
+                prev.a1 = o.a1 + ref_to_fixed(ref_rng_range(&rng, -2, 2), REF_Q28); prev.a2 = o.a2 + ref_to_fixed(ref_rng_range(&rng, -2, 2), REF_Q28);
+                prev.a3 = o.a3 + ref_to_fixed(ref_rng_range(&rng, -2, 2), REF_Q28);
                 if (qo_quat_to_euler_near_q30(qf, sq, prev, QO_EULER_LOCK_BAND_Q28, &o, &info) != QO_OK)
                     n_bad_status++;
                 upd(&w_nearfn, recomp(seq, o, r), seq, NULL);
             }
 
             /* exactly singular, built in double and rounded to Q1.30 */
-            a1 = ref_rng_range(&rng, -PI_D, PI_D); a3 = ref_rng_range(&rng, -PI_D, PI_D);
+            a1 = ref_rng_range(&rng, -REF_PI, REF_PI); a3 = ref_rng_range(&rng, -REF_PI, REF_PI);
             which = (int)(ref_rng_next(&rng) & 1);
-            s = proper(seq) ? (which ? PI_D : 0.0) : (which ? PI_D / 2 : -PI_D / 2);
-            qf = ref_quat_to_q30(ref_quat_from_euler(k_names[seq], a1, s, a3));
+            s = ref_euler_proper(seq) ? (which ? REF_PI : 0.0) : (which ? REF_PI / 2 : -REF_PI / 2);
+            qf = ref_quat_to_q30(ref_quat_from_euler(ref_euler_names[seq], a1, s, a3));
             r = ref_quat_normalize(ref_quat_from_q30(qf));
             qo_quat_to_euler_q30(qf, sq, &o, &info);
             n_exact++; n_cases++;
-            if (info.locked) { n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin / Q28, 0, NULL); }
-            upd(&max_exact_margin, info.margin / Q28, 0, NULL);
+            if (info.locked) { n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin / REF_Q28, 0, NULL); }
+            upd(&max_exact_margin, info.margin / REF_Q28, 0, NULL);
             upd(&w_lock, recomp(seq, o, r), seq, &s_lock);
             qo_quat_to_euler_fast_q30(qf, sq, QO_EULER_LOCK_BAND_Q28, &o, &info);
             if (!info.locked) n_fast_unflagged++;
@@ -153,27 +143,27 @@ int main(int argc, char **argv)
              * nearest the singular middle angle */
             {
                 qo_euler_q28 se;
-                se.a1 = ref_to_fixed(ref_rng_range(&rng, -PI_D, PI_D), Q28); se.a2 = ref_to_fixed(s, Q28); se.a3 = ref_to_fixed(ref_rng_range(&rng, -PI_D, PI_D), Q28);
+                se.a1 = ref_to_fixed(ref_rng_range(&rng, -REF_PI, REF_PI), REF_Q28); se.a2 = ref_to_fixed(s, REF_Q28); se.a3 = ref_to_fixed(ref_rng_range(&rng, -REF_PI, REF_PI), REF_Q28);
                 qo_quat_from_euler_q30(sq, se, &qf);
-                rr = ref_quat_from_euler(k_names[seq], se.a1 / Q28, s, se.a3 / Q28);
+                rr = ref_quat_from_euler(ref_euler_names[seq], se.a1 / REF_Q28, s, se.a3 / REF_Q28);
                 qo_quat_to_euler_q30(qf, sq, &o, &info);
                 n_exact++; n_cases++;
-                if (info.locked) { n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin / Q28, 0, NULL); }
-                upd(&max_exact_margin_f, info.margin / Q28, 0, NULL);
+                if (info.locked) { n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin / REF_Q28, 0, NULL); }
+                upd(&max_exact_margin_f, info.margin / REF_Q28, 0, NULL);
                 /* against the exactly singular rotation the angles were meant to describe */
                 upd(&w_lock, recomp(seq, o, rr), seq, &s_lock);
             }
             /* exactly singular rotation with every component then moved by up to 2 LSB
              * (noise from an upstream fixed-point computation, e.g. a filter's output) */
             {
-                qf = ref_quat_to_q30(ref_quat_from_euler(k_names[seq], ref_rng_range(&rng, -PI_D, PI_D), s, ref_rng_range(&rng, -PI_D, PI_D)));
+                qf = ref_quat_to_q30(ref_quat_from_euler(ref_euler_names[seq], ref_rng_range(&rng, -REF_PI, REF_PI), s, ref_rng_range(&rng, -REF_PI, REF_PI)));
                 qf.w += (int32_t)(ref_rng_next(&rng) % 5) - 2; qf.x += (int32_t)(ref_rng_next(&rng) % 5) - 2;
                 qf.y += (int32_t)(ref_rng_next(&rng) % 5) - 2; qf.z += (int32_t)(ref_rng_next(&rng) % 5) - 2;
                 r = ref_quat_normalize(ref_quat_from_q30(qf));
                 qo_quat_to_euler_q30(qf, sq, &o, &info);
                 n_noisy++; n_exact++; n_cases++;
-                if (info.locked) { n_noisy_flagged++; n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin / Q28, 0, NULL); }
-                upd(&max_noisy_margin, info.margin / Q28, 0, NULL);
+                if (info.locked) { n_noisy_flagged++; n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin / REF_Q28, 0, NULL); }
+                upd(&max_noisy_margin, info.margin / REF_Q28, 0, NULL);
                 upd(info.locked ? &w_near_in : &w_near_out, recomp(seq, o, r), seq, NULL);
             }
 
@@ -181,14 +171,14 @@ int main(int argc, char **argv)
             k = (int)(ref_rng_next(&rng) % (sizeof offs / sizeof offs[0]));
             side = (int)(ref_rng_next(&rng) & 1);
             a2 = s + ((s > 0) ? -1.0 : 1.0) * (side ? -offs[k] : offs[k]);
-            a1 = ref_rng_range(&rng, -PI_D, PI_D); a3 = ref_rng_range(&rng, -PI_D, PI_D);
-            qf = ref_quat_to_q30(ref_quat_from_euler(k_names[seq], a1, a2, a3));
+            a1 = ref_rng_range(&rng, -REF_PI, REF_PI); a3 = ref_rng_range(&rng, -REF_PI, REF_PI);
+            qf = ref_quat_to_q30(ref_quat_from_euler(ref_euler_names[seq], a1, a2, a3));
             r = ref_quat_normalize(ref_quat_from_q30(qf));
             qo_quat_to_euler_q30(qf, sq, &o, &info);
             n_cases++;
             if (info.locked) {
                 n_flagged_total++;
-                upd(&max_flag_margin, info.margin / Q28, 0, NULL);
+                upd(&max_flag_margin, info.margin / REF_Q28, 0, NULL);
                 upd(&w_near_in, recomp(seq, o, r), seq, &s_near);
             } else {
                 upd(&w_near_out, recomp(seq, o, r), seq, &s_near);
@@ -200,24 +190,24 @@ int main(int argc, char **argv)
 
     printf("accuracy_euler_fx: %ld cases per convention x 24 conventions (seed 0x5EED0E17)\n", n_per);
     printf("  lock band QO_EULER_LOCK_BAND_Q28      = %d LSB = %.3g rad\n",
-           (int)QO_EULER_LOCK_BAND_Q28, QO_EULER_LOCK_BAND_Q28 / Q28);
+           (int)QO_EULER_LOCK_BAND_Q28, QO_EULER_LOCK_BAND_Q28 / REF_Q28);
     printf("  from_euler worst error                 = %.3g rad (%s), %.2f LSB per component   goal <= 1e-6\n",
-           w_from, k_names[s_from], w_from_lsb);
-    printf("  to_euler generic worst recomposition   = %.3g rad (%s)   goal <= 1e-6\n", w_gen, k_names[s_gen]);
+           w_from, ref_euler_names[s_from], w_from_lsb);
+    printf("  to_euler generic worst recomposition   = %.3g rad (%s)   goal <= 1e-6\n", w_gen, ref_euler_names[s_gen]);
     printf("  to_euler_near generic worst recomp.    = %.3g rad         goal <= 1e-6\n", w_nearfn);
-    printf("  to_euler at exact lock worst recomp.   = %.3g rad (%s)   goal <= 1e-5\n", w_lock, k_names[s_lock]);
+    printf("  to_euler at exact lock worst recomp.   = %.3g rad (%s)   goal <= 1e-5\n", w_lock, ref_euler_names[s_lock]);
     printf("  near lock, flagged, worst recomp.      = %.3g rad         goal <= 1e-5\n", w_near_in);
-    printf("  near lock, not flagged, worst recomp.  = %.3g rad (%s)   goal <= 1e-5\n", w_near_out, k_names[s_near]);
+    printf("  near lock, not flagged, worst recomp.  = %.3g rad (%s)   goal <= 1e-5\n", w_near_out, ref_euler_names[s_near]);
     printf("  exactly singular inputs flagged        = %ld of %ld\n", n_exact_flagged, n_exact);
     printf("  largest margin at an exact singularity = %.3g rad (rounded from double), %.3g rad (via from_euler_q30)\n",
            max_exact_margin, max_exact_margin_f);
     printf("  singular + up to 2 LSB per component   = %ld of %ld flagged, largest margin %.3g rad\n",
            n_noisy_flagged, n_noisy, max_noisy_margin);
     printf("  largest margin at which lock flagged   = %.3g rad (%.3g deg)   goal <= 2 deg\n",
-           max_flag_margin, max_flag_margin * 180.0 / PI_D);
+           max_flag_margin, max_flag_margin * 180.0 / REF_PI);
     printf("  flagged in total                       = %ld of %ld decompositions\n", n_flagged_total, n_cases);
     printf("  fast tier (qo_quat_to_euler_fast_q30):\n");
-    printf("    generic worst recomposition          = %.3g rad (%s)   goal <= 2e-7\n", w_fast_gen, k_names[s_fast_gen]);
+    printf("    generic worst recomposition          = %.3g rad (%s)   goal <= 2e-7\n", w_fast_gen, ref_euler_names[s_fast_gen]);
     printf("    at exact lock worst recomp.          = %.3g rad, %ld not flagged   goal <= 1e-5, 0\n", w_fast_lock, n_fast_unflagged);
     printf("    near lock worst recomp.              = %.3g rad flagged, %.3g rad not   goal <= 1e-5\n", w_fast_near_in, w_fast_near_out);
     printf("  unexpected non-OK statuses             = %ld\n", n_bad_status);

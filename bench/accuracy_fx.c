@@ -19,8 +19,6 @@
 #include "qorient/fxmath.h"
 #include "qorient/quat_fx.h"
 
-#define TWO30 1073741824.0
-#define TWO28 268435456.0
 #define NROT 100000
 #define GOAL_RAD 1e-6
 
@@ -45,8 +43,8 @@ static void report_rad(const char *name, double worst)
 }
 static void upd(double *w, double e) { if (e > *w) *w = e; }
 
-static int32_t q30(double v) { return ref_to_fixed(v, TWO30); }
-static int32_t q28(double v) { return ref_to_fixed(v, TWO28); }
+static int32_t q30(double v) { return ref_to_fixed(v, REF_Q30); }
+static int32_t q28(double v) { return ref_to_fixed(v, REF_Q28); }
 static void drot(dq q, const double v[3], double o[3])
 {
     ref_vec3 r = ref_quat_rotate(q, (ref_vec3){ v[0], v[1], v[2] });
@@ -63,7 +61,7 @@ static void primitives(void)
     w = 0;
     for (k = 0; k < 4000000; k++) {
         int32_t a = rnd_i32_mag(), b = rnd_i32_mag();
-        long double ref = (long double)a * b / TWO30;
+        long double ref = (long double)a * b / REF_Q30;
         if (ref < 2147483647.0L && ref > -2147483648.0L) upd(&w, (double)fabsl(qo_fx_mul_q30(a, b) - ref));
     }
     report_lsb("qo_fx_mul_q30", w, 0.5);
@@ -72,20 +70,20 @@ static void primitives(void)
         int32_t a = rnd_i32_mag(), b = rnd_i32_mag();
         long double ref;
         if (b == 0) continue;
-        ref = (long double)a * TWO30 / b;
+        ref = (long double)a * REF_Q30 / b;
         if (qo_fx_div_q30(a, b, &o) == QO_OK) upd(&w, (double)fabsl(o - ref));
     }
     report_lsb("qo_fx_div_q30", w, 0.5);
     w = 0;
     for (k = 0; k <= INT32_MAX; k += 211) {
         (void)qo_fx_sqrt_q30((int32_t)k, &o);
-        upd(&w, fabs(o - sqrt((double)k / TWO30) * TWO30));
+        upd(&w, fabs(o - sqrt((double)k / REF_Q30) * REF_Q30));
     }
     report_lsb("qo_fx_sqrt_q30 (all x >= 0 / 211)", w, 0.5);
     w = 0;
     for (k = QO_Q30_ONE / 4 + 1; k <= INT32_MAX; k += 157) {
         (void)qo_fx_rsqrt_q30((int32_t)k, &o);
-        upd(&w, fabs(o - TWO30 / sqrt((double)k / TWO30)));
+        upd(&w, fabs(o - REF_Q30 / sqrt((double)k / REF_Q30)));
     }
     report_lsb("qo_fx_rsqrt_q30 (x > 0.25 / 157)", w, 1.0);
     w = 0;
@@ -93,13 +91,13 @@ static void primitives(void)
         double wh = 0;
         for (k = INT32_MIN; k <= INT32_MAX; k += 257) {
             qo_q30 s, c;
-            double a = (double)k / TWO28;
+            double a = (double)k / REF_Q28;
             (void)qo_fx_sincos_q28((int32_t)k, &s, &c);
-            upd(&w, fabs(s - sin(a) * TWO30));
-            upd(&w, fabs(c - cos(a) * TWO30));
+            upd(&w, fabs(s - sin(a) * REF_Q30));
+            upd(&w, fabs(c - cos(a) * REF_Q30));
             (void)qo_fx_sincos_half_q28((int32_t)k, &s, &c);
-            upd(&wh, fabs(s - sin(a / 2) * TWO30));
-            upd(&wh, fabs(c - cos(a / 2) * TWO30));
+            upd(&wh, fabs(s - sin(a / 2) * REF_Q30));
+            upd(&wh, fabs(c - cos(a / 2) * REF_Q30));
         }
         report_lsb("qo_fx_sincos_q28 (all int32 / 257)", w, 1.0);
         report_lsb("qo_fx_sincos_half_q28 (same)", wh, 1.0);
@@ -107,8 +105,8 @@ static void primitives(void)
     w = 0;
     for (k = 0; k < 4000000; k++) {
         int32_t y = rnd_i32_mag(), x = rnd_i32_mag();
-        double ref = atan2((double)y, (double)x) * TWO28;
-        if (y == 0 && x < 0) ref = M_PI * TWO28;
+        double ref = atan2((double)y, (double)x) * REF_Q28;
+        if (y == 0 && x < 0) ref = REF_PI * REF_Q28;
         upd(&w, fabs(qo_fx_atan2_q28(y, x) - ref));
     }
     report_lsb("qo_fx_atan2_q28 (4M random)", w, 1.0);
@@ -116,9 +114,9 @@ static void primitives(void)
     {
         double wc = 0;
         for (k = -QO_Q30_ONE; k <= QO_Q30_ONE; k += (k > QO_Q30_ONE - 100000 || k < -QO_Q30_ONE + 100000) ? 1 : 251) {
-            double x = (double)k / TWO30;
-            upd(&w, fabs(qo_fx_asin_q28((int32_t)k) - asin(x) * TWO28));
-            upd(&wc, fabs(qo_fx_acos_q28((int32_t)k) - acos(x) * TWO28));
+            double x = (double)k / REF_Q30;
+            upd(&w, fabs(qo_fx_asin_q28((int32_t)k) - asin(x) * REF_Q28));
+            upd(&wc, fabs(qo_fx_acos_q28((int32_t)k) - acos(x) * REF_Q28));
         }
         report_lsb("qo_fx_asin_q28 ([-1,1], ends dense)", w, 1.0);
         report_lsb("qo_fx_acos_q28 ([-1,1], ends dense)", wc, 1.0);
@@ -126,7 +124,7 @@ static void primitives(void)
     w = 0;
     for (k = 0; k < 2000000; k++) {
         int32_t a = (int32_t)(uint32_t)ref_rng_next(&rng);
-        upd(&w, fabs(qo_fx_wrap_pi_q28(a) - remainder((double)a / TWO28, 2 * M_PI) * TWO28));
+        upd(&w, fabs(qo_fx_wrap_pi_q28(a) - remainder((double)a / REF_Q28, 2 * REF_PI) * REF_Q28));
     }
     report_lsb("qo_fx_wrap_pi_q28", w, 0.5 + 1e-3);
     w = 0;
@@ -165,7 +163,7 @@ static void rotations(void)
         fv.x = q30(v[0]); fv.y = q30(v[1]); fv.z = q30(v[2]);
         fo = qo_quat_rotate_q30(fa, fv);
         drot(a, v, vr);
-        upd(&wrot, sqrt(pow(fo.x / TWO30 - vr[0], 2) + pow(fo.y / TWO30 - vr[1], 2) + pow(fo.z / TWO30 - vr[2], 2)));
+        upd(&wrot, sqrt(pow(fo.x / REF_Q30 - vr[0], 2) + pow(fo.y / REF_Q30 - vr[1], 2) + pow(fo.z / REF_Q30 - vr[2], 2)));
         /* normalise a scaled copy (scale 2^-20 .. 1.9): direction and |1 - |out|| */
         {
             double s = ldexp(1.0, -(int)(ref_rng_next(&rng) % 21u)) * (1.0 + 0.9 * ref_rng_unit(&rng));
@@ -184,19 +182,19 @@ static void rotations(void)
         }
         /* axis-angle from / to */
         {
-            double ang = 2 * M_PI * ref_rng_range(&rng, -1.0, 1.0), s = sin(ang / 2);
+            double ang = 2 * REF_PI * ref_rng_range(&rng, -1.0, 1.0), s = sin(ang / 2);
             dq ref = { cos(ang / 2), s * v[0], s * v[1], s * v[2] };
             (void)qo_quat_from_axis_angle_q30(fv, q28(ang), &fr);
             upd(&waa_from, dq_angle(ref_quat_normalize(ref_quat_from_q30(fr)), ref));
             (void)qo_quat_to_axis_angle_q30(fa, &ax, &an);
             /* rebuild in double and compare rotations */
-            s = sin(an / TWO28 / 2);
-            ref.w = cos(an / TWO28 / 2); ref.x = s * ax.x / TWO30; ref.y = s * ax.y / TWO30; ref.z = s * ax.z / TWO30;
+            s = sin(an / REF_Q28 / 2);
+            ref.w = cos(an / REF_Q28 / 2); ref.x = s * ax.x / REF_Q30; ref.y = s * ax.y / REF_Q30; ref.z = s * ax.z / REF_Q30;
             upd(&waa_to, dq_angle(ref, a));
         }
         /* rotation vector from / to */
         {
-            double ang = M_PI * ref_rng_unit(&rng), s;
+            double ang = REF_PI * ref_rng_unit(&rng), s;
             dq ref;
             rv.x = q28(v[0] * ang); rv.y = q28(v[1] * ang); rv.z = q28(v[2] * ang);
             (void)qo_quat_from_rotvec_q30(rv, &fr);
@@ -208,19 +206,19 @@ static void rotations(void)
             (void)qo_quat_to_rotvec_q30(fa, &rv);
             e = sqrt(r.x * r.x + r.y * r.y + r.z * r.z);
             e = e > 0 ? 2 * atan2(e, r.w) / e : 2.0;
-            upd(&wrv_to, sqrt(pow(rv.x / TWO28 - e * r.x, 2) + pow(rv.y / TWO28 - e * r.y, 2) + pow(rv.z / TWO28 - e * r.z, 2)));
+            upd(&wrv_to, sqrt(pow(rv.x / REF_Q28 - e * r.x, 2) + pow(rv.y / REF_Q28 - e * r.y, 2) + pow(rv.z / REF_Q28 - e * r.z, 2)));
         }
         /* matrix to / from (to: largest entry error, which bounds the rotation error) */
         (void)qo_quat_to_mat3_q30(fa, &m);
         dq_to_mat(a, dm);
-        for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) upd(&wm_to, fabs(m.m[i][j] / TWO30 - dm[i][j]));
+        for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) upd(&wm_to, fabs(m.m[i][j] / REF_Q30 - dm[i][j]));
         dq_to_mat(b, dm);
         for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) m.m[i][j] = q30(dm[i][j]);
         (void)qo_quat_from_mat3_q30(&m, &fr);
         upd(&wm_from, dq_angle(ref_quat_from_q30(fr), b));
         /* exp / log of the half-angle vector */
         {
-            double ang = M_PI * ref_rng_unit(&rng), s;
+            double ang = REF_PI * ref_rng_unit(&rng), s;
             dq ref;
             rv.x = q28(v[0] * ang / 2); rv.y = q28(v[1] * ang / 2); rv.z = q28(v[2] * ang / 2);
             (void)qo_quat_exp_q30(rv, &fr);
@@ -228,7 +226,7 @@ static void rotations(void)
             ref.w = cos(ang / 2); ref.x = s * v[0]; ref.y = s * v[1]; ref.z = s * v[2];
             upd(&wexp, dq_angle(ref_quat_normalize(ref_quat_from_q30(fr)), ref));
             (void)qo_quat_log_q30(ref_quat_to_q30(ref), &rv);
-            upd(&wlog, 2 * sqrt(pow(rv.x / TWO28 - v[0] * ang / 2, 2) + pow(rv.y / TWO28 - v[1] * ang / 2, 2) + pow(rv.z / TWO28 - v[2] * ang / 2, 2)));
+            upd(&wlog, 2 * sqrt(pow(rv.x / REF_Q28 - v[0] * ang / 2, 2) + pow(rv.y / REF_Q28 - v[1] * ang / 2, 2) + pow(rv.z / REF_Q28 - v[2] * ang / 2, 2)));
         }
         /* integrate one step of a body rate: q * exp(dtheta/2) */
         {
@@ -241,7 +239,7 @@ static void rotations(void)
             upd(&wint, dq_angle(ref_quat_from_q30(fr), dq_mul(a, inc)));
         }
         /* angle between */
-        upd(&wang, fabs(qo_quat_angle_between_q30(fa, fb) / TWO28 - dq_angle(a, b)));
+        upd(&wang, fabs(qo_quat_angle_between_q30(fa, fb) / REF_Q28 - dq_angle(a, b)));
     }
     report_rad("qo_quat_mul_q30", wmul);
     report_rad("qo_quat_rotate_q30 (|v| = 1)", wrot);

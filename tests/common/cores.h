@@ -15,8 +15,10 @@
  *   core                         the table: name, tolerances, input rounding, one wrapper per
  *                                operation, grouped by concept (quat, convert)
  *   CORE_F32, CORE_Q30           the two tables (tests/common/cores.c)
- *   ST(c, st_f32, st_q30)        the status a body expects where the cores' documents differ
- *   BOTH(fn)                     two cmocka prestate entries: fn on CORE_F32, then CORE_Q30
+ *   ST(c, st_f32, st_fx)         the status a body expects where the cores' documents differ
+ *   ON(fn, row)                  one cmocka prestate entry: fn on that row
+ *   BOTH(fn)                     two entries: fn on CORE_F32, then CORE_FX (CORE_Q30 here)
+ *   FAST(fn), ALL3(fn)           fn on a concept's fixed fast tier CORE_FX_FAST; BOTH then FAST
  *   ID, ZERO_Q, dq_is, q_dist    identity, zero, exact equality, largest component difference
  *   v_make, v_norm, v_dist, v_in, v_rand      vectors (v_in rounds as the core receives)
  *   m_in, m_dist, m_orth_err, m_rand_rot      matrices
@@ -28,6 +30,13 @@
  * concept, its wrappers in cores.c in a DEFINE_<CONCEPT>_ADAPTERS(P, SFX, ...) written once for
  * both prefixes, its designated initialisers in a <CONCEPT>_FIELDS(P) macro added to both tables.
  * A body that uses a field must check it is set only if some table leaves it NULL (none does).
+ *
+ * A concept whose wrappers do not fit this table (Euler angles with their lock band and fast
+ * tier, interpolation over key arrays, the spline's plan and Q16.16 samples, the scalar kernels
+ * judged in ulp/LSB) keeps a table of its own in its test file, with the same idiom: it defines
+ * CORES_OWN_TABLE before including this header, which then gives it only the registration and
+ * status macros (ON, BOTH, FAST, ALL3, ST) and the scales; its rows are named CORE_F32 and
+ * CORE_FX (and CORE_FX_FAST for a fast tier), and a body reads its row as `const T *c = *state`.
  */
 #ifndef QORIENT_TESTS_CORES_H
 #define QORIENT_TESTS_CORES_H
@@ -39,13 +48,28 @@
 #include <stdint.h>
 #include <cmocka.h>
 
-#include "common/dq_interp.h"
+#include "common/ref.h"
 #include "qorient/status.h"
 
 #define PI REF_PI
-#define Q30 1073741824.0
-#define Q28 268435456.0
-#define Q16 65536.0
+#define Q30 REF_Q30
+#define Q28 REF_Q28
+#define Q16 REF_Q16
+
+/* ---- the idiom of every program of tests/core/, whatever its table ------------------------ */
+
+/* The status a body expects where the cores' documented answers differ. */
+#define ST(c, st_f32, st_fx) ((c)->fixed ? (st_fx) : (st_f32))
+
+/* One body, one cmocka entry per row: a failure message starts with the row's name. */
+#define ON(fn, row) cmocka_unit_test_prestate(fn, (void *)&(row))
+#define BOTH(fn) ON(fn, CORE_F32), ON(fn, CORE_FX)
+#define FAST(fn) ON(fn, CORE_FX_FAST)
+#define ALL3(fn) BOTH(fn), FAST(fn)
+
+#ifndef CORES_OWN_TABLE
+/* ---- the shared table: quat and convert ---------------------------------------------------- */
+#include "common/dq_interp.h"
 
 typedef struct core {
     const char *name;
@@ -93,13 +117,7 @@ typedef struct core {
 
 extern const core CORE_F32;
 extern const core CORE_Q30;
-
-/* The status a body expects where the cores' documented answers differ. */
-#define ST(c, st_f32, st_q30) ((c)->fixed ? (st_q30) : (st_f32))
-
-/* One body, two cmocka entries: a failure message starts with the core's name. */
-#define BOTH(fn) cmocka_unit_test_prestate(fn, (void *)&CORE_F32), \
-                 cmocka_unit_test_prestate(fn, (void *)&CORE_Q30)
+#define CORE_FX CORE_Q30
 
 /* ---- helpers of the shared bodies (the PRNG is dq_interp.h's, one state per test file) ---- */
 
@@ -195,5 +213,7 @@ static inline qo_vec3_f32 vf(float x, float y, float z)
 }
 #define QFMT "(%.10g %.10g %.10g %.10g)"
 #define QARG(q) (q).w, (q).x, (q).y, (q).z
+
+#endif /* CORES_OWN_TABLE */
 
 #endif

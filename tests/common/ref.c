@@ -307,12 +307,18 @@ ref_quat ref_quat_from_euler(const char *n, double a1, double a2, double a3)
     return ref_quat_mul(q3, ref_quat_mul(q2, q1));
 }
 
-#define REF_TWO30 1073741824.0
+const char *const ref_euler_names[REF_EULER_SEQS] = {
+    "xyz", "xzy", "yxz", "yzx", "zxy", "zyx", "xyx", "xzx", "yxy", "yzy", "zxz", "zyz",
+    "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX", "XYX", "XZX", "YXY", "YZY", "ZXZ", "ZYZ",
+};
+
+int ref_euler_proper(int seq) { return ref_euler_names[seq][0] == ref_euler_names[seq][2]; }
+
 
 ref_quat ref_quat_from_q30(qo_quat_q30 q)
 {
     ref_quat r;
-    r.w = q.w / REF_TWO30; r.x = q.x / REF_TWO30; r.y = q.y / REF_TWO30; r.z = q.z / REF_TWO30;
+    r.w = q.w / REF_Q30; r.x = q.x / REF_Q30; r.y = q.y / REF_Q30; r.z = q.z / REF_Q30;
     return r;
 }
 
@@ -327,16 +333,16 @@ int32_t ref_to_fixed(double v, double scale)
 qo_quat_q30 ref_quat_to_q30(ref_quat q)
 {
     qo_quat_q30 r;
-    r.w = ref_to_fixed(q.w, REF_TWO30); r.x = ref_to_fixed(q.x, REF_TWO30);
-    r.y = ref_to_fixed(q.y, REF_TWO30); r.z = ref_to_fixed(q.z, REF_TWO30);
+    r.w = ref_to_fixed(q.w, REF_Q30); r.x = ref_to_fixed(q.x, REF_Q30);
+    r.y = ref_to_fixed(q.y, REF_Q30); r.z = ref_to_fixed(q.z, REF_Q30);
     return r;
 }
 
 double ref_quat_err_lsb_q30(qo_quat_q30 got, ref_quat want)
 {
-    double e = fabs(got.w - want.w * REF_TWO30), t;
-    t = fabs(got.x - want.x * REF_TWO30); if (t > e) e = t;
-    t = fabs(got.y - want.y * REF_TWO30); if (t > e) e = t;
-    t = fabs(got.z - want.z * REF_TWO30); if (t > e) e = t;
+    double e = fabs(got.w - want.w * REF_Q30), t;
+    t = fabs(got.x - want.x * REF_Q30); if (t > e) e = t;
+    t = fabs(got.y - want.y * REF_Q30); if (t > e) e = t;
+    t = fabs(got.z - want.z * REF_Q30); if (t > e) e = t;
     return e;
 }

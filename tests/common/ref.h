@@ -22,7 +22,10 @@
  *   ref_mat3_nearest_rotation             polar factor M (M^T M)^-1/2 via a Jacobi eigensolver
  *   ref_quat_axis                         elementary rotation about x, y or z
  *   ref_quat_from_euler                   Euler angles by products of elementary rotations
+ *   ref_euler_names, ref_euler_proper     the 24 conventions by name (qo_euler_seq order), and
+ *                                         whether one is proper (first axis = last axis)
  *   ref_quat_from_q30 / ref_quat_to_q30   exact value of a Q1.30 quaternion / rounded to Q1.30
+ *   REF_Q30, REF_Q28, REF_Q16             one in Q1.30, Q3.28, Q16.16 (2^30, 2^28, 2^16)
  *   ref_to_fixed                          a double rounded to a fixed-point format, saturating
  *   ref_quat_err_lsb_q30                  largest component error of a Q1.30 result, in LSB
  *   ref_rng / ref_rng_next / ref_rng_unit / ref_rng_range   splitmix64 PRNG
@@ -41,6 +44,11 @@ typedef struct ref_vec3 { double x, y, z; } ref_vec3;
 typedef struct ref_mat3 { double m[3][3]; } ref_mat3;
 
 #define REF_PI 3.14159265358979323846
+/* The scale of a fixed-point format: one in Q1.30 (unit values), Q3.28 (angles, rad),
+ * Q16.16 (durations, s). */
+#define REF_Q30 1073741824.0
+#define REF_Q28 268435456.0
+#define REF_Q16 65536.0
 
 ref_quat ref_quat_from_f32(qo_quat_f32 q);
 qo_quat_f32 ref_quat_to_f32(ref_quat q);
@@ -80,6 +88,14 @@ ref_quat ref_quat_axis(char axis, double angle);
  * upper case intrinsic "ABC", R = R_A(a1) R_B(a2) R_C(a3). Built from the letters, so it shares
  * no table with the code under test. */
 ref_quat ref_quat_from_euler(const char *seq, double a1, double a2, double a3);
+/* The 24 conventions by the library's names, indexed by qo_euler_seq (the enum order is ABI):
+ * a copy kept here, with the axes derived from the letters, so that a reference built from it
+ * shares no table with the code under test. */
+#define REF_EULER_SEQS 24
+extern const char *const ref_euler_names[REF_EULER_SEQS];
+/* 1 if convention seq (0 ... 23) is proper (its first and last axes are the same: zxz, XYX,
+ * ...), 0 if it is Tait-Bryan (xyz, ZYX, ...). */
+int ref_euler_proper(int seq);
 /* Exact value of a Q1.30 quaternion (not normalised). */
 ref_quat ref_quat_from_q30(qo_quat_q30 q);
 /* v * scale rounded half up, saturated to int32 (scale 2^30 gives Q1.30, 2^28 Q3.28). */

@@ -26,34 +26,27 @@
 #include <math.h>
 #include <cmocka.h>
 
+#define CORES_OWN_TABLE   /* Euler's table below: lock band, fast tier, angles */
+#include "common/cores.h"
 #include "common/dq.h"
 #include "qorient/euler.h"
 #include "qorient/euler_fx.h"
 #include "qorient/fxmath.h"
 
-#define PI_D 3.14159265358979323846
-#define Q30 1073741824.0
-#define Q28 268435456.0
-
-/* The enum order is ABI: the test keeps its own copy of the names and derives the axes from
- * the letters, so the reference shares nothing with the code under test. */
-static const char *const k_names[24] = {
-    "xyz", "xzy", "yxz", "yzx", "zxy", "zyx", "xyx", "xzx", "yxy", "yzy", "zxz", "zyz",
-    "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX", "XYX", "XZX", "YXY", "YZY", "ZXZ", "ZYZ",
-};
+/* The convention names (ref_euler_names) are tests/common/ref.c's copy, in the enum's order
+ * (ABI), with the axes derived from the letters: the reference shares nothing with the code
+ * under test. */
 
 static ref_rng rng;
 
-static int is_proper_name(int seq) { return k_names[seq][0] == k_names[seq][2]; }
-
-static double wrap_d(double a) { return a - 2 * PI_D * floor((a + PI_D) / (2 * PI_D)); }
+static double wrap_d(double a) { return a - 2 * PI * floor((a + PI) / (2 * PI)); }
 static double ang_diff(double a, double b) { return fabs(wrap_d(a - b)); }
 static double dmax(double a, double b) { return a > b ? a : b; }
 
 static double singular_value(int seq, int which)
 {
-    if (is_proper_name(seq)) return which ? PI_D : 0.0;
-    return which ? PI_D / 2 : -PI_D / 2;
+    if (ref_euler_proper(seq)) return which ? PI : 0.0;
+    return which ? PI / 2 : -PI / 2;
 }
 
 /* ---- the cores behind one interface ------------------------------------------------------ */
@@ -189,10 +182,10 @@ static qo_status xf_to(dq q, int seq, int use_default, double band, double out[3
 static const core CORE_F32 = { "float32", 0, 2e-6, 1e-6, 1e-6, 1e-6, 1e-5, 1e-5, 1e30,
                                f_rq, f_ra, f_nudge, f_from_euler, f_to, f_near };
 /* Q1.30 output: each component a few LSB (9.3e-10) from exact. */
-static const core CORE_Q30 = { "fixed", 1, X_BAND, 1e-8, 4e-8, 5e-8, 5e-8, 2 * X_BAND + 5e-8,
+static const core CORE_FX = { "fixed", 1, X_BAND, 1e-8, 4e-8, 5e-8, 5e-8, 2 * X_BAND + 5e-8,
                                X_AMAX, x_rq, x_ra, x_nudge, x_from_euler, x_to, x_near };
 /* fast tier: three atan2 of 32-bit pairs, each angle a few LSB */
-static const core CORE_Q30_FAST = { "fixed fast", 1, X_BAND, 1e-8, 4e-8, 5e-8, 5e-8,
+static const core CORE_FX_FAST = { "fixed fast", 1, X_BAND, 1e-8, 4e-8, 5e-8, 5e-8,
                                     2 * X_BAND + 5e-8, X_AMAX, x_rq, x_ra, x_nudge, x_from_euler,
                                     xf_to, x_near };
 
@@ -207,20 +200,18 @@ static dq held(const core *c, dq q)
 /* How far the angles, composed in double, are from the rotation q. */
 static double recompose_err(int seq, const double e[3], dq q)
 {
-    return dq_angle(ref_quat_from_euler(k_names[seq], e[0], e[1], e[2]), q);
+    return dq_angle(ref_quat_from_euler(ref_euler_names[seq], e[0], e[1], e[2]), q);
 }
 
 static void check_ranges(const core *c, int seq, const double e[3], const char *what)
 {
-    double pi = c->ra(PI_D), hpi = c->ra(PI_D / 2);
+    double pi = c->ra(PI), hpi = c->ra(PI / 2);
     int ok = e[0] >= -pi && e[0] <= pi && e[2] >= -pi && e[2] <= pi;
-    if (is_proper_name(seq)) ok = ok && e[1] >= 0.0 && e[1] <= pi;
+    if (ref_euler_proper(seq)) ok = ok && e[1] >= 0.0 && e[1] <= pi;
     else ok = ok && e[1] >= -hpi && e[1] <= hpi;
     if (!ok) fail_msg("%s %s %s: angles (%.10g %.10g %.10g) outside scipy's ranges", c->name, what,
-                      k_names[seq], e[0], e[1], e[2]);
+                      ref_euler_names[seq], e[0], e[1], e[2]);
 }
-
-#define CORE_OF(state) ((const core *)*(state))
 
 /* ---- sequence names (one parser for both cores) ------------------------------------------ */
 static void test_seq_parse_and_name(void **state)
@@ -229,12 +220,12 @@ static void test_seq_parse_and_name(void **state)
     qo_euler_seq s;
     (void)state;
     for (i = 0; i < 24; i++) {
-        qo_status st = qo_euler_seq_parse(k_names[i], &s);
+        qo_status st = qo_euler_seq_parse(ref_euler_names[i], &s);
         if (st != QO_OK || (int)s != i)
-            fail_msg("parse(\"%s\") gave status %d seq %d, want %d", k_names[i], (int)st, (int)s, i);
-        assert_string_equal(qo_euler_seq_name((qo_euler_seq)i), k_names[i]);
+            fail_msg("parse(\"%s\") gave status %d seq %d, want %d", ref_euler_names[i], (int)st, (int)s, i);
+        assert_string_equal(qo_euler_seq_name((qo_euler_seq)i), ref_euler_names[i]);
         assert_int_equal(qo_euler_seq_is_intrinsic((qo_euler_seq)i), i >= 12);
-        assert_int_equal(qo_euler_seq_is_proper((qo_euler_seq)i), is_proper_name(i));
+        assert_int_equal(qo_euler_seq_is_proper((qo_euler_seq)i), ref_euler_proper(i));
     }
     assert_string_equal(qo_euler_seq_name(QO_EULER_SEQ_COUNT_), "invalid");
     assert_string_equal(qo_euler_seq_name((qo_euler_seq)-1), "invalid");
@@ -267,27 +258,27 @@ static void test_seq_parse_rejects(void **state)
 /* ---- from_euler (float32, fixed) ----------------------------------------------------------- */
 static void test_from_euler_random_all24(void **state)
 {
-    const core *c = CORE_OF(state);
+    const core *c = *state;
     int seq, n;
     rng.s = 0x1234567ull;
     for (seq = 0; seq < 24; seq++) {
         for (n = 0; n < 500; n++) {
             /* Most in one turn; some wider, as the angles are periodic: to 10 rad, or to the
              * end of Q3.28 ([-8, 8)). */
-            double span = (n % 5 == 0) ? fmin(10.0, c->a_max - 0.01) : PI_D, a[3], err, sum, ang;
+            double span = (n % 5 == 0) ? fmin(10.0, c->a_max - 0.01) : PI, a[3], err, sum, ang;
             dq q, r;
             a[0] = c->ra(ref_rng_range(&rng, -span, span));
             a[1] = c->ra(ref_rng_range(&rng, -span, span));
             a[2] = c->ra(ref_rng_range(&rng, -span, span));
             assert_int_equal(c->from_euler(seq, a, &q), QO_OK);
-            r = ref_quat_from_euler(k_names[seq], a[0], a[1], a[2]);
+            r = ref_quat_from_euler(ref_euler_names[seq], a[0], a[1], a[2]);
             /* Same sign as the product, not only the same rotation (scipy's as_quat). */
             err = fmax(fmax(fabs(q.w - r.w), fabs(q.x - r.x)), fmax(fabs(q.y - r.y), fabs(q.z - r.z)));
             sum = fabs(q.w - r.w) + fabs(q.x - r.x) + fabs(q.y - r.y) + fabs(q.z - r.z);
             ang = dq_angle(q, r);
             if (err > c->tol_from || sum > c->tol_from_sum || ang > c->tol_from_sum)
                 fail_msg("%s from_euler %s (%.10g %.10g %.10g): component error %.3g (sum %.3g, "
-                         "rotation %.3g)", c->name, k_names[seq], a[0], a[1], a[2], err, sum, ang);
+                         "rotation %.3g)", c->name, ref_euler_names[seq], a[0], a[1], a[2], err, sum, ang);
         }
     }
 }
@@ -305,8 +296,8 @@ static void expect_image(const core *c, const char *what, dq q, ref_vec3 v, doub
 /* scipy's documented examples and hand-derived values (exact answers, not code output). */
 static void test_from_euler_known_values(void **state)
 {
-    const core *c = CORE_OF(state);
-    const double h = sqrt(0.5), d90 = c->ra(PI_D / 2);
+    const core *c = *state;
+    const double h = sqrt(0.5), d90 = c->ra(PI / 2);
     const ref_vec3 vx = { 1, 0, 0 }, vz = { 0, 0, 1 };
     double a[3], b[3], tol = c->tol_from + 1e-9, tol_same = fmin(1e-7, tol);
     dq q, q2;
@@ -337,7 +328,7 @@ static void test_from_euler_known_values(void **state)
     for (seq = 0; seq < 24; seq++) {
         assert_int_equal(c->from_euler(seq, a, &q), QO_OK);
         if (q.w != 1.0 || q.x != 0.0 || q.y != 0.0 || q.z != 0.0)
-            fail_msg("%s %s zero angles: (%.10g %.10g %.10g %.10g)", c->name, k_names[seq],
+            fail_msg("%s %s zero angles: (%.10g %.10g %.10g %.10g)", c->name, ref_euler_names[seq],
                      q.w, q.x, q.y, q.z);
     }
     /* Intrinsic XYZ (a, b, c) is extrinsic zyx (c, b, a): the same quaternion. */
@@ -350,7 +341,7 @@ static void test_from_euler_known_values(void **state)
         fail_msg("%s XYZ vs zyx differ: (%.10g %.10g %.10g %.10g) vs (%.10g %.10g %.10g %.10g)",
                  c->name, q.w, q.x, q.y, q.z, q2.w, q2.x, q2.y, q2.z);
     /* 360 deg about one axis is -identity (the product's sign is kept). */
-    a[0] = c->ra(2 * PI_D); a[1] = 0.0; a[2] = 0.0;
+    a[0] = c->ra(2 * PI); a[1] = 0.0; a[2] = 0.0;
     assert_int_equal(c->from_euler(QO_EULER_XYZ, a, &q), QO_OK);
     if (fabs(q.w + 1.0) > tol) fail_msg("%s 2pi about X: w = %.10g", c->name, q.w);
 }
@@ -360,7 +351,7 @@ static void test_from_euler_known_values(void **state)
  * QO_E_NONFINITE and the identity, fixed point takes the saturated angle as any other. */
 static void test_from_euler_bad_inputs(void **state)
 {
-    const core *c = CORE_OF(state);
+    const core *c = *state;
     const double a[3] = { 0.1, 0.2, 0.3 };
     dq q;
     int i;
@@ -383,7 +374,7 @@ static void test_from_euler_bad_inputs(void **state)
             assert_true(q.w == 1.0 && q.x == 0.0 && q.y == 0.0 && q.z == 0.0);
             continue;
         }
-        r = ref_quat_from_euler(k_names[QO_EULER_ZXZ], b[0], b[1], b[2]);
+        r = ref_quat_from_euler(ref_euler_names[QO_EULER_ZXZ], b[0], b[1], b[2]);
         err = fmax(fmax(fabs(q.w - r.w), fabs(q.x - r.x)), fmax(fabs(q.y - r.y), fabs(q.z - r.z)));
         if (err > c->tol_from)
             fail_msg("%s from_euler saturated angle %d: error %.3g", c->name, i / 2, err);
@@ -406,7 +397,7 @@ static dq random_unit(void)
 
 static void test_to_euler_random_rotations_all24(void **state)
 {
-    const core *c = CORE_OF(state);
+    const core *c = *state;
     int seq, n;
     rng.s = 42;
     for (seq = 0; seq < 24; seq++) {
@@ -420,16 +411,16 @@ static void test_to_euler_random_rotations_all24(void **state)
             err = recompose_err(seq, e, q);
             if (err > c->tol_fine)
                 fail_msg("%s to_euler %s of q=(%.10g %.10g %.10g %.10g): (%.10g %.10g %.10g) "
-                         "recomposes %.3g rad off", c->name, k_names[seq], q.w, q.x, q.y, q.z,
+                         "recomposes %.3g rad off", c->name, ref_euler_names[seq], q.w, q.x, q.y, q.z,
                          e[0], e[1], e[2], err);
             if (info.locked != (info.margin <= c->band))
-                fail_msg("%s %s: locked %d with margin %.3g", c->name, k_names[seq],
+                fail_msg("%s %s: locked %d with margin %.3g", c->name, ref_euler_names[seq],
                          info.locked, info.margin);
             /* q and -q: the same angles (exactly: the method is even in q). */
             assert_int_equal(c->to_euler(qn, seq, 1, 0, e2, &info2), QO_OK);
             if (e2[0] != e[0] || e2[1] != e[1] || e2[2] != e[2] || info2.margin != info.margin)
                 fail_msg("%s %s: -q gave (%.10g %.10g %.10g), q (%.10g %.10g %.10g)", c->name,
-                         k_names[seq], e2[0], e2[1], e2[2], e[0], e[1], e[2]);
+                         ref_euler_names[seq], e2[0], e2[1], e2[2], e[0], e[1], e[2]);
             /* info may be NULL: same angles. */
             assert_int_equal(c->to_euler(q, seq, 1, 0, e2, NULL), QO_OK);
             assert_true(e2[0] == e[0] && e2[1] == e[1] && e2[2] == e[2]);
@@ -440,23 +431,23 @@ static void test_to_euler_random_rotations_all24(void **state)
 /* Angles in scipy's ranges, away from lock, come back as given (mod 2pi near +-pi). */
 static void test_to_euler_recovers_angles_all24(void **state)
 {
-    const core *c = CORE_OF(state);
+    const core *c = *state;
     int seq, n;
     rng.s = 7;
     for (seq = 0; seq < 24; seq++) {
         for (n = 0; n < 300; n++) {
-            double a1 = ref_rng_range(&rng, -PI_D, PI_D), a3 = ref_rng_range(&rng, -PI_D, PI_D), a2, margin;
+            double a1 = ref_rng_range(&rng, -PI, PI), a3 = ref_rng_range(&rng, -PI, PI), a2, margin;
             double e[3];
             dq q;
             einfo info;
-            if (is_proper_name(seq)) {
-                a2 = ref_rng_range(&rng, 0.05, PI_D - 0.05);
-                margin = fmin(a2, PI_D - a2);
+            if (ref_euler_proper(seq)) {
+                a2 = ref_rng_range(&rng, 0.05, PI - 0.05);
+                margin = fmin(a2, PI - a2);
             } else {
-                a2 = ref_rng_range(&rng, -PI_D / 2 + 0.05, PI_D / 2 - 0.05);
-                margin = PI_D / 2 - fabs(a2);
+                a2 = ref_rng_range(&rng, -PI / 2 + 0.05, PI / 2 - 0.05);
+                margin = PI / 2 - fabs(a2);
             }
-            q = ref_quat_from_euler(k_names[seq], a1, a2, a3);
+            q = ref_quat_from_euler(ref_euler_names[seq], a1, a2, a3);
             if (n % 2) q = dq_neg(q); /* q and -q */
             q = held(c, q);
             assert_int_equal(c->to_euler(q, seq, 1, 0, e, &info), QO_OK);
@@ -464,7 +455,7 @@ static void test_to_euler_recovers_angles_all24(void **state)
             if (ang_diff(e[0], a1) > 2e-5 || fabs(e[1] - a2) > 2e-6 || ang_diff(e[2], a3) > 2e-5 ||
                 info.locked || fabs(info.margin - margin) > 2e-6)
                 fail_msg("%s %s (%.10g %.10g %.10g) came back as (%.10g %.10g %.10g) locked %d "
-                         "margin %.10g", c->name, k_names[seq], a1, a2, a3, e[0], e[1], e[2],
+                         "margin %.10g", c->name, ref_euler_names[seq], a1, a2, a3, e[0], e[1], e[2],
                          info.locked, info.margin);
         }
     }
@@ -475,18 +466,18 @@ static void test_to_euler_recovers_angles_all24(void **state)
  * is exactly singular: locked, margin 0, a3 = 0, a1 = 0. */
 static void test_to_euler_known_values(void **state)
 {
-    const core *c = CORE_OF(state);
+    const core *c = *state;
     dq q = { sqrt(0.5), 0, 0, sqrt(0.5) };
     const dq id = { 1, 0, 0, 0 };
     double e[3];
     einfo info;
     assert_int_equal(c->to_euler(held(c, q), QO_EULER_zxy, 1, 0, e, &info), QO_OK);
-    if (fabs(e[0] - PI_D / 2) > 1e-6 || fabs(e[1]) > 1e-6 || fabs(e[2]) > 1e-6 || info.locked ||
-        fabs(info.margin - PI_D / 2) > 1e-6)
+    if (fabs(e[0] - PI / 2) > 1e-6 || fabs(e[1]) > 1e-6 || fabs(e[2]) > 1e-6 || info.locked ||
+        fabs(info.margin - PI / 2) > 1e-6)
         fail_msg("%s zxy of 90 about z: (%.10g %.10g %.10g)", c->name, e[0], e[1], e[2]);
     q.w = sqrt(0.75); q.x = 0.0; q.y = -0.5; q.z = 0.0;
     assert_int_equal(c->to_euler(held(c, q), QO_EULER_zxy, 1, 0, e, &info), QO_OK);
-    if (fabs(e[0]) > 1e-6 || fabs(e[1]) > 1e-6 || fabs(e[2] + PI_D / 3) > 1e-6)
+    if (fabs(e[0]) > 1e-6 || fabs(e[1]) > 1e-6 || fabs(e[2] + PI / 3) > 1e-6)
         fail_msg("%s zxy of -60 about y: (%.10g %.10g %.10g)", c->name, e[0], e[1], e[2]);
     assert_int_equal(c->to_euler(id, QO_EULER_ZYX, 1, 0, e, &info), QO_OK);
     if (fabs(e[0]) > 1e-7 || fabs(e[1]) > 1e-7 || fabs(e[2]) > 1e-7 || info.locked)
@@ -527,31 +518,31 @@ static const edge k_edges[] = {
     { "180 about (1,1,1)", { 0, 0.57735026918962576, 0.57735026918962576, 0.57735026918962576 },
       QO_OK, -1, -1, 0, 0, 0 },
     { "180 about x, ZXZ = (0, pi, 0) (singular at pi)", { 0, 1, 0, 0 }, QO_OK, QO_EULER_ZXZ, 1,
-      0, PI_D, 0 },
+      0, PI, 0 },
     { "180 about z, XYZ = (0, 0, pi) (range end)", { 0, 0, 0, 1 }, QO_OK, QO_EULER_XYZ, 0,
-      0, 0, PI_D },
+      0, 0, PI },
     { "180 about x, XYZ = (pi, 0, 0) (range end)", { 0, 1, 0, 0 }, QO_OK, QO_EULER_XYZ, 0,
-      PI_D, 0, 0 },
+      PI, 0, 0 },
     { "ZYX pitch +90 (exactly singular)", { H, 0, H, 0 }, QO_OK, QO_EULER_ZYX, 1,
-      0, PI_D / 2, 0 },
+      0, PI / 2, 0 },
     { "ZYX pitch -90 (exactly singular)", { H, 0, -H, 0 }, QO_OK, QO_EULER_ZYX, 1,
-      0, -PI_D / 2, 0 },
+      0, -PI / 2, 0 },
     { "zero", { 0, 0, 0, 0 }, QO_E_DEGENERATE, -1, -1, 0, 0, 0 },
     { "-0 / zero again", { -0.0, 0, -0.0, 0 }, QO_E_DEGENERATE, -1, -1, 0, 0, 0 },
     /* saturated components: INT32_MAX / INT32_MIN as Q1.30 (the float core holds 2.0) */
     { "saturated (MAX, 0, 0, MAX) = 90 about z", { QMAX, 0, 0, QMAX }, QO_OK, QO_EULER_ZYX, 0,
-      PI_D / 2, 0, 0 },
+      PI / 2, 0, 0 },
     { "saturated (MIN, 0, 0, MIN) = 90 about z", { -2.0, 0, 0, -2.0 }, QO_OK, QO_EULER_ZYX, 0,
-      PI_D / 2, 0, 0 },
+      PI / 2, 0, 0 },
     { "saturated (MIN, MIN, MIN, MIN)", { -2.0, -2.0, -2.0, -2.0 }, QO_OK, -1, -1, 0, 0, 0 },
     { "saturated (MAX, MIN, MAX, MIN)", { QMAX, -2.0, QMAX, -2.0 }, QO_OK, -1, -1, 0, 0, 0 },
     { "saturated (MIN, 0, 0, 0) = identity", { -2.0, 0, 0, 0 }, QO_OK, QO_EULER_XYZ, 0, 0, 0, 0 },
     { "saturated (MAX, 0, MAX, 0): XYZ pitch 90, singular", { QMAX, 0, QMAX, 0 }, QO_OK,
-      QO_EULER_XYZ, 1, 0, PI_D / 2, 0 },
+      QO_EULER_XYZ, 1, 0, PI / 2, 0 },
     { "one LSB (0, 0, 0, 1 LSB) = 180 about z", { 0, 0, 0, LSB }, QO_OK, QO_EULER_ZYX, 0,
-      PI_D, 0, 0 },
+      PI, 0, 0 },
     { "tiny (1 LSB, 0, 0, 1 LSB) = 90 about z", { LSB, 0, 0, LSB }, QO_OK, QO_EULER_ZYX, 0,
-      PI_D / 2, 0, 0 },
+      PI / 2, 0, 0 },
     { "tiny random-ish (3, -1, 2, 5) LSB", { 3 * LSB, -LSB, 2 * LSB, 5 * LSB }, QO_OK, -1, -1,
       0, 0, 0 },
 };
@@ -563,7 +554,7 @@ static void run_edge(const core *c, const edge *t, int seq)
     einfo info;
     qo_status st = c->to_euler(q, seq, 1, 0, e, &info);
     if (st != t->want)
-        fail_msg("%s edge '%s' %s: status %d, want %d", c->name, t->what, k_names[seq], (int)st,
+        fail_msg("%s edge '%s' %s: status %d, want %d", c->name, t->what, ref_euler_names[seq], (int)st,
                  (int)t->want);
     if (st != QO_OK) {
         if (e[0] != 0.0 || e[1] != 0.0 || e[2] != 0.0 || info.locked != 0 || info.margin != 0.0)
@@ -571,12 +562,12 @@ static void run_edge(const core *c, const edge *t, int seq)
         return;
     }
     check_ranges(c, seq, e, t->what);
-    if (info.locked != (info.margin <= c->band) || info.margin < 0.0 || info.margin > PI_D / 2 + 1e-6)
-        fail_msg("%s edge '%s' %s: locked %d margin %.3g", c->name, t->what, k_names[seq],
+    if (info.locked != (info.margin <= c->band) || info.margin < 0.0 || info.margin > PI / 2 + 1e-6)
+        fail_msg("%s edge '%s' %s: locked %d margin %.3g", c->name, t->what, ref_euler_names[seq],
                  info.locked, info.margin);
     if (recompose_err(seq, e, q) > (info.locked ? 2.0 * info.margin + c->tol_lock : c->tol_fine))
         fail_msg("%s edge '%s' %s: (%.10g %.10g %.10g) recomposes %.3g off", c->name, t->what,
-                 k_names[seq], e[0], e[1], e[2], recompose_err(seq, e, q));
+                 ref_euler_names[seq], e[0], e[1], e[2], recompose_err(seq, e, q));
     if (t->seq >= 0) {
         if ((t->want_locked >= 0 && info.locked != t->want_locked) ||
             ang_diff(e[0], t->a1) > 1e-6 || fabs(e[1] - t->a2) > 1e-6 ||
@@ -589,7 +580,7 @@ static void run_edge(const core *c, const edge *t, int seq)
 
 static void test_edge_table(void **state)
 {
-    const core *c = CORE_OF(state);
+    const core *c = *state;
     size_t i;
     int seq;
     for (i = 0; i < sizeof k_edges / sizeof k_edges[0]; i++) {
@@ -601,22 +592,22 @@ static void test_edge_table(void **state)
 /* ---- gimbal lock (float32, fixed, fixed fast) --------------------------------------------- */
 static void test_exactly_singular_all24(void **state)
 {
-    const core *c = CORE_OF(state);
+    const core *c = *state;
     int seq, which, n;
     rng.s = 99;
     for (seq = 0; seq < 24; seq++)
         for (which = 0; which < 2; which++)
             for (n = 0; n < 200; n++) {
-                double a1 = ref_rng_range(&rng, -PI_D, PI_D), a3 = ref_rng_range(&rng, -PI_D, PI_D);
+                double a1 = ref_rng_range(&rng, -PI, PI), a3 = ref_rng_range(&rng, -PI, PI);
                 double a2 = singular_value(seq, which), e[3], en[3], s[3], err;
-                dq q = held(c, ref_quat_from_euler(k_names[seq], a1, a2, a3)), qs;
+                dq q = held(c, ref_quat_from_euler(ref_euler_names[seq], a1, a2, a3)), qs;
                 einfo info, infon;
                 /* 1. the exact rotation rounded to the core's components */
                 assert_int_equal(c->to_euler(q, seq, 1, 0, e, &info), QO_OK);
                 err = recompose_err(seq, e, q);
                 if (!info.locked || e[2] != 0.0 || err > c->tol_lock || fabs(e[1] - a2) > 1e-5)
                     fail_msg("%s singular %s (%.10g %.10g %.10g): locked %d margin %.3g -> "
-                             "(%.10g %.10g %.10g) recomposes %.3g off", c->name, k_names[seq],
+                             "(%.10g %.10g %.10g) recomposes %.3g off", c->name, ref_euler_names[seq],
                              a1, a2, a3, info.locked, info.margin, e[0], e[1], e[2], err);
                 check_ranges(c, seq, e, "singular");
                 /* -q: bit-identical angles and margin, also on the fitted (locked) path */
@@ -624,16 +615,16 @@ static void test_exactly_singular_all24(void **state)
                 if (en[0] != e[0] || en[1] != e[1] || en[2] != e[2] ||
                     infon.margin != info.margin || infon.locked != info.locked)
                     fail_msg("%s singular %s: -q gave (%.10g %.10g %.10g), q (%.10g %.10g "
-                             "%.10g)", c->name, k_names[seq], en[0], en[1], en[2], e[0], e[1], e[2]);
+                             "%.10g)", c->name, ref_euler_names[seq], en[0], en[1], en[2], e[0], e[1], e[2]);
                 /* 2. built as a user would: the core's own from_euler with the value nearest
                  * the singular angle */
                 s[0] = c->ra(a1); s[1] = c->ra(a2); s[2] = c->ra(a3);
                 assert_int_equal(c->from_euler(seq, s, &qs), QO_OK);
                 assert_int_equal(c->to_euler(qs, seq, 1, 0, e, &info), QO_OK);
-                err = recompose_err(seq, e, ref_quat_from_euler(k_names[seq], s[0], a2, s[2]));
+                err = recompose_err(seq, e, ref_quat_from_euler(ref_euler_names[seq], s[0], a2, s[2]));
                 if (!info.locked || e[2] != 0.0 || err > c->tol_lock)
                     fail_msg("%s singular via from_euler %s (%.10g %.10g %.10g): locked %d "
-                             "margin %.3g err %.3g", c->name, k_names[seq], s[0], s[1], s[2],
+                             "margin %.3g err %.3g", c->name, ref_euler_names[seq], s[0], s[1], s[2],
                              info.locked, info.margin, err);
                 /* 3. then every component moved by up to 2 steps (noise from an upstream
                  * computation): still flagged */
@@ -645,12 +636,12 @@ static void test_exactly_singular_all24(void **state)
                 err = recompose_err(seq, e, qs);
                 if (!info.locked || err > 2.0 * info.margin + c->tol_lock || err > c->tol_noise)
                     fail_msg("%s singular + 2 step noise %s q=(%.10g %.10g %.10g %.10g): "
-                             "locked %d margin %.3g err %.3g", c->name, k_names[seq], qs.w,
+                             "locked %d margin %.3g err %.3g", c->name, ref_euler_names[seq], qs.w,
                              qs.x, qs.y, qs.z, info.locked, info.margin, err);
                 /* 4. the band form with band 0 still flags a margin of exactly 0 */
                 assert_int_equal(c->to_euler(q, seq, 0, 0.0, e, &info), QO_OK);
                 if (info.locked != (info.margin == 0.0))
-                    fail_msg("%s band 0 %s: locked %d margin %.3g", c->name, k_names[seq],
+                    fail_msg("%s band 0 %s: locked %d margin %.3g", c->name, ref_euler_names[seq],
                              info.locked, info.margin);
             }
 }
@@ -664,33 +655,33 @@ static void test_exactly_singular_all24(void **state)
 static void test_singular_free_angle_choice(void **state)
 {
     static const struct { int seq; double a1, a2, a3, w1; } k[] = {
-        { QO_EULER_ZYX, 0.7, PI_D / 2, 0.2, 0.5 },
-        { QO_EULER_ZYX, 0.7, -PI_D / 2, 0.2, 0.9 },
+        { QO_EULER_ZYX, 0.7, PI / 2, 0.2, 0.5 },
+        { QO_EULER_ZYX, 0.7, -PI / 2, 0.2, 0.9 },
         { QO_EULER_ZXZ, 0.5, 0.0, 0.4, 0.9 },
-        { QO_EULER_ZXZ, 0.5, PI_D, 0.4, 0.1 },
-        { QO_EULER_zxz, 0.5, PI_D, 0.4, 0.1 },
-        { QO_EULER_XYX, -2.5, 0.0, -1.0, -3.5 + 2 * PI_D },
+        { QO_EULER_ZXZ, 0.5, PI, 0.4, 0.1 },
+        { QO_EULER_zxz, 0.5, PI, 0.4, 0.1 },
+        { QO_EULER_XYX, -2.5, 0.0, -1.0, -3.5 + 2 * PI },
     };
-    const core *c = CORE_OF(state);
+    const core *c = *state;
     const dq pitch90 = { sqrt(0.5), 0, sqrt(0.5), 0 }, x180 = { 0, 1, 0, 0 };
     double e[3];
     einfo info;
     size_t i;
     for (i = 0; i < sizeof k / sizeof k[0]; i++) {
-        dq q = held(c, ref_quat_from_euler(k_names[k[i].seq], k[i].a1, k[i].a2, k[i].a3));
+        dq q = held(c, ref_quat_from_euler(ref_euler_names[k[i].seq], k[i].a1, k[i].a2, k[i].a3));
         assert_int_equal(c->to_euler(q, k[i].seq, 1, 0, e, &info), QO_OK);
         if (!info.locked || ang_diff(e[0], k[i].w1) > 2e-6 || fabs(e[1] - k[i].a2) > 1e-6 ||
             e[2] != 0.0)
             fail_msg("%s free angle %s (%g %g %g): got (%.10g %.10g %.10g) locked %d, want a1 "
-                     "%.10g", c->name, k_names[k[i].seq], k[i].a1, k[i].a2, k[i].a3, e[0],
+                     "%.10g", c->name, ref_euler_names[k[i].seq], k[i].a1, k[i].a2, k[i].a3, e[0],
                      e[1], e[2], info.locked, k[i].w1);
     }
     assert_int_equal(c->to_euler(held(c, pitch90), QO_EULER_ZYX, 1, 0, e, &info), QO_OK);
-    if (!info.locked || info.margin >= 1e-6 || fabs(e[1] - PI_D / 2) > 1e-6)
+    if (!info.locked || info.margin >= 1e-6 || fabs(e[1] - PI / 2) > 1e-6)
         fail_msg("%s ZYX pitch 90: (%.10g %.10g %.10g) locked %d margin %.3g", c->name, e[0],
                  e[1], e[2], info.locked, info.margin);
     assert_int_equal(c->to_euler(held(c, x180), QO_EULER_ZXZ, 1, 0, e, &info), QO_OK);
-    if (!info.locked || info.margin != 0.0 || fabs(e[1] - PI_D) > 1e-6 ||
+    if (!info.locked || info.margin != 0.0 || fabs(e[1] - PI) > 1e-6 ||
         recompose_err(QO_EULER_ZXZ, e, x180) >= 1e-6)
         fail_msg("%s ZXZ 180 about x: (%.10g %.10g %.10g) locked %d margin %.3g", c->name, e[0],
                  e[1], e[2], info.locked, info.margin);
@@ -699,7 +690,7 @@ static void test_singular_free_angle_choice(void **state)
 static void test_just_off_singular_all24(void **state)
 {
     static const double offs[] = { 1e-5, 1e-4, 1e-3, 0.01, 0.035 };
-    const core *c = CORE_OF(state);
+    const core *c = *state;
     /* offsets relative to the core's own band: a third of it (flagged) and 3x (not) */
     const double rel[2] = { c->band / 3.0, 3.0 * c->band };
     int seq, which, k, n, side;
@@ -708,7 +699,7 @@ static void test_just_off_singular_all24(void **state)
         for (which = 0; which < 2; which++)
             for (side = 0; side < 2; side++)
                 for (n = 0; n < 20; n++) {
-                    double a1 = ref_rng_range(&rng, -PI_D, PI_D), a3 = ref_rng_range(&rng, -PI_D, PI_D);
+                    double a1 = ref_rng_range(&rng, -PI, PI), a3 = ref_rng_range(&rng, -PI, PI);
                     double s = singular_value(seq, which);
                     /* toward the inside of the range; past the end (side 1) is the other
                      * branch of a nearby rotation, equally valid input */
@@ -717,7 +708,7 @@ static void test_just_off_singular_all24(void **state)
                     for (k = 0; k < 7; k++) {
                         double off = k < 5 ? offs[k] : rel[k - 5];
                         double a2 = s + (side ? -inward : inward) * off;
-                        dq q = held(c, ref_quat_from_euler(k_names[seq], a1, a2, a3));
+                        dq q = held(c, ref_quat_from_euler(ref_euler_names[seq], a1, a2, a3));
                         int want_locked = (k == 5);
                         assert_int_equal(c->to_euler(q, seq, 1, 0, e, &info), QO_OK);
                         err = recompose_err(seq, e, q);
@@ -725,7 +716,7 @@ static void test_just_off_singular_all24(void **state)
                             err > (info.locked ? 2.0 * info.margin + c->tol_lock : c->tol_fine) ||
                             fabs(info.margin - off) > 1e-6 + 1e-4 * off)
                             fail_msg("%s %s (%.10g %.10g %.10g), %.3g off lock: locked %d margin "
-                                     "%.6g, recomposes %.3g off", c->name, k_names[seq], a1, a2,
+                                     "%.6g, recomposes %.3g off", c->name, ref_euler_names[seq], a1, a2,
                                      a3, off, info.locked, info.margin, err);
                         check_ranges(c, seq, e, "near-singular");
                         /* A caller band of just under 2 deg (0.034907): flagged iff margin <=
@@ -738,7 +729,7 @@ static void test_just_off_singular_all24(void **state)
                             err > (info.locked ? 2.0 * info.margin + c->tol_lock : c->tol_fine) ||
                             (info.locked && e[2] != 0.0))
                             fail_msg("%s band 0.0349 %s (%.10g %.10g %.10g): locked %d margin "
-                                     "%.6g err %.3g", c->name, k_names[seq], a1, a2, a3,
+                                     "%.6g err %.3g", c->name, ref_euler_names[seq], a1, a2, a3,
                                      info.locked, info.margin, err);
                     }
                 }
@@ -748,16 +739,16 @@ static void test_just_off_singular_all24(void **state)
  * middle of its range (ends are singular): recomposes, stays in range, flagged iff singular. */
 static void test_range_ends_all24(void **state)
 {
-    static const double e13[] = { -PI_D, -PI_D / 2, 0.0, PI_D / 2, PI_D };
-    const core *c = CORE_OF(state);
+    static const double e13[] = { -PI, -PI / 2, 0.0, PI / 2, PI };
+    const core *c = *state;
     int seq, i1, i2, i3;
     for (seq = 0; seq < 24; seq++)
         for (i1 = 0; i1 < 5; i1++)
             for (i2 = 0; i2 < 3; i2++)
                 for (i3 = 0; i3 < 5; i3++) {
-                    double a2 = is_proper_name(seq) ? (i2 == 0 ? 0.0 : (i2 == 1 ? PI_D / 2 : PI_D))
-                                                    : (i2 == 0 ? -PI_D / 2 : (i2 == 1 ? 0.0 : PI_D / 2));
-                    dq q = held(c, ref_quat_from_euler(k_names[seq], e13[i1], a2, e13[i3]));
+                    double a2 = ref_euler_proper(seq) ? (i2 == 0 ? 0.0 : (i2 == 1 ? PI / 2 : PI))
+                                                    : (i2 == 0 ? -PI / 2 : (i2 == 1 ? 0.0 : PI / 2));
+                    dq q = held(c, ref_quat_from_euler(ref_euler_names[seq], e13[i1], a2, e13[i3]));
                     double e[3], err, bound;
                     einfo info;
                     assert_int_equal(c->to_euler(q, seq, 1, 0, e, &info), QO_OK);
@@ -766,7 +757,7 @@ static void test_range_ends_all24(void **state)
                     check_ranges(c, seq, e, "range ends");
                     if (err > bound || info.locked != (i2 != 1))
                         fail_msg("%s range ends %s (%.10g %.10g %.10g) -> (%.10g %.10g %.10g) "
-                                 "locked %d err %.3g", c->name, k_names[seq], e13[i1], a2, e13[i3],
+                                 "locked %d err %.3g", c->name, ref_euler_names[seq], e13[i1], a2, e13[i3],
                                  e[0], e[1], e[2], info.locked, err);
                 }
 }
@@ -799,7 +790,7 @@ static void expect_error(const core *c, dq q, int seq, double band, qo_status wa
 
 static void test_to_euler_bad_inputs(void **state)
 {
-    const core *c = CORE_OF(state);
+    const core *c = *state;
     const dq ok = { 0.9, 0.1, 0.2, 0.3 }, zero = { 0, 0, 0, 0 }, negzero = { -0.0, 0, -0.0, 0 };
     const double prev[3] = { 0, 0, 0 };
     double e[3];
@@ -818,7 +809,7 @@ static void test_to_euler_bad_inputs(void **state)
     /* Band limits themselves are accepted; pi/2 flags everything. */
     assert_int_equal(c->to_euler(held(c, ok), QO_EULER_XYZ, 0, 0.0, e, &info), QO_OK);
     assert_int_equal(info.locked, 0);
-    assert_int_equal(c->to_euler(held(c, ok), QO_EULER_XYZ, 0, c->ra(PI_D / 2), e, &info), QO_OK);
+    assert_int_equal(c->to_euler(held(c, ok), QO_EULER_XYZ, 0, c->ra(PI / 2), e, &info), QO_OK);
     assert_int_equal(info.locked, 1);
     assert_true(recompose_err(QO_EULER_XYZ, e, held(c, ok)) <= 2.0 * info.margin + 1e-6);
 }
@@ -832,8 +823,8 @@ static void run_path(const core *c, int seq, double a1_0, double a1_1, double a2
                      const char *what)
 {
     double mid2 = 0.5 * (a2_0 + a2_1);
-    int singular_mid = fabs(mid2 - PI_D / 2) < 1e-12 || fabs(mid2 + PI_D / 2) < 1e-12 ||
-                       fabs(mid2) < 1e-12 || fabs(mid2 - PI_D) < 1e-12;
+    int singular_mid = fabs(mid2 - PI / 2) < 1e-12 || fabs(mid2 + PI / 2) < 1e-12 ||
+                       fabs(mid2) < 1e-12 || fabs(mid2 - PI) < 1e-12;
     double prev[3], out[3];
     einfo info;
     int k;
@@ -844,7 +835,7 @@ static void run_path(const core *c, int seq, double a1_0, double a1_1, double a2
         double a3 = a3_0 + (a3_1 - a3_0) * t, err, jump, dev;
         dq q;
         if (2 * k == steps) a2 = mid2; /* the midpoint exactly */
-        q = held(c, ref_quat_from_euler(k_names[seq], a1, a2, a3));
+        q = held(c, ref_quat_from_euler(ref_euler_names[seq], a1, a2, a3));
         assert_int_equal(c->near(q, seq, prev, band, out, &info), QO_OK);
         err = recompose_err(seq, out, q);
         jump = dmax(fabs(out[0] - prev[0]), dmax(fabs(out[1] - prev[1]), fabs(out[2] - prev[2])));
@@ -855,7 +846,7 @@ static void run_path(const core *c, int seq, double a1_0, double a1_1, double a2
             (2 * k == steps && singular_mid && !info.locked))
             fail_msg("%s %s %s step %d: true (%.6f %.6f %.6f) got (%.6f %.6f %.6f) prev "
                      "(%.6f %.6f %.6f) locked %d margin %.3g err %.3g", c->name, what,
-                     k_names[seq], k, a1, a2, a3, out[0], out[1], out[2], prev[0], prev[1],
+                     ref_euler_names[seq], k, a1, a2, a3, out[0], out[1], out[2], prev[0], prev[1],
                      prev[2], info.locked, info.margin, err);
         prev[0] = out[0]; prev[1] = out[1]; prev[2] = out[2];
     }
@@ -863,18 +854,18 @@ static void run_path(const core *c, int seq, double a1_0, double a1_1, double a2
 
 static void test_near_through_singularity_all24(void **state)
 {
-    const core *c = CORE_OF(state);
+    const core *c = *state;
     int seq;
     for (seq = 0; seq < 24; seq++) {
-        double s = is_proper_name(seq) ? 0.0 : PI_D / 2;
+        double s = ref_euler_proper(seq) ? 0.0 : PI / 2;
         /* a2 crosses the singular value (leaving scipy's range on the far side), a1 and a3 move
          * meanwhile; 100 steps of 0.004 rad in a2. Default band and a 0.01 rad hold band. */
         run_path(c, seq, 0.3, 1.1, s - 0.2, s + 0.2, -0.5, 0.1, 100, c->band, 1e-4,
                  "through lock (default band)");
         run_path(c, seq, 0.3, 1.1, s + 0.2, s - 0.2, -0.5, 0.1, 100, 0.01, 1e-4,
                  "through lock (0.01 band)");
-        if (is_proper_name(seq))
-            run_path(c, seq, -2.0, -1.0, PI_D - 0.2, PI_D + 0.2, 2.0, 2.5, 100, 0.01, 1e-4,
+        if (ref_euler_proper(seq))
+            run_path(c, seq, -2.0, -1.0, PI - 0.2, PI + 0.2, 2.0, 2.5, 100, 0.01, 1e-4,
                      "through pi");
         else
             run_path(c, seq, -2.0, -1.0, -s + 0.2, -s - 0.2, 2.0, 2.5, 100, 0.01, 1e-4,
@@ -884,10 +875,10 @@ static void test_near_through_singularity_all24(void **state)
 
 static void test_near_across_wrap_and_turns(void **state)
 {
-    const core *c = CORE_OF(state);
+    const core *c = *state;
     int seq;
     for (seq = 0; seq < 24; seq++) {
-        double mid = is_proper_name(seq) ? 1.0 : 0.3;
+        double mid = ref_euler_proper(seq) ? 1.0 : 0.3;
         /* a1 crosses +pi, a3 crosses -pi: no 2pi jumps. */
         run_path(c, seq, 3.0, 3.4, mid, mid + 0.1, -3.0, -3.4, 40, c->band, 1e-4, "across wrap");
         /* Counting past pi, up to 4.8 rad (Q3.28 holds 8 - pi of headroom; longer runs of the
@@ -901,47 +892,47 @@ static void test_near_across_wrap_and_turns(void **state)
 
 static void test_near_picks_branch_and_locks(void **state)
 {
-    const core *c = CORE_OF(state);
+    const core *c = *state;
     int seq;
     rng.s = 555;
     for (seq = 0; seq < 24; seq++) {
         double a1 = ref_rng_range(&rng, -2.5, 2.5), a3 = ref_rng_range(&rng, -2.5, 2.5);
-        double a2 = is_proper_name(seq) ? 1.2 : 0.6;
-        double alt2 = is_proper_name(seq) ? -a2 : PI_D - a2;
-        dq q = held(c, ref_quat_from_euler(k_names[seq], a1, a2, a3));
+        double a2 = ref_euler_proper(seq) ? 1.2 : 0.6;
+        double alt2 = ref_euler_proper(seq) ? -a2 : PI - a2;
+        dq q = held(c, ref_quat_from_euler(ref_euler_names[seq], a1, a2, a3));
         double prev[3], out[3];
         einfo info;
         /* prev near the alternative branch, one turn down on a1 (stays inside Q3.28) */
-        prev[0] = a1 + PI_D - 2 * PI_D + 0.05; prev[1] = alt2 - 0.05; prev[2] = a3 + PI_D - 0.05;
+        prev[0] = a1 + PI - 2 * PI + 0.05; prev[1] = alt2 - 0.05; prev[2] = a3 + PI - 0.05;
         assert_int_equal(c->near(q, seq, prev, 0.0, out, &info), QO_OK);
-        if (fabs(out[0] - (a1 - PI_D)) > 1e-5 || fabs(out[1] - alt2) > 1e-5 ||
-            fabs(out[2] - (a3 + PI_D)) > 1e-5 || recompose_err(seq, out, q) > 1e-5)
+        if (fabs(out[0] - (a1 - PI)) > 1e-5 || fabs(out[1] - alt2) > 1e-5 ||
+            fabs(out[2] - (a3 + PI)) > 1e-5 || recompose_err(seq, out, q) > 1e-5)
             fail_msg("%s near %s alt branch: got (%.7f %.7f %.7f) want (%.7f %.7f %.7f)",
-                     c->name, k_names[seq], out[0], out[1], out[2], a1 - PI_D, alt2, a3 + PI_D);
+                     c->name, ref_euler_names[seq], out[0], out[1], out[2], a1 - PI, alt2, a3 + PI);
         /* prev near the alternative branch two turns up on a1, where the angle type holds it */
         if (c->a_max > 20.0) {
-            prev[0] = a1 + PI_D + 4 * PI_D + 0.05; prev[1] = alt2 - 0.05; prev[2] = a3 + PI_D - 0.05;
+            prev[0] = a1 + PI + 4 * PI + 0.05; prev[1] = alt2 - 0.05; prev[2] = a3 + PI - 0.05;
             assert_int_equal(c->near(q, seq, prev, 0.0, out, &info), QO_OK);
-            if (fabs(out[0] - (a1 + 5 * PI_D)) > 1e-5 || fabs(out[1] - alt2) > 1e-5 ||
-                fabs(out[2] - (a3 + PI_D)) > 1e-5 || recompose_err(seq, out, q) > 1e-5)
+            if (fabs(out[0] - (a1 + 5 * PI)) > 1e-5 || fabs(out[1] - alt2) > 1e-5 ||
+                fabs(out[2] - (a3 + PI)) > 1e-5 || recompose_err(seq, out, q) > 1e-5)
                 fail_msg("%s near %s alt branch 2 turns up: got (%.7f %.7f %.7f) want (%.7f %.7f "
-                         "%.7f)", c->name, k_names[seq], out[0], out[1], out[2], a1 + 5 * PI_D,
-                         alt2, a3 + PI_D);
+                         "%.7f)", c->name, ref_euler_names[seq], out[0], out[1], out[2], a1 + 5 * PI,
+                         alt2, a3 + PI);
         }
         /* prev near the principal branch */
         prev[0] = a1 - 0.1; prev[1] = a2 + 0.1; prev[2] = a3 + 0.1;
         assert_int_equal(c->near(q, seq, prev, 0.0, out, &info), QO_OK);
         if (fabs(out[0] - a1) > 1e-5 || fabs(out[1] - a2) > 1e-5 || fabs(out[2] - a3) > 1e-5)
-            fail_msg("%s near %s principal: got (%.7f %.7f %.7f)", c->name, k_names[seq],
+            fail_msg("%s near %s principal: got (%.7f %.7f %.7f)", c->name, ref_euler_names[seq],
                      out[0], out[1], out[2]);
         /* Exactly singular: a3 stays at prev.a3 exactly and the result composes to q. */
-        q = held(c, ref_quat_from_euler(k_names[seq], a1, singular_value(seq, 1), a3));
+        q = held(c, ref_quat_from_euler(ref_euler_names[seq], a1, singular_value(seq, 1), a3));
         prev[0] = 0.25; prev[1] = singular_value(seq, 1); prev[2] = 7.5;
         assert_int_equal(c->near(q, seq, prev, c->band, out, &info), QO_OK);
         if (!info.locked || out[2] != c->ra(7.5) || recompose_err(seq, out, q) > 1e-5 ||
-            fabs(out[0] - 0.25) > PI_D)
+            fabs(out[0] - 0.25) > PI)
             fail_msg("%s near %s at lock: locked %d got (%.7f %.7f %.7f) err %.3g", c->name,
-                     k_names[seq], info.locked, out[0], out[1], out[2], recompose_err(seq, out, q));
+                     ref_euler_names[seq], info.locked, out[0], out[1], out[2], recompose_err(seq, out, q));
     }
 }
 
@@ -968,13 +959,13 @@ static void test_f32_to_euler_scaled_inputs(void **state)
 {
     static const struct { const char *what; dq q; int seq; double a1, a2, tol; int locked; } k[] = {
         { "yaw 90 x 1e-20", { 0.70710678118655e-20, 0, 0, 0.70710678118655e-20 }, QO_EULER_ZYX,
-          PI_D / 2, 0, 1e-6, 0 },
+          PI / 2, 0, 1e-6, 0 },
         { "yaw 90 x 1e20", { 0.70710678118655e20, 0, 0, 0.70710678118655e20 }, QO_EULER_ZYX,
-          PI_D / 2, 0, 1e-6, 0 },
-        { "subnormal yaw 90", { 1e-40, 0, 0, 1e-40 }, QO_EULER_ZYX, PI_D / 2, 0, 1e-5, 0 },
-        { "3e38: 90 about x", { 3e38, 3e38, 0, 0 }, QO_EULER_XYZ, PI_D / 2, 0, 1e-6, 0 },
+          PI / 2, 0, 1e-6, 0 },
+        { "subnormal yaw 90", { 1e-40, 0, 0, 1e-40 }, QO_EULER_ZYX, PI / 2, 0, 1e-5, 0 },
+        { "3e38: 90 about x", { 3e38, 3e38, 0, 0 }, QO_EULER_XYZ, PI / 2, 0, 1e-6, 0 },
         { "pitch 90 x 1e-30", { 0.70710678118655e-30, 0, 0.70710678118655e-30, 0 }, QO_EULER_ZYX,
-          0, PI_D / 2, 1e-6, 1 },
+          0, PI / 2, 1e-6, 1 },
     };
     const core *c = &CORE_F32;
     size_t i;
@@ -1035,24 +1026,24 @@ static void test_fx_near_range_end(void **state)
     int seq;
     (void)state;
     for (seq = 0; seq < 24; seq++) {
-        double mid = is_proper_name(seq) ? 1.0 : 0.3, prev[3], out[3];
+        double mid = ref_euler_proper(seq) ? 1.0 : 0.3, prev[3], out[3];
         einfo info;
         /* true a1 = 8.2 rad (= 8.2 - 2pi = 1.917 in range), prev at 7.9 */
-        dq q = held(&CORE_Q30, ref_quat_from_euler(k_names[seq], 8.2, mid, -0.4));
+        dq q = held(&CORE_FX, ref_quat_from_euler(ref_euler_names[seq], 8.2, mid, -0.4));
         qo_status st;
         prev[0] = 7.9; prev[1] = mid; prev[2] = -0.4;
-        st = x_near(q, seq, prev, CORE_Q30.band, out, &info);
-        if (st != QO_E_OVERFLOW || fabs(out[0] - (8.2 - 2 * PI_D)) > 1e-6 ||
+        st = x_near(q, seq, prev, CORE_FX.band, out, &info);
+        if (st != QO_E_OVERFLOW || fabs(out[0] - (8.2 - 2 * PI)) > 1e-6 ||
             fabs(out[1] - mid) > 1e-6 || fabs(out[2] + 0.4) > 1e-6 || info.locked ||
             recompose_err(seq, out, q) > 1e-6)
-            fail_msg("fixed near %s past 8 rad: status %d out (%.9f %.9f %.9f)", k_names[seq],
+            fail_msg("fixed near %s past 8 rad: status %d out (%.9f %.9f %.9f)", ref_euler_names[seq],
                      (int)st, out[0], out[1], out[2]);
         /* true a3 = -7.95 rad: fits, QO_OK, counted turn kept */
-        q = held(&CORE_Q30, ref_quat_from_euler(k_names[seq], 0.2, mid, -7.95));
+        q = held(&CORE_FX, ref_quat_from_euler(ref_euler_names[seq], 0.2, mid, -7.95));
         prev[0] = 0.2; prev[1] = mid; prev[2] = -7.9;
-        st = x_near(q, seq, prev, CORE_Q30.band, out, &info);
+        st = x_near(q, seq, prev, CORE_FX.band, out, &info);
         if (st != QO_OK || fabs(out[2] + 7.95) > 1e-6 || recompose_err(seq, out, q) > 1e-6)
-            fail_msg("fixed near %s at -7.95 rad: status %d out (%.9f %.9f %.9f)", k_names[seq],
+            fail_msg("fixed near %s at -7.95 rad: status %d out (%.9f %.9f %.9f)", ref_euler_names[seq],
                      (int)st, out[0], out[1], out[2]);
     }
 }
@@ -1074,11 +1065,11 @@ static void test_fx_from_euler_extreme_angles(void **state)
                 double err;
                 e.a1 = v[i]; e.a2 = v[j]; e.a3 = v[(i + j) % (sizeof v / sizeof v[0])];
                 assert_int_equal(qo_quat_from_euler_q30((qo_euler_seq)seq, e, &q), QO_OK);
-                r = ref_quat_from_euler(k_names[seq], e.a1 / Q28, e.a2 / Q28, e.a3 / Q28);
+                r = ref_quat_from_euler(ref_euler_names[seq], e.a1 / Q28, e.a2 / Q28, e.a3 / Q28);
                 err = fmax(fmax(fabs(q.w / Q30 - r.w), fabs(q.x / Q30 - r.x)),
                            fmax(fabs(q.y / Q30 - r.y), fabs(q.z / Q30 - r.z)));
                 if (err > 1e-8)
-                    fail_msg("fixed from_euler %s raw (%d %d %d): error %.3g", k_names[seq],
+                    fail_msg("fixed from_euler %s raw (%d %d %d): error %.3g", ref_euler_names[seq],
                              (int)e.a1, (int)e.a2, (int)e.a3, err);
             }
 }
@@ -1089,7 +1080,7 @@ static void test_fx_from_euler_extreme_angles(void **state)
  * when an output had to be taken one turn back (then it still composes to q). */
 static void test_fx_random_raw_inputs(void **state)
 {
-    static const core *const k_cores[2] = { &CORE_Q30, &CORE_Q30_FAST };
+    static const core *const k_cores[2] = { &CORE_FX, &CORE_FX_FAST };
     int seq, n;
     (void)state;
     rng.s = 0xF1C5EDull;
@@ -1119,7 +1110,7 @@ static void test_fx_random_raw_inputs(void **state)
                 tol = info.locked ? 2.0 * info.margin / Q28 + 5e-8 : 5e-8;
                 if (st != QO_OK || recompose_err(seq, ee, r) > tol)
                     fail_msg("%s raw %s q=(%d %d %d %d): status %d (%.10g %.10g %.10g) err %.3g",
-                             k_cores[k - 1]->name, k_names[seq], (int)q.w, (int)q.x, (int)q.y, (int)q.z,
+                             k_cores[k - 1]->name, ref_euler_names[seq], (int)q.w, (int)q.x, (int)q.y, (int)q.z,
                              (int)st, ee[0], ee[1], ee[2], recompose_err(seq, ee, r));
                 check_ranges(k_cores[k - 1], seq, ee, "raw");
             }
@@ -1132,18 +1123,18 @@ static void test_fx_random_raw_inputs(void **state)
             if ((st != QO_OK && st != QO_E_OVERFLOW) || recompose_err(seq, oo, r) > tol ||
                 (info.locked && o.a3 != prev.a3))
                 fail_msg("fixed raw near %s q=(%d %d %d %d) prev (%d %d %d): status %d "
-                         "(%.10g %.10g %.10g) err %.3g", k_names[seq], (int)q.w, (int)q.x,
+                         "(%.10g %.10g %.10g) err %.3g", ref_euler_names[seq], (int)q.w, (int)q.x,
                          (int)q.y, (int)q.z, (int)prev.a1, (int)prev.a2, (int)prev.a3, (int)st,
                          oo[0], oo[1], oo[2], recompose_err(seq, oo, r));
             /* OVERFLOW only if some output is more than pi from its prev (taken back a turn) */
-            if (st == QO_E_OVERFLOW && fabs(oo[0] - prev.a1 / Q28) <= PI_D + 1e-6 &&
-                fabs(oo[1] - prev.a2 / Q28) <= PI_D + 1e-6 && fabs(oo[2] - prev.a3 / Q28) <= PI_D + 1e-6)
+            if (st == QO_E_OVERFLOW && fabs(oo[0] - prev.a1 / Q28) <= PI + 1e-6 &&
+                fabs(oo[1] - prev.a2 / Q28) <= PI + 1e-6 && fabs(oo[2] - prev.a3 / Q28) <= PI + 1e-6)
                 fail_msg("fixed raw near %s: OVERFLOW but every output is within pi of prev",
-                         k_names[seq]);
-            if (st == QO_OK && (fabs(oo[0] - prev.a1 / Q28) > PI_D + 1e-6 ||
-                                fabs(oo[2] - prev.a3 / Q28) > PI_D + 1e-6))
+                         ref_euler_names[seq]);
+            if (st == QO_OK && (fabs(oo[0] - prev.a1 / Q28) > PI + 1e-6 ||
+                                fabs(oo[2] - prev.a3 / Q28) > PI + 1e-6))
                 fail_msg("fixed raw near %s: OK but an output is more than pi from prev "
-                         "(%.10g %.10g %.10g) prev (%.10g %.10g %.10g)", k_names[seq], oo[0],
+                         "(%.10g %.10g %.10g) prev (%.10g %.10g %.10g)", ref_euler_names[seq], oo[0],
                          oo[1], oo[2], prev.a1 / Q28, prev.a2 / Q28, prev.a3 / Q28);
         }
 }
@@ -1163,12 +1154,8 @@ static void test_fx_band_limits(void **state)
     assert_true(e.a1 == 3 && e.a2 == 0 && e.a3 == 0);
 }
 
-/* One cmocka line per core, so that a failure names the core. */
-#define BOTH(fn) cmocka_unit_test_prestate(fn, (void *)&CORE_F32), \
-                 cmocka_unit_test_prestate(fn, (void *)&CORE_Q30)
-/* quaternion -> angles: the fast tier too */
-#define ALL3(fn) BOTH(fn), cmocka_unit_test_prestate(fn, (void *)&CORE_Q30_FAST)
-
+/* One cmocka line per core (BOTH, ALL3: common/cores.h), so that a failure names the core;
+ * quaternion -> angles runs on the fast tier too (ALL3). */
 int main(void)
 {
     const struct CMUnitTest tests[] = {
