@@ -26,15 +26,13 @@
 #include <string.h>
 #include <cmocka.h>
 
+#define CORES_OWN_TABLE   /* interpolation's table below: key arrays, t, the fast tier */
+#include "common/cores.h"
 #include "qorient/fxconv.h"
 #include "qorient/interp.h"
 #include "qorient/interp_fx.h"
 #include "qorient/quat.h"
 #include "qorient/quat_fx.h"
-
-#define PI 3.14159265358979323846
-#define Q30 1073741824.0
-#define Q16 65536.0
 
 /* ---- double reference quaternion algebra ------------------------------------------------ */
 #include "common/dq_interp.h"
@@ -92,9 +90,6 @@ typedef struct core {
     qo_status (*squad_controls)(const dq *k, size_t n, dq *s);
     qo_status (*squad)(dq q0, dq s0, dq s1, dq q1, double t, dq *out);
 } core;
-
-/* The status a body expects where the cores' documented answers differ. */
-#define ST(c, st_f32, st_q30) ((c)->fixed ? (st_q30) : (st_f32))
 
 /* Each core provides its boundary under its prefix P (f: float32, x: Q1.30):
  *   P##_q / P##_qb   dq <-> quaternion      P##_t   t (float / Q1.30)
@@ -251,13 +246,13 @@ static const core CORE_F32 = {
     "float32", 0, 1e-6, 1e-6, 1e-6, 2e-6, 1e-6, 2e-6, 1e-6, 1e3, 1e39,
     f_q_in, f_t_in, f_t_in, f_unit, CORE_FUNCS(f)
 };
-static const core CORE_Q30 = {
+static const core CORE_FX = {
     "q30", 1, 3e-8, 3e-9, 1e-8, 2e-8, 5e-9, 2e-8, 1.0 / Q30, 1.99, 1e39,
     x_q_in, x_t_in, x_s_in, x_unit, CORE_FUNCS(x)
 };
 /* The fast tier (slerp bodies only): documented 5e-8 rad; its unit is normalize_fast's
  * (16 LSB, 1.5e-8 of norm). */
-static const core CORE_Q30_FAST = {
+static const core CORE_FX_FAST = {
     "q30 fast", 1, 5e-8, 3e-8, 1e-8, 2e-8, 5e-9, 2e-8, 1.0 / Q30, 1.99, 1e39,
     x_q_in, x_t_in, x_s_in, x_unit_fast,
     x_lerp, x_slerp_fast, x_slerp_long, x_nlerp, x_slerp_rate, x_align_keys, x_bezier,
@@ -268,7 +263,6 @@ static const core CORE_Q30_FAST = {
 #define CHECK(cond, ...) do { if (!(cond)) { fail_msg(__VA_ARGS__); } } while (0)
 #define QF(q) (q).w, (q).x, (q).y, (q).z
 #define QFMT "(%.12g %.12g %.12g %.12g)"
-#define CORE(state) ((const core *)*(state))
 
 static const dq ID = { 1, 0, 0, 0 };
 static const dq ZERO_Q = { 0, 0, 0, 0 };
@@ -319,7 +313,7 @@ static void check_slerp_case(const core *c, const char *name, dq a, dq b, double
 
 static void test_slerp_random_vs_double(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     int i;
     rng_seed(0x51E4F00Dull);
     for (i = 0; i < 3000; i++) {
@@ -344,7 +338,7 @@ static void test_slerp_edge_table(void **state)
                                      PI - 1e-4, PI - 1e-5 };
     static const double ts[] = { 0.0, 1e-9, 1e-7, 1e-3, 0.25, 0.5, 0.75, 0.999, 0.9999999,
                                  1.0 - 1e-9, 1.0 };
-    const core *c = CORE(state);
+    const core *c = *state;
     size_t di, ti;
     int k, sgn;
     rng_seed(0xED6Eull);
@@ -368,7 +362,7 @@ static void test_slerp_edge_table(void **state)
  * length (the cglm / filament bug averages q and -q to near zero). */
 static void test_slerp_same_rotation_opposite_sign(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     int i, k;
     rng_seed(0x0990ull);
     for (i = 0; i < 200; i++) {
@@ -403,7 +397,7 @@ static void test_slerp_exact_180(void **state)
         { { 0.5, 0.5, 0.5, 0.5 }, { 0.5, -0.5, 0.5, -0.5 } },
         { { 0, 0.6, 0.8, 0 }, { 0, -0.8, 0.6, 0 } },
     };
-    const core *c = CORE(state);
+    const core *c = *state;
     size_t i;
     int k;
     for (i = 0; i < sizeof pairs / sizeof pairs[0]; i++) {
@@ -421,7 +415,7 @@ static void test_slerp_exact_180(void **state)
  * result must still be one of them and unit length. */
 static void test_slerp_nearly_180_ambiguous(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     int i, k;
     rng_seed(0x180180ull);
     for (i = 0; i < 100; i++) {
@@ -443,7 +437,7 @@ static void test_slerp_nearly_180_ambiguous(void **state)
 /* t == 0 and t == 1 give the core's normalised inputs exactly; t == 1 with dot < 0 gives -b. */
 static void test_slerp_exact_endpoints(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     int i;
     rng_seed(0xE4D5ull);
     for (i = 0; i < 500; i++) {
@@ -465,7 +459,7 @@ static void test_slerp_exact_endpoints(void **state)
 /* Constant angular rate: angle(a, slerp(a, b, t)) == t * angle(a, b). */
 static void test_slerp_constant_rate(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     int i, k;
     rng_seed(0xC0457ull);
     for (i = 0; i < 300; i++) {
@@ -489,7 +483,7 @@ static void test_slerp_nlerp_errors(void **state)
 {
     static const double bad_t[] = { -0.25, -1e-6, -1e-7, -1.0, 1.0 + 1e-6, 1.0000001, 1.5, 2.0 };
     static const char *const names[] = { "slerp", "slerp_long", "nlerp" };
-    const core *c = CORE(state);
+    const core *c = *state;
     dq a, b, ua, out;
     size_t i;
     int which;
@@ -535,7 +529,7 @@ static void test_slerp_nlerp_errors(void **state)
  * angle; edges. */
 static void test_slerp_long(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     double worst = 0, worst_k = 0;
     int n, i, k;
     dq o, a, b;
@@ -619,7 +613,7 @@ static void test_slerp_long(void **state)
  * durations 0.1 .. 10 s and 0.01 .. 10 s; edges. */
 static void test_slerp_rate(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     int n;
     ref_vec3 w;
     dq a, b;
@@ -695,7 +689,7 @@ static void test_slerp_rate(void **state)
  * 1 LSB); exact ends; no flip, no normalisation (q and -q average to zero); statuses. */
 static void test_lerp(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     const dq p0 = { 0.125, 0.5, 0.75, 1.0 }, q0 = { -1.0, 0.5, 0.0, 1.5 };
     dq a = c->q_in(p0), b = c->q_in(q0), out;
     double sc = fmin(3.0, 0.95 * c->max_scale);
@@ -737,7 +731,7 @@ static void test_lerp(void **state)
 
 static void test_nlerp(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     int i;
     dq out, out2;
     rng_seed(0x41E4Bull);
@@ -780,7 +774,7 @@ static void test_nlerp(void **state)
  * core's unit key), in place, errors. Norms from 1/sqrt(max) to max^(3/4) of the core. */
 static void test_align_keys(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     dq k[6], o[6], prev;
     int i;
     rng_seed(0xA11Full);
@@ -828,7 +822,7 @@ static dq d_bezier(const dq *c, size_t n, double t)
 
 static void test_bezier(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     dq cp[QO_BEZIER_MAX_POINTS + 1], out, o2, u0, un;
     int i, k;
     size_t n;
@@ -926,7 +920,7 @@ static void d_align(const dq *k, size_t n, dq *q)
 
 static void test_spline_vs_double_and_through_keys(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     dq k[MAXK], a[MAXK], b[MAXK], q[MAXK], da[MAXK], db[MAXK], out;
     int it, j;
     size_t n, i;
@@ -1006,7 +1000,7 @@ static double vdist(const double a[3], const double b[3])
  * h = 1/64 is exact in float and in Q16.16. */
 static void test_spline_c1(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     dq k[MAXK], a[MAXK], b[MAXK], q[MAXK], da[MAXK], db[MAXK], f[5], g[5], dref[5];
     const double h = 1.0 / 64;
     double worst_ratio = 0;
@@ -1065,7 +1059,7 @@ static void test_spline_c1(void **state)
 /* Flipping the sign of any keys (and scaling them) gives the same rotations everywhere. */
 static void test_spline_sign_invariance(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     dq k[MAXK], k2[MAXK], a[MAXK], b[MAXK], a2[MAXK], b2[MAXK], o1, o2, o3;
     int it, j;
     size_t n, i;
@@ -1096,7 +1090,7 @@ static void test_spline_sign_invariance(void **state)
  * the documented zero tangent at the middle key. */
 static void test_spline_end_rule_and_swing_back(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     const dq swing[3] = { { 1, 0, 0, 0 }, { 0, 0, 1, 0 }, { 1, 0, 0, 0 } };
     dq k[5], a[5], b[5], base, step, out;
     double tol = (c == &CORE_F32) ? 2e-6 : 10 * c->tol_rot;
@@ -1131,7 +1125,7 @@ static void test_spline_end_rule_and_swing_back(void **state)
 /* Statuses and the documented outputs of spline_controls and spline_eval. */
 static void test_spline_errors(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     dq k[4], a[4], b[4], out;
     int i;
     rng_seed(0xE44ull);
@@ -1181,7 +1175,7 @@ static dq d_squad(dq q0, dq s0, dq s1, dq q1, double t)
  * points, sign-aligned as documented), exact ends, sign independence, statuses. */
 static void test_squad(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     const dq id = { 1, 0, 0, 0 }, zero = { 0, 0, 0, 0 };
     dq k[MAXK], s[MAXK], q[MAXK], ds[MAXK], out, o2, u;
     /* inner points: float32 2e-6 as test_interp.c; fixed 10x its slerp tolerance */
@@ -1335,7 +1329,7 @@ static void test_fx_slerp_extremes(void **state)
                 char name[96];
                 snprintf(name, sizeof name, "extreme pair %u,%u t=%d", (unsigned)i, (unsigned)j,
                          (int)ts[k]);
-                check_slerp_case(&CORE_Q30, name, dq_from_x(ex[i]), dq_from_x(ex[j]),
+                check_slerp_case(&CORE_FX, name, dq_from_x(ex[i]), dq_from_x(ex[j]),
                                  ts[k] / Q30);
             }
             for (k = 0; k < sizeof bad_t / sizeof bad_t[0]; k++) {
@@ -1496,7 +1490,7 @@ static void test_fx_spline_bezier_edges(void **state)
     size_t i;
     (void)state;
     rng_seed(0x5B16ull);
-    rand_keys(&CORE_Q30, dk, 5, 2.5);
+    rand_keys(&CORE_FX, dk, 5, 2.5);
     for (i = 0; i < 5; i++) k[i] = x_from(dk[i]);
     assert_int_equal(qo_quat_align_keys_q30(k, 5, al), QO_OK);
     assert_int_equal(qo_quat_spline_controls_q30(k, 5, a, b), QO_OK);
@@ -1571,12 +1565,12 @@ static void test_fx_squad(void **state)
             dq x = dq_unit(d_slerp_raw(u0, u1, tt)), y = dq_unit(d_slerp_raw(v0, v1, tt));
             dq ref = dq_unit(d_slerp_raw(x, y, 2 * tt * (1 - tt)));
             assert_int_equal(qo_quat_squad_q30(x0, xs0, xs1, x1, t, &out), QO_OK);
-            CHECK(dist4(ref, dq_from_x(out)) <= 2 * CORE_Q30.tol_rot &&
-                  norm_dev(dq_from_x(out)) <= CORE_Q30.tol_norm, "squad it=%d t=%g: %.3g", it,
+            CHECK(dist4(ref, dq_from_x(out)) <= 2 * CORE_FX.tol_rot &&
+                  norm_dev(dq_from_x(out)) <= CORE_FX.tol_norm, "squad it=%d t=%g: %.3g", it,
                   tt, dist4(ref, dq_from_x(out)));
             assert_int_equal(qo_quat_squad_q30(x_neg(x0), x_neg(xs0), xs1, x_neg(x1), t, &o2),
                              QO_OK);
-            CHECK(rot_err(dq_from_x(o2), dq_from_x(out)) <= CORE_Q30.tol_rot,
+            CHECK(rot_err(dq_from_x(o2), dq_from_x(out)) <= CORE_FX.tol_rot,
                   "squad signs it=%d t=%g", it, tt);
         }
     }
@@ -1661,10 +1655,7 @@ static void test_f32_nan(void **state)
     assert_int_equal(qo_quat_squad_controls_f32(k, 4, ka), QO_E_NONFINITE);
 }
 
-#define BOTH(fn) cmocka_unit_test_prestate(fn, (void *)&CORE_F32), \
-                 cmocka_unit_test_prestate(fn, (void *)&CORE_Q30)
-#define FAST(fn) cmocka_unit_test_prestate(fn, (void *)&CORE_Q30_FAST)
-
+/* BOTH, FAST: common/cores.h, one cmocka line per core */
 int main(void)
 {
     const struct CMUnitTest tests[] = {

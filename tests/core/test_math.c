@@ -4,7 +4,7 @@
  * (docs/TESTING.md, "One body for both cores"):
  *
  *   shared bodies   sin/cos, atan2, asin/acos: ONE body each, run on both cores through the
- *                   adapter table `mcore` below (CORE_F32, CORE_Q30), registered with BOTH.
+ *                   adapter table `mcore` below (CORE_F32, CORE_FX), registered with BOTH.
  *   float32 only    exp/log (the fixed core has none).
  *   fixed only      mul, add/sub/neg, sum_round, div, sqrt, rsqrt, norm, wrap, the fxconv
  *                   boundary, and the fixed-only forms of sin/cos (half angle, Q3.60, NULL).
@@ -27,6 +27,8 @@
 #include <string.h>
 #include <cmocka.h>
 
+#define CORES_OWN_TABLE   /* the kernels' table `mcore` below, judged in ulp / LSB */
+#include "common/cores.h"
 #include "common/ref.h"
 #include "qorient/fmath.h"
 #include "qorient/fxconv.h"
@@ -39,9 +41,6 @@
 __extension__ typedef __int128 i128;
 __extension__ typedef unsigned __int128 u128;
 #endif
-
-#define TWO30 1073741824.0
-#define TWO28 268435456.0
 
 /* Sweep density: the emulated Cortex-M targets run double libm in software, ~100x slower, so
  * there the float32 strided sweeps take every 16th point of the host's (the edges are all kept). */
@@ -218,35 +217,35 @@ static int32_t fx_raw(double x, double scale)
     if (r <= -2147483648.0) return INT32_MIN;
     return (int32_t)r;
 }
-static double q28_in(double a) { return (double)fx_raw(a, TWO28) / TWO28; }
-static double q30_in(double x) { return (double)fx_raw(x, TWO30) / TWO30; }
+static double q28_in(double a) { return (double)fx_raw(a, Q28) / Q28; }
+static double q30_in(double x) { return (double)fx_raw(x, Q30) / Q30; }
 static double q28_next(double a, int dir)
 {
-    int32_t r = fx_raw(a, TWO28);
+    int32_t r = fx_raw(a, Q28);
     if (dir > 0 && r < INT32_MAX) r++;
     if (dir < 0 && r > INT32_MIN) r--;
-    return (double)r / TWO28;
+    return (double)r / Q28;
 }
-static double q30_err(double got, double ref) { return fabs(got - ref) * TWO30; }
-static double q28_err(double got, double ref) { return fabs(got - ref) * TWO28; }
+static double q30_err(double got, double ref) { return fabs(got - ref) * Q30; }
+static double q28_err(double got, double ref) { return fabs(got - ref) * Q28; }
 static void q28_sincos(double a, double *s, double *co, int *agree)
 {
-    qo_q28 x = fx_raw(a, TWO28);
+    qo_q28 x = fx_raw(a, Q28);
     qo_q30 si = 7, ci = 7;
     qo_status st = qo_fx_sincos_q28(x, &si, &ci);
-    *s = (double)si / TWO30;
-    *co = (double)ci / TWO30;
+    *s = (double)si / Q30;
+    *co = (double)ci / Q30;
     *agree = st == QO_OK && si == qo_fx_sin_q28(x) && ci == qo_fx_cos_q28(x);
 }
-static double q28_atan2(double y, double x) { return (double)qo_fx_atan2_q28(fx_raw(y, TWO30), fx_raw(x, TWO30)) / TWO28; }
-static double q28_asin(double x) { return (double)qo_fx_asin_q28(fx_raw(x, TWO30)) / TWO28; }
-static double q28_acos(double x) { return (double)qo_fx_acos_q28(fx_raw(x, TWO30)) / TWO28; }
+static double q28_atan2(double y, double x) { return (double)qo_fx_atan2_q28(fx_raw(y, Q30), fx_raw(x, Q30)) / Q28; }
+static double q28_asin(double x) { return (double)qo_fx_asin_q28(fx_raw(x, Q30)) / Q28; }
+static double q28_acos(double x) { return (double)qo_fx_acos_q28(fx_raw(x, Q30)) / Q28; }
 
 static void q28_sweep_sincos(const mcore *c, visit1 v, void *ctx)
 {
     int k;
     rng_state = 7;
-    for (k = 0; k < 300000; k++) v(c, (double)(k % 2 ? rnd_i32() : rnd_i32_mag()) / TWO28, ctx);
+    for (k = 0; k < 300000; k++) v(c, (double)(k % 2 ? rnd_i32() : rnd_i32_mag()) / Q28, ctx);
 }
 
 static void q28_sweep_atan2(const mcore *c, visit2 v, void *ctx)
@@ -255,7 +254,7 @@ static void q28_sweep_atan2(const mcore *c, visit2 v, void *ctx)
     rng_state = 8;
     for (k = 0; k < 300000; k++) {
         int32_t y = rnd_i32_mag();
-        v(c, (double)y / TWO30, (double)rnd_i32_mag() / TWO30, ctx);
+        v(c, (double)y / Q30, (double)rnd_i32_mag() / Q30, ctx);
     }
     /* Odd symmetry is exact in fixed point (documented: integers have no -0). */
     for (k = 0; k < 10000; k++) {
@@ -271,7 +270,7 @@ static void q28_sweep_asin(const mcore *c, visit1 v, void *ctx)
     int k;
     rng_state = 9;
     for (k = 0; k < 200000; k++)
-        v(c, (double)((qo_q30)(rnd() % (2u * QO_Q30_ONE + 1u)) - QO_Q30_ONE) / TWO30, ctx);
+        v(c, (double)((qo_q30)(rnd() % (2u * QO_Q30_ONE + 1u)) - QO_Q30_ONE) / Q30, ctx);
 }
 
 static const mcore CORE_F32 = {
@@ -279,15 +278,14 @@ static const mcore CORE_F32 = {
     f32_in, f32_in, f32_next, f32_err, f32_err, f32_sincos, f32_atan2, f32_asin, f32_acos,
     f32_sweep_sincos, f32_sweep_atan2, f32_sweep_asin
 };
-static const mcore CORE_Q30 = {
-    "q30", 1, 1.0, 1.0, 1.0, (double)QO_Q28_PI / TWO28, (double)QO_Q28_HALF_PI / TWO28, 0x1p-30, 1,
+static const mcore CORE_FX = {
+    "q30", 1, 1.0, 1.0, 1.0, (double)QO_Q28_PI / Q28, (double)QO_Q28_HALF_PI / Q28, 0x1p-30, 1,
     q28_in, q30_in, q28_next, q30_err, q28_err, q28_sincos, q28_atan2, q28_asin, q28_acos,
     q28_sweep_sincos, q28_sweep_atan2, q28_sweep_asin
 };
 
-/* One body, two cmocka entries: a failure message starts with the core's name. */
-#define BOTH(fn) cmocka_unit_test_prestate(fn, (void *)&CORE_F32), \
-                 cmocka_unit_test_prestate(fn, (void *)&CORE_Q30)
+/* BOTH (common/cores.h): one body, two cmocka entries; a failure message starts with the
+ * core's name. */
 
 /* ==== shared bodies ==== */
 
@@ -341,7 +339,7 @@ static void test_sincos(void **state)
     assert_true(s == 0.0 && co == 1.0 && !signbit(s) == !!c->fixed);
     /* beyond the domain: float32 Inf / NaN give NaN; fixed 1e39 saturates to 8 - 2^-28 rad */
     c->sincos(c->ang_in(INFINITY), &s, &co, &agree);
-    assert_true(c->fixed ? fabs(s - sin(c->ang_in(1e39))) * TWO30 <= 1.0 : isnan(s) && isnan(co));
+    assert_true(c->fixed ? fabs(s - sin(c->ang_in(1e39))) * Q30 <= 1.0 : isnan(s) && isnan(co));
     c->sincos(c->ang_in(NAN), &s, &co, &agree);
     assert_true(c->fixed ? s == 0.0 && co == 1.0 : isnan(s) && isnan(co));
 }
@@ -365,8 +363,8 @@ static void test_atan2(void **state)
     static const double e[] = {
         0.0, -0.0, 0x1p-149, -0x1p-149, FLT_MIN, 1e-20, 0.5, 1.0, -1.0, 2.0, 1e20, FLT_MAX,
         -FLT_MAX, INFINITY, -INFINITY, 0.41421354, 0.41421357, 3.0, -7.5, 0x1p-30, -0x1p-30,
-        0x1p-29, -0x1p-29, 0x3p-30, 2147483647 / TWO30, -2.0, -2147483647 / TWO30,
-        2147483646 / TWO30, 1000000 / TWO30, -999999 / TWO30, 46341 / TWO30, 0x1p-10, 1e39
+        0x1p-29, -0x1p-29, 0x3p-30, 2147483647 / Q30, -2.0, -2147483647 / Q30,
+        2147483646 / Q30, 1000000 / Q30, -999999 / Q30, 46341 / Q30, 0x1p-10, 1e39
     };
     size_t i, j;
     for (i = 0; i < sizeof e / sizeof e[0]; i++)
@@ -381,8 +379,8 @@ static void test_atan2(void **state)
     assert_true(c->atan2(-0.5, 0.0) == -c->half_pi);
     assert_true(c->atan2(-2.0, 0.0) == -c->half_pi);
     assert_true(c->atan2(0.0, -2.0) == c->pi);
-    assert_true(c->atan2(c->unit_in(-7 / TWO30), c->unit_in(7 / TWO30)) ==
-                -c->atan2(c->unit_in(7 / TWO30), c->unit_in(7 / TWO30)));
+    assert_true(c->atan2(c->unit_in(-7 / Q30), c->unit_in(7 / Q30)) ==
+                -c->atan2(c->unit_in(7 / Q30), c->unit_in(7 / Q30)));
     /* -0: float32 atan2(-0, -x) = -pi (Annex F); fixed point has no -0, so +pi */
     assert_true(c->atan2(c->unit_in(-0.0), -0.5) == (c->fixed ? c->pi : -c->pi));
     /* NaN: float32 gives NaN; fixed receives 0 for it (the conversion's documented answer) */
@@ -407,8 +405,8 @@ static void test_asin_acos(void **state)
                      { 0.0, 0.0, 0.0, "acos", c->b_asincos, c->name } };
     static const double e[] = {
         0.0, -0.0, 0x1p-30, -0x1p-30, 1.0, -1.0, 1.0 - 0x1p-30, -1.0 + 0x1p-30, 1.0 - 0x1p-29,
-        1.0 + 0x1p-30, -1.0 - 0x1p-30, 1.0000001, -1.0000001, 2147483647 / TWO30, -2.0, 0.5,
-        -0.5, 759250125 / TWO30 /* ~1/sqrt2 */, 0x1p-149, FLT_MIN, 1e39, -1e39, INFINITY, NAN
+        1.0 + 0x1p-30, -1.0 - 0x1p-30, 1.0000001, -1.0000001, 2147483647 / Q30, -2.0, 0.5,
+        -0.5, 759250125 / Q30 /* ~1/sqrt2 */, 0x1p-149, FLT_MIN, 1e39, -1e39, INFINITY, NAN
     };
     size_t i;
     int k;
@@ -727,7 +725,7 @@ static void test_sqrt(void **state)
         int32_t x = k < 3 ? (k == 0 ? 1 : k == 1 ? INT32_MAX : 2) : (int32_t)(rnd() & 0x7FFFFFFF) >> (rnd() % 31u);
         double err;
         assert_int_equal(qo_fx_sqrt_q30(x, &o), QO_OK);
-        err = (double)o - sqrt((double)x / TWO30) * TWO30;
+        err = (double)o - sqrt((double)x / Q30) * Q30;
         if (fabs(err) > 0.5 + 1e-6) fail_msg("sqrt_q30(%ld) = %ld, error %.3f LSB", (long)x, (long)o, err);
     }
 #endif
@@ -753,7 +751,7 @@ static void test_rsqrt(void **state)
         double err;
         if (k == 0) x = INT32_MAX;
         assert_int_equal(qo_fx_rsqrt_q30(x, &o), QO_OK);
-        err = (double)o - TWO30 / sqrt((double)x / TWO30);
+        err = (double)o - Q30 / sqrt((double)x / Q30);
         if (fabs(err) > 1.0) fail_msg("rsqrt_q30(%ld) = %ld, error %.3f LSB", (long)x, (long)o, err);
     }
 }
@@ -793,8 +791,8 @@ static void check_sincos_half(qo_q28 a)
     qo_q30 hs = 7, hc = 7;
     double ehs, ehc;
     assert_int_equal(qo_fx_sincos_half_q28(a, &hs, &hc), QO_OK);
-    ehs = (double)hs - sin((double)a / (2.0 * TWO28)) * TWO30;
-    ehc = (double)hc - cos((double)a / (2.0 * TWO28)) * TWO30;
+    ehs = (double)hs - sin((double)a / (2.0 * Q28)) * Q30;
+    ehc = (double)hc - cos((double)a / (2.0 * Q28)) * Q30;
     if (fabs(ehs) > 1.0 || fabs(ehc) > 1.0)
         fail_msg("sincos_half(%ld): errors half-sin %.3f half-cos %.3f LSB", (long)a, ehs, ehc);
 }
@@ -827,8 +825,8 @@ static void test_q30_sincos_half_q60_null(void **state)
         int64_t a = (int64_t)rnd();
         double x = (double)a / 1152921504606846976.0, es, ec;
         assert_int_equal(qo_fx_sincos_q60(a, &s, &c), QO_OK);
-        es = (double)s - sin(x) * TWO30;
-        ec = (double)c - cos(x) * TWO30;
+        es = (double)s - sin(x) * Q30;
+        ec = (double)c - cos(x) * Q30;
         if (fabs(es) > 1.0 || fabs(ec) > 1.0) fail_msg("sincos_q60(%lld): %.3f %.3f LSB", (long long)a, es, ec);
     }
 }
@@ -845,9 +843,9 @@ static void test_wrap(void **state)
     for (k = 0; k < 100000; k++) {
         qo_q28 a = k == 0 ? INT32_MAX : k == 1 ? INT32_MIN : k == 2 ? QO_Q28_PI + 1 : rnd_i32();
         qo_q28 r = qo_fx_wrap_pi_q28(a);
-        double want = remainder((double)a / TWO28, 2.0 * REF_PI) * TWO28;
+        double want = remainder((double)a / Q28, 2.0 * REF_PI) * Q28;
         double err = (double)r - want;
-        if (fabs(err) > 2.0 * REF_PI * TWO28 - 2.0) err = fabs(err) - 2.0 * REF_PI * TWO28; /* +-pi ties */
+        if (fabs(err) > 2.0 * REF_PI * Q28 - 2.0) err = fabs(err) - 2.0 * REF_PI * Q28; /* +-pi ties */
         if (fabs(err) > 0.5 + 1e-3 || r > QO_Q28_PI || r < -QO_Q28_PI)
             fail_msg("wrap(%ld) = %ld, error %.3f LSB", (long)a, (long)r, err);
     }
@@ -880,7 +878,7 @@ static void test_fxconv_boundary(void **state)
     /* Odd integers above 2^23 stay exact. */
     assert_int_equal(qo_q16_from_f32(8388609.0f / 65536.0f), 8388609);
     assert_int_equal(qo_q28_from_f32_checked(3.14159265f, &o28), QO_OK);
-    assert_true(fabs((double)o28 - 3.14159265f * TWO28) <= 0.5);
+    assert_true(fabs((double)o28 - 3.14159265f * Q28) <= 0.5);
     assert_int_equal(qo_q16_from_f32_checked(40000.0f, &o16), QO_E_OVERFLOW); assert_int_equal(o16, INT32_MAX);
     assert_true(qo_q30_to_f32(QO_Q30_ONE) == 1.0f);
     assert_true(qo_q28_to_f32(-QO_Q28_ONE) == -1.0f);

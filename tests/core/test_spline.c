@@ -27,9 +27,11 @@
 #include <stdlib.h>
 #include <cmocka.h>
 
+#define CORES_OWN_TABLE   /* the spline's table below: plans in slots, Q16.16 samples */
+#include "common/cores.h"
+#include "common/ref.h"
 #include "qorient/spline.h"
 #include "qorient/spline_fx.h"
-#include "common/ref.h"
 
 #define MAXK 12   /* keys of the random plans (2 + trial % 11 at most) */
 #define MAXN 4    /* joints of the random plans */
@@ -242,7 +244,6 @@ static int seg_of(const keys *ks, double t)
 
 /* Two plans at once (slot 0 and 1: a limited plan and its free twin). */
 #define SLOTS 2
-#define Q16 65536.0
 /* Q16.16 table words of one plan: 5K + 3N + 7KN, at most 375 here (11 keys, 4 joints) */
 #define X_CAP 384
 static qo_spline_f32 f_plans[SLOTS];
@@ -264,8 +265,6 @@ typedef struct core {
     qo_status (*sample)(int slot, double t, double *p, double *v, double *a, int8_t *cl);
 } core;
 
-#define ST(c, st_f32, st_q16) ((c)->fixed ? (st_q16) : (st_f32))
-#define CORE(state) ((const core *)*(state))
 
 /* The sampler of one core (prefix P), written once: VT its value type, TO_T its time. */
 #define DEFINE_SAMPLER(P, SFX, VT, TO_T, BACK)                                                \
@@ -304,7 +303,8 @@ static qo_status x_use(int slot, const qo_spline_f32 *sp)
 DEFINE_SAMPLER(x, q16, qo_q16, x_t, x_back)
 
 static const core CORE_F32 = { "float32", 0, 0.0, 1e39, f_in, f_use, f_sample };
-static const core CORE_Q16 = { "q16", 1, 1.0 / Q16, 1e39, x_in, x_use, x_sample };
+/* the fixed row (CORE_FX of common/cores.h's idiom) samples Q16.16 */
+static const core CORE_FX = { "q16", 1, 1.0 / Q16, 1e39, x_in, x_use, x_sample };
 
 /* A tolerance: float32's (its own rounding budget) or a number of Q16.16 LSB. */
 static double tol(const core *c, double f32_tol, double lsbs)
@@ -326,7 +326,7 @@ static const qo_spline_profile all_profiles[] = {
  * spline_fx.h at s = 0, 0.5 + 0.5 * 2^-f). */
 static void test_keys_interpolated_exactly(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     size_t pi;
     int trial, i, j, e, checked = 0, refused = 0;
     rng_state = 101;
@@ -378,7 +378,7 @@ static void test_keys_interpolated_exactly(void **state)
  * times and positions as the core received them. */
 static void test_linear_against_double(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     keys ks;
     qo_spline_settings_f32 set = qo_spline_settings_default;
     qo_spline_f32 sp;
@@ -414,7 +414,7 @@ static void test_linear_against_double(void **state)
  * formats). */
 static void test_closed_form(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     const float t[2] = { 0.5f, 2.5f };
     const float p[2] = { -3.0f, 7.0f };
     qo_spline_settings_f32 set = qo_spline_settings_default;
@@ -453,7 +453,7 @@ static void test_closed_form(void **state)
  * INT32_MAX: before the start / after the end). */
 static void test_outside_and_end(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     const float t[3] = { 1.0f, 2.0f, 4.0f };
     const float p[6] = { 0.0f, 5.0f, 1.0f, -2.0f, 3.0f, 3.0f };
     qo_spline_settings_f32 set = qo_spline_settings_default;
@@ -486,7 +486,7 @@ static void test_outside_and_end(void **state)
  * unclamped joint is the unlimited sample. */
 static void test_limits_clamp_and_report(void **state)
 {
-    const core *c = CORE(state);
+    const core *c = *state;
     keys ks;
     float lo[3] = { -4.0f, -INFINITY, -1.0f }, hi[3] = { 4.0f, 2.0f, INFINITY };
     int i, j, seen_lo = 0, seen_hi = 0;
@@ -1430,9 +1430,7 @@ static void test_f32_nonfinite_time(void **state)
     assert_int_equal(qo_spline_sample_f32(&sp, INFINITY, pos, vel, acc, NULL), QO_E_NONFINITE);
 }
 
-#define BOTH(fn) cmocka_unit_test_prestate(fn, (void *)&CORE_F32), \
-                 cmocka_unit_test_prestate(fn, (void *)&CORE_Q16)
-
+/* BOTH: common/cores.h, one cmocka line per core */
 int main(void)
 {
     const struct CMUnitTest tests[] = {
