@@ -918,21 +918,42 @@ static void d_align(const dq *k, size_t n, dq *q)
     }
 }
 
+/* ---- the fixture of the spline and Squad bodies: each body states its key count, its step
+ * and its seed; the keys, their double alignment and the controls come from here ---------- */
+
+/* Control points against double: float32 2e-6 (the former float-only test's bound); fixed
+ * point 10x its slerp tolerance. */
+static double ctrl_tol(const core *c) { return c->fixed ? 10 * c->tol_rot : 2e-6; }
+
+/* n random keys as the core receives them (k, steps up to maxstep rad) and the same keys
+ * normalised and sign-aligned in double (q). */
+static void keys_case(const core *c, size_t n, double maxstep, dq *k, dq *q)
+{
+    rand_keys(c, k, n, maxstep);
+    d_align(k, n, q);
+}
+
+/* keys_case, then the double spline controls (da, db) and the core's (a, b), which must
+ * succeed. */
+static void spline_case(const core *c, size_t n, double maxstep, dq *k, dq *q, dq *da, dq *db,
+                        dq *a, dq *b)
+{
+    keys_case(c, n, maxstep, k, q);
+    d_spline_controls(q, n, da, db);
+    assert_int_equal(c->spline_controls(k, n, a, b), QO_OK);
+}
+
 static void test_spline_vs_double_and_through_keys(void **state)
 {
     const core *c = *state;
     dq k[MAXK], a[MAXK], b[MAXK], q[MAXK], da[MAXK], db[MAXK], out;
     int it, j;
     size_t n, i;
-    /* control points: float32 2e-6 as test_interp.c; fixed 10x its slerp tolerance */
-    double tol_ctrl = (c == &CORE_F32) ? 2e-6 : 10 * c->tol_rot;
+    double tol_ctrl = ctrl_tol(c);
     rng_seed(0x5B11E5ull);
     for (it = 0; it < 120; it++) {
         n = 2 + (size_t)(it % (MAXK - 1));
-        rand_keys(c, k, n, it % 2 ? 1.5 : 3.0);
-        d_align(k, n, q);
-        d_spline_controls(q, n, da, db);
-        assert_int_equal(c->spline_controls(k, n, a, b), QO_OK);
+        spline_case(c, n, it % 2 ? 1.5 : 3.0, k, q, da, db, a, b);
         for (i = 0; i < n; i++) {
             if (i + 1 < n)
                 CHECK(dist4(da[i], a[i]) <= tol_ctrl, "%s spline a[%u] n=%u error %.3g",
@@ -1009,10 +1030,7 @@ static void test_spline_c1(void **state)
     rng_seed(0xC1C1ull);
     for (it = 0; it < 40; it++) {
         n = 3 + (size_t)(it % (MAXK - 2));
-        rand_keys(c, k, n, 1.5);
-        d_align(k, n, q);
-        d_spline_controls(q, n, da, db);
-        assert_int_equal(c->spline_controls(k, n, a, b), QO_OK);
+        spline_case(c, n, 1.5, k, q, da, db, a, b);
         for (i = 1; i + 1 < n; i++) {
             double s0 = (double)i, e = 0, trunc, tol, jump;
             double rl1[3], rl2[3], rr1[3], rr2[3], wl[3], wr[3], w1l[3], w1r[3], w2l[3], w2r[3];
@@ -1093,7 +1111,7 @@ static void test_spline_end_rule_and_swing_back(void **state)
     const core *c = *state;
     const dq swing[3] = { { 1, 0, 0, 0 }, { 0, 0, 1, 0 }, { 1, 0, 0, 0 } };
     dq k[5], a[5], b[5], base, step, out;
-    double tol = (c == &CORE_F32) ? 2e-6 : 10 * c->tol_rot;
+    double tol = ctrl_tol(c);
     int i;
     rng_seed(0xE2Dull);
     base = rand_unit();
@@ -1178,15 +1196,13 @@ static void test_squad(void **state)
     const core *c = *state;
     const dq id = { 1, 0, 0, 0 }, zero = { 0, 0, 0, 0 };
     dq k[MAXK], s[MAXK], q[MAXK], ds[MAXK], out, o2, u;
-    /* inner points: float32 2e-6 as test_interp.c; fixed 10x its slerp tolerance */
-    double tol_ctrl = (c == &CORE_F32) ? 2e-6 : 10 * c->tol_rot;
+    double tol_ctrl = ctrl_tol(c);
     int it, j;
     size_t n, i;
     rng_seed(0x50AAull);
     for (it = 0; it < 100; it++) {
         n = 2 + (size_t)(it % (MAXK - 1));
-        rand_keys(c, k, n, 1.5);
-        d_align(k, n, q);
+        keys_case(c, n, 1.5, k, q);
         d_squad_controls(q, n, ds);
         assert_int_equal(c->squad_controls(k, n, s), QO_OK);
         for (i = 0; i < n; i++)
