@@ -185,6 +185,43 @@ static double keys_hmin(const keys *ks)
     return h;
 }
 
+/* ---- the fixture of the bodies: each states its key shape, profile and end; the keys, the
+ * scales of the rounding budget and the settings come from here ---------------------------- */
+
+/* The random key sets of a float32-only body against double: n joints, k0 + trial % kmod
+ * keys, steps of hlo ... hhi s, values within +-amp (random_keys). */
+typedef struct key_shape { int n, k0, kmod; double hlo, hhi, amp; } key_shape;
+/* One trial of such a body: its number, its keys, the scales of its float32 rounding budget
+ * (P: twice the largest key value, positions, velocities and accelerations; hmin: the
+ * shortest segment, s) and the body's own state (ctx). */
+typedef void (*trial_fn)(int trial, const keys *ks, double P, double hmin, void *ctx);
+
+/* The loop of those bodies: seeds the generator, then draws `count` key sets of the shape and
+ * hands each to fn, which draws anything else it needs right after its keys. */
+static void run_trials(uint64_t seed, int count, const key_shape *shape, trial_fn fn, void *ctx)
+{
+    int trial;
+    rng_state = seed;
+    for (trial = 0; trial < count; trial++) {
+        keys ks;
+        random_keys(&ks, shape->n, shape->k0 + trial % shape->kmod, shape->hlo, shape->hhi,
+                    shape->amp);
+        fn(trial, &ks, keys_scale(&ks) * 2.0, keys_hmin(&ks), ctx);
+    }
+}
+
+/* The default settings but for the profile and the end condition. */
+static qo_spline_settings_f32 settings_for(qo_spline_profile prof, qo_spline_end end)
+{
+    qo_spline_settings_f32 set = qo_spline_settings_default;
+    set.profile = prof;
+    set.end = end;
+    return set;
+}
+
+/* The end condition of variant e (0 clamped, 1 natural) of the bodies that run both. */
+static qo_spline_end end_of(int e) { return e ? QO_SPLINE_END_NATURAL : QO_SPLINE_END_CLAMPED; }
+
 static const char *prof_name(qo_spline_profile p)
 {
     switch (p) {
@@ -338,11 +375,9 @@ static void test_keys_interpolated_exactly(void **state)
         for (i = 0; i < ks.k; i++) ks.t[i] = (float)c->in(ks.t[i]);
         for (pi = 0; pi < NPROF; pi++)
             for (e = 0; e < 2; e++) {
-                qo_spline_settings_f32 set = qo_spline_settings_default;
+                qo_spline_settings_f32 set = settings_for(all_profiles[pi], end_of(e));
                 qo_spline_f32 sp;
                 qo_status st;
-                set.profile = all_profiles[pi];
-                set.end = e ? QO_SPLINE_END_NATURAL : QO_SPLINE_END_CLAMPED;
                 st = plan(&ks, &set, &sp);
                 if (st == QO_OK) st = c->use(0, &sp);
                 /* Q16.16 refuses a plan whose values do not fit (documented): counted */
@@ -553,13 +588,11 @@ static void fixed_vs_float(int exact_times, uint64_t seed)
             v[i] = (float)urand(-20.0, 20.0);
         }
         for (pi = 0; pi < NPROF; pi++) {
-            qo_spline_settings_f32 set = qo_spline_settings_default;
+            qo_spline_settings_f32 set = settings_for(all_profiles[pi], end_of(trial & 1));
             qo_spline_f32 sp;
             qo_spline_q16 fx;
             int order;
-            set.profile = all_profiles[pi];
             set.key_vel = v;
-            set.end = (trial & 1) ? QO_SPLINE_END_NATURAL : QO_SPLINE_END_CLAMPED;
             assert_int_equal(qo_spline_init_f32((size_t)N, (size_t)K, t, p, &set, coef, COEF_CAP,
                                                 &sp), QO_OK);
             assert_int_equal(qo_spline_export_q16(&sp, &fx, table, X_CAP), QO_OK);
@@ -819,129 +852,130 @@ static void test_fixed_edges(void **state)
  * profiles, velocity for C1 ones, acceleration for CUBIC_C2 and QUINTIC. The same
  * measurement must SEE the acceleration jumps of Catmull-Rom and the velocity jumps of
  * linear (so it is able to fail). */
-static void test_continuity_at_joins(void **state)
+/* the jumps the measurement must see over all trials (ctx of continuity_trial) */
+typedef struct seen_jumps { int acc, vel; } seen_jumps;
+
+static void continuity_trial(int trial, const keys *ks, double P, double hmin, void *ctx)
 {
+    seen_jumps *seen = ctx;
     size_t pi;
-    int trial, i, j;
-    int seen_acc_jump = 0, seen_vel_jump = 0;
-    (void)state;
-    rng_state = 202;
-    for (trial = 0; trial < 25; trial++) {
-        keys ks;
-        double hmin, eps = FLT_EPSILON;
-        random_keys(&ks, 4, 3 + trial % 8, 0.1, 1.5, 10.0);
-        hmin = keys_hmin(&ks);
-        for (pi = 0; pi < NPROF; pi++) {
-            qo_spline_settings_f32 set = qo_spline_settings_default;
-            qo_spline_f32 sp;
-            int order; /* continuity order expected */
-            set.profile = all_profiles[pi];
-            set.end = (trial & 1) ? QO_SPLINE_END_NATURAL : QO_SPLINE_END_CLAMPED;
-            assert_int_equal(plan(&ks, &set, &sp), QO_OK);
-            order = set.profile == QO_SPLINE_LINEAR ? 0
-                  : (set.profile == QO_SPLINE_CUBIC_C2 || set.profile == QO_SPLINE_QUINTIC) ? 2 : 1;
-            for (i = 1; i + 1 < ks.k; i++) {
-                float tr = ks.t[i], tl = nextafterf(tr, -INFINITY);
-                float tl2 = tr - (float)(0.01 * hmin);
-                float pl[MAXN], vl[MAXN], al[MAXN], pr[MAXN], vr[MAXN], ar[MAXN];
-                float p2[MAXN], v2[MAXN], a2[MAXN];
-                double dt = (double)tr - tl, d2 = (double)tl - tl2;
-                sample(&sp, tl, pl, vl, al);
-                sample(&sp, tr, pr, vr, ar);
-                sample(&sp, tl2, p2, v2, a2);
-                for (j = 0; j < ks.n; j++) {
-                    /* rounding budget: eps times the coefficient magnitude S of the two
-                     * segments meeting here (sum |b_n|; derivatives bring factors up to 5
-                     * and 20 and 1/h, 1/h^2 of the shorter segment) */
-                    double S = fmax(coef_sum(&sp, i - 1, j), coef_sum(&sp, i, j));
-                    double h = fmin((double)ks.t[i] - ks.t[i - 1], (double)ks.t[i + 1] - ks.t[i]);
-                    double jerk = fabs((double)al[j] - a2[j]) / d2;
-                    double tol_p = 8 * eps * S + 2 * fabs(vl[j]) * dt;
-                    double tol_v = 8 * eps * 5 * S / h + 2 * fabs(al[j]) * dt;
-                    double tol_a = 8 * eps * 20 * S / (h * h) + 4 * jerk * dt;
-                    double jp = fabs((double)pr[j] - pl[j]);
-                    double jv = fabs((double)vr[j] - vl[j]);
-                    double ja = fabs((double)ar[j] - al[j]);
-                    if (jp > tol_p)
-                        fail_msg("%s trial %d key %d joint %d: position jump %.3g > %.3g",
-                                 prof_name(set.profile), trial, i, j, jp, tol_p);
-                    if (order >= 1 && jv > tol_v)
-                        fail_msg("%s trial %d key %d joint %d: velocity jump %.3g > %.3g",
-                                 prof_name(set.profile), trial, i, j, jv, tol_v);
-                    if (order >= 2 && ja > tol_a)
-                        fail_msg("%s trial %d key %d joint %d: acceleration jump %.3g > %.3g",
-                                 prof_name(set.profile), trial, i, j, ja, tol_a);
-                    if (set.profile == QO_SPLINE_CATMULL_ROM && ja > 100 * tol_a) seen_acc_jump = 1;
-                    if (set.profile == QO_SPLINE_LINEAR && jv > 100 * tol_v) seen_vel_jump = 1;
-                }
+    int i, j;
+    const double eps = FLT_EPSILON;
+    (void)P;
+    for (pi = 0; pi < NPROF; pi++) {
+        qo_spline_settings_f32 set = settings_for(all_profiles[pi], end_of(trial & 1));
+        qo_spline_f32 sp;
+        int order; /* continuity order expected */
+        assert_int_equal(plan(ks, &set, &sp), QO_OK);
+        order = set.profile == QO_SPLINE_LINEAR ? 0
+              : (set.profile == QO_SPLINE_CUBIC_C2 || set.profile == QO_SPLINE_QUINTIC) ? 2 : 1;
+        for (i = 1; i + 1 < ks->k; i++) {
+            float tr = ks->t[i], tl = nextafterf(tr, -INFINITY);
+            float tl2 = tr - (float)(0.01 * hmin);
+            float pl[MAXN], vl[MAXN], al[MAXN], pr[MAXN], vr[MAXN], ar[MAXN];
+            float p2[MAXN], v2[MAXN], a2[MAXN];
+            double dt = (double)tr - tl, d2 = (double)tl - tl2;
+            sample(&sp, tl, pl, vl, al);
+            sample(&sp, tr, pr, vr, ar);
+            sample(&sp, tl2, p2, v2, a2);
+            for (j = 0; j < ks->n; j++) {
+                /* rounding budget: eps times the coefficient magnitude S of the two
+                 * segments meeting here (sum |b_n|; derivatives bring factors up to 5
+                 * and 20 and 1/h, 1/h^2 of the shorter segment) */
+                double S = fmax(coef_sum(&sp, i - 1, j), coef_sum(&sp, i, j));
+                double h = fmin((double)ks->t[i] - ks->t[i - 1], (double)ks->t[i + 1] - ks->t[i]);
+                double jerk = fabs((double)al[j] - a2[j]) / d2;
+                double tol_p = 8 * eps * S + 2 * fabs(vl[j]) * dt;
+                double tol_v = 8 * eps * 5 * S / h + 2 * fabs(al[j]) * dt;
+                double tol_a = 8 * eps * 20 * S / (h * h) + 4 * jerk * dt;
+                double jp = fabs((double)pr[j] - pl[j]);
+                double jv = fabs((double)vr[j] - vl[j]);
+                double ja = fabs((double)ar[j] - al[j]);
+                if (jp > tol_p)
+                    fail_msg("%s trial %d key %d joint %d: position jump %.3g > %.3g",
+                             prof_name(set.profile), trial, i, j, jp, tol_p);
+                if (order >= 1 && jv > tol_v)
+                    fail_msg("%s trial %d key %d joint %d: velocity jump %.3g > %.3g",
+                             prof_name(set.profile), trial, i, j, jv, tol_v);
+                if (order >= 2 && ja > tol_a)
+                    fail_msg("%s trial %d key %d joint %d: acceleration jump %.3g > %.3g",
+                             prof_name(set.profile), trial, i, j, ja, tol_a);
+                if (set.profile == QO_SPLINE_CATMULL_ROM && ja > 100 * tol_a) seen->acc = 1;
+                if (set.profile == QO_SPLINE_LINEAR && jv > 100 * tol_v) seen->vel = 1;
             }
         }
     }
-    assert_true(seen_acc_jump);
-    assert_true(seen_vel_jump);
+}
+
+static void test_continuity_at_joins(void **state)
+{
+    static const key_shape shape = { 4, 3, 8, 0.1, 1.5, 10.0 };
+    seen_jumps seen = { 0, 0 };
+    (void)state;
+    run_trials(202, 25, &shape, continuity_trial, &seen);
+    assert_true(seen.acc);
+    assert_true(seen.vel);
 }
 
 /* Interpolating C2 cubic (natural and clamped ends) against the dense double solve. */
-static void test_c2_against_double(void **state)
+static void c2_trial(int trial, const keys *ks, double P, double hmin, void *ctx)
 {
-    int trial, j, nat, i;
-    (void)state;
-    rng_state = 303;
-    for (trial = 0; trial < 30; trial++) {
-        keys ks;
-        float ev[2 * MAXN];
-        double P, hmin, eps = FLT_EPSILON;
-        random_keys(&ks, 3, 2 + trial % 11, 0.1, 1.0, 10.0);
-        for (j = 0; j < 2 * ks.n; j++) ev[j] = (float)urand(-5.0, 5.0);
-        P = keys_scale(&ks) * 2.0;
-        hmin = keys_hmin(&ks);
-        for (nat = 0; nat < 2; nat++) {
-            qo_spline_settings_f32 set = qo_spline_settings_default;
-            qo_spline_f32 sp;
-            set.profile = QO_SPLINE_CUBIC_C2;
-            set.end = nat ? QO_SPLINE_END_NATURAL : QO_SPLINE_END_CLAMPED;
-            set.end_vel = ev;
-            assert_int_equal(plan(&ks, &set, &sp), QO_OK);
-            for (j = 0; j < ks.n; j++) {
-                double td[MAXK], yd[MAXK], m[MAXK];
-                for (i = 0; i < ks.k; i++) { td[i] = ks.t[i]; yd[i] = ks.p[i * ks.n + j]; }
-                ref_c2_moments(ks.k, td, yd, nat, ev[j], ev[ks.n + j], m);
-                for (i = 0; i < 40; i++) {
-                    float t = (float)urand(td[0], td[ks.k - 1]);
-                    float p[MAXN], v[MAXN], a[MAXN];
-                    int s = seg_of(&ks, t);
-                    double h = td[s + 1] - td[s], A = (td[s + 1] - t) / h, B = 1.0 - A;
-                    double rp = A * yd[s] + B * yd[s + 1] +
-                                ((A * A * A - A) * m[s] + (B * B * B - B) * m[s + 1]) * h * h / 6.0;
-                    double rv = (yd[s + 1] - yd[s]) / h - (3 * A * A - 1) / 6.0 * h * m[s] +
-                                (3 * B * B - 1) / 6.0 * h * m[s + 1];
-                    double ra = A * m[s] + B * m[s + 1];
-                    sample(&sp, t, p, v, a);
-                    check_close(nat ? "c2 natural pos" : "c2 clamped pos", trial, j, t, p[j], rp,
-                                64 * eps * P * ks.k);
-                    check_close(nat ? "c2 natural vel" : "c2 clamped vel", trial, j, t, v[j], rv,
-                                64 * eps * P * ks.k / hmin);
-                    check_close(nat ? "c2 natural acc" : "c2 clamped acc", trial, j, t, a[j], ra,
-                                256 * eps * P * ks.k / (hmin * hmin));
-                }
-                /* natural: zero acceleration at both ends; clamped: the given end velocities */
-                {
-                    float p[MAXN], v[MAXN], a[MAXN];
-                    sample(&sp, ks.t[0], p, v, a);
-                    if (nat) check_close("c2 natural start acc", trial, j, td[0], a[j], 0.0,
-                                         256 * eps * P * ks.k / (hmin * hmin));
-                    else check_close("c2 clamped start vel", trial, j, td[0], v[j], ev[j],
-                                     64 * eps * P * ks.k / hmin);
-                    sample(&sp, ks.t[ks.k - 1], p, v, a);
-                    if (nat) check_close("c2 natural end acc", trial, j, td[ks.k - 1], a[j], 0.0,
-                                         256 * eps * P * ks.k / (hmin * hmin));
-                    else check_close("c2 clamped end vel", trial, j, td[ks.k - 1], v[j],
-                                     ev[ks.n + j],
-                                     64 * eps * P * ks.k / hmin);
-                }
+    int j, nat, i;
+    float ev[2 * MAXN];
+    const double eps = FLT_EPSILON;
+    (void)ctx;
+    for (j = 0; j < 2 * ks->n; j++) ev[j] = (float)urand(-5.0, 5.0);
+    for (nat = 0; nat < 2; nat++) {
+        qo_spline_settings_f32 set = settings_for(QO_SPLINE_CUBIC_C2, end_of(nat));
+        qo_spline_f32 sp;
+        set.end_vel = ev;
+        assert_int_equal(plan(ks, &set, &sp), QO_OK);
+        for (j = 0; j < ks->n; j++) {
+            double td[MAXK], yd[MAXK], m[MAXK];
+            for (i = 0; i < ks->k; i++) { td[i] = ks->t[i]; yd[i] = ks->p[i * ks->n + j]; }
+            ref_c2_moments(ks->k, td, yd, nat, ev[j], ev[ks->n + j], m);
+            for (i = 0; i < 40; i++) {
+                float t = (float)urand(td[0], td[ks->k - 1]);
+                float p[MAXN], v[MAXN], a[MAXN];
+                int s = seg_of(ks, t);
+                double h = td[s + 1] - td[s], A = (td[s + 1] - t) / h, B = 1.0 - A;
+                double rp = A * yd[s] + B * yd[s + 1] +
+                            ((A * A * A - A) * m[s] + (B * B * B - B) * m[s + 1]) * h * h / 6.0;
+                double rv = (yd[s + 1] - yd[s]) / h - (3 * A * A - 1) / 6.0 * h * m[s] +
+                            (3 * B * B - 1) / 6.0 * h * m[s + 1];
+                double ra = A * m[s] + B * m[s + 1];
+                sample(&sp, t, p, v, a);
+                check_close(nat ? "c2 natural pos" : "c2 clamped pos", trial, j, t, p[j], rp,
+                            64 * eps * P * ks->k);
+                check_close(nat ? "c2 natural vel" : "c2 clamped vel", trial, j, t, v[j], rv,
+                            64 * eps * P * ks->k / hmin);
+                check_close(nat ? "c2 natural acc" : "c2 clamped acc", trial, j, t, a[j], ra,
+                            256 * eps * P * ks->k / (hmin * hmin));
+            }
+            /* natural: zero acceleration at both ends; clamped: the given end velocities */
+            {
+                float p[MAXN], v[MAXN], a[MAXN];
+                sample(&sp, ks->t[0], p, v, a);
+                if (nat) check_close("c2 natural start acc", trial, j, td[0], a[j], 0.0,
+                                     256 * eps * P * ks->k / (hmin * hmin));
+                else check_close("c2 clamped start vel", trial, j, td[0], v[j], ev[j],
+                                 64 * eps * P * ks->k / hmin);
+                sample(&sp, ks->t[ks->k - 1], p, v, a);
+                if (nat) check_close("c2 natural end acc", trial, j, td[ks->k - 1], a[j], 0.0,
+                                     256 * eps * P * ks->k / (hmin * hmin));
+                else check_close("c2 clamped end vel", trial, j, td[ks->k - 1], v[j],
+                                 ev[ks->n + j],
+                                 64 * eps * P * ks->k / hmin);
             }
         }
     }
+}
+
+static void test_c2_against_double(void **state)
+{
+    static const key_shape shape = { 3, 2, 11, 0.1, 1.0, 10.0 };
+    (void)state;
+    run_trials(303, 30, &shape, c2_trial, NULL);
 }
 
 /* Double Catmull-Rom (time-weighted) tangents of key i of joint j; ends per condition. */
@@ -970,121 +1004,120 @@ static double ref_tangent(const keys *ks, int j, int i, int natural, const float
 
 /* Catmull-Rom: velocities at the keys equal the double tangents, and samples between keys
  * match the double cubic Hermite through them; natural ends have zero end acceleration. */
+static void catmull_trial(int trial, const keys *ks, double P, double hmin, void *ctx)
+{
+    int j, i, nat;
+    const double eps = FLT_EPSILON;
+    (void)ctx;
+    for (nat = 0; nat < 2; nat++) {
+        qo_spline_settings_f32 set = settings_for(QO_SPLINE_CATMULL_ROM, end_of(nat));
+        qo_spline_f32 sp;
+        assert_int_equal(plan(ks, &set, &sp), QO_OK);
+        for (i = 0; i < ks->k; i++) {
+            float p[MAXN], v[MAXN], a[MAXN];
+            sample(&sp, ks->t[i], p, v, a);
+            for (j = 0; j < ks->n; j++)
+                check_close("catmull tangent", trial, j, ks->t[i], v[j],
+                            ref_tangent(ks, j, i, nat, NULL), 16 * eps * P / hmin);
+        }
+        for (i = 0; i < 60; i++) {
+            float t = (float)urand(ks->t[0], ks->t[ks->k - 1]);
+            float p[MAXN], v[MAXN], a[MAXN];
+            int s = seg_of(ks, t);
+            sample(&sp, t, p, v, a);
+            for (j = 0; j < ks->n; j++) {
+                double c[6], rp, rv, ra;
+                ref_segment(3, (double)ks->t[s + 1] - ks->t[s], ks->p[s * ks->n + j],
+                            ref_tangent(ks, j, s, nat, NULL), 0.0, ks->p[(s + 1) * ks->n + j],
+                            ref_tangent(ks, j, s + 1, nat, NULL), 0.0, c);
+                ref_eval(c, (double)t - ks->t[s], &rp, &rv, &ra);
+                check_close("catmull pos", trial, j, t, p[j], rp, 32 * eps * P);
+                check_close("catmull vel", trial, j, t, v[j], rv, 64 * eps * P / hmin);
+                check_close("catmull acc", trial, j, t, a[j], ra,
+                            256 * eps * P / (hmin * hmin));
+            }
+        }
+        if (nat && ks->k > 2) {
+            float p[MAXN], v[MAXN], a[MAXN];
+            sample(&sp, ks->t[0], p, v, a);
+            for (j = 0; j < ks->n; j++)
+                check_close("catmull natural start acc", trial, j, ks->t[0], a[j], 0.0,
+                            256 * eps * P / (hmin * hmin));
+        }
+    }
+}
+
 static void test_catmull_rom_against_double(void **state)
 {
-    int trial, j, i, nat;
+    static const key_shape shape = { 3, 2, 10, 0.05, 1.0, 10.0 };
     (void)state;
-    rng_state = 404;
-    for (trial = 0; trial < 30; trial++) {
-        keys ks;
-        double P, hmin, eps = FLT_EPSILON;
-        random_keys(&ks, 3, 2 + trial % 10, 0.05, 1.0, 10.0);
-        P = keys_scale(&ks) * 2;
-        hmin = keys_hmin(&ks);
-        for (nat = 0; nat < 2; nat++) {
-            qo_spline_settings_f32 set = qo_spline_settings_default;
-            qo_spline_f32 sp;
-            set.profile = QO_SPLINE_CATMULL_ROM;
-            set.end = nat ? QO_SPLINE_END_NATURAL : QO_SPLINE_END_CLAMPED;
-            assert_int_equal(plan(&ks, &set, &sp), QO_OK);
-            for (i = 0; i < ks.k; i++) {
-                float p[MAXN], v[MAXN], a[MAXN];
-                sample(&sp, ks.t[i], p, v, a);
-                for (j = 0; j < ks.n; j++)
-                    check_close("catmull tangent", trial, j, ks.t[i], v[j],
-                                ref_tangent(&ks, j, i, nat, NULL), 16 * eps * P / hmin);
+    run_trials(404, 30, &shape, catmull_trial, NULL);
+}
+
+/* Hermite with given velocities and quintic with given / estimated / zero derivatives
+ * against the double solve of each segment's end conditions. */
+static void hermite_quintic_trial(int trial, const keys *ks, double P, double hmin, void *ctx)
+{
+    int j, i, mode;
+    const double eps = FLT_EPSILON;
+    (void)ctx;
+    for (mode = 0; mode < 5; mode++) {
+        /* 0 hermite, 1 quintic given v+a, 2 quintic estimated, 3 quintic zero,
+         * 4 quintic given v, estimated a */
+        qo_spline_settings_f32 set = settings_for(mode == 0 ? QO_SPLINE_CUBIC_HERMITE
+                                                            : QO_SPLINE_QUINTIC,
+                                                  QO_SPLINE_END_CLAMPED);
+        qo_spline_f32 sp;
+        double kv[MAXK * MAXN], ka[MAXK * MAXN];
+        if (mode == 1 || mode == 4) set.key_vel = ks->v;
+        if (mode == 1) set.key_acc = ks->a;
+        if (mode == 3) set.derivs = QO_SPLINE_DERIVS_ZERO;
+        assert_int_equal(plan(ks, &set, &sp), QO_OK);
+        for (j = 0; j < ks->n; j++)
+            for (i = 0; i < ks->k; i++) {
+                int x = i * ks->n + j;
+                if (mode == 0 || mode == 1 || mode == 4) kv[x] = ks->v[x];
+                else if (mode == 3 && i > 0 && i < ks->k - 1) kv[x] = 0.0;
+                else kv[x] = ref_tangent(ks, j, i, 0, NULL);
+                ka[x] = mode == 1 ? ks->a[x] : 0.0;
             }
-            for (i = 0; i < 60; i++) {
-                float t = (float)urand(ks.t[0], ks.t[ks.k - 1]);
-                float p[MAXN], v[MAXN], a[MAXN];
-                int s = seg_of(&ks, t);
-                sample(&sp, t, p, v, a);
-                for (j = 0; j < ks.n; j++) {
-                    double c[6], rp, rv, ra;
-                    ref_segment(3, (double)ks.t[s + 1] - ks.t[s], ks.p[s * ks.n + j],
-                                ref_tangent(&ks, j, s, nat, NULL), 0.0, ks.p[(s + 1) * ks.n + j],
-                                ref_tangent(&ks, j, s + 1, nat, NULL), 0.0, c);
-                    ref_eval(c, (double)t - ks.t[s], &rp, &rv, &ra);
-                    check_close("catmull pos", trial, j, t, p[j], rp, 32 * eps * P);
-                    check_close("catmull vel", trial, j, t, v[j], rv, 64 * eps * P / hmin);
-                    check_close("catmull acc", trial, j, t, a[j], ra,
-                                256 * eps * P / (hmin * hmin));
+        if (mode == 2 || mode == 4)
+            for (j = 0; j < ks->n; j++)
+                for (i = 1; i + 1 < ks->k; i++) {
+                    double h0 = (double)ks->t[i] - ks->t[i - 1];
+                    double h1 = (double)ks->t[i + 1] - ks->t[i];
+                    double g0 = (kv[i * ks->n + j] - kv[(i - 1) * ks->n + j]) / h0;
+                    double g1 = (kv[(i + 1) * ks->n + j] - kv[i * ks->n + j]) / h1;
+                    ka[i * ks->n + j] = (g0 * h1 + g1 * h0) / (h0 + h1);
                 }
-            }
-            if (nat && ks.k > 2) {
-                float p[MAXN], v[MAXN], a[MAXN];
-                sample(&sp, ks.t[0], p, v, a);
-                for (j = 0; j < ks.n; j++)
-                    check_close("catmull natural start acc", trial, j, ks.t[0], a[j], 0.0,
-                                256 * eps * P / (hmin * hmin));
+        for (i = 0; i < 60; i++) {
+            float t = (float)urand(ks->t[0], ks->t[ks->k - 1]);
+            float p[MAXN], v[MAXN], a[MAXN];
+            int s = seg_of(ks, t);
+            double h = (double)ks->t[s + 1] - ks->t[s];
+            sample(&sp, t, p, v, a);
+            for (j = 0; j < ks->n; j++) {
+                double c[6], rp, rv, ra, Ps = P * (1 + h) * (1 + h); /* v h, a h^2 terms */
+                int x0 = s * ks->n + j, x1 = (s + 1) * ks->n + j;
+                ref_segment(mode == 0 ? 3 : 5, h, ks->p[x0], kv[x0], ka[x0], ks->p[x1], kv[x1],
+                            ka[x1], c);
+                ref_eval(c, (double)t - ks->t[s], &rp, &rv, &ra);
+                check_close(mode == 0 ? "hermite pos" : "quintic pos", trial * 10 + mode, j, t,
+                            p[j], rp, 64 * eps * Ps);
+                check_close(mode == 0 ? "hermite vel" : "quintic vel", trial * 10 + mode, j, t,
+                            v[j], rv, 256 * eps * Ps / hmin);
+                check_close(mode == 0 ? "hermite acc" : "quintic acc", trial * 10 + mode, j, t,
+                            a[j], ra, 1024 * eps * Ps / (hmin * hmin));
             }
         }
     }
 }
 
-/* Hermite with given velocities and quintic with given / estimated / zero derivatives
- * against the double solve of each segment's end conditions. */
 static void test_hermite_quintic_against_double(void **state)
 {
-    int trial, j, i, mode;
+    static const key_shape shape = { 2, 2, 8, 0.1, 1.0, 5.0 };
     (void)state;
-    rng_state = 505;
-    for (trial = 0; trial < 24; trial++) {
-        keys ks;
-        double P, hmin, eps = FLT_EPSILON;
-        random_keys(&ks, 2, 2 + trial % 8, 0.1, 1.0, 5.0);
-        P = keys_scale(&ks) * 2;
-        hmin = keys_hmin(&ks);
-        for (mode = 0; mode < 5; mode++) {
-            /* 0 hermite, 1 quintic given v+a, 2 quintic estimated, 3 quintic zero,
-             * 4 quintic given v, estimated a */
-            qo_spline_settings_f32 set = qo_spline_settings_default;
-            qo_spline_f32 sp;
-            double kv[MAXK * MAXN], ka[MAXK * MAXN];
-            set.profile = mode == 0 ? QO_SPLINE_CUBIC_HERMITE : QO_SPLINE_QUINTIC;
-            if (mode == 1 || mode == 4) set.key_vel = ks.v;
-            if (mode == 1) set.key_acc = ks.a;
-            if (mode == 3) set.derivs = QO_SPLINE_DERIVS_ZERO;
-            assert_int_equal(plan(&ks, &set, &sp), QO_OK);
-            for (j = 0; j < ks.n; j++)
-                for (i = 0; i < ks.k; i++) {
-                    int x = i * ks.n + j;
-                    if (mode == 0 || mode == 1 || mode == 4) kv[x] = ks.v[x];
-                    else if (mode == 3 && i > 0 && i < ks.k - 1) kv[x] = 0.0;
-                    else kv[x] = ref_tangent(&ks, j, i, 0, NULL);
-                    ka[x] = mode == 1 ? ks.a[x] : 0.0;
-                }
-            if (mode == 2 || mode == 4)
-                for (j = 0; j < ks.n; j++)
-                    for (i = 1; i + 1 < ks.k; i++) {
-                        double h0 = (double)ks.t[i] - ks.t[i - 1];
-                        double h1 = (double)ks.t[i + 1] - ks.t[i];
-                        double g0 = (kv[i * ks.n + j] - kv[(i - 1) * ks.n + j]) / h0;
-                        double g1 = (kv[(i + 1) * ks.n + j] - kv[i * ks.n + j]) / h1;
-                        ka[i * ks.n + j] = (g0 * h1 + g1 * h0) / (h0 + h1);
-                    }
-            for (i = 0; i < 60; i++) {
-                float t = (float)urand(ks.t[0], ks.t[ks.k - 1]);
-                float p[MAXN], v[MAXN], a[MAXN];
-                int s = seg_of(&ks, t);
-                double h = (double)ks.t[s + 1] - ks.t[s];
-                sample(&sp, t, p, v, a);
-                for (j = 0; j < ks.n; j++) {
-                    double c[6], rp, rv, ra, Ps = P * (1 + h) * (1 + h); /* v h, a h^2 terms */
-                    int x0 = s * ks.n + j, x1 = (s + 1) * ks.n + j;
-                    ref_segment(mode == 0 ? 3 : 5, h, ks.p[x0], kv[x0], ka[x0], ks.p[x1], kv[x1],
-                                ka[x1], c);
-                    ref_eval(c, (double)t - ks.t[s], &rp, &rv, &ra);
-                    check_close(mode == 0 ? "hermite pos" : "quintic pos", trial * 10 + mode, j, t,
-                                p[j], rp, 64 * eps * Ps);
-                    check_close(mode == 0 ? "hermite vel" : "quintic vel", trial * 10 + mode, j, t,
-                                v[j], rv, 256 * eps * Ps / hmin);
-                    check_close(mode == 0 ? "hermite acc" : "quintic acc", trial * 10 + mode, j, t,
-                                a[j], ra, 1024 * eps * Ps / (hmin * hmin));
-                }
-            }
-        }
-    }
+    run_trials(505, 24, &shape, hermite_quintic_trial, NULL);
 }
 
 /* Continuous joints: 3.0 -> -3.0 rad goes through +pi (0.283 rad), not through 0 (6 rad);
