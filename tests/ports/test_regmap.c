@@ -90,11 +90,24 @@ static void test_parse_good(void **state)
     assert_int_equal(s9->line, 0);
 }
 
+/* A map the parser must refuse with status want: the message must start "bad.ini:LINE: " and
+ * contain word, and no joint may be left in the map. */
+static void expect_refused(const char *text, qo_status want, int line, const char *word)
+{
+    char err[256], prefix[32];
+    qo_status st = qo_regmap_parse(text, "bad.ini", &map, err, sizeof err);
+    (void)snprintf(prefix, sizeof prefix, "bad.ini:%d: ", line);
+    if (st != want || strncmp(err, prefix, strlen(prefix)) != 0 || strstr(err, word) == NULL ||
+        map.n_joints != 0)
+        fail_msg("status %d (want %d), message \"%s\" (want prefix \"%s\" and \"%s\") for:\n%s",
+                 st, want, err, prefix, word, text);
+}
+
+/* Each case states its text, the line the message must name and a word it must contain. */
 struct bad_case {
     const char *text;
-    qo_status st;
-    const char *prefix; /* expected start of the message: "bad.ini:LINE: " */
-    const char *word;   /* a word the message must contain */
+    int line;
+    const char *word;
 };
 
 #define J "[joint.x]\nslave = 1\naddress = 0\ntype = int16\n"
@@ -102,78 +115,86 @@ struct bad_case {
 static void test_errors_name_file_and_line(void **state)
 {
     static const struct bad_case cases[] = {
-        { J "colour = red\n", QO_E_CONFIG, "bad.ini:5: ", "colour" },
-        { J "[motor.1]\n", QO_E_CONFIG, "bad.ini:5: ", "unknown section" },
-        { J "slave = 2\n", QO_E_CONFIG, "bad.ini:5: ", "duplicate key" },
-        { J J, QO_E_CONFIG, "bad.ini:5: ", "duplicate section" },
-        { J "[slave.1]\n[slave.1]\n", QO_E_CONFIG, "bad.ini:6: ", "duplicate section" },
-        { "[joint.x]\nslave = 1\naddress = 0\ntype = int8\n", QO_E_CONFIG, "bad.ini:4: ", "type" },
-        { "[joint.x]\nslave = 0\n", QO_E_CONFIG, "bad.ini:2: ", "slave" },
-        { "[joint.x]\nslave = 1\naddress = 0x1G\n", QO_E_CONFIG, "bad.ini:3: ", "address" },
-        { "[joint.x]\nslave = 1\naddress = 65536\n", QO_E_CONFIG, "bad.ini:3: ", "address" },
-        { J "scale = 0\n", QO_E_CONFIG, "bad.ini:5: ", "scale" },
-        { J "scale = nan\n", QO_E_CONFIG, "bad.ini:5: ", "scale" },
-        { J "max_step = -1\n", QO_E_CONFIG, "bad.ini:5: ", "max_step" },
-        { J "invert = maybe\n", QO_E_CONFIG, "bad.ini:5: ", "invert" },
-        { J "order = middle\n", QO_E_CONFIG, "bad.ini:5: ", "order" },
-        { J "min = 2\nmax = 1\n", QO_E_CONFIG, "bad.ini:1: ", "min > max" },
-        { "\n\n[joint.x]\nslave = 1\ntype = int16\n", QO_E_CONFIG, "bad.ini:3: ", "address" },
-        { "[joint.x]\n", QO_E_CONFIG, "bad.ini:1: ", "slave" },
-        { "[joint.x]\nslave = 1\naddress = 65535\ntype = int32\n", QO_E_CONFIG, "bad.ini:1: ",
-          "65535" },
-        { J "[joint.y]\nslave = 1\naddress = 0\ntype = int16\n", QO_E_CONFIG, "bad.ini:5: ",
-          "overlaps" },
-        { J "[slave.1]\nconstant = 0=5\n", QO_E_CONFIG, "bad.ini:5: ", "overlaps" },
-        { J "feedback = 0\n", QO_E_CONFIG, "bad.ini:1: ", "overlaps" },
-        { J "[slave.1]\ninit = 5\n", QO_E_CONFIG, "bad.ini:6: ", "init" },
-        { J "[slave.1]\ninit = 5=70000\n", QO_E_CONFIG, "bad.ini:6: ", "init" },
-        { J "[slave.1]\nmax_registers = 124\n", QO_E_CONFIG, "bad.ini:6: ", "max_registers" },
-        { J "[slave.1]\nwhat = 1\n", QO_E_CONFIG, "bad.ini:6: ", "what" },
-        { J "[slave.256]\n", QO_E_CONFIG, "bad.ini:5: ", "slave id" },
-        { "slave = 1\n" J, QO_E_CONFIG, "bad.ini:1: ", "outside" },
-        { J "this line has no equals sign\n", QO_E_CONFIG, "bad.ini:5: ", "syntax" },
-        { "# nothing\n", QO_E_CONFIG, "bad.ini:0: ", "no [joint" },
-        { J "[slave.1]\ninit = 1=1 2=2 3=3 4=4 5=5 6=6 7=7 8=8 9=9 10=10 11=11 12=12 13=13 "
-            "14=14 15=15 16=16 17=17\n", QO_E_CAPACITY, "bad.ini:6: ", "entries" },
+        { J "colour = red\n", 5, "colour" },
+        { J "[motor.1]\n", 5, "unknown section" },
+        { J "slave = 2\n", 5, "duplicate key" },
+        { J J, 5, "duplicate section" },
+        { J "[slave.1]\n[slave.1]\n", 6, "duplicate section" },
+        { "[joint.x]\nslave = 1\naddress = 0\ntype = int8\n", 4, "type" },
+        { "[joint.x]\nslave = 0\n", 2, "slave" },
+        { "[joint.x]\nslave = 1\naddress = 0x1G\n", 3, "address" },
+        { "[joint.x]\nslave = 1\naddress = 65536\n", 3, "address" },
+        { J "scale = 0\n", 5, "scale" },
+        { J "scale = nan\n", 5, "scale" },
+        { J "max_step = -1\n", 5, "max_step" },
+        { J "invert = maybe\n", 5, "invert" },
+        { J "order = middle\n", 5, "order" },
+        { J "min = 2\nmax = 1\n", 1, "min > max" },
+        { "\n\n[joint.x]\nslave = 1\ntype = int16\n", 3, "address" },
+        { "[joint.x]\n", 1, "slave" },
+        { "[joint.x]\nslave = 1\naddress = 65535\ntype = int32\n", 1, "65535" },
+        { J "[joint.y]\nslave = 1\naddress = 0\ntype = int16\n", 5, "overlaps" },
+        { J "[slave.1]\nconstant = 0=5\n", 5, "overlaps" },
+        { J "feedback = 0\n", 1, "overlaps" },
+        { J "[slave.1]\ninit = 5\n", 6, "init" },
+        { J "[slave.1]\ninit = 5=70000\n", 6, "init" },
+        { J "[slave.1]\nmax_registers = 124\n", 6, "max_registers" },
+        { J "[slave.1]\nwhat = 1\n", 6, "what" },
+        { J "[slave.256]\n", 5, "slave id" },
+        { "slave = 1\n" J, 1, "outside" },
+        { J "this line has no equals sign\n", 5, "syntax" },
+        { "# nothing\n", 0, "no [joint" },
     };
     size_t i;
     (void)state;
-    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        char err[256];
-        qo_status st = qo_regmap_parse(cases[i].text, "bad.ini", &map, err, sizeof err);
-        if (st != cases[i].st || strncmp(err, cases[i].prefix, strlen(cases[i].prefix)) != 0 ||
-            strstr(err, cases[i].word) == NULL || map.n_joints != 0)
-            fail_msg("case %u: status %d (want %d), message \"%s\" (want prefix \"%s\" and "
-                     "\"%s\") for:\n%s", (unsigned)i, st, cases[i].st, err, cases[i].prefix,
-                     cases[i].word, cases[i].text);
-    }
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++)
+        expect_refused(cases[i].text, QO_E_CONFIG, cases[i].line, cases[i].word);
+    expect_refused(J "[slave.1]\ninit = 1=1 2=2 3=3 4=4 5=5 6=6 7=7 8=8 9=9 10=10 11=11 12=12 "
+                   "13=13 14=14 15=15 16=16 17=17\n", QO_E_CAPACITY, 6, "entries");
+}
+
+/* A map of n uint16 joints j0, j1, ... on slave 1 at addresses 0, 1, ... */
+static const char *joints_text(size_t n)
+{
+    static char text[QO_REGMAP_MAX_JOINTS * 80 + 200];
+    size_t i, len = 0;
+    text[0] = '\0';
+    for (i = 0; i < n; i++)
+        len += (size_t)snprintf(text + len, sizeof text - len,
+                                "[joint.j%u]\nslave = 1\naddress = %u\ntype = uint16\n",
+                                (unsigned)i, (unsigned)i);
+    return text;
 }
 
 static void test_capacity_of_joints(void **state)
 {
-    static char text[QO_REGMAP_MAX_JOINTS * 80 + 200];
     char err[256];
-    size_t i, len = 0;
     (void)state;
-    for (i = 0; i <= QO_REGMAP_MAX_JOINTS; i++)
-        len += (size_t)snprintf(text + len, sizeof text - len,
-                                "[joint.j%u]\nslave = 1\naddress = %u\ntype = uint16\n",
-                                (unsigned)i, (unsigned)i);
-    assert_int_equal(qo_regmap_parse(text, "many.ini", &map, err, sizeof err), QO_E_CAPACITY);
+    assert_int_equal(qo_regmap_parse(joints_text(QO_REGMAP_MAX_JOINTS + 1), "many.ini", &map, err,
+                                     sizeof err), QO_E_CAPACITY);
     assert_non_null(strstr(err, "many.ini:"));
     /* exactly the capacity is fine */
-    text[0] = '\0';
-    len = 0;
-    for (i = 0; i < QO_REGMAP_MAX_JOINTS; i++)
-        len += (size_t)snprintf(text + len, sizeof text - len,
-                                "[joint.j%u]\nslave = 1\naddress = %u\ntype = uint16\n",
-                                (unsigned)i, (unsigned)i);
-    assert_int_equal(qo_regmap_parse(text, "many.ini", &map, err, sizeof err), QO_OK);
+    assert_int_equal(qo_regmap_parse(joints_text(QO_REGMAP_MAX_JOINTS), "many.ini", &map, err,
+                                     sizeof err), QO_OK);
     assert_int_equal(map.n_joints, QO_REGMAP_MAX_JOINTS);
+}
+
+/* Writes `len` bytes to a file and loads it. */
+static qo_status load_bytes(const char *bytes, size_t len, char *err, size_t err_len)
+{
+    FILE *f = fopen("build/test_regmap_bytes.ini", "wb");
+    qo_status st;
+    assert_non_null(f);
+    assert_int_equal(fwrite(bytes, 1, len, f), len);
+    fclose(f);
+    st = qo_regmap_load("build/test_regmap_bytes.ini", &map, err, err_len);
+    remove("build/test_regmap_bytes.ini");
+    return st;
 }
 
 static void test_example_files(void **state)
 {
+    static const char bad[] = "[joint.a]\nslave = 1\naddress = 0\ntype = int16\n\nbogus = 1\n";
     char err[256];
     size_t i;
     (void)state;
@@ -194,16 +215,8 @@ static void test_example_files(void **state)
                      QO_E_IO);
     assert_non_null(strstr(err, "no-such-file.ini:0: cannot open"));
     /* a file with an error names the file and line */
-    {
-        FILE *f = fopen("build/test_regmap_bad.ini", "w");
-        assert_non_null(f);
-        fputs("[joint.a]\nslave = 1\naddress = 0\ntype = int16\n\nbogus = 1\n", f);
-        fclose(f);
-        assert_int_equal(qo_regmap_load("build/test_regmap_bad.ini", &map, err, sizeof err),
-                         QO_E_CONFIG);
-        assert_non_null(strstr(err, "build/test_regmap_bad.ini:6: "));
-        remove("build/test_regmap_bad.ini");
-    }
+    assert_int_equal(load_bytes(bad, sizeof bad - 1, err, sizeof err), QO_E_CONFIG);
+    assert_non_null(strstr(err, "build/test_regmap_bytes.ini:6: "));
 }
 
 /* A list too long for one line continues on indented lines; an over-long line is an error
@@ -275,19 +288,6 @@ static void test_null_and_small_buffers(void **state)
     assert_int_equal(qo_regmap_parse_writes("1==2", w, 2, &n), QO_E_CONFIG);
     assert_int_equal(qo_regmap_parse_writes("", w, 2, &n), QO_OK);
     assert_int_equal(n, 0);
-}
-
-/* Writes `len` bytes to a file and loads it. */
-static qo_status load_bytes(const char *bytes, size_t len, char *err, size_t err_len)
-{
-    FILE *f = fopen("build/test_regmap_bytes.ini", "wb");
-    qo_status st;
-    assert_non_null(f);
-    assert_int_equal(fwrite(bytes, 1, len, f), len);
-    fclose(f);
-    st = qo_regmap_load("build/test_regmap_bytes.ini", &map, err, err_len);
-    remove("build/test_regmap_bytes.ini");
-    return st;
 }
 
 /* Input that is not a text map: an endless one stops, a NUL is an error wherever it is, a
