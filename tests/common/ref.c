@@ -314,7 +314,6 @@ const char *const ref_euler_names[REF_EULER_SEQS] = {
 
 int ref_euler_proper(int seq) { return ref_euler_names[seq][0] == ref_euler_names[seq][2]; }
 
-
 ref_quat ref_quat_from_q30(qo_quat_q30 q)
 {
     ref_quat r;

@@ -302,7 +302,6 @@ typedef struct core {
     qo_status (*sample)(int slot, double t, double *p, double *v, double *a, int8_t *cl);
 } core;
 
-
 /* The sampler of one core (prefix P), written once: VT its value type, TO_T its time. */
 #define DEFINE_SAMPLER(P, SFX, VT, TO_T, BACK)                                                \
     static qo_status P##_sample(int slot, double t, double *p, double *v, double *a,          \
