@@ -1,10 +1,12 @@
 #!/bin/sh
-# bench/compare/report.sh RESULTDIR - markdown tables (RESULTDIR/tables.md) and the plots of
-# docs/BENCHMARKS.md (docs/img/bench-*.png, gnuplot pngcairo or png) from the result files
-# written by tools/bench.sh: host.tsv, host-lto.tsv, callgrind.tsv, callgrind-lto.tsv, qemu.tsv.
+# bench/compare/report.sh RESULTDIR - markdown tables (RESULTDIR/tables.md) and plots
+# (RESULTDIR/bench-*.png, gnuplot pngcairo or png) from the result files written by
+# tools/bench.sh: host.tsv, host-lto.tsv, callgrind.tsv, callgrind-lto.tsv, qemu.tsv.
+# They stay in RESULTDIR, beside the run they describe: the committed figures are
+# docs/FIGURES.md's, written by `make figures` and checked by CI (docs/BENCHMARKS.md).
 set -eu
 R=${1:-build/bench-results}
-IMG=docs/img
+IMG=$R
 mkdir -p "$IMG"
 cat "$R"/host.tsv "$R"/host-lto.tsv "$R"/callgrind.tsv "$R"/callgrind-lto.tsv "$R"/qemu.tsv 2>/dev/null |
 awk -v R="$R" '
