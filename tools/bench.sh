@@ -1,6 +1,6 @@
 #!/bin/sh
 # tools/bench.sh - builds and runs the library comparison and the Cortex-M instruction counts,
-# writes build/bench-results/ and regenerates the report's plots (docs/img/*.png).
+# writes build/bench-results/ and draws the report's plots beside its tables there.
 #
 #   sh tools/bench.sh all     host + qemu + plots (what `make bench` runs)
 #   sh tools/bench.sh host    host timing, callgrind instruction counts, accuracy
