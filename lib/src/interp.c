@@ -8,6 +8,7 @@
 #include "qorient/fmath.h"
 
 #include "qorient/quat.h"
+#include "fmath_internal.h"
 
 #define QO_PI_F 3.14159265358979f
 
@@ -277,16 +278,6 @@ static uint32_t bits_of(float f)
 }
 #endif
 
-/* sqrt of x >= 0: sqrtss itself on SSE2 (sqrtf adds libm's errno branch for x < 0). */
-static float sqrt_nonneg(float x)
-{
-#if QO_SIMD_SSE2
-    return _mm_cvtss_f32(_mm_sqrt_ss(_mm_set1_ps(x)));
-#else
-    return sqrtf(x);
-#endif
-}
-
 /* The weights of a' and b' (wa a' + wb b', not yet normalised) for t in (0, 1) and
  * x = cos th >= 0 of the unit inputs after the short-way flip.
  * The unit midpoint m = (a' + b') / (2 c), c = cos(th/2) = sqrt((1 + x)/2) >= 0.707, splits
@@ -295,7 +286,7 @@ static float sqrt_nonneg(float x)
  * (r = alpha a' + beta b'), so m is never formed. */
 static void slerp_half_weights(float t, float x, float *wa, float *wb)
 {
-    float c = sqrt_nonneg(0.5f + 0.5f * x), h = 0.5f / c;
+    float c = qo_fm_sqrt_nonneg(0.5f + 0.5f * x), h = 0.5f / c;
     /* 2t and 2t - 1 are exact (the latter by Sterbenz) */
     float u = t <= 0.5f ? 2.0f * t : 2.0f * t - 1.0f;
 #if QO_SIMD_SSE2

@@ -14,11 +14,16 @@
  *    bits and status on random pairs, both sides of every branch (flip, t <= 1/2, endpoints,
  *    the fast range of the squared norms) and every error. Where SSE2 is not used both are the
  *    scalar body and only the double-precision check below can fail.
+ *  - qo_fm_atan2x4_f32 (lib/src/fmath_internal.h, the Euler decomposition's four atan2 at
+ *    once, 4-wide on SSE2) against qo_fm_atan2_f32 lane by lane, bit for bit, on random pairs
+ *    of every octant and scale, both sides of each branch of the scalar kernel, and groups
+ *    holding a special value (zero, subnormal, Inf, NaN) that take the per-lane path.
  * Fixed seeds; a failure names the case and its inputs.
  */
 /* The scalar slerp: QO_NO_SIMD before the first qorient header (the whole file then gets the
  * scalar inline bodies, which the tests below only use through library calls). */
 #define QO_NO_SIMD
+#include <float.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -60,6 +65,8 @@
 #undef qo_quat_squad_f32
 #undef qo_quat_squad_controls_f32
 qo_status qo_quat_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out);
+#include "qorient/fmath.h"
+#include "../lib/src/fmath_internal.h"
 
 #define N_MAT 4000
 #define N_EUL 300
@@ -310,6 +317,59 @@ static void test_slerp_simd_same_bits(void **state)
                   "worst %.3g rad vs double\n", fast, N_SLERP, flipped, worst);
 }
 
+#define N_ATAN 400000
+
+/* A float of a random kind: a unit-scale value, one scaled to the edges of the kernel's
+ * 2^-+64 rescaling and the 2^-60 residual cut, any bit pattern, or a special value. */
+static float atan_arg(ref_rng *rng)
+{
+    static const float special[] = { 0.0f, -0.0f, 0x1p-149f, -0x1p-130f, INFINITY, -INFINITY,
+                                     NAN, FLT_MAX, -FLT_MIN, 1.0f, 0x1p64f, 0x1.fffffep63f };
+    static const float scale[] = { 1.0f, 0x1p-60f, 0x1p-64f, 0x1p-70f, 0x1p64f, 0x1p70f, 0x1p-100f,
+                                   0x1p100f };
+    uint64_t k = ref_rng_next(rng);
+    float v = (float)ref_rng_range(rng, -1.0, 1.0);
+    uint32_t u = (uint32_t)(k >> 32);
+    switch (k % 16u) {
+    case 0: memcpy(&v, &u, sizeof v); return v;
+    case 1: return special[u % (sizeof special / sizeof special[0])];
+    case 2: case 3: return v * scale[u % (sizeof scale / sizeof scale[0])];
+    default: return v;
+    }
+}
+
+static void test_atan2x4_same_bits(void **state)
+{
+    ref_rng rng = { 0xA7A42F4 };
+    long n, wide = 0;
+    (void)state;
+    for (n = 0; n < N_ATAN; n++) {
+        float y[4], x[4], r[4], s;
+        int l, all_ok = 1;
+        for (l = 0; l < 4; l++) {
+            x[l] = atan_arg(&rng);
+            /* y on or near the octant lines |y| = |x| and |y| = tan(pi/8) |x| half the time */
+            switch (ref_rng_next(&rng) % 6u) {
+            case 0: y[l] = x[l]; break;
+            case 1: y[l] = -0.41421356f * x[l]; break;
+            case 2: y[l] = x[l] * (float)ref_rng_range(&rng, 0.41, 0.42); break;
+            default: y[l] = atan_arg(&rng); break;
+            }
+            if (!(isfinite(x[l]) && isfinite(y[l]) && x[l] != 0.0f && y[l] != 0.0f)) all_ok = 0;
+        }
+        wide += all_ok;
+        qo_fm_atan2x4_f32(y, x, r, 4);
+        for (l = 0; l < 4; l++) {
+            s = qo_fm_atan2_f32(y[l], x[l]);
+            if (memcmp(&s, &r[l], sizeof s) != 0 && !(isnan(s) && isnan(r[l])))
+                fail_msg("atan2x4 case %ld lane %d: atan2(%a, %a) = %a, the scalar kernel %a",
+                         n, l, (double)y[l], (double)x[l], (double)r[l], (double)s);
+        }
+    }
+    /* most groups take the 4-wide path (all finite and non-zero), some the per-lane one */
+    assert_true(wide > N_ATAN / 4 && wide < N_ATAN);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -318,6 +378,7 @@ int main(void)
         cmocka_unit_test(test_to_euler_fast_range),
         cmocka_unit_test(test_to_euler_fast_range_errors),
         cmocka_unit_test(test_slerp_simd_same_bits),
+        cmocka_unit_test(test_atan2x4_same_bits),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
