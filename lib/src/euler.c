@@ -16,6 +16,7 @@
 
 #include "qorient/fmath.h"
 #include "euler_seq_internal.h"
+#include "fmath_internal.h"
 
 #define HALF_PI_F 1.57079632679490f
 /* 2*pi split for Cody-Waite reduction: HI has 8 significant bits, so k*HI is exact for
@@ -123,8 +124,13 @@ static decomp decompose(qo_quat_f32 q, qo_euler_seq seq, float skip_band)
     int k = intrinsic ? ax[2] : ax[0];
     /* eps = +1 when e_i x e_j = +e_(third axis), i.e. (i, j, .) is cyclic. */
     float eps = (j == (int)qo_euler_axis_next((unsigned)i)) ? 1.0f : -1.0f;
-    float t1, t2, t3, n1, n2, lo, hi;
+    /* the components by index (1 + axis): a load each instead of quat_comp's branches (the
+     * struct is four floats without padding, as qorient/quat.h's SIMD bodies assume) */
+    float qc[4];
+    float t1, t2, t3, n1, n2, lo, hi, ny[4], nx[4], at[4];
+    int skip;
     decomp r;
+    memcpy(qc, &q, sizeof qc);
     if (i == k) {
         /* Proper, l = the remaining axis. Expanding q_i(t1) q_j(t2) q_i(t3) with c = cos(t2/2),
          * s = sin(t2/2), S = (t1 + t3)/2, D = (t1 - t3)/2:
@@ -133,12 +139,12 @@ static decomp decompose(qo_quat_f32 q, qo_euler_seq seq, float skip_band)
          * and pi (S undefined). t1 = S + D and t3 = S - D are the arguments of the complex
          * products (a + ib)(c + id) and (a + ib)(c - id): one atan2 each, in [-pi, pi]. */
         int l = 3 - i - j;
-        float a = q.w, b = quat_comp(q, i), c = quat_comp(q, j), d = eps * quat_comp(q, l);
-        n1 = sqrtf(a * a + b * b);
-        n2 = sqrtf(c * c + d * d);
-        t2 = 2.0f * qo_fm_atan2_f32(n2, n1);
-        t1 = qo_fm_atan2_f32(b * c + a * d, a * c - b * d);
-        t3 = qo_fm_atan2_f32(b * c - a * d, a * c + b * d);
+        float a = q.w, b = qc[1 + i], c = qc[1 + j], d = eps * qc[1 + l];
+        n1 = qo_fm_sqrt_nonneg(a * a + b * b);
+        n2 = qo_fm_sqrt_nonneg(c * c + d * d);
+        ny[0] = n2; nx[0] = n1;
+        ny[1] = b * c + a * d; nx[1] = a * c - b * d;
+        ny[2] = b * c - a * d; nx[2] = a * c + b * d;
     } else {
         /* Tait-Bryan. With t3' = eps t3 and (x, y, z) = (q_i, q_j, eps q_k), the product
          * q_i(t1) q_j(t2) q_k(t3) is the even-permutation one, and
@@ -149,13 +155,13 @@ static decomp decompose(qo_quat_f32 q, qo_euler_seq seq, float skip_band)
          * (one atan2, no pi/2 constant): singular at -pi/2 (n2 = 0, S undefined) and +pi/2
          * (n1 = 0, D undefined). t1 = S + D = arg((c + ib)(a - id)),
          * t3' = S - D = arg((c + ib)(a + id)). */
-        float x = quat_comp(q, i), y = quat_comp(q, j), z = eps * quat_comp(q, k);
+        float x = qc[1 + i], y = qc[1 + j], z = eps * qc[1 + k];
         float a = q.w - y, b = x + z, c = q.w + y, d = z - x;
-        n1 = sqrtf(a * a + d * d);
-        n2 = sqrtf(b * b + c * c);
-        t2 = qo_fm_atan2_f32((n2 - n1) * (n2 + n1), 2.0f * n1 * n2);
-        t1 = qo_fm_atan2_f32(b * a - c * d, c * a + b * d);
-        t3 = eps * qo_fm_atan2_f32(b * a + c * d, c * a - b * d);
+        n1 = qo_fm_sqrt_nonneg(a * a + d * d);
+        n2 = qo_fm_sqrt_nonneg(b * b + c * c);
+        ny[0] = (n2 - n1) * (n2 + n1); nx[0] = 2.0f * n1 * n2;
+        ny[1] = b * a - c * d; nx[1] = c * a + b * d;
+        ny[2] = b * a + c * d; nx[2] = c * a - b * d;
     }
     /* The distance to the nearer singularity straight from the two norms (no subtraction
      * from pi, so it keeps its accuracy down to 0). */
@@ -165,10 +171,23 @@ static decomp decompose(qo_quat_f32 q, qo_euler_seq seq, float skip_band)
      * bound clears the band by 1 % (far more than atan2's 2.5 ulp) and lo/hi is far from
      * underflow, the margin exceeds the band and its atan2 (a quarter of the cost of the
      * whole decomposition) is not needed. */
-    if (skip_band >= 0.0f && lo > 1e-30f * hi && 1.5707963f * lo > 1.01f * skip_band * hi)
-        r.margin = HALF_PI_F;
-    else
-        r.margin = 2.0f * qo_fm_atan2_f32(lo, hi);
+    skip = !QO_FM_ATAN2X4_WIDE && skip_band >= 0.0f && lo > 1e-30f * hi &&
+           1.5707963f * lo > 1.01f * skip_band * hi;
+    /* The three or four atan2 are independent: one call computes them. 4-wide (SSE2) the
+     * margin's lane costs nothing extra and the bound is not tested; the lock decision is the
+     * same either way. */
+    ny[3] = lo; nx[3] = hi;
+    qo_fm_atan2x4_f32(ny, nx, at, skip ? 3 : 4);
+    r.margin = skip ? HALF_PI_F : 2.0f * at[3];
+    if (i == k) {
+        t2 = 2.0f * at[0];
+        t1 = at[1];
+        t3 = at[2];
+    } else {
+        t2 = at[0];
+        t1 = at[1];
+        t3 = eps * at[2];
+    }
     r.e.a2 = t2;
     r.e.a1 = intrinsic ? t1 : t3;
     r.e.a3 = intrinsic ? t3 : t1;
@@ -209,7 +228,7 @@ static qo_status check_args(qo_quat_f32 q, qo_euler_seq seq, float band, qo_quat
 }
 
 /* The decomposition of a checked, scaled q (band in [0, pi/2]). */
-static void to_euler_checked(qo_quat_f32 qn, qo_euler_seq seq, float band_rad,
+static inline void to_euler_checked(qo_quat_f32 qn, qo_euler_seq seq, float band_rad,
                              qo_euler_f32 *out, qo_euler_info_f32 *info)
 {
     decomp r = decompose(qn, seq, info == NULL ? band_rad : -1.0f);

@@ -7,6 +7,13 @@
 #include <math.h>
 #include <stdint.h>
 
+#include "fmath_internal.h"
+
+#define FM_SSE2 QO_FM_ATAN2X4_WIDE
+#if FM_SSE2
+#include <emmintrin.h>   /* a compiler header, not an OS one */
+#endif
+
 typedef union { float f; uint32_t u; } fbits;
 
 static uint32_t bits_of(float f)
@@ -342,6 +349,103 @@ float qo_fm_atan2_f32(float y, float x)
     t = (hi - s) + u;
     r = s + (t + (lo + (atan_tail(u) + du / (1.0f + u * u))));
     return (y < 0.0f) ? -r : r;
+}
+
+#if FM_SSE2
+/* split12, atan_tail and quotient_residual of four lanes: the same operations in the same
+ * order, so each lane is the scalar result bit for bit. */
+static void split12_ps(__m128 a, __m128 *hi, __m128 *lo)
+{
+    __m128 c = _mm_mul_ps(a, _mm_set1_ps(4097.0f));
+    *hi = _mm_sub_ps(c, _mm_sub_ps(c, a));
+    *lo = _mm_sub_ps(a, *hi);
+}
+
+static __m128 atan_tail_ps(__m128 u)
+{
+    __m128 z = _mm_mul_ps(u, u), p;
+    p = _mm_add_ps(_mm_set1_ps(0x1.b8103p-4f), _mm_mul_ps(z, _mm_set1_ps(-0x1.08455ep-4f)));
+    p = _mm_add_ps(_mm_set1_ps(-0x1.242036p-3f), _mm_mul_ps(z, p));
+    p = _mm_add_ps(_mm_set1_ps(0x1.99973p-3f), _mm_mul_ps(z, p));
+    p = _mm_add_ps(_mm_set1_ps(-0x1.555554p-2f), _mm_mul_ps(z, p));
+    return _mm_mul_ps(_mm_mul_ps(u, z), p);
+}
+
+static __m128 quotient_residual_ps(__m128 n, __m128 d, __m128 q)
+{
+    __m128 qh, ql, dh, dl, p, e;
+    split12_ps(q, &qh, &ql);
+    split12_ps(d, &dh, &dl);
+    p = _mm_mul_ps(q, d);
+    e = _mm_add_ps(_mm_add_ps(_mm_add_ps(_mm_sub_ps(_mm_mul_ps(qh, dh), p), _mm_mul_ps(qh, dl)),
+                              _mm_mul_ps(ql, dh)), _mm_mul_ps(ql, dl));
+    return _mm_sub_ps(_mm_sub_ps(n, p), e);
+}
+
+/* m ? a : b, lane by lane (m all ones or all zeros) */
+static __m128 select_ps(__m128 m, __m128 a, __m128 b)
+{
+    return _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b));
+}
+#endif
+
+void qo_fm_atan2x4_f32(const float y[4], const float x[4], float r[4], int n)
+{
+    int i;
+#if FM_SSE2
+    /* qo_fm_atan2_f32's common case (every input finite, non-zero and below 2^64, so only the
+     * scaling up by 2^64 can apply) with its branches as lane masks: swap, that scaling, the
+     * octant (u = (num - den)/(num + den) or num/den), the base angle and the signs; each lane
+     * takes the values its branch would. */
+    const __m128 sgn = _mm_set1_ps(-0.0f);
+    const __m128 y4 = _mm_loadu_ps(y), x4 = _mm_loadu_ps(x);
+    const __m128 ay = _mm_andnot_ps(sgn, y4), ax = _mm_andnot_ps(sgn, x4);
+    const __m128i lim = _mm_set1_epi32(0x5f800000), zero = _mm_setzero_si128();   /* 2^64 */
+    const __m128i by = _mm_castps_si128(ay), bx = _mm_castps_si128(ax);
+    const __m128i ok = _mm_and_si128(_mm_and_si128(_mm_cmpgt_epi32(by, zero), _mm_cmplt_epi32(by, lim)),
+                                     _mm_and_si128(_mm_cmpgt_epi32(bx, zero), _mm_cmplt_epi32(bx, lim)));
+    if (_mm_movemask_epi8(ok) == 0xffff) {
+        const __m128 xneg = _mm_castsi128_ps(_mm_srai_epi32(_mm_castps_si128(x4), 31));
+        const __m128 swap = _mm_cmpgt_ps(ay, ax);
+        const __m128 mx = _mm_max_ps(ay, ax);
+        /* 2^64 where den < 1, else 1 */
+        const __m128 f = _mm_max_ps(_mm_set1_ps(1.0f),
+                                    _mm_and_ps(_mm_cmplt_ps(mx, _mm_set1_ps(1.0f)), _mm_set1_ps(0x1p64f)));
+        const __m128 num = _mm_mul_ps(_mm_min_ps(ay, ax), f), den = _mm_mul_ps(mx, f);
+        const __m128 big = _mm_cmpgt_ps(num, _mm_mul_ps(_mm_set1_ps(0.41421356f), den));
+        const __m128 dn = _mm_sub_ps(num, den), sm = _mm_add_ps(num, den);
+        const __m128 ed = _mm_sub_ps(num, _mm_add_ps(dn, den)), es = _mm_sub_ps(num, _mm_sub_ps(sm, den));
+        const __m128 nn = select_ps(big, dn, num), dd = select_ps(big, sm, den);
+        const __m128 neg = _mm_and_ps(_mm_xor_ps(swap, xneg), sgn);
+        /* the base angle k pi/4: k = 1 or 3 (x < 0) when big, else 2 (swap), 4 (x < 0) or 0 */
+        const __m128i bi = _mm_castps_si128(big), si = _mm_castps_si128(swap);
+        const __m128i xi = _mm_castps_si128(xneg), bx3 = _mm_and_si128(bi, xi);
+        const __m128i k = _mm_or_si128(
+            _mm_or_si128(_mm_and_si128(bi, _mm_set1_epi32(1)), _mm_and_si128(bx3, _mm_set1_epi32(2))),
+            _mm_andnot_si128(bi, _mm_or_si128(_mm_and_si128(si, _mm_set1_epi32(2)),
+                                              _mm_andnot_si128(si, _mm_and_si128(xi, _mm_set1_epi32(4))))));
+        const __m128 kf = _mm_cvtepi32_ps(k);
+        __m128 u = _mm_div_ps(nn, dd), res, du, hi, lo, s, t, rr;
+        res = quotient_residual_ps(nn, dd, u);
+        du = _mm_div_ps(select_ps(big, _mm_sub_ps(_mm_add_ps(res, ed), _mm_mul_ps(u, es)), res), dd);
+        du = _mm_and_ps(du, _mm_or_ps(big, _mm_cmpge_ps(num, _mm_set1_ps(0x1p-60f))));
+        /* k PIO4_HI is exact for k = 0, 1, 2, 4 and rounds to PI3O4_HI for k = 3; k PIO4_LO is
+         * exact for k != 3 (-0 for k = 0, where the scalar has +0: the sum lo + x below
+         * never meets x = -0, as x >= +0 whenever it is zero there). */
+        hi = _mm_mul_ps(kf, _mm_set1_ps(PIO4_HI));
+        lo = select_ps(_mm_castsi128_ps(bx3), _mm_set1_ps(PI3O4_LO), _mm_mul_ps(kf, _mm_set1_ps(PIO4_LO)));
+        u = _mm_xor_ps(u, neg);
+        du = _mm_xor_ps(du, neg);
+        s = _mm_add_ps(hi, u);
+        t = _mm_add_ps(_mm_sub_ps(hi, s), u);
+        rr = _mm_add_ps(s, _mm_add_ps(t, _mm_add_ps(lo, _mm_add_ps(atan_tail_ps(u),
+                 _mm_div_ps(du, _mm_add_ps(_mm_set1_ps(1.0f), _mm_mul_ps(u, u)))))));
+        _mm_storeu_ps(r, _mm_xor_ps(rr, _mm_and_ps(y4, sgn)));
+        return;
+    }
+    n = 4;
+#endif
+    for (i = 0; i < n; i++) r[i] = qo_fm_atan2_f32(y[i], x[i]);
 }
 
 /* sqrt(1 - x^2) with 1 - x^2 = (1 - x)(1 + x): 1 - x is exact for |x| >= 1/2. */

@@ -3,10 +3,12 @@
 #include "qorient/interp.h"
 
 #include <math.h>
+#include <stdint.h>
 
 #include "qorient/fmath.h"
 
 #include "qorient/quat.h"
+#include "fmath_internal.h"
 
 #define QO_PI_F 3.14159265358979f
 
@@ -180,10 +182,13 @@ qo_status qo_quat_nlerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *
  * a double sweep of u and th: 2.4e-8 at 7 terms, 3.3e-9 at 8, which measured no better in
  * bench/accuracy_interp). Its derivative in y is below 0.13, so the rounding of y (near
  * th = 0, where y cancels) costs < 1e-8. Two weights at once: shared y terms. */
+#define QO_SER_K1(i) ((float)(i) / (float)(2 * (i) + 1))
+#define QO_SER_K2(i) (1.0f / (float)((i) * (2 * (i) + 1)))
 #define QO_SER_STEP(i) \
-    vy = y * ((float)(i) / (float)(2 * (i) + 1)); \
-    ra = 1.0f + (ua * (1.0f / (float)((i) * (2 * (i) + 1))) - vy) * ra; \
-    rb = 1.0f + (ub * (1.0f / (float)((i) * (2 * (i) + 1))) - vy) * rb
+    vy = y * QO_SER_K1(i); \
+    ra = 1.0f + (ua * QO_SER_K2(i) - vy) * ra; \
+    rb = 1.0f + (ub * QO_SER_K2(i) - vy) * rb
+#if !QO_SIMD_SSE2
 static void sin_ratios(float u, float y, float *wa, float *wb)
 {
     float va = 1.0f - u, vb = u;
@@ -194,6 +199,40 @@ static void sin_ratios(float u, float y, float *wa, float *wb)
     *wb = vb * rb;
 }
 #undef QO_SER_STEP
+#endif
+
+#if QO_SIMD_SSE2
+/* sin_ratios with the two weights in lanes 0 and 1, lane for lane the same operations (so the
+ * same bits). The step coefficients uu K2(i) - y K1(i) do not depend on the running sums, so
+ * two steps' pairs are made in one 4-wide operation (lanes 2, 3 hold step i - 1); only the
+ * nested 1 + c r is sequential. */
+#define QO_SER_C(k2, k1, i) \
+    _mm_sub_ps(_mm_mul_ps(uu, _mm_set_ps(k2, k2, QO_SER_K2(i), QO_SER_K2(i))), \
+               _mm_mul_ps(y4, _mm_set_ps(k1, k1, QO_SER_K1(i), QO_SER_K1(i))))
+#define QO_SER_PAIR(v, i) QO_SER_C(QO_SER_K2(v), QO_SER_K1(v), i)
+static __m128 sin_ratios_ps(float u, float y)
+{
+    /* (va, vb, 0, 0) = (1 - u, u, 0, 0) as 1 + (-1) u: the same rounding as 1 - u */
+    const __m128 v = _mm_add_ps(_mm_mul_ps(_mm_set1_ps(u), _mm_set_ps(0.0f, 0.0f, 1.0f, -1.0f)),
+                                _mm_set_ps(0.0f, 0.0f, 0.0f, 1.0f));
+    const __m128 y4 = _mm_set1_ps(y), one = _mm_set1_ps(1.0f);
+    const __m128 uv = _mm_mul_ps(_mm_mul_ps(v, v), y4), uu = _mm_movelh_ps(uv, uv);
+    const __m128 c76 = QO_SER_PAIR(6, 7), c54 = QO_SER_PAIR(4, 5), c32 = QO_SER_PAIR(2, 3);
+    const __m128 c1 = QO_SER_C(0.0f, 0.0f, 1);        /* lanes 2, 3 unused */
+    __m128 r = _mm_add_ps(one, c76);                  /* 1 + c7 * 1: the product is exact */
+    r = _mm_add_ps(one, _mm_mul_ps(_mm_movehl_ps(r, c76), r));
+    r = _mm_add_ps(one, _mm_mul_ps(c54, r));
+    r = _mm_add_ps(one, _mm_mul_ps(_mm_movehl_ps(r, c54), r));
+    r = _mm_add_ps(one, _mm_mul_ps(c32, r));
+    r = _mm_add_ps(one, _mm_mul_ps(_mm_movehl_ps(r, c32), r));
+    r = _mm_add_ps(one, _mm_mul_ps(c1, r));
+    return _mm_mul_ps(v, r);
+}
+#undef QO_SER_PAIR
+#undef QO_SER_C
+#endif
+#undef QO_SER_K1
+#undef QO_SER_K2
 
 /* Short (longway == 0) or long (longway != 0) slerp. */
 static qo_status slerp_common(qo_quat_f32 a, qo_quat_f32 b, float t, int longway,
@@ -230,44 +269,103 @@ static qo_status slerp_common(qo_quat_f32 a, qo_quat_f32 b, float t, int longway
     return QO_OK;
 }
 
+#if QO_SIMD_SSE2
+static uint32_t bits_of(float f)
+{
+    union { float f; uint32_t u; } b;
+    b.f = f;
+    return b.u;
+}
+#endif
+
+/* The weights of a' and b' (wa a' + wb b', not yet normalised) for t in (0, 1) and
+ * x = cos th >= 0 of the unit inputs after the short-way flip.
+ * The unit midpoint m = (a' + b') / (2 c), c = cos(th/2) = sqrt((1 + x)/2) >= 0.707, splits
+ * the arc into two halves of th/2 <= pi/4; the weights of the half that holds t come from
+ * sin_ratios (no angle, no sine), and m's weight is folded into those of a' and b'
+ * (r = alpha a' + beta b'), so m is never formed. */
+static void slerp_half_weights(float t, float x, float *wa, float *wb)
+{
+    float c = qo_fm_sqrt_nonneg(0.5f + 0.5f * x), h = 0.5f / c;
+    /* 2t and 2t - 1 are exact (the latter by Sterbenz) */
+    float u = t <= 0.5f ? 2.0f * t : 2.0f * t - 1.0f;
+#if QO_SIMD_SSE2
+    __m128 w = sin_ratios_ps(u, c - 1.0f);
+    *wa = _mm_cvtss_f32(w);
+    *wb = _mm_cvtss_f32(QO_SIMD_SHUFFLE_PS(w, 0x55));
+#else
+    sin_ratios(u, c - 1.0f, wa, wb);
+#endif
+    if (t <= 0.5f) {                                 /* r = wa a' + wb m */
+        *wb *= h;
+        *wa += *wb;
+    } else {                                         /* r = wa m + wb b' */
+        *wa *= h;
+        *wb += *wa;
+    }
+}
+
+/* t == 0 or t == 1 in the one-pass case: the endpoints are qo_quat_normalize_f32's own result
+ * (the squared norms are in its fast range, so it cannot fail), b' = -b negated after it
+ * (negation is exact). */
+static qo_status slerp_end(qo_quat_f32 a, qo_quat_f32 b, float t, int flip, qo_quat_f32 *out)
+{
+    (void)qo_quat_normalize_f32(t == 0.0f ? a : b, out);
+    if (t == 1.0f && flip) *out = neg_q(*out);
+    return QO_OK;
+}
+
 qo_status qo_quat_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out)
 {
-    float na = qo_quat_dot_f32(a, a), nb = qo_quat_dot_f32(b, b), ia, ib, x, c, h, u, wa, wb;
     /* The common case in one pass: both squared norms in qo_quat_normalize_f32's fast range
      * (so finite and non-zero) and t in [0, 1]. Everything else - every error, NaN t, inputs
-     * that need scaling - takes slerp_common (same contract; its endpoints are these bits). */
+     * that need scaling - takes slerp_common (same contract; its endpoints are these bits).
+     * a * ia is unit a, bit for bit as qo_quat_normalize_f32; x = cos th; b' = -b (ib < 0)
+     * for the short way. The output is normalised (its norm is 1 to a few ulp before). */
+    float ia, ib, x, wa, wb;
+#if QO_SIMD_SSE2
+    /* The three dot products a.a, b.b, a.b at once: the products transposed to columns and
+     * summed ((p0 + p1) + p2) + p3 per lane, the scalar order; the range test is one compare
+     * pair on both norms plus t's bits (t in [+0, 1] <=> bits <= those of 1). Every lane
+     * operation is the scalar code's, so the bits are the same on every target. */
+    const __m128 a4 = _mm_set_ps(a.z, a.y, a.x, a.w), b4 = _mm_set_ps(b.z, b.y, b.x, b.w);
+    const __m128 pa = _mm_mul_ps(a4, a4), pb = _mm_mul_ps(b4, b4), pab = _mm_mul_ps(a4, b4);
+    const __m128 lo = _mm_unpacklo_ps(pa, pb), hi = _mm_unpackhi_ps(pa, pb);
+    const __m128 plo = _mm_unpacklo_ps(pab, pab), phi = _mm_unpackhi_ps(pab, pab);
+    const uint32_t tb = bits_of(t);
+    __m128 s, inv, r4;
+    s = _mm_add_ps(_mm_movelh_ps(lo, plo), _mm_movehl_ps(plo, lo));
+    s = _mm_add_ps(s, _mm_movelh_ps(hi, phi));
+    s = _mm_add_ps(s, _mm_movehl_ps(phi, hi));        /* (a.a, b.b, a.b, a.b) */
+    if (out == NULL || tb > 0x3f800000u ||
+        (_mm_movemask_ps(_mm_and_ps(_mm_cmpge_ps(s, _mm_set_ps(0.0f, 0.0f, 1e-30f, 1e-30f)),
+                                    _mm_cmple_ps(s, _mm_set_ps(0.0f, 0.0f, 1e30f, 1e30f)))) & 3) != 3)
+        return slerp_common(a, b, t, 0, out);
+    inv = _mm_div_ps(_mm_set1_ps(1.0f), _mm_sqrt_ps(s));
+    ia = _mm_cvtss_f32(inv);
+    ib = _mm_cvtss_f32(QO_SIMD_SHUFFLE_PS(inv, 0x55));
+    x = _mm_cvtss_f32(_mm_movehl_ps(s, s)) * (ia * ib);
+    if (x < 0.0f) { ib = -ib; x = -x; }
+    if (tb - 1u >= 0x3f7fffffu) return slerp_end(a, b, t, ib < 0.0f, out);  /* t 0 or 1 */
+    slerp_half_weights(t, x, &wa, &wb);
+    /* comb_q and qo_quat_normalize_f32's SSE2 body (|r| ~ 1 is in its fast range) */
+    r4 = _mm_add_ps(_mm_mul_ps(_mm_set1_ps(wa * ia), a4), _mm_mul_ps(_mm_set1_ps(wb * ib), b4));
+    s = qo_simd_sum4_ss(_mm_mul_ps(r4, r4));
+    inv = _mm_div_ss(_mm_set_ss(1.0f), _mm_sqrt_ss(s));
+    _mm_storeu_ps(&out->w, _mm_mul_ps(r4, QO_SIMD_SHUFFLE_PS(inv, 0x00)));
+#else
+    float na = qo_quat_dot_f32(a, a), nb = qo_quat_dot_f32(b, b);
     if (out == NULL || !(na >= 1e-30f && na <= 1e30f && nb >= 1e-30f && nb <= 1e30f &&
                          t >= 0.0f && t <= 1.0f))
         return slerp_common(a, b, t, 0, out);
-    ia = 1.0f / sqrtf(na);   /* a * ia is unit a, bit for bit as qo_quat_normalize_f32 */
+    ia = 1.0f / sqrtf(na);
     ib = 1.0f / sqrtf(nb);
-    x = qo_quat_dot_f32(a, b) * (ia * ib);           /* cos th */
-    if (x < 0.0f) { ib = -ib; x = -x; }              /* short way: b' = -b */
-    if (t == 0.0f || t == 1.0f) {
-        /* the endpoints are qo_quat_normalize_f32's own result (na, nb are in its fast range,
-         * so it cannot fail), b' = -b negated after it (negation is exact) */
-        (void)qo_quat_normalize_f32(t == 0.0f ? a : b, out);
-        if (t == 1.0f && ib < 0.0f) *out = neg_q(*out);
-        return QO_OK;
-    }
-    /* The unit midpoint m = (a' + b') / (2 c), c = cos(th/2) = sqrt((1 + x)/2) >= 0.707,
-     * splits the arc into two halves of th/2 <= pi/4; the weights of the half that holds t
-     * come from sin_ratios (no angle, no sine), and m's weight is folded into those of a'
-     * and b' (r = alpha a' + beta b'), so m is never formed. The output is normalised (its
-     * norm is 1 to a few ulp before that). */
-    c = sqrtf(0.5f + 0.5f * x);
-    h = 0.5f / c;
-    /* 2t and 2t - 1 are exact (the latter by Sterbenz) */
-    u = t <= 0.5f ? 2.0f * t : 2.0f * t - 1.0f;
-    sin_ratios(u, c - 1.0f, &wa, &wb);
-    if (t <= 0.5f) {                                 /* r = wa a' + wb m */
-        wb *= h;
-        wa += wb;
-    } else {                                         /* r = wa m + wb b' */
-        wa *= h;
-        wb += wa;
-    }
+    x = qo_quat_dot_f32(a, b) * (ia * ib);
+    if (x < 0.0f) { ib = -ib; x = -x; }
+    if (t == 0.0f || t == 1.0f) return slerp_end(a, b, t, ib < 0.0f, out);
+    slerp_half_weights(t, x, &wa, &wb);
     (void)qo_quat_normalize_f32(comb_q(wa * ia, a, wb * ib, b), out);   /* cannot fail */
+#endif
     return QO_OK;
 }
 

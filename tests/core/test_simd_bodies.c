@@ -1,0 +1,221 @@
+/*
+ * The SIMD bodies of the float32 core against their portable scalar bodies, bit for bit
+ * (issue 14: the same results on every target, and x86-64 is the only one with these bodies):
+ *  - qo_quat_slerp_f32's SSE2 body (three dot products, the range test and the half-arc series
+ *    4-wide) against its scalar body: this file compiles lib/src/interp.c once more with
+ *    QO_NO_SIMD under other names (scalar_*), and the library's result must be the same bits
+ *    and status on random pairs, both sides of every branch (flip, t <= 1/2, endpoints, the
+ *    fast range of the squared norms) and every error; each result is also checked against a
+ *    double-precision slerp.
+ *  - qo_fm_atan2x4_f32 (lib/src/fmath_internal.h, the Euler decomposition's four atan2 at
+ *    once, 4-wide on SSE2) against qo_fm_atan2_f32 lane by lane, on random pairs of every
+ *    octant and scale, both sides of each branch of the scalar kernel, and groups holding a
+ *    special value (zero, subnormal, Inf, NaN) that take the per-lane path.
+ * Where SSE2 is not used both sides are the scalar code and only the double check can fail.
+ * Linux only (make test, aarch64 and armhf under make test-qemu): it includes private files
+ * of lib/src, which keeps it off the Cortex-M list (tests/qemu/run-target.sh is_core).
+ * Fixed seeds; a failure names the case and its inputs.
+ */
+/* The scalar bodies: QO_NO_SIMD before the first qorient header (the library's own objects
+ * keep their SIMD bodies). */
+#define QO_NO_SIMD
+#include <float.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "qorient/quat.h"
+#include "common/ref.h"
+
+/* qorient/interp.h comes in with interp.c below, its names renamed there. */
+/* lib/src/interp.c again, every external name renamed (so it links beside the library). */
+#define qo_quat_lerp_f32 scalar_quat_lerp_f32
+#define qo_quat_nlerp_f32 scalar_quat_nlerp_f32
+#define qo_quat_slerp_f32 scalar_quat_slerp_f32
+#define qo_quat_slerp_long_f32 scalar_quat_slerp_long_f32
+#define qo_quat_slerp_rate_f32 scalar_quat_slerp_rate_f32
+#define qo_quat_align_keys_f32 scalar_quat_align_keys_f32
+#define qo_quat_bezier_f32 scalar_quat_bezier_f32
+#define qo_quat_bezier3_f32 scalar_quat_bezier3_f32
+#define qo_quat_spline_controls_f32 scalar_quat_spline_controls_f32
+#define qo_quat_spline_eval_f32 scalar_quat_spline_eval_f32
+#define qo_quat_squad_f32 scalar_quat_squad_f32
+#define qo_quat_squad_controls_f32 scalar_quat_squad_controls_f32
+#include "../lib/src/interp.c"
+#undef qo_quat_lerp_f32
+#undef qo_quat_nlerp_f32
+#undef qo_quat_slerp_f32
+#undef qo_quat_slerp_long_f32
+#undef qo_quat_slerp_rate_f32
+#undef qo_quat_align_keys_f32
+#undef qo_quat_bezier_f32
+#undef qo_quat_bezier3_f32
+#undef qo_quat_spline_controls_f32
+#undef qo_quat_spline_eval_f32
+#undef qo_quat_squad_f32
+#undef qo_quat_squad_controls_f32
+qo_status qo_quat_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out);
+#include "qorient/fmath.h"
+#include "../lib/src/fmath_internal.h"
+
+static int same_quat_bits(qo_quat_f32 a, qo_quat_f32 b)
+{
+    return memcmp(&a, &b, sizeof a) == 0;
+}
+
+#define N_SLERP 200000
+
+/* Double slerp of the short way, for the library's result: the rotation error in radians. */
+static double slerp_error(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 q)
+{
+    ref_quat ra = ref_quat_normalize(ref_quat_from_f32(a)), rb = ref_quat_normalize(ref_quat_from_f32(b));
+    ref_quat r;
+    double d = ra.w * rb.w + ra.x * rb.x + ra.y * rb.y + ra.z * rb.z, th, wa, wb, n;
+    if (d < 0.0) { rb.w = -rb.w; rb.x = -rb.x; rb.y = -rb.y; rb.z = -rb.z; d = -d; }
+    th = acos(d > 1.0 ? 1.0 : d);
+    if (th < 1e-9) { wa = 1.0 - t; wb = t; }
+    else { wa = sin((1.0 - t) * th) / sin(th); wb = sin(t * th) / sin(th); }
+    r.w = wa * ra.w + wb * rb.w; r.x = wa * ra.x + wb * rb.x;
+    r.y = wa * ra.y + wb * rb.y; r.z = wa * ra.z + wb * rb.z;
+    n = ref_quat_norm(r);
+    r.w /= n; r.x /= n; r.y /= n; r.z /= n;
+    return ref_quat_angle_between(r, ref_quat_from_f32(q));
+}
+
+static qo_quat_f32 quat4(float w, float x, float y, float z)
+{
+    qo_quat_f32 q;
+    q.w = w; q.x = x; q.y = y; q.z = z;
+    return q;
+}
+
+static void test_slerp_simd_same_bits(void **state)
+{
+    ref_rng rng = { 0x51E4B175 };
+    const float special_t[] = { 0.0f, -0.0f, 1.0f, 0.5f, 0x1p-24f, 0x1.fffffep-1f, 0x1.000002p-1f,
+                                -0x1p-149f, 0x1.000002p+0f, 2.0f, NAN, INFINITY, -INFINITY };
+    /* multipliers that move a squared norm across [1e-30, 1e30] (the fast range) */
+    const float scale[] = { 1.0f, 0.5f, 2.0f, 1e-15f, 0.99e-15f, 1.01e-15f, 1e15f, 0.99e15f,
+                            1.01e15f, 1e-20f, 1e20f, 0.0f, INFINITY, NAN };
+    long n, fast = 0, flipped = 0;
+    double worst = 0.0;
+    (void)state;
+    for (n = 0; n < N_SLERP; n++) {
+        qo_quat_f32 a = ref_quat_to_f32(ref_rng_quat(&rng)), b = ref_quat_to_f32(ref_rng_quat(&rng));
+        qo_quat_f32 q1, q2;
+        float t = (float)ref_rng_unit(&rng), sa = 1.0f, sb = 1.0f;
+        qo_status s1, s2;
+        int kind = (int)(ref_rng_next(&rng) % 24u);
+        switch (kind) {
+        case 0: b = a; break;                                           /* identical */
+        case 1: b = quat4(-a.w, -a.x, -a.y, -a.z); break;               /* antipodal: same rotation */
+        case 2: b = quat4(-a.w, -a.x, -a.y, -a.z); b.x += 0x1p-22f; break;     /* nearly so */
+        case 3: b = quat4(a.x, -a.w, a.z, -a.y); break;                 /* dot == 0: 180 deg */
+        case 4: b = a; b.y += 0x1p-23f; break;                          /* nearly identical */
+        case 5: t = special_t[ref_rng_next(&rng) % (sizeof special_t / sizeof special_t[0])]; break;
+        case 6:
+            sa = scale[ref_rng_next(&rng) % (sizeof scale / sizeof scale[0])];
+            sb = scale[ref_rng_next(&rng) % (sizeof scale / sizeof scale[0])];
+            break;
+        case 7: a.z = NAN; break;
+        case 8: b.w = -INFINITY; break;
+        default: break;
+        }
+        a = quat4(a.w * sa, a.x * sa, a.y * sa, a.z * sa);
+        b = quat4(b.w * sb, b.x * sb, b.y * sb, b.z * sb);
+        memset(&q1, 0x5a, sizeof q1);
+        memset(&q2, 0xa5, sizeof q2);
+        s1 = qo_quat_slerp_f32(a, b, t, &q1);
+        s2 = scalar_quat_slerp_f32(a, b, t, &q2);
+        if (s1 != s2 || !same_quat_bits(q1, q2))
+            fail_msg("slerp case %ld (kind %d): SIMD status %d (%a, %a, %a, %a), scalar status %d "
+                     "(%a, %a, %a, %a); a (%a, %a, %a, %a) b (%a, %a, %a, %a) t %a", n, kind,
+                     (int)s1, (double)q1.w, (double)q1.x, (double)q1.y, (double)q1.z, (int)s2,
+                     (double)q2.w, (double)q2.x, (double)q2.y, (double)q2.z, (double)a.w,
+                     (double)a.x, (double)a.y, (double)a.z, (double)b.w, (double)b.x, (double)b.y,
+                     (double)b.z, (double)t);
+        if (s1 == QO_OK) {
+            double err = slerp_error(a, b, t, q1);
+            if (err > worst) worst = err;
+            if (err > 1e-6)
+                fail_msg("slerp case %ld (kind %d): %.3g rad from the double slerp; a (%a, %a, %a, "
+                         "%a) b (%a, %a, %a, %a) t %a", n, kind, err, (double)a.w, (double)a.x,
+                         (double)a.y, (double)a.z, (double)b.w, (double)b.x, (double)b.y,
+                         (double)b.z, (double)t);
+            fast++;
+            if (a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z < 0.0f) flipped++;
+        }
+    }
+    /* the cases above reach both sides of the flip and most inputs succeed */
+    assert_true(fast > N_SLERP / 2);
+    assert_true(flipped > N_SLERP / 8);
+    print_message("slerp: %ld of %d cases succeeded (%ld flipped), SIMD == scalar bits, "
+                  "worst %.3g rad vs double\n", fast, N_SLERP, flipped, worst);
+}
+
+#define N_ATAN 400000
+
+/* A float of a random kind: a unit-scale value, one scaled to the edges of the kernel's
+ * 2^-+64 rescaling and the 2^-60 residual cut, any bit pattern, or a special value. */
+static float atan_arg(ref_rng *rng)
+{
+    static const float special[] = { 0.0f, -0.0f, 0x1p-149f, -0x1p-130f, INFINITY, -INFINITY,
+                                     NAN, FLT_MAX, -FLT_MIN, 1.0f, 0x1p64f, 0x1.fffffep63f };
+    static const float scale[] = { 1.0f, 0x1p-60f, 0x1p-64f, 0x1p-70f, 0x1p64f, 0x1p70f, 0x1p-100f,
+                                   0x1p100f };
+    uint64_t k = ref_rng_next(rng);
+    float v = (float)ref_rng_range(rng, -1.0, 1.0);
+    uint32_t u = (uint32_t)(k >> 32);
+    switch (k % 16u) {
+    case 0: memcpy(&v, &u, sizeof v); return v;
+    case 1: return special[u % (sizeof special / sizeof special[0])];
+    case 2: case 3: return v * scale[u % (sizeof scale / sizeof scale[0])];
+    default: return v;
+    }
+}
+
+static void test_atan2x4_same_bits(void **state)
+{
+    ref_rng rng = { 0xA7A42F4 };
+    long n, wide = 0;
+    (void)state;
+    for (n = 0; n < N_ATAN; n++) {
+        float y[4], x[4], r[4], s;
+        int l, all_ok = 1;
+        for (l = 0; l < 4; l++) {
+            x[l] = atan_arg(&rng);
+            /* y on or near the octant lines |y| = |x| and |y| = tan(pi/8) |x| half the time */
+            switch (ref_rng_next(&rng) % 6u) {
+            case 0: y[l] = x[l]; break;
+            case 1: y[l] = -0.41421356f * x[l]; break;
+            case 2: y[l] = x[l] * (float)ref_rng_range(&rng, 0.41, 0.42); break;
+            default: y[l] = atan_arg(&rng); break;
+            }
+            if (!(isfinite(x[l]) && isfinite(y[l]) && x[l] != 0.0f && y[l] != 0.0f)) all_ok = 0;
+        }
+        wide += all_ok;
+        qo_fm_atan2x4_f32(y, x, r, 4);
+        for (l = 0; l < 4; l++) {
+            s = qo_fm_atan2_f32(y[l], x[l]);
+            if (memcmp(&s, &r[l], sizeof s) != 0 && !(isnan(s) && isnan(r[l])))
+                fail_msg("atan2x4 case %ld lane %d: atan2(%a, %a) = %a, the scalar kernel %a",
+                         n, l, (double)y[l], (double)x[l], (double)r[l], (double)s);
+        }
+    }
+    /* most groups take the 4-wide path (all finite and non-zero), some the per-lane one */
+    assert_true(wide > N_ATAN / 4 && wide < N_ATAN);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_slerp_simd_same_bits),
+        cmocka_unit_test(test_atan2x4_same_bits),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
