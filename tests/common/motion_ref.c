@@ -318,3 +318,31 @@ double mref_rest_time(double D, double V, double A, double J)
     tj = cbrt(d / (2 * J));
     return 4 * tj;
 }
+
+void mref_vchange(double v0, double a0, double v1, double A, double J, double *dp, double *dt)
+{
+    double vn = v0 + a0 * fabs(a0) / (2 * J), s = v1 >= vn ? 1 : -1, as = s * a0, dv = s * (v1 - v0), ap;
+    double t[3], jj[3], p = 0, v = v0, a = a0;
+    int k;
+    if (as >= A) ap = A;
+    else {
+        ap = sqrt(fmax(J * dv + 0.5 * as * as, 0));
+        if (ap > A) ap = A;
+        if (ap < as) ap = as;
+    }
+    t[0] = fabs(ap - as) / J;
+    t[2] = ap / J;
+    t[1] = ap > 0 ? (dv - 0.5 * (as + ap) * t[0] - 0.5 * ap * t[2]) / ap : 0;
+    if (t[1] < 0) t[1] = 0;
+    jj[0] = (ap >= as ? 1 : -1) * s * J;
+    jj[1] = 0;
+    jj[2] = -s * J;
+    for (k = 0; k < 3; k++) {
+        double d = t[k];
+        p += v * d + a * d * d / 2 + jj[k] * d * d * d / 6;
+        v += a * d + jj[k] * d * d / 2;
+        a += jj[k] * d;
+    }
+    *dp = p;
+    *dt = t[0] + t[1] + t[2];
+}

@@ -8,6 +8,8 @@
  *   mref_vel_time       minimum time of a velocity change (v0, a0) -> (v1, a1)
  *   mref_rest_time      closed-form rest-to-rest minimum time (symmetric limits), the oracle's
  *                       own check
+ *   mref_vchange        one fastest velocity change to a = 0 (symmetric limits): its displacement
+ *                       and duration (the family references of test_motion.c and bench_motion.c)
  *
  * Method (exhaustive search over switching times, not the library's root search on one
  * velocity): any time-optimal profile of a triple integrator with |j| <= J, a in [amin, amax],
@@ -38,5 +40,10 @@ double mref_vel_time(const mref_lim *l, double v0, double a0, double v1, double 
 
 /* Closed form: rest-to-rest minimum time over distance D (any sign), symmetric limits V, A, J. */
 double mref_rest_time(double D, double V, double A, double J);
+
+/* Fastest change from (v0, a0) to (v1, 0) with |a| <= A, |jerk| <= J (one pulse toward v1,
+ * held at +-A when it would exceed it; an a0 beyond A is ramped back first): its displacement
+ * *dp [u] and duration *dt [s]. Integrated in double from its three phases. */
+void mref_vchange(double v0, double a0, double v1, double A, double J, double *dp, double *dt);
 
 #endif

@@ -288,39 +288,11 @@ static void test_trapezoid_moving_optimal(void **state)
 
 /* Family search in double: the shortest profile "velocity change to vc, cruise, stop" that ends
  * at the target, over a dense grid of vc. An independent implementation of the profile pieces. */
-static void ref_vchange(double v0, double a0, double v1, double A, double J, double *dp, double *dt)
-{
-    double vn = v0 + a0 * fabs(a0) / (2 * J), s = v1 >= vn ? 1 : -1, as = s * a0, dv = s * (v1 - v0), ap;
-    double t1, t2, t3, p = 0, v = v0, a = a0, segs[3][2];
-    int k;
-    if (as >= A) ap = A;
-    else {
-        ap = sqrt(fmax(J * dv + 0.5 * as * as, 0));
-        if (ap > A) ap = A;
-        if (ap < as) ap = as;
-    }
-    t1 = fabs(ap - as) / J;
-    t3 = ap / J;
-    t2 = ap > 0 ? (dv - 0.5 * (as + ap) * t1 - 0.5 * ap * t3) / ap : 0;
-    if (t2 < 0) t2 = 0;
-    segs[0][0] = t1; segs[0][1] = (ap >= as ? 1 : -1) * s * J;
-    segs[1][0] = t2; segs[1][1] = 0;
-    segs[2][0] = t3; segs[2][1] = -s * J;
-    for (k = 0; k < 3; k++) {
-        double d = segs[k][0], j = segs[k][1];
-        p += v * d + a * d * d / 2 + j * d * d * d / 6;
-        v += a * d + j * d * d / 2;
-        a += j * d;
-    }
-    *dp = p;
-    *dt = t1 + t2 + t3;
-}
-
 static double ref_family_at(double D, double v0, double a0, double A, double J, double vc)
 {
     double p1, t1, p2, t2, rem, tc;
-    ref_vchange(v0, a0, vc, A, J, &p1, &t1);
-    ref_vchange(vc, 0, 0, A, J, &p2, &t2);
+    mref_vchange(v0, a0, vc, A, J, &p1, &t1);
+    mref_vchange(vc, 0, 0, A, J, &p2, &t2);
     rem = D - p1 - p2;
     if (vc == 0) {
         if (fabs(rem) > 1e-9 * (1 + fabs(D))) return INFINITY;
