@@ -2,6 +2,7 @@
 #include "common/motion_ref.h"
 
 #include <math.h>
+#include <stddef.h>
 
 /* One transfer: at most 3 phases of (duration, jerk). */
 typedef struct xph {
@@ -345,4 +346,90 @@ void mref_vchange(double v0, double a0, double v1, double A, double J, double *d
     }
     *dp = p;
     *dt = t[0] + t[1] + t[2];
+}
+
+/* One transfer run from state s (velocity bounds checked): appends its phases to pr. */
+static void run_xfer(const mref_lim *l, rstate *s, const xph *x, mref_prof *pr)
+{
+    int k;
+    for (k = 0; k < 3; k++) {
+        run(l, s, x->d[k], x->j[k]);
+        if (pr && x->d[k] > 0.0) {
+            pr->d[pr->n] = x->d[k];
+            pr->j[pr->n++] = x->j[k];
+        }
+    }
+}
+
+/* The three transfers of the two-cruise family, (v0, a0) -> (v1, 0) -> (v2, 0) -> (vf, af), run
+ * from p0 without the cruises: 0 if one does not exist, else the state after them in *st (st->ok
+ * 0 if a velocity bound was crossed). */
+static int chain(const mref_lim *l, const double *s0, double v1, double v2, double vf, double af, xph *x, rstate *st)
+{
+    if (!xfer(l, s0[1], s0[2], v1, 0.0, &x[0]) || !xfer(l, v1, 0.0, v2, 0.0, &x[1]) || !xfer(l, v2, 0.0, vf, af, &x[2]))
+        return 0;
+    st->p = s0[0];
+    st->v = s0[1];
+    st->a = s0[2];
+    st->ok = 1;
+    run_xfer(l, st, &x[0], NULL);
+    run_xfer(l, st, &x[1], NULL);
+    run_xfer(l, st, &x[2], NULL);
+    return 1;
+}
+
+#define MREF_NX 160
+int mref_exact_time(const mref_lim *l, double p0, double v0, double a0, double pf, double vf, double af, double T,
+                    mref_prof *out)
+{
+    double xs[MREF_NX + 5], s0[3], best = -1.0, bv1 = 0.0, bv2 = 0.0, J = l->jmax, tol = 1e-12 * (1.0 + T);
+    int n = 0, i, k;
+    xph x[3];
+    rstate st;
+    s0[0] = p0;
+    s0[1] = v0;
+    s0[2] = a0;
+    for (i = 0; i <= MREF_NX; i++) xs[n++] = l->vmin + (l->vmax - l->vmin) * i / MREF_NX;
+    xs[n++] = 0.0;
+    xs[n++] = fmin(fmax(v0 + a0 * fabs(a0) / (2.0 * J), l->vmin), l->vmax);
+    xs[n++] = fmin(fmax(vf - af * fabs(af) / (2.0 * J), l->vmin), l->vmax);
+    xs[n++] = fmin(fmax(vf, l->vmin), l->vmax);
+    for (i = 0; i < n; i++) {
+        for (k = 0; k < n; k++) {
+            double v1 = xs[i], v2 = xs[k], R, S, m;
+            if (v1 == v2 || !chain(l, s0, v1, v2, vf, af, x, &st) || !st.ok) continue;
+            R = T - x[0].t - x[1].t - x[2].t;
+            if (R < -tol) continue;
+            /* t1 + t2 = R, v1 t1 + v2 t2 = S: S between v1 R and v2 R */
+            S = pf - st.p;
+            m = fmin(S - fmin(v1, v2) * R, fmax(v1, v2) * R - S);
+            if (m >= 0.0 && m > best) {
+                best = m;
+                bv1 = v1;
+                bv2 = v2;
+            }
+        }
+    }
+    if (!(best >= 0.0)) return 0;
+    if (out) {
+        double R, S, t1, t2;
+        chain(l, s0, bv1, bv2, vf, af, x, &st);
+        R = fmax(T - x[0].t - x[1].t - x[2].t, 0.0);
+        S = pf - st.p;
+        t1 = fmin(fmax((S - bv2 * R) / (bv1 - bv2), 0.0), R);
+        t2 = R - t1;
+        out->n = 0;
+        run_xfer(l, &st, &x[0], out);
+        if (t1 > 0.0) {
+            out->d[out->n] = t1;
+            out->j[out->n++] = 0.0;
+        }
+        run_xfer(l, &st, &x[1], out);
+        if (t2 > 0.0) {
+            out->d[out->n] = t2;
+            out->j[out->n++] = 0.0;
+        }
+        run_xfer(l, &st, &x[2], out);
+    }
+    return 1;
 }

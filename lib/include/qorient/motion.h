@@ -109,7 +109,17 @@
  *     extremum-velocity family only: a joint whose minimum is a dip or a two-holds shape (target
  *     states) has no profile of that family between its minimum and the family's own shortest,
  *     e.g. check-motion case 5781 joint 5: minimum 0.809 s, none between it and 2.018 s, so at
- *     a common 1.560 s it is reported unsynced (tests/core/test_motion.c).
+ *     a common 1.560 s it is reported unsynced. That gap is real, not the family's: no jerk
+ *     profile of any shape within the limits takes that joint to its target state in 1.560 s
+ *     (an LP over piecewise-constant jerk, tests/core/motion_gap_lp.py, finds profiles for
+ *     about [0.809, 0.861] s and [2.019 s, inf) only, none between even with the bounds widened;
+ *     tests/core/test_motion.c). A reading of it: the joint starts braking at a0 = -11.3 with
+ *     jmax 20.7 and a
+ *     positive bound amax of only 2.06; releasing the brake alone takes 0.55 s and carries it
+ *     through v = 0 to -0.56 u/s, after which only -0.72 u of travel remain until it must leave
+ *     at -3.05 u/s. Arriving later means spending the extra time near v = 0, and climbing back
+ *     there at amax 2.06 first takes the joint out to the 2.018 s profile. The narrow
+ *     [0.809, 0.861] s above its minimum (stretching the dip itself) is not searched either.
  *   - QO_MOTION_SYNC_PHASE: straight line in joint space: p_i(t) = p0_i + d_i s(t), one scalar
  *     profile s: 0 -> 1 with limits min_i(vmax_i/|d_i|) etc. (vmin_i for a joint moving the
  *     other way). Possible only when every joint's (v0, a0) and target (v, a) are proportional
