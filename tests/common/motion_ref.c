@@ -82,6 +82,7 @@ typedef struct rprob {
     double p0, v0, a0, pf, vf, af;
     double tol; /* position residual accepted as a root */
     double vs, vfloor; /* velocity scale of the move and its smallest (mref_min_time) */
+    double as, afloor; /* the same for accelerations */
 } rprob;
 
 /* Position residual of the profile through junction (vm, am) with a cruise of tc, its
@@ -183,15 +184,14 @@ static double ramp_vm(const rprob *q, int side, double am)
  * short pulse to a long one (e.g. raising v while a < 0 needs a pulse through a > 0), so the
  * vm scan cannot bracket them: scan am along each ramp curve instead. */
 #define MREF_NR 400
-static void scan_ramps(const rprob *q, double *best)
+static void scan_ramps_on(const rprob *q, double alo, double ahi, double *best)
 {
-    const mref_lim *l = q->l;
     int side, i;
     for (side = 0; side < 2; side++) {
         double px = 0.0, pf = NAN, T, f;
         int ok;
         for (i = 0; i <= MREF_NR; i++) {
-            double am = l->amin + (l->amax - l->amin) * i / MREF_NR;
+            double am = alo + (ahi - alo) * i / MREF_NR;
             f = eval(q, ramp_vm(q, side, am), am, 0.0, &T, &ok);
             if (ok && fabs(f) <= q->tol && T < *best) *best = T;
             if (i > 0 && f * pf < 0.0) {
@@ -216,9 +216,27 @@ static void scan_ramps(const rprob *q, double *best)
     }
 }
 
+/* Over the whole acceleration range, then (limits far above what the move uses) over the
+ * nested ranges +-as, as/8, ... down to the move's own accelerations, as scan_am does: on a grid
+ * over amax 7e5 (spacing 3500) a ramp into a target acceleration from am = -9.5 fell between two
+ * points and the reference answered 1.023 s for a 0.187 s profile (make check-motion wide case
+ * 4593). */
+static void scan_ramps(const rprob *q, double *best)
+{
+    const mref_lim *l = q->l;
+    double s;
+    int k;
+    scan_ramps_on(q, l->amin, l->amax, best);
+    for (s = q->as, k = 0; k < MREF_NEST && s >= q->afloor; s *= 0.125, k++) {
+        double lo = fmax(l->amin, -s), hi = fmin(l->amax, s);
+        if (hi - lo >= 0.125 * (l->amax - l->amin)) continue;
+        scan_ramps_on(q, lo, hi, best);
+    }
+}
+
 double mref_min_time(const mref_lim *l, double p0, double v0, double a0, double pf, double vf, double af)
 {
-    rprob q = { l, p0, v0, a0, pf, vf, af, 1e-9 * (1.0 + fabs(p0) + fabs(pf)), 0.0, 0.0 };
+    rprob q = { l, p0, v0, a0, pf, vf, af, 1e-9 * (1.0 + fabs(p0) + fabs(pf)), 0.0, 0.0, 0.0, 0.0 };
     double best = INFINITY, bam = 0.0, T, f, h, as, ah, afloor;
     int i, ok, lev;
     double special[5];
@@ -236,6 +254,8 @@ double mref_min_time(const mref_lim *l, double p0, double v0, double a0, double 
         q.vfloor = 0.5 * (w + fmin(sqrt(A * D), cbrt(D * D * J)));
         as = 8.0 * (fabs(a0) + fabs(af) + sqrt(J * q.vs));
         afloor = 0.5 * (fabs(a0) + fabs(af) + sqrt(J * q.vfloor));
+        q.as = as;
+        q.afloor = afloor;
     }
     /* Cruise on a velocity bound (junction (vmax, 0) or (vmin, 0)). */
     f = eval(&q, l->vmax, 0.0, 0.0, &T, &ok);

@@ -1366,19 +1366,30 @@ static void test_issue_case_5781(void **state)
 static void test_issue_wide_cases(void **state)
 {
     /* vmax amax jmax vmin amin p0 v0 a0 target vf af; reference minimum time [s] */
-    static const float k[3][11] = {
+    static const float k[7][11] = {
         { 213.814743f, 53426216.0f, 5595302.0f, -1512.05334f, 0.0f, 1.52252734f, -255.225052f, 45613.5039f,
           0.539765656f, 30.5376034f, 36096.2578f },
         { 435.081238f, 242049344.0f, 0.0290036742f, -4484.87402f, -17397108.0f, 1.32461739f, 0.503877342f,
           -0.0182543416f, 3.14128613f, 0.0f, 0.0f },
         { 7530.88574f, 4641462.5f, 176826224.0f, 0.0f, 0.0f, -1.75182283f, 851.211426f, -292182.625f, -1.31151021f,
           -612.781738f, 0.0f },
+        /* reference misses (its ramp scan had no finer grids at wide limits: 1.023 s, 10.084 s,
+         * 0.06770 s and 51.3 s answered; cases 4593, 3017, 4844 and TIME case 6009 joint 4) */
+        { 360143328.0f, 704838.625f, 280.217133f, 0.0f, 0.0f, 1.13213313f, -8.92523384f, -26.0776024f, -0.893977225f,
+          -13.2312098f, -40.8465424f },
+        { 4.07823229f, 2397.87158f, 0.00122738106f, -0.221188709f, -3220.08447f, -0.154341221f, 0.23450768f,
+          -0.0048279562f, 2.15349603f, 0.236644685f, 0.00140146608f },
+        { 1950.35327f, 25937800.0f, 21865.5898f, 0.0f, -2677787.25f, 0.956455708f, 69.7833862f, -888.684143f,
+          3.92463636f, 28.4488373f, 0.0f },
+        { 867207680.0f, 60.2769852f, 0.00187585352f, 0.0f, -46.3349533f, 1.69401598f, -0.164595485f, 0.0139138456f,
+          0.766678631f, -0.0651190057f, 0.0161515921f },
     };
-    static const double tref_want[3] = { 0.00904341187, 7.77719443, 0.0056687403 };
+    static const double tref_want[7] = { 0.00904341187, 7.77719443, 0.0056687403, 0.1870353, 10.0469592, 0.0673760848,
+                                         7.80808693 };
     qo_motion_settings_f32 st = { QO_MOTION_SCURVE, QO_MOTION_SYNC_NONE };
     size_t c;
     (void)state;
-    for (c = 0; c < 3; c++) {
+    for (c = 0; c < 7; c++) {
         qo_motion_limits_f32 l = qo_motion_limits_default;
         qo_motion_joint_f32 jt[1];
         qo_motion_planner_f32 pl;
