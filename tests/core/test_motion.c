@@ -1449,6 +1449,42 @@ static void test_issue_wide_cases(void **state)
     }
 }
 
+/* PHASE from nearly proportional starts with asymmetric limits (make check-motion wide PHASE case
+ * 4862: vmin 12x vmax): the proportionality test was 1e-6 of the larger velocity bound, so a
+ * start 1.5e-5 u/s off the straight line (15x 1e-6 of vmax) was taken onto it, and the plan began
+ * with that velocity step. Now 1e-6 of the tighter bound: the plan falls back to TIME and starts
+ * from the sampled state. */
+static void test_phase_step_asym(void **state)
+{
+    qo_motion_planner_f32 pl;
+    qo_motion_joint_f32 jts[2];
+    qo_motion_limits_f32 l[2];
+    qo_motion_settings_f32 st = { QO_MOTION_SCURVE, QO_MOTION_SYNC_PHASE };
+    const float p0[2] = { 0.0f, 0.0f }, tg[2] = { 10.0f, 1.0f }, v0[2] = { 1.0f, 0.1000150f };
+    float pos[2], vel[2], acc[2];
+    size_t i;
+    (void)state;
+    l[0] = l[1] = qo_motion_limits_default;
+    l[0].vmax = 10.0f;
+    l[0].amax = 10.0f;
+    l[0].jmax = 100.0f;
+    l[1].vmax = 1.0f;
+    l[1].vmin = -20.0f;
+    l[1].amax = 10.0f;
+    l[1].jmax = 100.0f;
+    assert_int_equal(qo_motion_init_f32(&pl, jts, 2, l, p0, 0.0f, &st), QO_OK);
+    for (i = 0; i < 2; i++) force_state(&pl, i, p0[i], v0[i], 0.0f);
+    assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, tg, NULL), QO_OK);
+    assert_int_equal(qo_motion_sample_f32(&pl, 0.0f, pos, vel, acc), QO_OK);
+    for (i = 0; i < 2; i++) {
+        if (fabs(vel[i] - v0[i]) > 1e-6 * l[i].vmax || fabs(pos[i] - p0[i]) > 1e-7 || acc[i] != 0.0f)
+            fail_msg("joint %zu starts at p %g v %.9g a %g, its state was p %g v %.9g a 0 (sync used %d)", i,
+                     (double)pos[i], (double)vel[i], (double)acc[i], (double)p0[i], (double)v0[i],
+                     (int)qo_motion_sync_used(&pl));
+    }
+    assert_int_equal(qo_motion_sync_used(&pl), QO_MOTION_SYNC_TIME);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1470,6 +1506,7 @@ int main(void)
         cmocka_unit_test(test_supported_range),
         cmocka_unit_test(test_issue_case_5781),
         cmocka_unit_test(test_issue_wide_cases),
+        cmocka_unit_test(test_phase_step_asym),
     };
     return cmocka_run_group_tests_name("motion", tests, NULL, NULL);
 }

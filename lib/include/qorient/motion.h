@@ -124,8 +124,10 @@
  *     profile s: 0 -> 1 with limits min_i(vmax_i/|d_i|) etc. (vmin_i for a joint moving the
  *     other way). Possible only when every joint's (v0, a0) and target (v, a) are proportional
  *     to its displacement d_i (all at rest is the usual case), within
- *     1e-6 of max(vmax, |v0|) and max(amax, |a0|), which bounds the velocity / acceleration
- *     step the straight line may introduce, and when the scalar limits min_i(vmax_i/|d_i|)...
+ *     1e-6 of max(min(vmax, -vmin), |v0|) and max(min(amax, -amin), |a0|) (the tighter bound:
+ *     with the larger, check-motion wide case 4862, vmin = -12 vmax, a re-plan jumped by
+ *     4e-6 vmax), which bounds the velocity / acceleration step the straight line may
+ *     introduce, and when the scalar limits min_i(vmax_i/|d_i|)...
  *     lie in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] (a tiny d_i makes them overflow
  *     float32 products), and when the straight line's phase coefficients keep every joint
  *     within its own vmax, amax, jmax (or its start values beyond them) to 1e-6 relative:
