@@ -199,12 +199,16 @@ extern "C" {
  * to 1e-5, continuous, at the goal), and every other limit gets QO_E_LIMIT:
  *   - vmax, amax, jmax in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] = [1e-3, 1e9] (checked
  *     log-uniform over the whole range, in every sync mode, from moving starts and to moving
- *     target states that can stop within a few units). Not yet clean at scale: the first 2,000
- *     wide groups of make check-motion (14,000 joints, NONE) have 3 joints off the reference by
- *     more than 0.1 % (two up to 1.26x slower, one 0.3 % faster: the reference's miss), all
- *     to moving target states with large ratios amax/jmax or accelerations; open (issue 11;
- *     QO_MOTION_ORACLE_FILTER=test_oracle_wide QO_MOTION_ORACLE_FIRST=1174, 1503 or 1900
- *     QO_MOTION_ORACLE_NUM=1 build/check/test_motion_oracle_1000000).
+ *     target states that can stop within a few units). Clean at scale: all 9,523 wide groups
+ *     of make check-motion (66,661 joints per sync mode, NONE, TIME, PHASE,
+ *     TIME_IF_NECESSARY) give 0 failures (QO_MOTION_ORACLE_FILTER=test_oracle_wide
+ *     build/check/test_motion_oracle_1000000, run in chunks with QO_MOTION_ORACLE_FIRST /
+ *     _NUM). What it found on the way, all to moving target states at extreme ratios: dips
+ *     dropped by a root tolerance that did not scale with the speed flown (1.26x slower), a
+ *     dip tolerance that let a plan snap 4.5e-6 of its move to the target (0.3 % faster than
+ *     possible), the reference's coarse ramp grid (up to 6.6x slower than the planner), and a
+ *     PHASE start step of 4e-6 vmax with vmin = -12 vmax (tests/core/test_motion.c:
+ *     test_issue_wide_cases, test_phase_step_asym).
  *     Beyond the range the float32 solver was seen
  *     up to 3.1x slower than optimal (limits over 1e-6..1e12, issue 11); subnormal
  *     or tiny limits would also give durations beyond float, huge ones overflowing products.
