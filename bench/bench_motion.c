@@ -22,6 +22,7 @@
 
 #include "qorient/motion.h"
 #include "qorient/motion_fx.h"
+#include "common/motion_ref.h"
 #include "common/ref.h"
 
 #define NJ 7
@@ -56,39 +57,11 @@ static int cmp_d(const void *a, const void *b)
 
 /* ---- independent double reference: the family "fastest velocity change to vc, cruise, fastest
  * stop"; minimum over vc by a grid with local refinement ---- */
-static void ref_vchange(double v0, double a0, double v1, double A, double J, double *dp, double *dt)
-{
-    double vn = v0 + a0 * fabs(a0) / (2 * J), s = v1 >= vn ? 1 : -1, as = s * a0, dv = s * (v1 - v0), ap;
-    double t[3], jj[3], p = 0, v = v0, a = a0;
-    int k;
-    if (as >= A) ap = A;
-    else {
-        ap = sqrt(fmax(J * dv + 0.5 * as * as, 0));
-        if (ap > A) ap = A;
-        if (ap < as) ap = as;
-    }
-    t[0] = fabs(ap - as) / J;
-    t[2] = ap / J;
-    t[1] = ap > 0 ? (dv - 0.5 * (as + ap) * t[0] - 0.5 * ap * t[2]) / ap : 0;
-    if (t[1] < 0) t[1] = 0;
-    jj[0] = (ap >= as ? 1 : -1) * s * J;
-    jj[1] = 0;
-    jj[2] = -s * J;
-    for (k = 0; k < 3; k++) {
-        double d = t[k];
-        p += v * d + a * d * d / 2 + jj[k] * d * d * d / 6;
-        v += a * d + jj[k] * d * d / 2;
-        a += jj[k] * d;
-    }
-    *dp = p;
-    *dt = t[0] + t[1] + t[2];
-}
-
 static double fam_time(double D, double v0, double a0, double V, double A, double J, double vc)
 {
     double p1, t1, p2, t2, rem;
-    ref_vchange(v0, a0, vc, A, J, &p1, &t1);
-    ref_vchange(vc, 0, 0, A, J, &p2, &t2);
+    mref_vchange(v0, a0, vc, A, J, &p1, &t1);
+    mref_vchange(vc, 0, 0, A, J, &p2, &t2);
     rem = D - p1 - p2;
     if (vc == 0) return fabs(rem) < 1e-9 * (1 + fabs(D)) ? t1 + t2 : INFINITY;
     if (rem / vc < 0) return INFINITY;

@@ -351,7 +351,10 @@ static int line_make(const qo_motion_planner_f32 *pl, mline *ln)
         const qo_motion_joint_f32 *jt = &pl->joints[i];
         mlim m = qo_motion_mlim(&jt->lim);
         float d = joint_delta(jt), ad = fabsf(d);
-        float vs = fmaxf(fmaxf(m.vp, m.vn), fabsf(jt->v0)), as = fmaxf(fmaxf(m.ap, m.an), fabsf(jt->a0));
+        /* the step a straight line may introduce: 1e-6 of the tighter bound (the larger one,
+         * 12x vmax in make check-motion wide PHASE case 4862, let a re-plan jump by 0.06 and
+         * 2.06 u/s, 1e-6 of vmin but 1e-6 and 4e-6 of vmax) */
+        float vs = fmaxf(fminf(m.vp, m.vn), fabsf(jt->v0)), as = fmaxf(fminf(m.ap, m.an), fabsf(jt->a0));
         if (joint_sync(pl, jt) != QO_MOTION_SYNC_PHASE) continue;
         if (fabsf(jt->v0 - ln->kv * d) > 1e-6f * vs || fabsf(jt->a0 - ln->ka * d) > 1e-6f * as) return 0;
         if (fabsf(jt->goal_v - ln->kvf * d) > 1e-6f * vs || fabsf(jt->goal_a - ln->kaf * d) > 1e-6f * as) return 0;

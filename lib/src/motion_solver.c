@@ -261,6 +261,7 @@ typedef struct rctx {
     int mode;
     float dp, T;
     float vs, as; /* scale of the velocities (mode 0, 1) and accelerations (mode 2) searched */
+    float vd;     /* mode 2: the velocities a dip surely flies (start, end, their ramps to a = 0) */
 } rctx;
 
 /* max of two numbers that are not NaN (fmaxf is a libm call where NaN rules must hold) */
@@ -320,6 +321,12 @@ static rctx rctx_make(const mprob *p, int mode, float T)
         float as = 4.0f * (fabsf(p->a0) + fabsf(p->af) + sqrtf(p->l.j * c.vs));
         if (as < c.as) c.as = as;
     }
+    c.vd = 0.0f;
+    if (mode == 2) {
+        float J2 = 2.0f * p->l.j;
+        c.vd = maxf(maxf(fabsf(p->v0), fabsf(p->vf)),
+                    maxf(fabsf(p->v0 + p->a0 * fabsf(p->a0) / J2), fabsf(p->vf - p->af * fabsf(p->af) / J2)));
+    }
     return c;
 }
 
@@ -357,8 +364,13 @@ static float root(const rctx *c, float a, float b, float fa, float fb, float xa,
         if (m == a || m == b) break;
         fm = resid(c, m, &xm);
         /* Done once the position misses by float32 rounding of the move (what the 2-ulp bracket
-         * below would give at best), on the side a cruise can absorb in mode 0. */
-        if (fm == 0.0f || (fabsf(fm) <= 1.2e-7f * (fabsf(c->dp) + fabsf(m) * (c->mode == 1 ? c->T : xm)) &&
+         * below would give at best), on the side a cruise can absorb in mode 0. In mode 2 m is
+         * an acceleration: the positions scale with the velocities flown (vd), and |m| xm (a
+         * velocity, not the one flown) stopped dips at wide limits outside solve_dip's own
+         * tolerance, which then dropped them (make check-motion wide cases 1174 and 1900: up to
+         * 1.26x slower). */
+        if (fm == 0.0f || (fabsf(fm) <= 1.2e-7f * (fabsf(c->dp) + (c->mode == 2 ? c->vd : fabsf(m)) *
+                                                                    (c->mode == 1 ? c->T : xm)) &&
                            (c->mode != 0 || fm * m <= 0.0f))) {
             *aux = xm;
             *fres = fm;
@@ -407,14 +419,23 @@ static float root(const rctx *c, float a, float b, float fa, float fb, float xa,
     return b;
 }
 
-/* Keeps the candidate profile of smallest duration. */
-static void consider(float vc, float tc, float dur, float *bv, float *bt, float *bd)
+/* Records a winning candidate of family fam (see msol) with its family, so the flag always
+ * belongs to the profile that won last: a dip replaced by a later candidate of the same
+ * duration once kept family 1 with that candidate's extremum velocity read as the dip's
+ * acceleration, a plan 20 % over vmax (fuzz/regress/motion/vs-tie-dip: v0 -6.98, a0 -4.50,
+ * dp -8.60, vmax 9, amax 30, jmax 13). */
+static void keep(int fam, float x, float tc, float dur, float *bv, float *bt, float *bd, int *bf)
 {
-    if (dur < *bd) {
-        *bv = vc;
-        *bt = tc;
-        *bd = dur;
-    }
+    *bv = x;
+    *bt = tc;
+    *bd = dur;
+    *bf = fam;
+}
+
+/* Keeps the candidate profile of smallest duration (keep). */
+static void consider(int fam, float x, float tc, float dur, float *bv, float *bt, float *bd, int *bf)
+{
+    if (dur < *bd) keep(fam, x, tc, dur, bv, bt, bd, bf);
 }
 
 /* Cube root of a >= 0 (0 for a <= 0 or NaN): a first guess from the exponent bits (Kahan's
@@ -514,11 +535,12 @@ static int rest_time(const mprob *p, float T, float *vc, float *tc)
 }
 
 /* 1 if the velocity of segments g[0..n) from (v0, a0) stays within [-vbn, vbp] (checked at the
- * segment ends and where the acceleration crosses zero). */
-static int segs_within(float v0, float a0, const mseg *g, unsigned n, float vbp, float vbn)
+ * segment ends and where the acceleration crosses zero); its largest |v| in *vpk (may be NULL). */
+static int segs_within(float v0, float a0, const mseg *g, unsigned n, float vbp, float vbn, float *vpk)
 {
     mstate st;
     unsigned k;
+    float pk = fabsf(v0);
     st.p = 0.0f;
     st.v = v0;
     st.a = a0;
@@ -527,10 +549,13 @@ static int segs_within(float v0, float a0, const mseg *g, unsigned n, float vbp,
         if (g[k].j != 0.0f && (st.a < 0.0f) != (a1 < 0.0f)) {
             float tz = -st.a / g[k].j, vz = st.v + tz * (st.a + 0.5f * tz * g[k].j);
             if (vz > vbp || vz < -vbn) return 0;
+            pk = maxf(pk, fabsf(vz));
         }
         mseg_integ(&st, &g[k]);
         if (st.v > vbp || st.v < -vbn) return 0;
+        pk = maxf(pk, fabsf(st.v));
     }
+    if (vpk) *vpk = pk;
     return 1;
 }
 
@@ -632,26 +657,31 @@ static int solve_dip(const mprob *p, float e0, float e1, unsigned nscan, float *
     }
     nscan = n;
     for (k = 0; k <= nscan; k++) {
-        float r = x[k], tr = t[k], fr = f[k];
+        float r = x[k], tr = t[k], fr = f[k], vpk;
         if (fr != 0.0f) {
             if (k == nscan || f[k + 1] == 0.0f || (fr < 0.0f) == (f[k + 1] < 0.0f)) continue;
             if (fr != fr || f[k + 1] != f[k + 1]) continue; /* no pulse to the end state there */
             r = root(&c, x[k], x[k + 1], f[k], f[k + 1], t[k], t[k + 1], &tr, &fr);
-            /* no cruise absorbs a residual here: keep only a root to float precision */
-            if (!(fabsf(fr) <= 1e-6f * (fabsf(dp) + (fabsf(v0) + c.vs) * tr))) continue;
         }
         if (p->af != 0.0f) {
             /* to a target acceleration am may lie on either side of zero: every velocity
              * extremum of the profile is checked */
             mseg g[4];
-            if (!segs_within(v0, a0, g, build_dip(p, r, g), vbp, vbn)) continue;
+            if (!segs_within(v0, a0, g, build_dip(p, r, g), vbp, vbn, &vpk)) continue;
         } else {
             /* ramping a0 away from zero first drives the velocity further: its extremum, where
              * the pulse to the end crosses a = 0, must stay within the velocity bounds */
             float d = fabsf(r - a0) / J, j = r >= a0 ? J : -J;
             float v1 = v0 + d * (a0 + 0.5f * d * j), ve = v1 + r * fabsf(r) / (2.0f * J);
             if (ve > vbp || ve < -vbn) continue;
+            vpk = maxf(maxf(fabsf(v0), fabsf(v1)), maxf(fabsf(ve), fabsf(p->vf)));
         }
+        /* No cruise absorbs a residual here: keep only a root to float precision of the
+         * positions, i.e. relative to the velocities this profile flies (not the velocity scale
+         * vs, a bound with a margin: 16x the speed flown in make check-motion wide case 1503,
+         * where a bracket end on the direct stop, 8.1e-6 short of a 1.8 move, passed as a root
+         * and the plan was 0.3 % faster than possible by snapping to its target at the end). */
+        if (fr != 0.0f && !(fabsf(fr) <= 1e-6f * (fabsf(dp) + maxf(vpk, c.vd) * tr))) continue;
         if (tr < *dur) {
             *dur = tr;
             *am = r;
@@ -709,7 +739,7 @@ static void solve_holds(const mprob *p, msol *sol)
         build_holds(p, fam, h1, h2, g);
         eval_segs(p->v0, p->a0, g, 5, &d, &dur);
         if (!(fabsf(d - p->dp) <= 1e-6f * (fabsf(p->dp) + (fabsf(p->v0) + vs) * dur))) continue;
-        if (!(dur < sol->t) || !segs_within(p->v0, p->a0, g, 5, vbp, vbn)) continue;
+        if (!(dur < sol->t) || !segs_within(p->v0, p->a0, g, 5, vbp, vbn, NULL)) continue;
         sol->x = h1;
         sol->tc = h2;
         sol->t = dur;
@@ -757,8 +787,7 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
     rctx c;
     const mlim *l = &p->l;
     float v0 = p->v0, a0 = p->a0, dp = p->dp;
-    float pt[5], fp[5], xp[5], vn, ve, lo, hi, bv = 0.0f, bt = 0.0f, bd = INFINITY, x, fz = NAN, fn0 = NAN, xn0 = 0.0f,
-          dipd = NAN, dipx = NAN;
+    float pt[5], fp[5], xp[5], vn, ve, lo, hi, bv = 0.0f, bt = 0.0f, bd = INFINITY, x, fz = NAN, fn0 = NAN, xn0 = 0.0f;
     unsigned np = 0, i;
     int scurve = p->scurve, atrest = p->vf == 0.0f && p->af == 0.0f;
     sol->fam = 0;
@@ -784,20 +813,21 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
         }
     }
     /* Cruising at vp / -vn when even the fastest peak falls short. */
-    if (fp[np - 1] <= 0.0f) consider(l->vp, -fp[np - 1] / l->vp, xp[np - 1] - fp[np - 1] / l->vp, &bv, &bt, &bd);
-    if (fp[0] >= 0.0f) consider(-l->vn, fp[0] / l->vn, xp[0] + fp[0] / l->vn, &bv, &bt, &bd);
+    if (fp[np - 1] <= 0.0f)
+        consider(0, l->vp, -fp[np - 1] / l->vp, xp[np - 1] - fp[np - 1] / l->vp, &bv, &bt, &bd, &sol->fam);
+    if (fp[0] >= 0.0f) consider(0, -l->vn, fp[0] / l->vn, xp[0] + fp[0] / l->vn, &bv, &bt, &bd, &sol->fam);
     /* Outer pieces first: a single velocity extremum beyond vs and ve (or a reversal) reaches
      * dp faster than changing velocity in two stages, so the middle piece is searched only when
      * neither outer piece brackets dp (e.g. a0 already braking, dp between the two stops' reach). */
     for (i = 0; i + 1 < np; i++) {
         int outer = pt[i + 1] <= lo || pt[i] >= hi;
         if (!outer) continue;
-        if (fp[i] == 0.0f) consider(pt[i], 0.0f, xp[i], &bv, &bt, &bd);
-        if (fp[i + 1] == 0.0f) consider(pt[i + 1], 0.0f, xp[i + 1], &bv, &bt, &bd);
+        if (fp[i] == 0.0f) consider(0, pt[i], 0.0f, xp[i], &bv, &bt, &bd, &sol->fam);
+        if (fp[i + 1] == 0.0f) consider(0, pt[i + 1], 0.0f, xp[i + 1], &bv, &bt, &bd, &sol->fam);
         if (fp[i] != 0.0f && fp[i + 1] != 0.0f && (fp[i] < 0.0f) != (fp[i + 1] < 0.0f)) {
             float fr, r = root(&c, pt[i], pt[i + 1], fp[i], fp[i + 1], xp[i], xp[i + 1], &x, &fr);
             float tcr = (r != 0.0f && fr * r < 0.0f) ? -fr / r : 0.0f;
-            consider(r, tcr, x + tcr, &bv, &bt, &bd);
+            consider(0, r, tcr, x + tcr, &bv, &bt, &bd, &sol->fam);
         }
     }
     /* The dip family runs from the extremum-velocity profile through vs (am = 0) to the direct
@@ -807,13 +837,7 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
      * Only for end states with af = 0 (the dip's pulse ends at zero acceleration). */
     if (scurve && p->af == 0.0f && a0 != 0.0f && vn != ve && (fz < 0.0f) != (fn0 < 0.0f) && fz == fz && fn0 == fn0) {
         float am, dd;
-        if (solve_dip(p, 0.0f, a0, 1, &am, &dd) && dd < bd) {
-            bv = am;
-            bt = 0.0f;
-            bd = dipd = dd;
-            dipx = am;
-            sol->fam = 1;
-        }
+        if (solve_dip(p, 0.0f, a0, 1, &am, &dd)) consider(1, am, 0.0f, dd, &bv, &bt, &bd, &sol->fam);
     }
     /* The other orientation: a0 ramped further away from zero first (to am between a0 and the
      * bound on its side), then the pulse to the end; from the direct transfer (am = a0) to the
@@ -823,13 +847,7 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
         rctx cw = rctx_make(p, 2, 0.0f);
         fw = resid(&cw, aw, &tw);
         if (fw != fw || (fw < 0.0f) != (fz < 0.0f) || fw == 0.0f) {
-            if (solve_dip(p, a0, aw, 1, &am, &dd) && dd < bd) {
-                bv = am;
-                bt = 0.0f;
-                bd = dipd = dd;
-                dipx = am;
-                sol->fam = 1;
-            }
+            if (solve_dip(p, a0, aw, 1, &am, &dd)) consider(1, am, 0.0f, dd, &bv, &bt, &bd, &sol->fam);
         }
     }
     /* The two-stage middle piece: split it at its extremum when it has one. */
@@ -875,11 +893,11 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
     }
     if (!(bd < INFINITY)) {
         for (i = 0; i < np; i++) {
-            if (fp[i] == 0.0f) consider(pt[i], 0.0f, xp[i], &bv, &bt, &bd);
+            if (fp[i] == 0.0f) consider(0, pt[i], 0.0f, xp[i], &bv, &bt, &bd, &sol->fam);
             if (i + 1 < np && fp[i] != 0.0f && fp[i + 1] != 0.0f && (fp[i] < 0.0f) != (fp[i + 1] < 0.0f)) {
                 float fr, r = root(&c, pt[i], pt[i + 1], fp[i], fp[i + 1], xp[i], xp[i + 1], &x, &fr);
                 float tcr = (r != 0.0f && fr * r < 0.0f) ? -fr / r : 0.0f;
-                consider(r, tcr, x + tcr, &bv, &bt, &bd);
+                consider(0, r, tcr, x + tcr, &bv, &bt, &bd, &sol->fam);
             }
         }
     }
@@ -892,25 +910,15 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
         if (fabsf(fn) <= 2e-7f * (fabsf(dp) + (fabsf(v0) + c.vs) * xn)) {
             if (vn != 0.0f && -fn / vn >= 0.0f) tn = -fn / vn;
             /* preferred over a candidate up to 1e-6 relative shorter */
-            if (xn + tn - 1e-6f * xn < bd) {
-                bv = vn;
-                bt = tn;
-                bd = xn + tn;
-            }
+            if (xn + tn - 1e-6f * xn < bd) keep(0, vn, tn, xn + tn, &bv, &bt, &bd, &sol->fam);
         }
     }
-    /* A later candidate replaced the dip: the family goes back to 0. It may tie the dip's
-     * duration exactly (the profile through vs is where the dip family starts), so the test is
-     * on the value as well as the duration: with the duration alone, a tie left family 1 with
-     * the later candidate's extremum velocity read as the dip's acceleration, and a plan that
-     * broke vmax by 20 % (fuzz/regress/motion/vs-tie-dip: v0 -6.98, a0 -4.50, dp -8.60, vmax 9,
-     * amax 30, jmax 13). */
-    if (bd != dipd || bv != dipx) sol->fam = 0;
     if (!(bd < INFINITY)) {
         /* Not reachable for finite inputs (the pieces cover [-vn, vp] and the cruises the
          * rest); a defined answer. */
         bv = 0.0f;
         bt = 0.0f;
+        sol->fam = 0;
     }
     sol->x = bv;
     sol->tc = bt;

@@ -2,6 +2,7 @@
 #include "common/motion_ref.h"
 
 #include <math.h>
+#include <stddef.h>
 
 /* One transfer: at most 3 phases of (duration, jerk). */
 typedef struct xph {
@@ -81,6 +82,7 @@ typedef struct rprob {
     double p0, v0, a0, pf, vf, af;
     double tol; /* position residual accepted as a root */
     double vs, vfloor; /* velocity scale of the move and its smallest (mref_min_time) */
+    double as, afloor; /* the same for accelerations */
 } rprob;
 
 /* Position residual of the profile through junction (vm, am) with a cruise of tc, its
@@ -182,15 +184,14 @@ static double ramp_vm(const rprob *q, int side, double am)
  * short pulse to a long one (e.g. raising v while a < 0 needs a pulse through a > 0), so the
  * vm scan cannot bracket them: scan am along each ramp curve instead. */
 #define MREF_NR 400
-static void scan_ramps(const rprob *q, double *best)
+static void scan_ramps_on(const rprob *q, double alo, double ahi, double *best)
 {
-    const mref_lim *l = q->l;
     int side, i;
     for (side = 0; side < 2; side++) {
         double px = 0.0, pf = NAN, T, f;
         int ok;
         for (i = 0; i <= MREF_NR; i++) {
-            double am = l->amin + (l->amax - l->amin) * i / MREF_NR;
+            double am = alo + (ahi - alo) * i / MREF_NR;
             f = eval(q, ramp_vm(q, side, am), am, 0.0, &T, &ok);
             if (ok && fabs(f) <= q->tol && T < *best) *best = T;
             if (i > 0 && f * pf < 0.0) {
@@ -215,9 +216,27 @@ static void scan_ramps(const rprob *q, double *best)
     }
 }
 
+/* Over the whole acceleration range, then (limits far above what the move uses) over the
+ * nested ranges +-as, as/8, ... down to the move's own accelerations, as scan_am does: on a grid
+ * over amax 7e5 (spacing 3500) a ramp into a target acceleration from am = -9.5 fell between two
+ * points and the reference answered 1.023 s for a 0.187 s profile (make check-motion wide case
+ * 4593). */
+static void scan_ramps(const rprob *q, double *best)
+{
+    const mref_lim *l = q->l;
+    double s;
+    int k;
+    scan_ramps_on(q, l->amin, l->amax, best);
+    for (s = q->as, k = 0; k < MREF_NEST && s >= q->afloor; s *= 0.125, k++) {
+        double lo = fmax(l->amin, -s), hi = fmin(l->amax, s);
+        if (hi - lo >= 0.125 * (l->amax - l->amin)) continue;
+        scan_ramps_on(q, lo, hi, best);
+    }
+}
+
 double mref_min_time(const mref_lim *l, double p0, double v0, double a0, double pf, double vf, double af)
 {
-    rprob q = { l, p0, v0, a0, pf, vf, af, 1e-9 * (1.0 + fabs(p0) + fabs(pf)), 0.0, 0.0 };
+    rprob q = { l, p0, v0, a0, pf, vf, af, 1e-9 * (1.0 + fabs(p0) + fabs(pf)), 0.0, 0.0, 0.0, 0.0 };
     double best = INFINITY, bam = 0.0, T, f, h, as, ah, afloor;
     int i, ok, lev;
     double special[5];
@@ -235,6 +254,8 @@ double mref_min_time(const mref_lim *l, double p0, double v0, double a0, double 
         q.vfloor = 0.5 * (w + fmin(sqrt(A * D), cbrt(D * D * J)));
         as = 8.0 * (fabs(a0) + fabs(af) + sqrt(J * q.vs));
         afloor = 0.5 * (fabs(a0) + fabs(af) + sqrt(J * q.vfloor));
+        q.as = as;
+        q.afloor = afloor;
     }
     /* Cruise on a velocity bound (junction (vmax, 0) or (vmin, 0)). */
     f = eval(&q, l->vmax, 0.0, 0.0, &T, &ok);
@@ -317,4 +338,118 @@ double mref_rest_time(double D, double V, double A, double J)
     }
     tj = cbrt(d / (2 * J));
     return 4 * tj;
+}
+
+void mref_vchange(double v0, double a0, double v1, double A, double J, double *dp, double *dt)
+{
+    double vn = v0 + a0 * fabs(a0) / (2 * J), s = v1 >= vn ? 1 : -1, as = s * a0, dv = s * (v1 - v0), ap;
+    double t[3], jj[3], p = 0, v = v0, a = a0;
+    int k;
+    if (as >= A) ap = A;
+    else {
+        ap = sqrt(fmax(J * dv + 0.5 * as * as, 0));
+        if (ap > A) ap = A;
+        if (ap < as) ap = as;
+    }
+    t[0] = fabs(ap - as) / J;
+    t[2] = ap / J;
+    t[1] = ap > 0 ? (dv - 0.5 * (as + ap) * t[0] - 0.5 * ap * t[2]) / ap : 0;
+    if (t[1] < 0) t[1] = 0;
+    jj[0] = (ap >= as ? 1 : -1) * s * J;
+    jj[1] = 0;
+    jj[2] = -s * J;
+    for (k = 0; k < 3; k++) {
+        double d = t[k];
+        p += v * d + a * d * d / 2 + jj[k] * d * d * d / 6;
+        v += a * d + jj[k] * d * d / 2;
+        a += jj[k] * d;
+    }
+    *dp = p;
+    *dt = t[0] + t[1] + t[2];
+}
+
+/* One transfer run from state s (velocity bounds checked): appends its phases to pr. */
+static void run_xfer(const mref_lim *l, rstate *s, const xph *x, mref_prof *pr)
+{
+    int k;
+    for (k = 0; k < 3; k++) {
+        run(l, s, x->d[k], x->j[k]);
+        if (pr && x->d[k] > 0.0) {
+            pr->d[pr->n] = x->d[k];
+            pr->j[pr->n++] = x->j[k];
+        }
+    }
+}
+
+/* The three transfers of the two-cruise family, (v0, a0) -> (v1, 0) -> (v2, 0) -> (vf, af), run
+ * from p0 without the cruises: 0 if one does not exist, else the state after them in *st (st->ok
+ * 0 if a velocity bound was crossed). */
+static int chain(const mref_lim *l, const double *s0, double v1, double v2, double vf, double af, xph *x, rstate *st)
+{
+    if (!xfer(l, s0[1], s0[2], v1, 0.0, &x[0]) || !xfer(l, v1, 0.0, v2, 0.0, &x[1]) || !xfer(l, v2, 0.0, vf, af, &x[2]))
+        return 0;
+    st->p = s0[0];
+    st->v = s0[1];
+    st->a = s0[2];
+    st->ok = 1;
+    run_xfer(l, st, &x[0], NULL);
+    run_xfer(l, st, &x[1], NULL);
+    run_xfer(l, st, &x[2], NULL);
+    return 1;
+}
+
+#define MREF_NX 160
+int mref_exact_time(const mref_lim *l, double p0, double v0, double a0, double pf, double vf, double af, double T,
+                    mref_prof *out)
+{
+    double xs[MREF_NX + 5], s0[3], best = -1.0, bv1 = 0.0, bv2 = 0.0, J = l->jmax, tol = 1e-12 * (1.0 + T);
+    int n = 0, i, k;
+    xph x[3];
+    rstate st;
+    s0[0] = p0;
+    s0[1] = v0;
+    s0[2] = a0;
+    for (i = 0; i <= MREF_NX; i++) xs[n++] = l->vmin + (l->vmax - l->vmin) * i / MREF_NX;
+    xs[n++] = 0.0;
+    xs[n++] = fmin(fmax(v0 + a0 * fabs(a0) / (2.0 * J), l->vmin), l->vmax);
+    xs[n++] = fmin(fmax(vf - af * fabs(af) / (2.0 * J), l->vmin), l->vmax);
+    xs[n++] = fmin(fmax(vf, l->vmin), l->vmax);
+    for (i = 0; i < n; i++) {
+        for (k = 0; k < n; k++) {
+            double v1 = xs[i], v2 = xs[k], R, S, m;
+            if (v1 == v2 || !chain(l, s0, v1, v2, vf, af, x, &st) || !st.ok) continue;
+            R = T - x[0].t - x[1].t - x[2].t;
+            if (R < -tol) continue;
+            /* t1 + t2 = R, v1 t1 + v2 t2 = S: S between v1 R and v2 R */
+            S = pf - st.p;
+            m = fmin(S - fmin(v1, v2) * R, fmax(v1, v2) * R - S);
+            if (m >= 0.0 && m > best) {
+                best = m;
+                bv1 = v1;
+                bv2 = v2;
+            }
+        }
+    }
+    if (!(best >= 0.0)) return 0;
+    if (out) {
+        double R, S, t1, t2;
+        chain(l, s0, bv1, bv2, vf, af, x, &st);
+        R = fmax(T - x[0].t - x[1].t - x[2].t, 0.0);
+        S = pf - st.p;
+        t1 = fmin(fmax((S - bv2 * R) / (bv1 - bv2), 0.0), R);
+        t2 = R - t1;
+        out->n = 0;
+        run_xfer(l, &st, &x[0], out);
+        if (t1 > 0.0) {
+            out->d[out->n] = t1;
+            out->j[out->n++] = 0.0;
+        }
+        run_xfer(l, &st, &x[1], out);
+        if (t2 > 0.0) {
+            out->d[out->n] = t2;
+            out->j[out->n++] = 0.0;
+        }
+        run_xfer(l, &st, &x[2], out);
+    }
+    return 1;
 }

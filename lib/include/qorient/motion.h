@@ -109,13 +109,25 @@
  *     extremum-velocity family only: a joint whose minimum is a dip or a two-holds shape (target
  *     states) has no profile of that family between its minimum and the family's own shortest,
  *     e.g. check-motion case 5781 joint 5: minimum 0.809 s, none between it and 2.018 s, so at
- *     a common 1.560 s it is reported unsynced (tests/core/test_motion.c).
+ *     a common 1.560 s it is reported unsynced. That gap is real, not the family's: no jerk
+ *     profile of any shape within the limits takes that joint to its target state in 1.560 s
+ *     (an LP over piecewise-constant jerk, tests/core/motion_gap_lp.py, finds profiles for
+ *     about [0.809, 0.861] s and [2.019 s, inf) only, none between even with the bounds widened;
+ *     tests/core/test_motion.c). A reading of it: the joint starts braking at a0 = -11.3 with
+ *     jmax 20.7 and a
+ *     positive bound amax of only 2.06; releasing the brake alone takes 0.55 s and carries it
+ *     through v = 0 to -0.56 u/s, after which only -0.72 u of travel remain until it must leave
+ *     at -3.05 u/s. Arriving later means spending the extra time near v = 0, and climbing back
+ *     there at amax 2.06 first takes the joint out to the 2.018 s profile. The narrow
+ *     [0.809, 0.861] s above its minimum (stretching the dip itself) is not searched either.
  *   - QO_MOTION_SYNC_PHASE: straight line in joint space: p_i(t) = p0_i + d_i s(t), one scalar
  *     profile s: 0 -> 1 with limits min_i(vmax_i/|d_i|) etc. (vmin_i for a joint moving the
  *     other way). Possible only when every joint's (v0, a0) and target (v, a) are proportional
  *     to its displacement d_i (all at rest is the usual case), within
- *     1e-6 of max(vmax, |v0|) and max(amax, |a0|), which bounds the velocity / acceleration
- *     step the straight line may introduce, and when the scalar limits min_i(vmax_i/|d_i|)...
+ *     1e-6 of max(min(vmax, -vmin), |v0|) and max(min(amax, -amin), |a0|) (the tighter bound:
+ *     with the larger, check-motion wide case 4862, vmin = -12 vmax, a re-plan jumped by
+ *     4e-6 vmax), which bounds the velocity / acceleration step the straight line may
+ *     introduce, and when the scalar limits min_i(vmax_i/|d_i|)...
  *     lie in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] (a tiny d_i makes them overflow
  *     float32 products), and when the straight line's phase coefficients keep every joint
  *     within its own vmax, amax, jmax (or its start values beyond them) to 1e-6 relative:
@@ -187,12 +199,16 @@ extern "C" {
  * to 1e-5, continuous, at the goal), and every other limit gets QO_E_LIMIT:
  *   - vmax, amax, jmax in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] = [1e-3, 1e9] (checked
  *     log-uniform over the whole range, in every sync mode, from moving starts and to moving
- *     target states that can stop within a few units). Not yet clean at scale: the first 2,000
- *     wide groups of make check-motion (14,000 joints, NONE) have 3 joints off the reference by
- *     more than 0.1 % (two up to 1.26x slower, one 0.3 % faster: the reference's miss), all
- *     to moving target states with large ratios amax/jmax or accelerations; open (issue 11;
- *     QO_MOTION_ORACLE_FILTER=test_oracle_wide QO_MOTION_ORACLE_FIRST=1174, 1503 or 1900
- *     QO_MOTION_ORACLE_NUM=1 build/check/test_motion_oracle_1000000).
+ *     target states that can stop within a few units). Clean at scale: all 9,523 wide groups
+ *     of make check-motion (66,661 joints per sync mode, NONE, TIME, PHASE,
+ *     TIME_IF_NECESSARY) give 0 failures (QO_MOTION_ORACLE_FILTER=test_oracle_wide
+ *     build/check/test_motion_oracle_1000000, run in chunks with QO_MOTION_ORACLE_FIRST /
+ *     _NUM). What it found on the way, all to moving target states at extreme ratios: dips
+ *     dropped by a root tolerance that did not scale with the speed flown (1.26x slower), a
+ *     dip tolerance that let a plan snap 4.5e-6 of its move to the target (0.3 % faster than
+ *     possible), the reference's coarse ramp grid (up to 6.6x slower than the planner), and a
+ *     PHASE start step of 4e-6 vmax with vmin = -12 vmax (tests/core/test_motion.c:
+ *     test_issue_wide_cases, test_phase_step_asym).
  *     Beyond the range the float32 solver was seen
  *     up to 3.1x slower than optimal (limits over 1e-6..1e12, issue 11); subnormal
  *     or tiny limits would also give durations beyond float, huge ones overflowing products.
