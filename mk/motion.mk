@@ -63,3 +63,14 @@ $(BUILD)/bench/motion_ir: bench/motion/compare.c $(MOTION_OLD)/motion_old.c $(BU
 
 bench-motion-ir: $(BUILD)/bench/motion_ir
 	BUILD=$(BUILD) sh bench/motion/ir.sh $(MOTION_CASES)
+
+# make motion-digest: digests of the plans on fixed-seed random cases (bench/motion/digest.c):
+# a speed change that keeps every plan bit for bit prints the same lines before and after.
+.PHONY: motion-digest
+$(BUILD)/bench/motion_digest: bench/motion/digest.c $(BUILD)/libqorient_testcommon.a $(BUILD)/libqorient.a
+	@mkdir -p $(@D)
+	$(CC) $(STD) $(WARN) $(FPFLAGS) -O2 -g $(CPPFLAGS_CORE) -Itests bench/motion/digest.c \
+	    $(BUILD)/libqorient_testcommon.a $(BUILD)/libqorient.a -lm -o $@
+
+motion-digest: $(BUILD)/bench/motion_digest
+	$< $(MOTION_CASES)
