@@ -235,6 +235,13 @@ static void eval_segs(float v0, float a0, const mseg *g, unsigned n, float *disp
     s.v = v0;
     s.a = a0;
     for (i = 0; i < n; i++) {
+        /* a segment of zero duration only sets (the root searches' profiles have no cruise,
+         * often no hold): integrating it would add exact zeros */
+        if (g[i].d == 0.0f) {
+            if (g[i].seta) s.a = g[i].a;
+            if (g[i].setv) s.v = g[i].v;
+            continue;
+        }
         mseg_integ(&s, &g[i]);
         t += g[i].d;
     }
@@ -923,6 +930,12 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
     }
 }
 
+/* 1 if a and b are the same float, zero's sign included (NaN never is). */
+static int same_bits(float a, float b)
+{
+    return a == b && !signbit(a) == !signbit(b);
+}
+
 /* A profile of exactly duration T >= the minimum. First bracket: lower |vc| from vc* toward 0
  * (the residual changes sign on [0, vc*] when the displacement is monotone there). When it
  * does not (the two-stage piece between vs and ve is not monotone), scan [-vn, vp] at
@@ -974,7 +987,22 @@ int qo_motion_solve_time(const mprob *p, float vcs, float T, msol *sol)
             }
             xs[k] = x;
         }
-        for (i = 0; i < n; i++) gs[i] = resid(&c, xs[i], &ts[i]);
+        /* 0, vcs, vs and ve often coincide with each other or a grid point (0 is one): each
+         * distinct value is evaluated once (the same bits give the same residual) */
+        for (i = 0; i < n; i++) {
+            if (i > 0 && same_bits(xs[i], xs[i - 1])) {
+                gs[i] = gs[i - 1];
+                ts[i] = ts[i - 1];
+            } else if (same_bits(xs[i], 0.0f)) {
+                gs[i] = fa;
+                ts[i] = tca;
+            } else if (same_bits(xs[i], vcs)) {
+                gs[i] = fb;
+                ts[i] = tcb;
+            } else {
+                gs[i] = resid(&c, xs[i], &ts[i]);
+            }
+        }
         for (i = 0; i + 1 < n; i++) {
             float r, tr;
             if (xs[i] == xs[i + 1]) continue;
