@@ -766,7 +766,7 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
     float v0 = p->v0, a0 = p->a0, dp = p->dp;
     float pt[5], fp[5], xp[5], vn, ve, lo, hi, bv = 0.0f, bt = 0.0f, bd = INFINITY, x, fz = NAN, fn0 = NAN, xn0 = 0.0f,
           dipd = NAN, dipx = NAN;
-    unsigned np = 0, i;
+    unsigned np = 0, i, skip;
     int scurve = p->scurve, atrest = p->vf == 0.0f && p->af == 0.0f;
     sol->fam = 0;
     if (scurve && v0 == 0.0f && a0 == 0.0f && atrest && l->ap == l->an && rest_min(p, &sol->x, &sol->tc, &sol->t))
@@ -782,8 +782,20 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
     if (lo > pt[np - 1]) pt[np++] = lo;
     if (hi > pt[np - 1]) pt[np++] = hi;
     if (l->vp > pt[np - 1]) pt[np++] = l->vp;
-    for (i = 0; i < np; i++) {
+    /* D is increasing on the outer pieces, so an end is decided by the inner point next to it
+     * when that misses dp by far more than rounding: beyond it D misses further (no root, no
+     * cruise). Such an end (-vn or vp, never vs or ve) is evaluated only if the pieces between
+     * are searched below (skip: bit 1 the first point, bit 2 the last). */
+    skip = 0;
+    for (i = 1; i + 1 < np; i++) {
         fp[i] = resid(&c, pt[i], &xp[i]);
+        if (i == 1 && pt[1] == lo && fp[1] < -1e-5f * (fabsf(dp) + c.vs * xp[1])) skip |= 1;
+        if (i + 2 == np && pt[i] == hi && fp[i] > 1e-5f * (fabsf(dp) + c.vs * xp[i])) skip |= 2;
+    }
+    if (!(skip & 1)) fp[0] = resid(&c, pt[0], &xp[0]);
+    if (np > 1 && !(skip & 2)) fp[np - 1] = resid(&c, pt[np - 1], &xp[np - 1]);
+    for (i = 0; i < np; i++) {
+        if ((i == 0 && (skip & 1)) || (i + 1 == np && (skip & 2))) continue;
         if (pt[i] == ve) fz = fp[i];
         if (pt[i] == vn) {
             fn0 = fp[i];
@@ -791,14 +803,15 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
         }
     }
     /* Cruising at vp / -vn when even the fastest peak falls short. */
-    if (fp[np - 1] <= 0.0f) consider(l->vp, -fp[np - 1] / l->vp, xp[np - 1] - fp[np - 1] / l->vp, &bv, &bt, &bd);
-    if (fp[0] >= 0.0f) consider(-l->vn, fp[0] / l->vn, xp[0] + fp[0] / l->vn, &bv, &bt, &bd);
+    if (!(skip & 2) && fp[np - 1] <= 0.0f)
+        consider(l->vp, -fp[np - 1] / l->vp, xp[np - 1] - fp[np - 1] / l->vp, &bv, &bt, &bd);
+    if (!(skip & 1) && fp[0] >= 0.0f) consider(-l->vn, fp[0] / l->vn, xp[0] + fp[0] / l->vn, &bv, &bt, &bd);
     /* Outer pieces first: a single velocity extremum beyond vs and ve (or a reversal) reaches
      * dp faster than changing velocity in two stages, so the middle piece is searched only when
      * neither outer piece brackets dp (e.g. a0 already braking, dp between the two stops' reach). */
     for (i = 0; i + 1 < np; i++) {
         int outer = pt[i + 1] <= lo || pt[i] >= hi;
-        if (!outer) continue;
+        if (!outer || (i == 0 && (skip & 1)) || (i + 2 == np && (skip & 2))) continue;
         if (fp[i] == 0.0f) consider(pt[i], 0.0f, xp[i], &bv, &bt, &bd);
         if (fp[i + 1] == 0.0f) consider(pt[i + 1], 0.0f, xp[i + 1], &bv, &bt, &bd);
         if (fp[i] != 0.0f && fp[i + 1] != 0.0f && (fp[i] < 0.0f) != (fp[i + 1] < 0.0f)) {
@@ -838,6 +851,10 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
                 sol->fam = 1;
             }
         }
+    }
+    if (!(bd < INFINITY)) {
+        if (skip & 1) fp[0] = resid(&c, pt[0], &xp[0]);
+        if (skip & 2) fp[np - 1] = resid(&c, pt[np - 1], &xp[np - 1]);
     }
     /* The two-stage middle piece: split it at its extremum when it has one. */
     if (!(bd < INFINITY) && vn != ve && hi - lo > 1e-6f * c.vs) {
