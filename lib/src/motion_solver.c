@@ -765,7 +765,7 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
     const mlim *l = &p->l;
     float v0 = p->v0, a0 = p->a0, dp = p->dp;
     float pt[5], fp[5], xp[5], vn, ve, lo, hi, bv = 0.0f, bt = 0.0f, bd = INFINITY, x, fz = NAN, fn0 = NAN, xn0 = 0.0f,
-          dipd = NAN, dipx = NAN;
+          dipd = NAN, dipx = NAN, xz = 0.0f;
     unsigned np = 0, i, skip;
     int scurve = p->scurve, atrest = p->vf == 0.0f && p->af == 0.0f;
     sol->fam = 0;
@@ -796,7 +796,10 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
     if (np > 1 && !(skip & 2)) fp[np - 1] = resid(&c, pt[np - 1], &xp[np - 1]);
     for (i = 0; i < np; i++) {
         if ((i == 0 && (skip & 1)) || (i + 1 == np && (skip & 2))) continue;
-        if (pt[i] == ve) fz = fp[i];
+        if (pt[i] == ve) {
+            fz = fp[i];
+            xz = xp[i];
+        }
         if (pt[i] == vn) {
             fn0 = fp[i];
             xn0 = xp[i];
@@ -838,7 +841,11 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
     /* The other orientation: a0 ramped further away from zero first (to am between a0 and the
      * bound on its side), then the pulse to the end; from the direct transfer (am = a0) to the
      * bound. Its far end is evaluated only here; solved when it brackets dp with the direct one. */
-    if (scurve && p->af == 0.0f && a0 != 0.0f && (a0 > 0.0f ? a0 < l->ap : -a0 < l->an) && fz == fz) {
+    /* It starts at the direct transfer (fz) and drives the velocity further in a0's direction
+     * as am grows, so where the direct transfer already overshoots dp in that direction (by far
+     * more than rounding) the far end does too: no bracket, fw not evaluated. */
+    if (scurve && p->af == 0.0f && a0 != 0.0f && (a0 > 0.0f ? a0 < l->ap : -a0 < l->an) && fz == fz &&
+        !((a0 > 0.0f ? fz : -fz) > 1e-5f * (fabsf(dp) + c.vs * xz))) {
         float aw = a0 > 0.0f ? l->ap : -l->an, am, dd, fw, tw;
         rctx cw = rctx_make(p, 2, 0.0f);
         fw = resid(&cw, aw, &tw);
