@@ -270,6 +270,12 @@ typedef struct rctx {
     float vs, as; /* scale of the velocities (mode 0, 1) and accelerations (mode 2) searched */
 } rctx;
 
+/* 1 if a and b are the same float, zero's sign included (NaN never is). */
+static int same_bits(float a, float b)
+{
+    return a == b && !signbit(a) == !signbit(b);
+}
+
 /* max of two numbers that are not NaN (fmaxf is a libm call where NaN rules must hold) */
 static float maxf(float a, float b)
 {
@@ -769,6 +775,7 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
     unsigned np = 0, i, skip;
     int scurve = p->scurve, atrest = p->vf == 0.0f && p->af == 0.0f;
     sol->fam = 0;
+    sol->f0 = sol->t0 = NAN;
     if (scurve && v0 == 0.0f && a0 == 0.0f && atrest && l->ap == l->an && rest_min(p, &sol->x, &sol->tc, &sol->t))
         return;
     c = rctx_make(p, 0, 0.0f);
@@ -799,6 +806,10 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
         if (pt[i] == ve) {
             fz = fp[i];
             xz = xp[i];
+        }
+        if (same_bits(pt[i], 0.0f)) {
+            sol->f0 = fp[i];
+            sol->t0 = xp[i];
         }
         if (pt[i] == vn) {
             fn0 = fp[i];
@@ -954,20 +965,15 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
     }
 }
 
-/* 1 if a and b are the same float, zero's sign included (NaN never is). */
-static int same_bits(float a, float b)
-{
-    return a == b && !signbit(a) == !signbit(b);
-}
-
 /* A profile of exactly duration T >= the minimum. First bracket: lower |vc| from vc* toward 0
  * (the residual changes sign on [0, vc*] when the displacement is monotone there). When it
  * does not (the two-stage piece between vs and ve is not monotone), scan [-vn, vp] at
  * QO_MOTION_SYNC_SCAN points plus 0, vs, ve and vc* and take the sign change, with a
  * non-negative cruise, nearest vc*. Returns 0 if no such profile was found. */
 #define QO_MOTION_SYNC_SCAN 9
-int qo_motion_solve_time(const mprob *p, float vcs, float T, msol *sol)
+int qo_motion_solve_time(const mprob *p, const msol *min, float vcs, float T, msol *sol)
 {
+    float f0 = min->f0, t0 = min->t0; /* read first: min may be sol */
     rctx c;
     const mlim *l = &p->l;
     float fa, fb, tca, tcb, fr;
@@ -980,7 +986,15 @@ int qo_motion_solve_time(const mprob *p, float vcs, float T, msol *sol)
         rest_time(p, T, &sol->x, &sol->tc))
         return 1;
     c = rctx_make(p, 1, T);
-    fa = resid(&c, 0.0f, &tca);
+    /* The profile through 0 has the displacement d and duration t0 the minimum solve found; here
+     * its residual is d + 0 (T - t0) - dp, which is f0 = d - dp bit for bit when all are finite
+     * (d is never -0: eval_segs sums from +0). */
+    if (fabsf(f0) <= FLT_MAX && fabsf(t0) <= FLT_MAX && fabsf(T) <= FLT_MAX) {
+        fa = f0;
+        tca = T - t0;
+    } else {
+        fa = resid(&c, 0.0f, &tca);
+    }
     fb = resid(&c, vcs, &tcb);
     if (fa != 0.0f && (fa < 0.0f) != (fb < 0.0f)) {
         sol->x = root(&c, 0.0f, vcs, fa, fb, tca, tcb, &sol->tc, &fr);
