@@ -603,9 +603,15 @@ static int dip_bump(const rctx *c, const float *x, const float *f, unsigned k, u
  * (<= QO_MOTION_DIP_SCAN + 1) points of am in [e0, e1] (e.g. the extremum-velocity profile
  * through vn and the direct transfer) and every sign change is solved; with nscan > 1 (the
  * residual not known to be monotone) also the pairs of roots between the points (dip_bump).
- * Returns 0 if none. */
+ * kn[0..nk): points whose residual and duration the caller has already, {am, f, t}, used
+ * where a scan point has the same bits. Returns 0 if none. */
 #define QO_MOTION_DIP_SCAN 4
-static int solve_dip(const mprob *p, float e0, float e1, unsigned nscan, float *am, float *dur)
+typedef struct mpt {
+    float x, f, t;
+} mpt;
+
+static int solve_dip(const mprob *p, float e0, float e1, unsigned nscan, const mpt *kn, unsigned nk, float *am,
+                     float *dur)
 {
     rctx c;
     float x[2 * QO_MOTION_DIP_SCAN + 2], f[2 * QO_MOTION_DIP_SCAN + 2], t[2 * QO_MOTION_DIP_SCAN + 2];
@@ -618,8 +624,15 @@ static int solve_dip(const mprob *p, float e0, float e1, unsigned nscan, float *
     *dur = INFINITY;
     if (nscan > QO_MOTION_DIP_SCAN) nscan = QO_MOTION_DIP_SCAN;
     for (k = 0; k <= nscan; k++) {
+        unsigned i;
         x[k] = e0 + (e1 - e0) * (float)k / (float)nscan;
-        f[k] = resid(&c, x[k], &t[k]);
+        for (i = 0; i < nk && !same_bits(kn[i].x, x[k]); i++) continue;
+        if (i < nk) {
+            f[k] = kn[i].f;
+            t[k] = kn[i].t;
+        } else {
+            f[k] = resid(&c, x[k], &t[k]);
+        }
     }
     n = nscan;
     if (nscan > 1) {
@@ -748,7 +761,7 @@ static void solve_dips_moving(const mprob *p, msol *sol)
         pt[3] = r.l.ap;
         for (k = 0; k < 3; k++) {
             if (!(pt[k + 1] > pt[k])) continue;
-            if (solve_dip(&r, pt[k], pt[k + 1], 3, &am, &dd) && dd < sol->t) {
+            if (solve_dip(&r, pt[k], pt[k + 1], 3, NULL, 0, &am, &dd) && dd < sol->t) {
                 sol->x = am;
                 sol->tc = 0.0f;
                 sol->t = dd;
@@ -772,7 +785,7 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
     float v0 = p->v0, a0 = p->a0, dp = p->dp;
     float pt[5], fp[5], xp[5], vn, ve, lo, hi, bv = 0.0f, bt = 0.0f, bd = INFINITY, x, fz = NAN, fn0 = NAN, xn0 = 0.0f,
           dipd = NAN, dipx = NAN, xz = 0.0f;
-    unsigned np = 0, i, skip;
+    unsigned np = 0, i, skip, kz = 0;
     int scurve = p->scurve, atrest = p->vf == 0.0f && p->af == 0.0f;
     sol->fam = 0;
     sol->f0 = sol->t0 = NAN;
@@ -806,6 +819,7 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
         if (pt[i] == ve) {
             fz = fp[i];
             xz = xp[i];
+            kz = same_bits(pt[i], p->vf) && !same_bits(v0, -0.0f);
         }
         if (same_bits(pt[i], 0.0f)) {
             sol->f0 = fp[i];
@@ -841,7 +855,14 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
      * Only for end states with af = 0 (the dip's pulse ends at zero acceleration). */
     if (scurve && p->af == 0.0f && a0 != 0.0f && vn != ve && (fz < 0.0f) != (fn0 < 0.0f) && fz == fz && fn0 == fn0) {
         float am, dd;
-        if (solve_dip(p, 0.0f, a0, 1, &am, &dd) && dd < bd) {
+        mpt kn[1];
+        /* at am = a0 the dip is the direct transfer (a zero ramp, then the profile through ve =
+         * vf): the same segments from the same start, so the same residual as fz (kz: ve has
+         * vf's bits and v0 is not -0, which the ramp would turn into +0) */
+        kn[0].x = a0;
+        kn[0].f = fz;
+        kn[0].t = xz;
+        if (solve_dip(p, 0.0f, a0, 1, kn, kz, &am, &dd) && dd < bd) {
             bv = am;
             bt = 0.0f;
             bd = dipd = dd;
@@ -861,7 +882,14 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
         rctx cw = rctx_make(p, 2, 0.0f);
         fw = resid(&cw, aw, &tw);
         if (fw != fw || (fw < 0.0f) != (fz < 0.0f) || fw == 0.0f) {
-            if (solve_dip(p, a0, aw, 1, &am, &dd) && dd < bd) {
+            mpt kn[2];
+            kn[0].x = aw;
+            kn[0].f = fw;
+            kn[0].t = tw;
+            kn[1].x = a0; /* the direct transfer, as above */
+            kn[1].f = fz;
+            kn[1].t = xz;
+            if (solve_dip(p, a0, aw, 1, kn, 1 + kz, &am, &dd) && dd < bd) {
                 bv = am;
                 bt = 0.0f;
                 bd = dipd = dd;
@@ -973,7 +1001,8 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
 #define QO_MOTION_SYNC_SCAN 9
 int qo_motion_solve_time(const mprob *p, const msol *min, float vcs, float T, msol *sol)
 {
-    float f0 = min->f0, t0 = min->t0; /* read first: min may be sol */
+    float f0 = min->f0, t0 = min->t0, mx = min->x; /* read first: min may be sol */
+    int dip = min->fam == 1;
     rctx c;
     const mlim *l = &p->l;
     float fa, fb, tca, tcb, fr;
@@ -994,6 +1023,25 @@ int qo_motion_solve_time(const mprob *p, const msol *min, float vcs, float T, ms
         tca = T - t0;
     } else {
         fa = resid(&c, 0.0f, &tca);
+    }
+    /* After a dip (to acceleration mx) the profile of exactly T usually has its extremum between
+     * 0 and the dip's own (where the dip's pulse brings the acceleration to zero), while vcs
+     * (vs, where the dip family meets this one) can lie on the other side of 0 and leave only
+     * the scan: that bracket is tried first. A root there is a profile of exactly T with a
+     * non-negative cruise, as any the scan finds; without one the search goes on as before. */
+    if (dip && p->scurve && p->af == 0.0f && fa != 0.0f && fa == fa) {
+        float J = l->j, d = fabsf(mx - p->a0) / J, vx, fx, tcx, tx;
+        vx = p->v0 + d * (p->a0 + 0.5f * d * (mx >= p->a0 ? J : -J));
+        vx = fminf(fmaxf(vx + mx * fabsf(mx) / (2.0f * J), -l->vn), l->vp);
+        fx = resid(&c, vx, &tcx);
+        if (fx == fx && (fa < 0.0f) != (fx < 0.0f)) {
+            float x = root(&c, 0.0f, vx, fa, fx, tca, tcx, &tx, &fr);
+            if (tx >= -1e-5f * T) {
+                sol->x = x;
+                sol->tc = tx < 0.0f ? 0.0f : tx; /* rounding */
+                return 1;
+            }
+        }
     }
     fb = resid(&c, vcs, &tcb);
     if (fa != 0.0f && (fa < 0.0f) != (fb < 0.0f)) {
