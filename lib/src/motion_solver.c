@@ -276,6 +276,14 @@ static int same_bits(float a, float b)
     return a == b && !signbit(a) == !signbit(b);
 }
 
+/* x clamped to the velocity limits [-vn, vp]: fminf(fmaxf(x, -vn), vp) without the libm calls
+ * (the same value: the bounds are finite and nonzero, and a NaN x gives -vn as fmaxf does). */
+static float clamp_v(float x, const mlim *l)
+{
+    x = x > -l->vn ? x : -l->vn;
+    return x < l->vp ? x : l->vp;
+}
+
 /* max of two numbers that are not NaN (fmaxf is a libm call where NaN rules must hold) */
 static float maxf(float a, float b)
 {
@@ -793,9 +801,9 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
         return;
     c = rctx_make(p, 0, 0.0f);
     vn = scurve ? v0 + a0 * fabsf(a0) / (2.0f * l->j) : v0;
-    vn = fminf(fmaxf(vn, -l->vn), l->vp);
+    vn = clamp_v(vn, l);
     ve = p->vf;
-    if (scurve && p->af != 0.0f) ve = fminf(fmaxf(ve - p->af * fabsf(p->af) / (2.0f * l->j), -l->vn), l->vp);
+    if (scurve && p->af != 0.0f) ve = clamp_v(ve - p->af * fabsf(p->af) / (2.0f * l->j), l);
     lo = fminf(vn, ve);
     hi = fmaxf(vn, ve);
     pt[np++] = -l->vn;
@@ -1032,7 +1040,7 @@ int qo_motion_solve_time(const mprob *p, const msol *min, float vcs, float T, ms
     if (dip && p->scurve && p->af == 0.0f && fa != 0.0f && fa == fa) {
         float J = l->j, d = fabsf(mx - p->a0) / J, vx, fx, tcx, tx;
         vx = p->v0 + d * (p->a0 + 0.5f * d * (mx >= p->a0 ? J : -J));
-        vx = fminf(fmaxf(vx + mx * fabsf(mx) / (2.0f * J), -l->vn), l->vp);
+        vx = clamp_v(vx + mx * fabsf(mx) / (2.0f * J), l);
         fx = resid(&c, vx, &tcx);
         if (fx == fx && (fa < 0.0f) != (fx < 0.0f)) {
             float x = root(&c, 0.0f, vx, fa, fx, tca, tcx, &tx, &fr);
@@ -1057,8 +1065,8 @@ int qo_motion_solve_time(const mprob *p, const msol *min, float vcs, float T, ms
         float ve = p->scurve ? p->vf - p->af * fabsf(p->af) / (2.0f * l->j) : p->vf;
         xs[n++] = 0.0f;
         xs[n++] = vcs;
-        xs[n++] = fminf(fmaxf(vn, -l->vn), l->vp);
-        xs[n++] = fminf(fmaxf(ve, -l->vn), l->vp);
+        xs[n++] = clamp_v(vn, l);
+        xs[n++] = clamp_v(ve, l);
         /* the grid spans the velocities a profile can use (the limits, or the problem's
          * scale where that is smaller: a grid over +-1e8 misses a root near 1) */
         float gn = fminf(l->vn, c.vs), gp = fminf(l->vp, c.vs);
