@@ -51,3 +51,26 @@ $(BUILD)/bench/motion_compare: bench/motion/compare.c $(MOTION_OLD)/motion_old.c
 
 bench-motion: $(BUILD)/bench/motion_compare
 	$< $(MOTION_CASES)
+
+# make bench-motion-ir: the same cases, instructions per plan under callgrind (deterministic for
+# one compiler: the speed ratio without the shared machine's noise). Needs valgrind (its
+# callgrind.h marks each plan as one dump part); bench/motion/ir.sh summarises the parts.
+.PHONY: bench-motion-ir
+$(BUILD)/bench/motion_ir: bench/motion/compare.c $(MOTION_OLD)/motion_old.c $(BUILD)/libqorient_testcommon.a $(BUILD)/libqorient.a
+	@mkdir -p $(@D)
+	$(CC) $(STD) $(WARN) $(FPFLAGS) -O2 -g -DQO_BENCH_CALLGRIND $(PORT_DEFS) $(CPPFLAGS_CORE) -I$(MOTION_OLD) -Itests bench/motion/compare.c \
+	    $(MOTION_OLD)/motion_old.c $(BUILD)/libqorient_testcommon.a $(BUILD)/libqorient.a -lm -o $@
+
+bench-motion-ir: $(BUILD)/bench/motion_ir
+	BUILD=$(BUILD) sh bench/motion/ir.sh $(MOTION_CASES)
+
+# make motion-digest: digests of the plans on fixed-seed random cases (bench/motion/digest.c):
+# a speed change that keeps every plan bit for bit prints the same lines before and after.
+.PHONY: motion-digest
+$(BUILD)/bench/motion_digest: bench/motion/digest.c $(BUILD)/libqorient_testcommon.a $(BUILD)/libqorient.a
+	@mkdir -p $(@D)
+	$(CC) $(STD) $(WARN) $(FPFLAGS) -O2 -g $(CPPFLAGS_CORE) -Itests bench/motion/digest.c \
+	    $(BUILD)/libqorient_testcommon.a $(BUILD)/libqorient.a -lm -o $@
+
+motion-digest: $(BUILD)/bench/motion_digest
+	$< $(MOTION_CASES)

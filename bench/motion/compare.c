@@ -23,7 +23,19 @@
 #include "common/ref.h"
 #include "common/linux/bench_clock.h"
 
+#ifdef QO_BENCH_CALLGRIND
+#include <valgrind/callgrind.h>
+#else
+#define CALLGRIND_ZERO_STATS
+#define CALLGRIND_DUMP_STATS
+#endif
+
 #define NJ 7
+#if defined(__GNUC__)
+#define NOINLINE __attribute__((noinline))
+#else
+#define NOINLINE
+#endif
 #define REPS 5
 
 typedef struct bcase {
@@ -51,44 +63,59 @@ static void make_case(ref_rng *g, int moving, bcase *c)
     }
 }
 
-/* The same body for both planners: init, put each joint in its state (one long constant-jerk-free
- * phase, as a previous plan would leave it), time set_target at t = 0. PFX selects the API. */
-#define DEFINE_TIMER(NAME, PFX)                                                                     \
-    static double NAME(const bcase *c, float *dur)                                                  \
-    {                                                                                               \
+/* The same body for both planners (PFX selects the API): init, put each joint in its state (one
+ * long constant-jerk-free phase, as a previous plan would leave it); NAME##_plan plans it with
+ * set_target at t = 0 (kept out of line: make bench-motion-ir counts its instructions alone). */
+#define DEFINE_PLANNER(NAME, PFX)                                                                   \
+    typedef struct NAME##_ctx {                                                                     \
         PFX##_planner_f32 pl;                                                                       \
         PFX##_joint_f32 jts[NJ];                                                                    \
         PFX##_limits_f32 l[NJ];                                                                     \
-        double best = INFINITY;                                                                     \
-        int i, r;                                                                                   \
+    } NAME##_ctx;                                                                                   \
+    static int NAME##_setup(NAME##_ctx *x, const bcase *c)                                          \
+    {                                                                                               \
+        int i;                                                                                      \
         for (i = 0; i < NJ; i++) {                                                                  \
-            l[i] = PFX##_limits_default;                                                            \
-            l[i].vmax = c->vmax[i];                                                                 \
-            l[i].amax = c->amax[i];                                                                 \
-            l[i].jmax = c->jmax[i];                                                                 \
+            x->l[i] = PFX##_limits_default;                                                         \
+            x->l[i].vmax = c->vmax[i];                                                              \
+            x->l[i].amax = c->amax[i];                                                              \
+            x->l[i].jmax = c->jmax[i];                                                              \
         }                                                                                           \
+        if (PFX##_init_f32(&x->pl, x->jts, NJ, x->l, c->p0, 0.0f, NULL) != QO_OK) return 0;         \
+        for (i = 0; i < NJ; i++) {                                                                  \
+            x->jts[i].nph = 1;                                                                      \
+            x->jts[i].ph[0].t = 0.0f;                                                               \
+            x->jts[i].ph[0].d = x->jts[i].duration = 1e6f;                                          \
+            x->jts[i].ph[0].p = x->jts[i].final = c->p0[i];                                         \
+            x->jts[i].ph[0].v = c->v0[i];                                                           \
+            x->jts[i].ph[0].a = c->a0[i];                                                           \
+            x->jts[i].ph[0].j = 0.0f;                                                               \
+        }                                                                                           \
+        return 1;                                                                                   \
+    }                                                                                               \
+    int NAME##_plan(NAME##_ctx *x, const bcase *c);                                                 \
+    NOINLINE int NAME##_plan(NAME##_ctx *x, const bcase *c)                                         \
+    {                                                                                               \
+        return PFX##_set_target_f32(&x->pl, 0.0f, c->tg, NULL) == QO_OK;                            \
+    }                                                                                               \
+    static double NAME(const bcase *c, float *dur)                                                  \
+    {                                                                                               \
+        NAME##_ctx x;                                                                               \
+        double best = INFINITY;                                                                     \
+        int r;                                                                                      \
         for (r = 0; r < REPS; r++) {                                                                \
             double t0;                                                                              \
-            if (PFX##_init_f32(&pl, jts, NJ, l, c->p0, 0.0f, NULL) != QO_OK) return -1.0;           \
-            for (i = 0; i < NJ; i++) {                                                              \
-                jts[i].nph = 1;                                                                     \
-                jts[i].ph[0].t = 0.0f;                                                              \
-                jts[i].ph[0].d = jts[i].duration = 1e6f;                                            \
-                jts[i].ph[0].p = jts[i].final = c->p0[i];                                           \
-                jts[i].ph[0].v = c->v0[i];                                                          \
-                jts[i].ph[0].a = c->a0[i];                                                          \
-                jts[i].ph[0].j = 0.0f;                                                              \
-            }                                                                                       \
-            t0 = bench_now_ns();                                                                          \
-            if (PFX##_set_target_f32(&pl, 0.0f, c->tg, NULL) != QO_OK) return -1.0;                 \
-            t0 = bench_now_ns() - t0;                                                                     \
+            if (!NAME##_setup(&x, c)) return -1.0;                                                  \
+            t0 = bench_now_ns();                                                                    \
+            if (!NAME##_plan(&x, c)) return -1.0;                                                   \
+            t0 = bench_now_ns() - t0;                                                               \
             if (t0 < best) best = t0;                                                               \
         }                                                                                           \
-        *dur = pl.duration;                                                                         \
+        *dur = x.pl.duration;                                                                       \
         return best;                                                                                \
     }
-DEFINE_TIMER(time_new, qo_motion)
-DEFINE_TIMER(time_old, qoold_motion)
+DEFINE_PLANNER(time_new, qo_motion)
+DEFINE_PLANNER(time_old, qoold_motion)
 
 static void report(const char *name, double *x, int n)
 {
@@ -96,11 +123,40 @@ static void report(const char *name, double *x, int n)
     printf("  %-26s median %6.0f ns  p99 %6.0f ns  worst %7.0f ns\n", name, x[n / 2], x[(int)(0.99 * (n - 1))], x[n - 1]);
 }
 
+/* --ir N: each case planned once by each planner (new, then old, per case; rest then moving),
+ * the instructions of each plan dumped by callgrind as one part (built with -DQO_BENCH_CALLGRIND
+ * as build/bench/motion_ir and run by make bench-motion-ir). */
+static int run_ir(int n)
+{
+    int moving, k;
+    for (moving = 0; moving < 2; moving++) {
+        ref_rng g;
+        g.s = 20261127u + (unsigned)moving;
+        for (k = 0; k < n; k++) {
+            bcase c;
+            time_new_ctx xn;
+            time_old_ctx xo;
+            make_case(&g, moving, &c);
+            if (!time_new_setup(&xn, &c) || !time_old_setup(&xo, &c)) return 1;
+            CALLGRIND_ZERO_STATS;
+            if (!time_new_plan(&xn, &c)) return 1;
+            CALLGRIND_DUMP_STATS;
+            CALLGRIND_ZERO_STATS;
+            if (!time_old_plan(&xo, &c)) return 1;
+            CALLGRIND_DUMP_STATS;
+        }
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
-    int n = argc > 1 ? atoi(argv[1]) : 20000, moving;
-    double *tn = malloc(sizeof(double) * (size_t)n), *to = malloc(sizeof(double) * (size_t)n);
-    double *ratio = malloc(sizeof(double) * (size_t)n);
+    int n = argc > 1 ? atoi(argv[argc - 1]) : 20000, moving;
+    double *tn, *to, *ratio;
+    if (argc > 2 && strcmp(argv[1], "--ir") == 0) return run_ir(n);
+    tn = malloc(sizeof(double) * (size_t)n);
+    to = malloc(sizeof(double) * (size_t)n);
+    ratio = malloc(sizeof(double) * (size_t)n);
     if (!tn || !to || !ratio || n < 1) return 1;
     printf("motion planning, 7 joints, SCURVE, SYNC_TIME, %d cases per scenario, best of %d per case\n", n, REPS);
     for (moving = 0; moving < 2; moving++) {

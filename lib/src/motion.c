@@ -394,7 +394,7 @@ static int line_profile(const qo_motion_planner_f32 *pl, const mline *ln, float 
     qo_motion_solve_min(&p, &s);
     if (T > s.t) {
         float vcs = s.fam == 0 ? s.x : fminf(fmaxf(p.v0 + p.a0 * fabsf(p.a0) / (2.0f * p.l.j), -p.l.vn), p.l.vp);
-        if (!qo_motion_solve_time(&p, vcs, T, &s)) return 0;
+        if (!qo_motion_solve_time(&p, &s, vcs, T, &s)) return 0;
     }
     unit->lim = qo_motion_limits_default;
     load(unit, 0.0f, p.v0, p.a0, g, qo_motion_build(&p, &s, g), 1.0f);
@@ -451,7 +451,7 @@ static int joint_arrived(const qo_motion_joint_f32 *jt, float d)
 }
 
 /* Pass 1 of a plan: joint jt's minimum-time solve, kept in its first phase slot (x in v, tc in
- * d, the family in j; -1 = already at its target state) with its duration, until pass 2 loads
+ * d, the family in j, -1 = already at its target state; f0 in p, t0 in a) with its duration, until pass 2 loads
  * the profile. The phase array is the planner's storage and holds no plan in between, so a
  * re-plan needs no per-joint scratch beyond what the joint owns. */
 static void plan_min(const qo_motion_planner_f32 *pl, qo_motion_joint_f32 *jt)
@@ -462,6 +462,7 @@ static void plan_min(const qo_motion_planner_f32 *pl, qo_motion_joint_f32 *jt)
     jt->final = jt->p0 + p.dp;
     if (joint_arrived(jt, p.dp)) {
         s.x = s.tc = s.t = 0.0f;
+        s.f0 = s.t0 = NAN;
         s.fam = -1;
     } else {
         qo_motion_solve_min(&p, &s);
@@ -469,6 +470,8 @@ static void plan_min(const qo_motion_planner_f32 *pl, qo_motion_joint_f32 *jt)
     jt->ph[0].v = s.x;
     jt->ph[0].d = s.tc;
     jt->ph[0].j = (float)s.fam;
+    jt->ph[0].p = s.f0;
+    jt->ph[0].a = s.t0;
     jt->duration = s.t;
 }
 
@@ -483,6 +486,8 @@ static int plan_load(const qo_motion_planner_f32 *pl, qo_motion_joint_f32 *jt, f
     s.x = jt->ph[0].v;
     s.tc = jt->ph[0].d;
     s.fam = (int)jt->ph[0].j;
+    s.f0 = jt->ph[0].p;
+    s.t0 = jt->ph[0].a;
     s.t = jt->duration;
     if (s.fam < 0) {
         jt->final = jt->p0;
@@ -495,7 +500,7 @@ static int plan_load(const qo_motion_planner_f32 *pl, qo_motion_joint_f32 *jt, f
          * the extremum-velocity family at the velocity the start reaches (vs) */
         float vcs = s.fam == 0 ? s.x : p.scurve ? p.v0 + p.a0 * fabsf(p.a0) / (2.0f * p.l.j) : p.v0;
         vcs = fminf(fmaxf(vcs, -p.l.vn), p.l.vp);
-        if (qo_motion_solve_time(&p, vcs, Tj, &st)) s = st;
+        if (qo_motion_solve_time(&p, &s, vcs, Tj, &st)) s = st;
         else ok = 0;
     }
     load(jt, jt->p0, jt->v0, jt->a0, g, qo_motion_build(&p, &s, g), jt->p0 + p.dp);

@@ -37,10 +37,13 @@ typedef struct mprob {
 } mprob;
 
 /* A solved profile: family 0 = extremum velocity x with cruise tc (qo_motion_build), family
- * 1 = "dip" to acceleration x; t = its duration. */
+ * 1 = "dip" to acceleration x; t = its duration. f0, t0: what qo_motion_solve_min found for
+ * the zero-cruise profile through vc = 0 (residual, duration; NaN if it did not evaluate it),
+ * for qo_motion_solve_time's first bracket. */
 typedef struct msol {
     float x, tc, t;
     int fam;
+    float f0, t0;
 } msol;
 
 /* Integrates one segment exactly (the solver's inner loop: inline in both users). */
@@ -61,7 +64,7 @@ mlim qo_motion_mlim(const qo_motion_limits_f32 *l);
 unsigned qo_motion_vchange(int scurve, float v0, float a0, float v1, const mlim *l, mseg *out);
 unsigned qo_motion_build(const mprob *p, const msol *s, mseg *out);
 void qo_motion_solve_min(const mprob *p, msol *s);
-int qo_motion_solve_time(const mprob *p, float vcs, float T, msol *s);
+int qo_motion_solve_time(const mprob *p, const msol *min, float vcs, float T, msol *s);
 
 /* State of a loaded joint plan at local time tau (seconds after t0), including the motion after
  * the end (target velocity and acceleration ramp, see motion.h). */

@@ -235,6 +235,13 @@ static void eval_segs(float v0, float a0, const mseg *g, unsigned n, float *disp
     s.v = v0;
     s.a = a0;
     for (i = 0; i < n; i++) {
+        /* a segment of zero duration only sets (the root searches' profiles have no cruise,
+         * often no hold): integrating it would add exact zeros */
+        if (g[i].d == 0.0f) {
+            if (g[i].seta) s.a = g[i].a;
+            if (g[i].setv) s.v = g[i].v;
+            continue;
+        }
         mseg_integ(&s, &g[i]);
         t += g[i].d;
     }
@@ -263,6 +270,20 @@ typedef struct rctx {
     float vs, as; /* scale of the velocities (mode 0, 1) and accelerations (mode 2) searched */
     float vd;     /* mode 2: the velocities a dip surely flies (start, end, their ramps to a = 0) */
 } rctx;
+
+/* 1 if a and b are the same float, zero's sign included (NaN never is). */
+static int same_bits(float a, float b)
+{
+    return a == b && !signbit(a) == !signbit(b);
+}
+
+/* x clamped to the velocity limits [-vn, vp]: fminf(fmaxf(x, -vn), vp) without the libm calls
+ * (the same value: the bounds are finite and nonzero, and a NaN x gives -vn as fmaxf does). */
+static float clamp_v(float x, const mlim *l)
+{
+    x = x > -l->vn ? x : -l->vn;
+    return x < l->vp ? x : l->vp;
+}
 
 /* max of two numbers that are not NaN (fmaxf is a libm call where NaN rules must hold) */
 static float maxf(float a, float b)
@@ -615,9 +636,15 @@ static int dip_bump(const rctx *c, const float *x, const float *f, unsigned k, u
  * (<= QO_MOTION_DIP_SCAN + 1) points of am in [e0, e1] (e.g. the extremum-velocity profile
  * through vn and the direct transfer) and every sign change is solved; with nscan > 1 (the
  * residual not known to be monotone) also the pairs of roots between the points (dip_bump).
- * Returns 0 if none. */
+ * kn[0..nk): points whose residual and duration the caller has already, {am, f, t}, used
+ * where a scan point has the same bits. Returns 0 if none. */
 #define QO_MOTION_DIP_SCAN 4
-static int solve_dip(const mprob *p, float e0, float e1, unsigned nscan, float *am, float *dur)
+typedef struct mpt {
+    float x, f, t;
+} mpt;
+
+static int solve_dip(const mprob *p, float e0, float e1, unsigned nscan, const mpt *kn, unsigned nk, float *am,
+                     float *dur)
 {
     rctx c;
     float x[2 * QO_MOTION_DIP_SCAN + 2], f[2 * QO_MOTION_DIP_SCAN + 2], t[2 * QO_MOTION_DIP_SCAN + 2];
@@ -630,8 +657,15 @@ static int solve_dip(const mprob *p, float e0, float e1, unsigned nscan, float *
     *dur = INFINITY;
     if (nscan > QO_MOTION_DIP_SCAN) nscan = QO_MOTION_DIP_SCAN;
     for (k = 0; k <= nscan; k++) {
+        unsigned i;
         x[k] = e0 + (e1 - e0) * (float)k / (float)nscan;
-        f[k] = resid(&c, x[k], &t[k]);
+        for (i = 0; i < nk && !same_bits(kn[i].x, x[k]); i++) continue;
+        if (i < nk) {
+            f[k] = kn[i].f;
+            t[k] = kn[i].t;
+        } else {
+            f[k] = resid(&c, x[k], &t[k]);
+        }
     }
     n = nscan;
     if (nscan > 1) {
@@ -765,7 +799,7 @@ static void solve_dips_moving(const mprob *p, msol *sol)
         pt[3] = r.l.ap;
         for (k = 0; k < 3; k++) {
             if (!(pt[k + 1] > pt[k])) continue;
-            if (solve_dip(&r, pt[k], pt[k + 1], 3, &am, &dd) && dd < sol->t) {
+            if (solve_dip(&r, pt[k], pt[k + 1], 3, NULL, 0, &am, &dd) && dd < sol->t) {
                 sol->x = am;
                 sol->tc = 0.0f;
                 sol->t = dd;
@@ -787,41 +821,63 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
     rctx c;
     const mlim *l = &p->l;
     float v0 = p->v0, a0 = p->a0, dp = p->dp;
-    float pt[5], fp[5], xp[5], vn, ve, lo, hi, bv = 0.0f, bt = 0.0f, bd = INFINITY, x, fz = NAN, fn0 = NAN, xn0 = 0.0f;
-    unsigned np = 0, i;
+    float pt[5], fp[5], xp[5], vn, ve, lo, hi, bv = 0.0f, bt = 0.0f, bd = INFINITY, x, fz = NAN, fn0 = NAN, xn0 = 0.0f,
+          xz = 0.0f;
+    unsigned np = 0, i, skip, kz = 0;
     int scurve = p->scurve, atrest = p->vf == 0.0f && p->af == 0.0f;
     sol->fam = 0;
+    sol->f0 = sol->t0 = NAN;
     if (scurve && v0 == 0.0f && a0 == 0.0f && atrest && l->ap == l->an && rest_min(p, &sol->x, &sol->tc, &sol->t))
         return;
     c = rctx_make(p, 0, 0.0f);
     vn = scurve ? v0 + a0 * fabsf(a0) / (2.0f * l->j) : v0;
-    vn = fminf(fmaxf(vn, -l->vn), l->vp);
+    vn = clamp_v(vn, l);
     ve = p->vf;
-    if (scurve && p->af != 0.0f) ve = fminf(fmaxf(ve - p->af * fabsf(p->af) / (2.0f * l->j), -l->vn), l->vp);
+    if (scurve && p->af != 0.0f) ve = clamp_v(ve - p->af * fabsf(p->af) / (2.0f * l->j), l);
     lo = fminf(vn, ve);
     hi = fmaxf(vn, ve);
     pt[np++] = -l->vn;
     if (lo > pt[np - 1]) pt[np++] = lo;
     if (hi > pt[np - 1]) pt[np++] = hi;
     if (l->vp > pt[np - 1]) pt[np++] = l->vp;
-    for (i = 0; i < np; i++) {
+    /* D is increasing on the outer pieces, so an end is decided by the inner point next to it
+     * when that misses dp by far more than rounding: beyond it D misses further (no root, no
+     * cruise). Such an end (-vn or vp, never vs or ve) is evaluated only if the pieces between
+     * are searched below (skip: bit 1 the first point, bit 2 the last). */
+    skip = 0;
+    for (i = 1; i + 1 < np; i++) {
         fp[i] = resid(&c, pt[i], &xp[i]);
-        if (pt[i] == ve) fz = fp[i];
+        if (i == 1 && pt[1] == lo && fp[1] < -1e-5f * (fabsf(dp) + c.vs * xp[1])) skip |= 1;
+        if (i + 2 == np && pt[i] == hi && fp[i] > 1e-5f * (fabsf(dp) + c.vs * xp[i])) skip |= 2;
+    }
+    if (!(skip & 1)) fp[0] = resid(&c, pt[0], &xp[0]);
+    if (np > 1 && !(skip & 2)) fp[np - 1] = resid(&c, pt[np - 1], &xp[np - 1]);
+    for (i = 0; i < np; i++) {
+        if ((i == 0 && (skip & 1)) || (i + 1 == np && (skip & 2))) continue;
+        if (pt[i] == ve) {
+            fz = fp[i];
+            xz = xp[i];
+            kz = same_bits(pt[i], p->vf) && !same_bits(v0, -0.0f);
+        }
+        if (same_bits(pt[i], 0.0f)) {
+            sol->f0 = fp[i];
+            sol->t0 = xp[i];
+        }
         if (pt[i] == vn) {
             fn0 = fp[i];
             xn0 = xp[i];
         }
     }
     /* Cruising at vp / -vn when even the fastest peak falls short. */
-    if (fp[np - 1] <= 0.0f)
+    if (!(skip & 2) && fp[np - 1] <= 0.0f)
         consider(0, l->vp, -fp[np - 1] / l->vp, xp[np - 1] - fp[np - 1] / l->vp, &bv, &bt, &bd, &sol->fam);
-    if (fp[0] >= 0.0f) consider(0, -l->vn, fp[0] / l->vn, xp[0] + fp[0] / l->vn, &bv, &bt, &bd, &sol->fam);
+    if (!(skip & 1) && fp[0] >= 0.0f) consider(0, -l->vn, fp[0] / l->vn, xp[0] + fp[0] / l->vn, &bv, &bt, &bd, &sol->fam);
     /* Outer pieces first: a single velocity extremum beyond vs and ve (or a reversal) reaches
      * dp faster than changing velocity in two stages, so the middle piece is searched only when
      * neither outer piece brackets dp (e.g. a0 already braking, dp between the two stops' reach). */
     for (i = 0; i + 1 < np; i++) {
         int outer = pt[i + 1] <= lo || pt[i] >= hi;
-        if (!outer) continue;
+        if (!outer || (i == 0 && (skip & 1)) || (i + 2 == np && (skip & 2))) continue;
         if (fp[i] == 0.0f) consider(0, pt[i], 0.0f, xp[i], &bv, &bt, &bd, &sol->fam);
         if (fp[i + 1] == 0.0f) consider(0, pt[i + 1], 0.0f, xp[i + 1], &bv, &bt, &bd, &sol->fam);
         if (fp[i] != 0.0f && fp[i + 1] != 0.0f && (fp[i] < 0.0f) != (fp[i + 1] < 0.0f)) {
@@ -837,18 +893,40 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
      * Only for end states with af = 0 (the dip's pulse ends at zero acceleration). */
     if (scurve && p->af == 0.0f && a0 != 0.0f && vn != ve && (fz < 0.0f) != (fn0 < 0.0f) && fz == fz && fn0 == fn0) {
         float am, dd;
-        if (solve_dip(p, 0.0f, a0, 1, &am, &dd)) consider(1, am, 0.0f, dd, &bv, &bt, &bd, &sol->fam);
+        mpt kn[1];
+        /* at am = a0 the dip is the direct transfer (a zero ramp, then the profile through ve =
+         * vf): the same segments from the same start, so the same residual as fz (kz: ve has
+         * vf's bits and v0 is not -0, which the ramp would turn into +0) */
+        kn[0].x = a0;
+        kn[0].f = fz;
+        kn[0].t = xz;
+        if (solve_dip(p, 0.0f, a0, 1, kn, kz, &am, &dd)) consider(1, am, 0.0f, dd, &bv, &bt, &bd, &sol->fam);
     }
     /* The other orientation: a0 ramped further away from zero first (to am between a0 and the
      * bound on its side), then the pulse to the end; from the direct transfer (am = a0) to the
      * bound. Its far end is evaluated only here; solved when it brackets dp with the direct one. */
-    if (scurve && p->af == 0.0f && a0 != 0.0f && (a0 > 0.0f ? a0 < l->ap : -a0 < l->an) && fz == fz) {
+    /* It starts at the direct transfer (fz) and drives the velocity further in a0's direction
+     * as am grows, so where the direct transfer already overshoots dp in that direction (by far
+     * more than rounding) the far end does too: no bracket, fw not evaluated. */
+    if (scurve && p->af == 0.0f && a0 != 0.0f && (a0 > 0.0f ? a0 < l->ap : -a0 < l->an) && fz == fz &&
+        !((a0 > 0.0f ? fz : -fz) > 1e-5f * (fabsf(dp) + c.vs * xz))) {
         float aw = a0 > 0.0f ? l->ap : -l->an, am, dd, fw, tw;
         rctx cw = rctx_make(p, 2, 0.0f);
         fw = resid(&cw, aw, &tw);
         if (fw != fw || (fw < 0.0f) != (fz < 0.0f) || fw == 0.0f) {
-            if (solve_dip(p, a0, aw, 1, &am, &dd)) consider(1, am, 0.0f, dd, &bv, &bt, &bd, &sol->fam);
+            mpt kn[2];
+            kn[0].x = aw;
+            kn[0].f = fw;
+            kn[0].t = tw;
+            kn[1].x = a0; /* the direct transfer, as above */
+            kn[1].f = fz;
+            kn[1].t = xz;
+            if (solve_dip(p, a0, aw, 1, kn, 1 + kz, &am, &dd)) consider(1, am, 0.0f, dd, &bv, &bt, &bd, &sol->fam);
         }
+    }
+    if (!(bd < INFINITY)) {
+        if (skip & 1) fp[0] = resid(&c, pt[0], &xp[0]);
+        if (skip & 2) fp[np - 1] = resid(&c, pt[np - 1], &xp[np - 1]);
     }
     /* The two-stage middle piece: split it at its extremum when it has one. */
     if (!(bd < INFINITY) && vn != ve && hi - lo > 1e-6f * c.vs) {
@@ -937,8 +1015,10 @@ void qo_motion_solve_min(const mprob *p, msol *sol)
  * QO_MOTION_SYNC_SCAN points plus 0, vs, ve and vc* and take the sign change, with a
  * non-negative cruise, nearest vc*. Returns 0 if no such profile was found. */
 #define QO_MOTION_SYNC_SCAN 9
-int qo_motion_solve_time(const mprob *p, float vcs, float T, msol *sol)
+int qo_motion_solve_time(const mprob *p, const msol *min, float vcs, float T, msol *sol)
 {
+    float f0 = min->f0, t0 = min->t0, mx = min->x; /* read first: min may be sol */
+    int dip = min->fam == 1;
     rctx c;
     const mlim *l = &p->l;
     float fa, fb, tca, tcb, fr;
@@ -951,7 +1031,34 @@ int qo_motion_solve_time(const mprob *p, float vcs, float T, msol *sol)
         rest_time(p, T, &sol->x, &sol->tc))
         return 1;
     c = rctx_make(p, 1, T);
-    fa = resid(&c, 0.0f, &tca);
+    /* The profile through 0 has the displacement d and duration t0 the minimum solve found; here
+     * its residual is d + 0 (T - t0) - dp, which is f0 = d - dp bit for bit when all are finite
+     * (d is never -0: eval_segs sums from +0). */
+    if (fabsf(f0) <= FLT_MAX && fabsf(t0) <= FLT_MAX && fabsf(T) <= FLT_MAX) {
+        fa = f0;
+        tca = T - t0;
+    } else {
+        fa = resid(&c, 0.0f, &tca);
+    }
+    /* After a dip (to acceleration mx) the profile of exactly T usually has its extremum between
+     * 0 and the dip's own (where the dip's pulse brings the acceleration to zero), while vcs
+     * (vs, where the dip family meets this one) can lie on the other side of 0 and leave only
+     * the scan: that bracket is tried first. A root there is a profile of exactly T with a
+     * non-negative cruise, as any the scan finds; without one the search goes on as before. */
+    if (dip && p->scurve && p->af == 0.0f && fa != 0.0f && fa == fa) {
+        float J = l->j, d = fabsf(mx - p->a0) / J, vx, fx, tcx, tx;
+        vx = p->v0 + d * (p->a0 + 0.5f * d * (mx >= p->a0 ? J : -J));
+        vx = clamp_v(vx + mx * fabsf(mx) / (2.0f * J), l);
+        fx = resid(&c, vx, &tcx);
+        if (fx == fx && (fa < 0.0f) != (fx < 0.0f)) {
+            float x = root(&c, 0.0f, vx, fa, fx, tca, tcx, &tx, &fr);
+            if (tx >= -1e-5f * T) {
+                sol->x = x;
+                sol->tc = tx < 0.0f ? 0.0f : tx; /* rounding */
+                return 1;
+            }
+        }
+    }
     fb = resid(&c, vcs, &tcb);
     if (fa != 0.0f && (fa < 0.0f) != (fb < 0.0f)) {
         sol->x = root(&c, 0.0f, vcs, fa, fb, tca, tcb, &sol->tc, &fr);
@@ -966,8 +1073,8 @@ int qo_motion_solve_time(const mprob *p, float vcs, float T, msol *sol)
         float ve = p->scurve ? p->vf - p->af * fabsf(p->af) / (2.0f * l->j) : p->vf;
         xs[n++] = 0.0f;
         xs[n++] = vcs;
-        xs[n++] = fminf(fmaxf(vn, -l->vn), l->vp);
-        xs[n++] = fminf(fmaxf(ve, -l->vn), l->vp);
+        xs[n++] = clamp_v(vn, l);
+        xs[n++] = clamp_v(ve, l);
         /* the grid spans the velocities a profile can use (the limits, or the problem's
          * scale where that is smaller: a grid over +-1e8 misses a root near 1) */
         float gn = fminf(l->vn, c.vs), gp = fminf(l->vp, c.vs);
@@ -982,7 +1089,22 @@ int qo_motion_solve_time(const mprob *p, float vcs, float T, msol *sol)
             }
             xs[k] = x;
         }
-        for (i = 0; i < n; i++) gs[i] = resid(&c, xs[i], &ts[i]);
+        /* 0, vcs, vs and ve often coincide with each other or a grid point (0 is one): each
+         * distinct value is evaluated once (the same bits give the same residual) */
+        for (i = 0; i < n; i++) {
+            if (i > 0 && same_bits(xs[i], xs[i - 1])) {
+                gs[i] = gs[i - 1];
+                ts[i] = ts[i - 1];
+            } else if (same_bits(xs[i], 0.0f)) {
+                gs[i] = fa;
+                ts[i] = tca;
+            } else if (same_bits(xs[i], vcs)) {
+                gs[i] = fb;
+                ts[i] = tcb;
+            } else {
+                gs[i] = resid(&c, xs[i], &ts[i]);
+            }
+        }
         for (i = 0; i + 1 < n; i++) {
             float r, tr;
             if (xs[i] == xs[i + 1]) continue;
