@@ -44,7 +44,8 @@ if [ $# = 4 ] && [ "$1" = --compare ]; then
             "$a" "$D/target/$b" 2>/dev/null || echo "FAIL $b: missing from $D/target"
     done
     [ "$crc" = 0 ] || { echo "FAIL a command failed (see $D/ref/*.err, $D/target/*.err)"; f=$((f + 1)); }
-    echo "$(ls "$D"/ref/*.out | wc -l) runs, $(cat "$D"/ref/*.out | wc -l) output lines compared"
+    set -- "$D"/ref/*.out
+    echo "$# runs, $(cat "$@" | wc -l) output lines compared"
     echo "$p passed, $f failed"
     [ "$f" = 0 ]
     exit
