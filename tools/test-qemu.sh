@@ -8,7 +8,9 @@
 # "Core" tests include only C99 headers, cmocka.h, qorient/ and common/ headers; they run bare
 # metal against the cmocka shim of tests/qemu with newlib semihosting. The Linux targets build the
 # top Makefile's tests-build (ASan+UBSan, LeakSanitizer off) with the cross compiler against a
-# sysroot of the target's -dev packages, and run every cmocka program and shell test.
+# sysroot of the target's -dev packages, and run every cmocka program and shell test, then
+# compare the command's outputs for a fixed input set with the host build's, byte for byte
+# (test cli_outputs: tools/cli-outputs.sh --compare; the same float32 bits on every target).
 #
 #   sh tools/test-qemu.sh [TARGET...]       (default: all five; QEMU_TARGETS works too)
 #

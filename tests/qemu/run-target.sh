@@ -7,7 +7,9 @@
 #                                               with semihosting and the cmocka shim of tests/qemu
 #   sh tests/qemu/run-target.sh aarch64|armhf   the whole host suite (core, ports, cmocka and
 #                                               shell tests, ASan+UBSan) cross-built with the top
-#                                               Makefile and run under qemu-aarch64 / qemu-arm
+#                                               Makefile and run under qemu-aarch64 / qemu-arm,
+#                                               and the command's outputs compared with the
+#                                               host's (cli_outputs: tools/cli-outputs.sh)
 #   sh tests/qemu/run-target.sh list            prints which programs each kind of target takes
 #                                               ("cortex-m tests/core/test_quat.c", "linux ...")
 #                                               and builds nothing
@@ -225,6 +227,21 @@ aarch64|armhf)
         if [ ! -f "$OUT/qorient" ]; then build_failed "$n" "$LOGS/build.log"; continue; fi
         run "$n" sh sh "$sh"
     done
+    # The same bits as on the host (issue 14): the command's outputs for fixed inputs
+    # (tools/cli-outputs.sh: convert in every direction and all 24 Euler sequences, slerp,
+    # gimbal with the tracking filter, plan with moving targets and target velocities), made by
+    # the host's build/qorient and by this target's under qemu-user, compared byte for byte
+    # (%.9g round-trips float32); one test per file; run's report of a failure shows the first
+    # differing line of each file that differs.
+    n=cli_outputs
+    if ! wanted "$n"; then skip_it "$n" "QEMU_SKIP"
+    elif [ ! -f "$OUT/qorient" ]; then build_failed "$n" "$LOGS/build.log"
+    # the host's build, without the target's pkg-config paths exported above
+    elif ! env -u PKG_CONFIG_SYSROOT_DIR -u PKG_CONFIG_LIBDIR make -s -j2 build/qorient \
+            >"$LOGS/host-qorient.log" 2>&1; then build_failed "$n" "$LOGS/host-qorient.log"
+    else
+        run "$n" sh sh tools/cli-outputs.sh --compare "$PWD/build/qorient" "$QW" "$OUT/cli-outputs"
+    fi
     ;;
 *)
     echo "run-target.sh: unknown target '$T' (m0, m4f, m7, aarch64, armhf, list)" >&2
