@@ -10,10 +10,10 @@
  *   qo_gpio_sink_config_default   const defaults of the config (every joint = qo_gpio_joint_default)
  *   qo_gpio_joint_default         const defaults of one joint
  *   qo_gpio_sink_open()           check the config, open every line through the backend
- *   qo_gpio_sink_write()          one tick: emit the owed steps / servo frame (the qo_sink write)
+ *   qo_gpio_sink_write()          one tick: emit the owed steps / servo frame (the view's write)
  *   qo_gpio_sink_as_sink()        fills the qo_sink view of a sink (write, close; service = NULL)
  *   qo_gpio_sink_position()       steps emitted so far for a step/dir joint
- *   qo_gpio_sink_close()          drive step lines low and close every line
+ *   qo_gpio_sink_close()          drive step lines low and close every line (the view's close)
  *   qo_gpio_libgpiod_backend()    the libgpiod backend (v1 API default, v2 when QO_GPIOD_V2)
  *
  * Step/dir model. Each joint keeps `position`, the signed count of steps emitted (positive =
