@@ -376,7 +376,7 @@ static int mat3_is_rotation_direct(const qo_mat3_f32 *m)
     ok = _mm_and_ps(_mm_cmple_ps(d, tol), _mm_cmple_ps(o, tol));
     if ((_mm_movemask_ps(ok) & 7) != 7) return 0;
     /* det = r0 . (r1 x r2), summed ((p0 + p1) + p2) as qo_mat3_det_f32 */
-    c = _mm_mul_ps(r0, qo_simd_cross_ps(r1yzx, r1zxy, r2));
+    c = _mm_mul_ps(r0, qo_quat_internal_cross_ps(r1yzx, r1zxy, r2));
     c = _mm_add_ss(_mm_add_ss(c, QO_SIMD_SHUFFLE_PS(c, 0x55)), QO_SIMD_SHUFFLE_PS(c, 0xaa));
     return _mm_comigt_ss(c, _mm_setzero_ps());
 #else

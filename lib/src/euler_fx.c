@@ -39,24 +39,6 @@ static int64_t smul(int64_t a, int64_t b)
 /* atan2(y, x) for int64 arguments of one scale, |y|, |x| < 2^63: both are reduced by the
  * same power of two to below 2^30 (30 significant bits of the larger: 1e-9 rad at worst),
  * rounded on the magnitude so the result stays odd in y, then qo_fx_atan2_q28. */
-/* round(v / 2^s) (ties up) for s <= 34 and a result below 2^31, on 32-bit words: a variable
- * 64-bit shift is a libgcc call or a long sequence on Cortex-M0. */
-static uint32_t shr_round(uint64_t v, unsigned s)
-{
-    uint32_t hi = (uint32_t)(v >> 32), lo = (uint32_t)v, r, half;
-    if (s == 0) return lo;
-    if (s < 32) {
-        r = (hi << (32u - s)) | (lo >> s);
-        half = (lo >> (s - 1u)) & 1u;
-    } else if (s == 32) {
-        r = hi;
-        half = lo >> 31;
-    } else {
-        r = hi >> (s - 32u);
-        half = (hi >> (s - 33u)) & 1u;
-    }
-    return r + half;
-}
 
 /* The number of bits of v above 30 (0 when v < 2^30), on 32-bit words by a binary search
  * (ARMv6-M has no count-leading-zeros instruction). */
@@ -79,8 +61,8 @@ static qo_q28 atan2_i64(int64_t y, int64_t x)
     uint64_t ay = qo_fx_abs_u64(y), ax = qo_fx_abs_u64(x), m = ay > ax ? ay : ax;
     unsigned s = bits_above_30(m);   /* (a 64-bit shift per step is slow on Cortex-M0) */
     int32_t yy, xx;
-    yy = (int32_t)shr_round(ay, s);
-    xx = (int32_t)shr_round(ax, s);
+    yy = (int32_t)qo_fx_urshift_round_up_u32(ay, s);
+    xx = (int32_t)qo_fx_urshift_round_up_u32(ax, s);
     if (y < 0) yy = -yy;
     if (x < 0) xx = -xx;
     return qo_fx_atan2_q28(yy, xx);
@@ -313,16 +295,10 @@ qo_status qo_quat_to_euler_q30(qo_quat_q30 q, qo_euler_seq seq, qo_euler_q28 *ou
 
 static int64_t q56_from_q28(qo_q28 a) { return (int64_t)a * ((int64_t)1 << 28); }
 
-static int64_t floor_div(int64_t n, int64_t d)   /* d > 0 */
-{
-    int64_t qt = n / d;
-    return (n % d < 0) ? qt - 1 : qt;
-}
-
 /* a (Q8.56, |a| < 2^61) plus the multiple of 2pi that brings it nearest ref (Q3.28). */
 static int64_t unwrap_toward(int64_t a, qo_q28 ref)
 {
-    int64_t k = floor_div(q56_from_q28(ref) - a + PI_Q56, TWO_PI_Q56);
+    int64_t k = qo_fx_div_floor(q56_from_q28(ref) - a + PI_Q56, TWO_PI_Q56);
     return a + k * TWO_PI_Q56;
 }
 
@@ -420,12 +396,6 @@ static qo_q28 wrap_turn(int32_t t)
     return t;
 }
 
-static uint64_t sq_u64(int32_t v)
-{
-    uint32_t m = v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
-    return qo_fx_umul32_u64(m, m);
-}
-
 /* v = m 2^e (m truncated) with e even and m < 2^32, m >= 2^30 when v >= 2^30. */
 static uint32_t mant_even(uint64_t v, unsigned *e)
 {
@@ -457,7 +427,7 @@ qo_status qo_quat_to_euler_fast_q30(qo_quat_q30 q, qo_euler_seq seq, qo_q28 band
      * positive), so q and -q give the same bits. */
     v[0] = q.w; v[1] = q.x; v[2] = q.y; v[3] = q.z;
     m = 0;
-    for (i = 0; i < 4; i++) m |= v[i] < 0 ? 0u - (uint32_t)v[i] : (uint32_t)v[i];
+    for (i = 0; i < 4; i++) m |= qo_fx_abs_u32(v[i]);
     if (m >= (uint32_t)QO_Q30_ONE) {
         for (i = 0; i < 4; i++) {
             v[i] /= 2;
@@ -491,16 +461,16 @@ qo_status qo_quat_to_euler_fast_q30(qo_quat_q30 q, qo_euler_seq seq, qo_q28 band
      * normalised apart (so the smaller one keeps its relative precision near lock, where it
      * sets the margin): sqrt(mp mq) 2^((ep + eq)/2), shifted down by s (and up by 1 for the
      * factor 2): r = s - (ep + eq)/2 - 1 >= 0, as 2 |P| |Q| <= |P|^2 + |Q|^2 < 2^(30 + s). */
-    sp = sq_u64(pr) + sq_u64(pi);
-    sq = sq_u64(qr) + sq_u64(qi);
+    sp = qo_fx_sq_u64(pr) + qo_fx_sq_u64(pi);
+    sq = qo_fx_sq_u64(qr) + qo_fx_sq_u64(qi);
     s = bits_above_30(sp + sq);
-    hp = shr_round(sp, s);
-    hq = shr_round(sq, s);
+    hp = qo_fx_urshift_round_up_u32(sp, s);
+    hq = qo_fx_urshift_round_up_u32(sq, s);
     mp = mant_even(sp, &ep);
     mq = mant_even(sq, &eq);
     r = (int)s - (int)((ep + eq) / 2u) - 1;
     m = (uint32_t)qo_fx_sqrt_u64(qo_fx_umul32_u64(mp, mq));
-    c = r <= 0 ? (int32_t)(m << -r) : r > 34 ? 0 : (int32_t)shr_round(m, (unsigned)r);
+    c = r <= 0 ? (int32_t)(m << -r) : r > 34 ? 0 : (int32_t)qo_fx_urshift_round_up_u32(m, (unsigned)r);
     if (proper) {
         /* t2 = 2 atan2(|Q|, |P|) in [0, pi]; the margin is the distance to 0 or pi. */
         t2 = qo_fx_atan2_q28(c, (int32_t)hp - (int32_t)hq);

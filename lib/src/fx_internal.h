@@ -4,9 +4,17 @@
  * each named by what it does and how it rounds, so a caller picks the rounding it relies on:
  *
  *   qo_fx_abs_u64              |v| of an int64 as uint64, exact for every value (INT64_MIN too)
+ *   qo_fx_abs_u32              |v| of an int32 as uint32, exact for every value (INT32_MIN too)
+ *   qo_fx_usq_u64              m^2 of a uint32 m <= 2^31, exact (three 16x16 products on ARMv6-M)
+ *   qo_fx_sq_u64               v^2 of an int32, exact (<= 2^62)
  *   qo_fx_rshift_round_up      round(v / 2^s), ties toward +infinity (add half, floor)
+ *   qo_fx_urshift_round_up_u32 round(v / 2^s) of a uint64, ties up, s <= 34, result < 2^32
+ *                              (on 32-bit words: no 64-bit variable shift on Cortex-M0)
  *   qo_fx_rshift_round_away    round(v / 2^s), ties away from zero (odd: f(-v) == -f(v))
+ *   qo_fx_rshift_round_away_clamped  the same for any int32 s: s <= 0 gives v, s >= 64 gives 0
+ *   qo_fx_rshift_floor         floor(v / 2^s) (plain arithmetic shift, named for its rounding)
  *   qo_fx_div_round_away       round(num / den), ties away from zero (64-bit division)
+ *   qo_fx_div_floor            floor(num / den) for den > 0 (64-bit division)
  *   qo_fx_recip62_u32          about 2^62 / d for d in [2^31, 2^32) (Newton, no division)
  *   qo_fx_recip62_step         one more Newton step of that reciprocal
  *   qo_fx_rsqrt32_q30          about 2^30 / sqrt(x / 2^32) for x in [2^30, 2^32) (Newton)
@@ -43,11 +51,62 @@ static inline uint64_t qo_fx_abs_u64(int64_t v)
     return v < 0 ? (uint64_t)0 - (uint64_t)v : (uint64_t)v;
 }
 
+/* |v| as an unsigned 32-bit value; exact for every int32 including INT32_MIN (2^31). */
+static inline uint32_t qo_fx_abs_u32(int32_t v)
+{
+    return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
+}
+
+/* m^2 exactly, for m <= 2^31 (so m^2 <= 2^62). On ARMv6-M (no 32x32 -> 64 multiply) three
+ * 16x16 products, the cross term once and doubled (h l < 2^31 for m <= 2^31), which is
+ * shorter than qo_fx_umul32_u64's four; elsewhere one widening multiply. Exact both ways. */
+static inline uint64_t qo_fx_usq_u64(uint32_t m)
+{
+#if QO_FX_NARROW_MUL
+    uint32_t h = m >> 16, l = m & 0xFFFFu, c = h * l;
+    return ((uint64_t)(h * h) << 32) + ((uint64_t)c << 17) + l * l;
+#else
+    return (uint64_t)m * m;
+#endif
+}
+
+/* v^2 exactly as uint64 for every int32 v (<= 2^62, so three of them sum without a carry):
+ * on the magnitude through qo_fx_usq_u64 on ARMv6-M, one signed widening multiply elsewhere
+ * (no absolute value needed: SMULL on ARMv7-M, imul on x86-64). */
+static inline uint64_t qo_fx_sq_u64(int32_t v)
+{
+#if QO_FX_NARROW_MUL
+    return qo_fx_usq_u64(qo_fx_abs_u32(v));
+#else
+    return (uint64_t)((int64_t)v * v);
+#endif
+}
+
 /* round(v / 2^s) with ties toward +infinity, 1 <= s <= 62. Precondition (unchecked): v plus
  * 2^(s-1) does not overflow, i.e. v <= INT64_MAX - 2^(s-1). Not odd: -5/2 gives -2, 5/2 gives 3. */
 static inline int64_t qo_fx_rshift_round_up(int64_t v, unsigned s)
 {
     return (v + ((int64_t)1 << (s - 1u))) >> s;
+}
+
+/* round(v / 2^s) with ties toward +infinity for a uint64 v, 0 <= s <= 34, when the result
+ * is below 2^32 (unchecked precondition; a carry out of the top bit wraps). Worked on 32-bit
+ * words: a variable 64-bit shift is a libgcc call or a long sequence on Cortex-M0. */
+static inline uint32_t qo_fx_urshift_round_up_u32(uint64_t v, unsigned s)
+{
+    uint32_t hi = (uint32_t)(v >> 32), lo = (uint32_t)v, r, half;
+    if (s == 0) return lo;
+    if (s < 32) {
+        r = (hi << (32u - s)) | (lo >> s);
+        half = (lo >> (s - 1u)) & 1u;
+    } else if (s == 32) {
+        r = hi;
+        half = lo >> 31;
+    } else {
+        r = hi >> (s - 32u);
+        half = (hi >> (s - 33u)) & 1u;
+    }
+    return r + half;
 }
 
 /* round(v / 2^s) with ties away from zero, 1 <= s <= 63, every int64 v: computed on the
@@ -58,12 +117,36 @@ static inline int64_t qo_fx_rshift_round_away(int64_t v, unsigned s)
     return v < 0 ? -(int64_t)m : (int64_t)m;
 }
 
+/* qo_fx_rshift_round_away for a shift that may leave its range (the spline sampler's
+ * exponents), every int64 v: s <= 0 returns v unchanged (no scaling up: callers scale up
+ * themselves, with a bound check), s >= 64 returns 0 (|v| / 2^64 < 1/2). */
+static inline int64_t qo_fx_rshift_round_away_clamped(int64_t v, int32_t s)
+{
+    if (s <= 0) return v;
+    if (s >= 64) return 0;
+    return qo_fx_rshift_round_away(v, (unsigned)s);
+}
+
+/* floor(v / 2^s), 0 <= s <= 63, every int64 v: the arithmetic shift checked above. */
+static inline int64_t qo_fx_rshift_floor(int64_t v, unsigned s)
+{
+    return v >> s;
+}
+
 /* round(num / den) to nearest with ties away from zero, for den > 0 and |num| + den / 2 < 2^64
  * (so every |num| < 2^63). A 64-bit division: a library call on cores without a divider. */
 static inline int64_t qo_fx_div_round_away(int64_t num, uint64_t den)
 {
     uint64_t q = (qo_fx_abs_u64(num) + den / 2u) / den;
     return num < 0 ? -(int64_t)q : (int64_t)q;
+}
+
+/* floor(num / den) for den > 0, every int64 num (C's / truncates toward zero: one down when
+ * a negative quotient left a remainder). A 64-bit division. */
+static inline int64_t qo_fx_div_floor(int64_t num, int64_t den)
+{
+    int64_t q = num / den;
+    return (num % den < 0) ? q - 1 : q;
 }
 
 /* One Newton step r += r (2^62 - d r) / 2^62 of a reciprocal r ~ 2^62 / d, d in [2^31, 2^32),

@@ -173,12 +173,6 @@ qo_status qo_fx_rsqrt_q30(qo_q30 x, qo_q30 *out)
     return r > (uint64_t)INT32_MAX ? QO_E_OVERFLOW : QO_OK;
 }
 
-static uint64_t sq(int32_t v)
-{
-    int64_t p = (int64_t)v * v;
-    return (uint64_t)p;
-}
-
 static qo_q30 sqrt_sat(uint64_t sum, int carried)
 {
     uint64_t r;
@@ -190,13 +184,13 @@ static qo_q30 sqrt_sat(uint64_t sum, int carried)
 qo_q30 qo_fx_norm3_q30(qo_q30 x, qo_q30 y, qo_q30 z)
 {
     /* Each square <= 2^62, three of them < 2^64: no carry possible. */
-    return sqrt_sat(sq(x) + sq(y) + sq(z), 0);
+    return sqrt_sat(qo_fx_sq_u64(x) + qo_fx_sq_u64(y) + qo_fx_sq_u64(z), 0);
 }
 
 qo_q30 qo_fx_norm4_q30(qo_q30 w, qo_q30 x, qo_q30 y, qo_q30 z)
 {
-    uint64_t s3 = sq(x) + sq(y) + sq(z);
-    uint64_t s4 = s3 + sq(w);
+    uint64_t s3 = qo_fx_sq_u64(x) + qo_fx_sq_u64(y) + qo_fx_sq_u64(z);
+    uint64_t s4 = s3 + qo_fx_sq_u64(w);
     /* Only w = x = y = z = INT32_MIN reaches 2^64 (a norm of 4, saturated anyway). */
     return sqrt_sat(s4, s4 < s3);
 }
@@ -353,8 +347,8 @@ uint32_t qo_fx_recip62_u32(uint32_t d)
 
 qo_q28 qo_fx_atan2_q28(int32_t y, int32_t x)
 {
-    uint32_t ax = x < 0 ? 0u - (uint32_t)x : (uint32_t)x;
-    uint32_t ay = y < 0 ? 0u - (uint32_t)y : (uint32_t)y;
+    uint32_t ax = qo_fx_abs_u32(x);
+    uint32_t ay = qo_fx_abs_u32(y);
     uint32_t mx, mn, d, r;
     uint64_t bx;
     int32_t by;

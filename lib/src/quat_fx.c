@@ -237,13 +237,6 @@ static uint32_t div30(uint32_t a, uint32_t n, uint32_t r, unsigned sh)
     return q;
 }
 
-/* x^2 exactly for x <= 2^31: three 16x16 products (the cross term once, doubled). */
-static uint64_t usq(uint32_t x)
-{
-    uint32_t h = x >> 16, l = x & 0xFFFFu, c = h * l;   /* c < 2^31 for x <= 2^31 */
-    return ((uint64_t)(h * h) << 32) + ((uint64_t)c << 17) + l * l;
-}
-
 qo_status qo_quat_normalize_q30(qo_quat_q30 q, qo_quat_q30 *out)
 {
     int32_t c[4];
@@ -255,7 +248,7 @@ qo_status qo_quat_normalize_q30(qo_quat_q30 q, qo_quat_q30 *out)
     *out = qo_quat_identity_q30();
     c[0] = q.w; c[1] = q.x; c[2] = q.y; c[3] = q.z;
     for (i = 0; i < 4; i++) {
-        a[i] = c[i] < 0 ? 0u - (uint32_t)c[i] : (uint32_t)c[i];   /* <= 2^31 */
+        a[i] = qo_fx_abs_u32(c[i]);   /* <= 2^31 */
         if (a[i] > m) m = a[i];
     }
     if (m == 0) return QO_E_DEGENERATE;
@@ -269,7 +262,7 @@ qo_status qo_quat_normalize_q30(qo_quat_q30 q, qo_quat_q30 *out)
     all = 1;
     for (i = 0; i < 4; i++) if (a[i] != ((uint32_t)1 << 31)) all = 0;
     if (all) for (i = 0; i < 4; i++) a[i] >>= 1;
-    n2 = usq(a[0]) + usq(a[1]) + usq(a[2]) + usq(a[3]);
+    n2 = qo_fx_usq_u64(a[0]) + qo_fx_usq_u64(a[1]) + qo_fx_usq_u64(a[2]) + qo_fx_usq_u64(a[3]);
     n = qo_fx_sqrt_u64(n2);   /* |c| in units where 2^30 is 1, in [2^30, 2^32] */
     if (n >= ((uint64_t)1 << 32)) {
         /* Only for n2 >= (2^32 - 1/2)^2 (three components at -2^31): n = 2^32 exactly and
@@ -300,9 +293,6 @@ qo_status qo_quat_normalize_q30(qo_quat_q30 q, qo_quat_q30 *out)
     return QO_OK;
 }
 
-/* |v| of an int32 as uint32 (2^31 for INT32_MIN). */
-static uint32_t mag32(int32_t v) { return v < 0 ? 0u - (uint32_t)v : (uint32_t)v; }
-
 /* One output of normalize_fast: sign(c) min(round(a y / 2^31), 2^30) for a <= 2^31 (a < 2^31
  * unless a mod 2^16 == 0) and y < 2^31, in 16-bit partial products and 32-bit words (no 64-bit
  * arithmetic on Cortex-M0): a y = ah yh 2^32 + (ah yl + al yh) 2^16 + al yl, the cross sum
@@ -328,7 +318,7 @@ static void nf_sq(uint32_t a, uint32_t *hh, uint32_t *hl, uint32_t *ll)
 
 qo_status qo_quat_normalize_fast_q30(qo_quat_q30 q, qo_quat_q30 *out)
 {
-    uint32_t aw = mag32(q.w), ax = mag32(q.x), ay = mag32(q.y), az = mag32(q.z);
+    uint32_t aw = qo_fx_abs_u32(q.w), ax = qo_fx_abs_u32(q.x), ay = qo_fx_abs_u32(q.y), az = qo_fx_abs_u32(q.z);
     uint32_t m = aw | ax | ay | az, x, y, hh = 0, hl = 0, ll = 0;
     unsigned sh = 0;
     if (out == NULL) return QO_E_NULL;

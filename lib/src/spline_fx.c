@@ -23,21 +23,12 @@ size_t qo_spline_q16_len(size_t n_joints, size_t n_keys)
     return n_keys * per_key + QO_SPLINE_Q16_JOINT_WORDS * n_joints;
 }
 
-/* x / 2^sh rounded half away from zero for any sh (the sampler's exponents may be <= 0 or
- * >= 63). */
-static int64_t rshift_round(int64_t x, int32_t sh)
-{
-    if (sh <= 0) return x;
-    if (sh >= 63) return 0; /* |x| < 2^62 here, so the rounded quotient is 0 */
-    return qo_fx_rshift_round_away(x, (unsigned)sh);
-}
-
 /* x * m * 2^-e, rounded; |x| < 2^37, 0 < m < 2^24 so the product fits. For e < 0 the result
  * is scaled up with a bound check: *big is set when it would exceed `lim`. */
 static int64_t scale(int64_t x, int32_t m, int32_t e, int64_t lim, int *big)
 {
     int64_t p = x * (int64_t)m;
-    if (e >= 0) return rshift_round(p, e);
+    if (e >= 0) return qo_fx_rshift_round_away_clamped(p, e);
     if (p > (lim >> -e) || p < -(lim >> -e)) {
         *big = 1;
         return p < 0 ? -lim : lim;
@@ -59,7 +50,7 @@ static int64_t horner(const int32_t *b, const int8_t *w, int lo, int64_t s)
 {
     int n;
     int64_t acc = (int64_t)w[5] * b[5];
-    for (n = 4; n >= lo; n--) acc = (int64_t)w[n] * b[n] + rshift_round(acc * s, S_FRAC);
+    for (n = 4; n >= lo; n--) acc = (int64_t)w[n] * b[n] + qo_fx_rshift_round_away_clamped(acc * s, S_FRAC);
     return acc;
 }
 
@@ -144,7 +135,7 @@ qo_status qo_spline_sample_q16(const qo_spline_q16 *s, qo_q16 t, qo_q16 *pos, qo
             /* keeps the shifts defined; tables not made by qo_spline_export_q16() are not
              * supported */
             if (f < 0 || f > QO_SPLINE_Q16_MAX_FRAC) f = 0;
-            x = rshift_round(horner(b, w_pos, 0, sn), f);
+            x = qo_fx_rshift_round_away_clamped(horner(b, w_pos, 0, sn), f);
             v = a = 0; /* derivatives only when asked for: position-only ticks are cheaper */
             if (vel) {
                 dv = horner(b, w_vel, 1, sn);
@@ -160,7 +151,7 @@ qo_status qo_spline_sample_q16(const qo_spline_q16 *s, qo_q16 t, qo_q16 *pos, qo
             /* the first row (hold before the start) carries its f; the end row has f = 0 */
             int32_t f = b[6];
             if (f < 0 || f > QO_SPLINE_Q16_MAX_FRAC) f = 0;
-            x = rshift_round(b[0], f);
+            x = qo_fx_rshift_round_away_clamped(b[0], f);
             v = (mode == 2) ? b[1] : 0;
             a = (mode == 2) ? b[2] : 0;
         }

@@ -234,9 +234,8 @@ static void sleep_until(qo_gpio_sink *g, uint64_t t)
     do r = g->be.sleep_until_ns(g->be.ctx, t); while (r == EINTR);
 }
 
-qo_status qo_gpio_sink_write(void *ctx, const float *targets, size_t n, uint64_t tick)
+qo_status qo_gpio_sink_write(qo_gpio_sink *g, const float *targets, size_t n, uint64_t tick)
 {
-    qo_gpio_sink *g = ctx;
     joint_plan plan[QO_GPIO_MAX_JOINTS];
     qo_status res = QO_OK;
     uint64_t start, win_end;
@@ -296,10 +295,22 @@ qo_status qo_gpio_sink_write(void *ctx, const float *targets, size_t n, uint64_t
     return res;
 }
 
+/* The qo_sink adapters: the void * of the sink interface stays in here, the public
+ * functions take the typed handle (as the Modbus sink's do). */
+static qo_status sink_write(void *ctx, const float *targets, size_t n, uint64_t tick)
+{
+    return qo_gpio_sink_write(ctx, targets, n, tick);
+}
+
+static void sink_close(void *ctx)
+{
+    qo_gpio_sink_close(ctx);
+}
+
 qo_status qo_gpio_sink_as_sink(qo_gpio_sink *g, qo_sink *out)
 {
-    /* flush, close, stats, service: none */
-    static const qo_sink ops = { .write = qo_gpio_sink_write };
+    /* flush, stats, service: none (every write is emitted at once; no link to revive) */
+    static const qo_sink ops = { .write = sink_write, .close = sink_close };
     return qo_port_sink_view(g, &ops, out);
 }
 

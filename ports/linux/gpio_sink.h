@@ -10,10 +10,10 @@
  *   qo_gpio_sink_config_default   const defaults of the config (every joint = qo_gpio_joint_default)
  *   qo_gpio_joint_default         const defaults of one joint
  *   qo_gpio_sink_open()           check the config, open every line through the backend
- *   qo_gpio_sink_write()          one tick: emit the owed steps / servo frame (the qo_sink write)
- *   qo_gpio_sink_as_sink()        fills the qo_sink view of a sink (service = NULL)
+ *   qo_gpio_sink_write()          one tick: emit the owed steps / servo frame (the view's write)
+ *   qo_gpio_sink_as_sink()        fills the qo_sink view of a sink (write, close; service = NULL)
  *   qo_gpio_sink_position()       steps emitted so far for a step/dir joint
- *   qo_gpio_sink_close()          drive step lines low and close every line
+ *   qo_gpio_sink_close()          drive step lines low and close every line (the view's close)
  *   qo_gpio_libgpiod_backend()    the libgpiod backend (v1 API default, v2 when QO_GPIOD_V2)
  *
  * Step/dir model. Each joint keeps `position`, the signed count of steps emitted (positive =
@@ -165,18 +165,20 @@ qo_status qo_gpio_sink_open(qo_gpio_sink *g, const qo_gpio_sink_config *cfg,
                             const qo_gpio_backend *be);
 
 /*
- * One tick (the qo_sink write; ctx is the qo_gpio_sink). targets[j] in joint units; n must be
+ * One tick (what the qo_sink write of qo_gpio_sink_as_sink calls). targets[j] in joint units; n must be
  * cfg.n_joints. Emits the pulses as described above and returns when the last one is done.
  * Returns QO_OK; QO_E_NULL; QO_E_STATE (not open); QO_E_ARG (n differs: nothing emitted);
  * QO_E_NONFINITE (a target NaN/Inf: that joint holds, the others run); QO_E_RANGE (a target
  * whose step count exceeds +-2^53: that joint holds); QO_E_IO (a set_value failed: that joint
  * stops for this tick; position counts only the rises that succeeded). The first error wins.
  */
-qo_status qo_gpio_sink_write(void *ctx, const float *targets, size_t n, uint64_t tick);
+qo_status qo_gpio_sink_write(qo_gpio_sink *g, const float *targets, size_t n, uint64_t tick);
 
-/* Fills *out with the qo_sink of g (ctx = g, write = qo_gpio_sink_write; flush, close, stats
- * and service NULL): the same shape as qo_modbus_sink_as_sink. Returns QO_OK; QO_E_NULL if g
- * or out is NULL (*out zeroed when out is not NULL). */
+/* Fills *out with the qo_sink of g, the same shape as qo_modbus_sink_as_sink: ctx = g, write
+ * calls qo_gpio_sink_write, close calls qo_gpio_sink_close (the sink opened its lines, so its
+ * close releases them: step/PWM lines driven low, every line closed; g can then be opened
+ * again with qo_gpio_sink_open, and a second close does nothing); flush, stats and service
+ * NULL. Returns QO_OK; QO_E_NULL if g or out is NULL (*out zeroed when out is not NULL). */
 qo_status qo_gpio_sink_as_sink(qo_gpio_sink *g, qo_sink *out);
 
 /*

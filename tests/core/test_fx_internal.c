@@ -63,7 +63,80 @@ static void check_rshift(int64_t v, unsigned s)
         /* odd: the property euler_fx.c relies on for q and -q */
         if (v != INT64_MIN && qo_fx_rshift_round_away(-v, s) != -got)
             fail_msg("rshift_round_away(%lld, %u) not odd", (long long)v, s);
+        /* the clamped form agrees inside its range (spline_fx.c's sampler) */
+        if (qo_fx_rshift_round_away_clamped(v, (int32_t)s) != want)
+            fail_msg("rshift_round_away_clamped(%lld, %u) = %lld, want %lld", (long long)v, s,
+                     (long long)qo_fx_rshift_round_away_clamped(v, (int32_t)s), (long long)want);
     }
+    if (s <= 62) {
+        int64_t r, want = ref_floor(v, s, &r);
+        if (qo_fx_rshift_floor(v, s) != want)
+            fail_msg("rshift_floor(%lld, %u) = %lld, want %lld", (long long)v, s,
+                     (long long)qo_fx_rshift_floor(v, s), (long long)want);
+    }
+    /* the 32-bit-word unsigned form (euler_fx.c): v >= 0, s <= 34, a result below 2^32 */
+    if (v >= 0 && s <= 34 && s <= 62 && ref_round_up(v, s) <= (int64_t)UINT32_MAX &&
+        v <= INT64_MAX - ((int64_t)1 << (s - 1))) {
+        uint32_t got = qo_fx_urshift_round_up_u32((uint64_t)v, s);
+        if ((int64_t)got != ref_round_up(v, s))
+            fail_msg("urshift_round_up_u32(%lld, %u) = %lu, want %lld", (long long)v, s,
+                     (unsigned long)got, (long long)ref_round_up(v, s));
+    }
+}
+
+/* floor(num / den) checked by its definition: num - q den in [0, den), worked mod 2^64 so
+ * no product overflows (an off-by-k quotient moves the remainder by k den out of range). */
+static void check_div_floor(int64_t num, int64_t den)
+{
+    int64_t q = qo_fx_div_floor(num, den);
+    uint64_t r = (uint64_t)num - (uint64_t)q * (uint64_t)den;
+    if (r >= (uint64_t)den)
+        fail_msg("div_floor(%lld, %lld) = %lld", (long long)num, (long long)den, (long long)q);
+}
+
+/* The int32 helpers: |v| and v^2 against int64 arithmetic (exact for every int32), every
+ * edge and random values; floor division by its definition; clamped shifts out of range. */
+static void test_internal_int32_helpers(void **state)
+{
+    static const int32_t e[] = { 0, 1, -1, 2, -2, 46340, -46340, 46341, -46341, 65535, 65536,
+                                 -65536, 0x7FFF0000, INT32_MAX, INT32_MIN, INT32_MIN + 1 };
+    static const int64_t dn[] = { 1, 2, 3, 7, 1000000007, ((int64_t)1 << 32) + 1,
+                                  (int64_t)7244019458077122842, INT64_MAX };
+    size_t i, j;
+    (void)state;
+    rng_state = 0x5EED0016u;
+    for (i = 0; i < sizeof e / sizeof e[0] + 1000000u; i++) {
+        int32_t v = i < sizeof e / sizeof e[0] ? e[i] : (int32_t)(uint32_t)(rnd() >> (rnd() % 33u));
+        uint64_t a = (uint64_t)(v < 0 ? -(int64_t)v : (int64_t)v);
+        if (qo_fx_abs_u32(v) != a)
+            fail_msg("abs_u32(%ld) = %lu", (long)v, (unsigned long)qo_fx_abs_u32(v));
+        if (qo_fx_sq_u64(v) != (uint64_t)((int64_t)v * v) || qo_fx_usq_u64((uint32_t)a) != a * a)
+            fail_msg("sq_u64(%ld) = %llu", (long)v, (unsigned long long)qo_fx_sq_u64(v));
+    }
+    assert_true(qo_fx_sq_u64(INT32_MIN) == (uint64_t)1 << 62);
+    assert_true(qo_fx_div_floor(-7, 2) == -4 && qo_fx_div_floor(7, 2) == 3);
+    assert_true(qo_fx_div_floor(-6, 2) == -3 && qo_fx_div_floor(INT64_MIN, 1) == INT64_MIN);
+    for (i = 0; i < sizeof dn / sizeof dn[0]; i++) {
+        static const int64_t nm[] = { 0, 1, -1, INT64_MAX, INT64_MIN, INT64_MIN + 1, 5, -5 };
+        for (j = 0; j < sizeof nm / sizeof nm[0]; j++) check_div_floor(nm[j], dn[i]);
+    }
+    for (i = 0; i < 200000; i++) {
+        int64_t d = (int64_t)(rnd() >> (1u + rnd() % 63u));
+        check_div_floor((int64_t)rnd() >> (rnd() % 63u), d > 0 ? d : 1);
+    }
+    /* out of the shift range: s <= 0 leaves v, s >= 64 gives 0 for every v */
+    assert_true(qo_fx_rshift_round_away_clamped(-12345, 0) == -12345);
+    assert_true(qo_fx_rshift_round_away_clamped(12345, -9) == 12345);
+    assert_true(qo_fx_rshift_round_away_clamped(INT64_MIN, INT32_MIN) == INT64_MIN);
+    assert_true(qo_fx_rshift_round_away_clamped(((int64_t)1 << 62) - 1, 63) == 0);
+    assert_true(qo_fx_rshift_round_away_clamped(INT64_MAX, 63) == 1);
+    assert_true(qo_fx_rshift_round_away_clamped(INT64_MIN, 64) == 0);
+    assert_true(qo_fx_rshift_round_away_clamped(INT64_MAX, INT32_MAX) == 0);
+    /* the unsigned form at its top shift and its s == 0 and s == 32 paths */
+    assert_true(qo_fx_urshift_round_up_u32(((uint64_t)1 << 34) * 3 + ((uint64_t)1 << 33), 34) == 4u);
+    assert_true(qo_fx_urshift_round_up_u32(0xFFFFFFFFu, 0) == 0xFFFFFFFFu);
+    assert_true(qo_fx_urshift_round_up_u32(((uint64_t)5 << 32) | 0x80000000u, 32) == 6u);
+    assert_true(qo_fx_urshift_round_up_u32(((uint64_t)5 << 32) | 0x7FFFFFFFu, 32) == 5u);
 }
 
 static void test_internal_rshift_abs(void **state)
@@ -232,6 +305,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_internal_rshift_abs),
         cmocka_unit_test(test_internal_div_round_away),
+        cmocka_unit_test(test_internal_int32_helpers),
         cmocka_unit_test(test_internal_newton),
         cmocka_unit_test(test_internal_sincos_2y),
     };

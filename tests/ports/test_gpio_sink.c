@@ -542,8 +542,51 @@ static void test_write_errors(void **state)
         assert_int_equal(qo_gpio_sink_as_sink(&G, &s), QO_OK);
         assert_ptr_equal(s.ctx, &G);
         assert_null(s.service);
-        assert_true(s.write == qo_gpio_sink_write);
+        assert_null(s.flush);
+        assert_null(s.stats);
+        assert_non_null(s.write);
+        assert_non_null(s.close);
     }
+}
+
+/* The qo_sink view drives the sink as its typed functions do: a tick through view.write emits
+ * the same steps as qo_gpio_sink_write, a wrong n is refused, and view.close (set, as the
+ * Modbus sink's is) drives every line low and closes every line the sink opened; after it
+ * the sink is closed (write QO_E_STATE), a second close is harmless and the sink reopens. */
+static void test_sink_view_write_close(void **state)
+{
+    qo_sink v;
+    float x[2] = { 0.01f, -0.02f };
+    int64_t p0, p1;
+    int h;
+    (void)state;
+    start_sink(2, 4000.0, 5.0, 0);
+    assert_int_equal(qo_gpio_sink_as_sink(&G, &v), QO_OK);
+    B.now = 5000000000ull;
+    assert_int_equal(v.write(v.ctx, x, 1, 0), QO_E_ARG);
+    assert_int_equal(B.ne, 0);
+    assert_int_equal(v.write(v.ctx, x, 2, 0), QO_OK);
+    assert_int_equal(qo_gpio_sink_position(&G, 0, &p0), QO_OK);
+    assert_int_equal(qo_gpio_sink_position(&G, 1, &p1), QO_OK);
+    /* 0.01 and -0.02 joint units at the test's 100 steps per unit (make_config) */
+    assert_int_equal(p0, rnd(0.01f * C.joint[0].steps_per_unit));
+    assert_int_equal(p1, rnd(-0.02f * C.joint[1].steps_per_unit));
+    assert_true(p0 != 0 && p1 != 0);
+    for (h = 0; h < B.nopen; h++) assert_false(B.closed[h]);
+    qo_sink_close(&v);
+    assert_true(B.nopen == 4);
+    for (h = 0; h < B.nopen; h++) {
+        assert_true(B.closed[h]);
+        if (h % 2 == 0) assert_int_equal(B.level[h], 0); /* step lines left low */
+    }
+    assert_int_equal(B.level[1], 1); /* joint 0's dir line as its last (positive) move set it */
+    assert_int_equal(v.write(v.ctx, x, 2, 1), QO_E_STATE);
+    assert_int_equal(qo_gpio_sink_write(&G, x, 2, 1), QO_E_STATE);
+    qo_sink_close(&v); /* twice: harmless */
+    reset_backend();
+    open_sink();
+    assert_int_equal(qo_gpio_sink_write(&G, x, 2, 2), QO_OK);
+    qo_gpio_sink_close(&G);
 }
 
 /* The defaults are constants (one idiom with the streamer and the Modbus sink): the documented
@@ -606,6 +649,7 @@ int main(void)
         cmocka_unit_test(test_servo_pwm),
         cmocka_unit_test(test_config_errors),
         cmocka_unit_test(test_write_errors),
+        cmocka_unit_test(test_sink_view_write_close),
         cmocka_unit_test(test_libgpiod_backend_without_chips),
         cmocka_unit_test(test_default_constants),
     };

@@ -232,15 +232,15 @@ QO_CONVERT_INLINE qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out)
     /* The scalar body below, lane for lane in the same order (see quat.h's QO_SIMD_SSE2):
      * d = the diagonal, pl and mi = the s * (a + b) and s * (a - b) off-diagonal terms. */
     const __m128 q4 = _mm_loadu_ps(&q.w);
-    __m128 n4 = qo_simd_sum4_ss(_mm_mul_ps(q4, q4));
+    __m128 n4 = qo_quat_internal_sum4_ss(_mm_mul_ps(q4, q4));
     const float n = _mm_cvtss_f32(n4);
     __m128 u, uu, s, da, db, d, pr, wr, pl, mi, lo;
     if (out == NULL || !(n >= 1e-30f && !(n > 1e30f))) return qo_quat_to_mat3_full_f32(q, out);
     n4 = _mm_div_ss(_mm_set_ss(1.0f), _mm_sqrt_ss(n4));
     u = _mm_mul_ps(q4, _mm_shuffle_ps(n4, n4, 0));                          /* w x y z */
     uu = _mm_mul_ps(u, u);
-    /* ((ww + xx) + yy) + zz as in qo_simd_sum4_ss, with the yy and zz lanes taken from the
-     * two shuffles the diagonal needs anyway */
+    /* ((ww + xx) + yy) + zz as in qo_quat_internal_sum4_ss, with the yy and zz lanes taken
+     * from the two shuffles the diagonal needs anyway */
     da = QO_SIMD_SHUFFLE_PS(uu, _MM_SHUFFLE(0, 1, 1, 2));                     /* yy xx xx */
     db = QO_SIMD_SHUFFLE_PS(uu, _MM_SHUFFLE(0, 2, 3, 3));                     /* zz zz yy */
     s = _mm_add_ss(_mm_add_ss(_mm_add_ss(QO_SIMD_SHUFFLE_PS(uu, 0x55), uu), da), db);

@@ -146,10 +146,14 @@ qo_quat_f32 qo_quat_canonical_f32(qo_quat_f32 q);
 #pragma STDC FP_CONTRACT OFF
 #endif
 
+/* qo_quat_internal_*: helpers of the inline bodies (here and in convert.h) and of the SSE2
+ * paths of convert.c and interp.c. Not API: not in the index or the parity table, may change
+ * or vanish in any release; call the documented functions instead. The marker is a word, not
+ * a double underscore, because these headers are also read by C++ (which reserves "__"). */
 #if QO_SIMD_SSE2
 /* Lane 0 of the result is ((v0 + v1) + v2) + v3, the left-to-right order of the scalar sums
- * (a pairwise horizontal add would round differently). An internal helper, not API. */
-static inline __m128 qo_simd_sum4_ss(__m128 v)
+ * (a pairwise horizontal add would round differently). Internal, not API (see above). */
+static inline __m128 qo_quat_internal_sum4_ss(__m128 v)
 {
     __m128 s = _mm_add_ss(QO_SIMD_SHUFFLE_PS(v, 0x55), v);   /* x + w: addition commutes */
     s = _mm_add_ss(s, QO_SIMD_SHUFFLE_PS(v, 0xaa));
@@ -158,8 +162,9 @@ static inline __m128 qo_simd_sum4_ss(__m128 v)
 #endif
 
 #if QO_SIMD_SSE2
-/* u x b in lanes (x, y, z) as u.yzx * b.zxy - u.zxy * b.yzx, given u's two rotations. */
-static inline __m128 qo_simd_cross_ps(__m128 uyzx, __m128 uzxy, __m128 b)
+/* u x b in lanes (x, y, z) as u.yzx * b.zxy - u.zxy * b.yzx, given u's two rotations.
+ * Internal, not API (see above). */
+static inline __m128 qo_quat_internal_cross_ps(__m128 uyzx, __m128 uzxy, __m128 b)
 {
     return _mm_sub_ps(_mm_mul_ps(uyzx, QO_SIMD_SHUFFLE_PS(b, _MM_SHUFFLE(3, 1, 0, 2))),
                       _mm_mul_ps(uzxy, QO_SIMD_SHUFFLE_PS(b, _MM_SHUFFLE(3, 0, 2, 1))));
@@ -240,11 +245,11 @@ QO_QUAT_INLINE qo_vec3_f32 qo_quat_rotate_f32(qo_quat_f32 q, qo_vec3_f32 v)
     const __m128 v4 = _mm_movelh_ps(_mm_loadl_pi(_mm_setzero_ps(), vxy), _mm_load_ss(&v.z));
     const __m128 uyzx = QO_SIMD_SHUFFLE_PS(q4, _MM_SHUFFLE(0, 1, 3, 2));
     const __m128 uzxy = QO_SIMD_SHUFFLE_PS(q4, _MM_SHUFFLE(0, 2, 1, 3));
-    __m128 t = qo_simd_cross_ps(uyzx, uzxy, v4), r4;
+    __m128 t = qo_quat_internal_cross_ps(uyzx, uzxy, v4), r4;
     qo_vec3_f32 r;
     t = _mm_add_ps(t, t);
     r4 = _mm_add_ps(v4, _mm_mul_ps(QO_SIMD_SHUFFLE_PS(q4, 0x00), t));
-    r4 = _mm_add_ps(r4, qo_simd_cross_ps(uyzx, uzxy, t));
+    r4 = _mm_add_ps(r4, qo_quat_internal_cross_ps(uyzx, uzxy, t));
     _mm_storel_pi((__m64 *)(void *)&r.x, r4);
     _mm_store_ss(&r.z, _mm_movehl_ps(r4, r4));
     return r;
@@ -273,7 +278,7 @@ QO_QUAT_INLINE qo_status qo_quat_normalize_f32(qo_quat_f32 q, qo_quat_f32 *out)
     /* The same operations lane for lane: squares 4-wide, the sum in lane 0 in the scalar order,
      * sqrtss (correctly rounded like sqrtf, and without libm's errno branch: n > 0 here). */
     const __m128 q4 = _mm_loadu_ps(&q.w);
-    const __m128 n4 = qo_simd_sum4_ss(_mm_mul_ps(q4, q4));
+    const __m128 n4 = qo_quat_internal_sum4_ss(_mm_mul_ps(q4, q4));
     const float n = _mm_cvtss_f32(n4);
     if (out != NULL && n >= 1e-30f && !(n > 1e30f)) {   /* NaN fails the first test */
         __m128 inv = _mm_div_ss(_mm_set_ss(1.0f), _mm_sqrt_ss(n4));
