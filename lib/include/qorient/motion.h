@@ -232,6 +232,15 @@ extern "C" {
  * float32 time axis at sub-millisecond resolution. */
 #define QO_MOTION_DURATION_MAX 1e4f
 #define QO_MOTION_PERIOD_MIN 1e-6f
+/* A synchronised joint (TIME, PHASE, and the rounded durations of qo_motion_set_timing_f32)
+ * ends within QO_MOTION_SYNC_END_ULPS float32 ulps of the common duration T (ulp(4.4 s) =
+ * 4.8e-7 s): its profile is solved for T, but each phase duration is a float32 value and the
+ * plan's end is their float32 sum (up to 11 phases, each addition rounding by up to ulp(T)/2),
+ * and the durations themselves carry the rounding of the solve (T minus the ramps' times).
+ * The phases are not forced to sum to T bit for bit: that would move the end position by the
+ * velocity times the correction, and the position is what the end snaps to. make check-motion
+ * (test_timing) prints the largest seen: 4 ulps. */
+#define QO_MOTION_SYNC_END_ULPS 8
 /* Upper bound of root-search steps in one solve (typically 5-12 are used; bounded anyway). */
 #define QO_MOTION_BISECT_ITERS 48
 
