@@ -388,6 +388,9 @@ int qo_cli_stream(int argc, char **argv)
         }
         if (bad) goto usage;
     }
+    /* --discrete rounds durations to ticks of the stream's --rate (plan's --rate is its
+     * sample rate, which stream does not have) */
+    po.rate = rate;
     if (qo_cli_plan_opts_check("stream", &po) != 0) goto usage;
     if (po.fixed) {
         fprintf(stderr, "qorient stream: --fixed: the stream samples with float32 (use plan --fixed to see the "

@@ -109,6 +109,44 @@ shift 2
 # --live takes targets only, and standard input only
 $Q stream --map $MAP --modbus "tcp://127.0.0.1:1" --live --profile spline "$T/keys" > /dev/null 2>&1; [ $? = 2 ] && ok || bad "--live with keyframes accepted"
 
+# 1e. --discrete and --min-duration, streamed to the simulator (exit 0, the drives hold the
+#     final targets, no step above max_step) and the plan's end from --dry-run against the
+#     expected value computed here: --discrete at --rate 30 (ticks of the stream's rate, not
+#     plan's default 100 Hz), trapezoid vmax 2 amax 4, joint 1 moves 0.37 issued at 0.2 s
+#     (tick 6): 2 sqrt(0.37/4) = 0.608 s rounded up to 19 ticks, end 0.2 + 19/30 = 0.833 s
+#     (0.808 s without --discrete, 0.810 s at 100 Hz); --min-duration 2: a move of 0.001
+#     (0.147 s at these limits: 4 (0.001 / 20)^(1/3)) issued at 0.5 s ends at 2.5 s.
+# stream_end NAME: streams $T/NAME.csv with the options $ARGS to a fresh simulator, then
+# dry-runs it; FINAL is the drives' last targets, END the plan's end time [s] as printed
+stream_end() {
+    f=$T/$1.csv
+    start_sim
+    # shellcheck disable=SC2086
+    $Q stream --map $MAP --modbus "tcp://127.0.0.1:$PORT" --timeout-ms 50 --no-rt --quiet --hold 0 $ARGS "$f" \
+        > "$T/out" 2> "$T/err"; rc=$?
+    stop_sim
+    [ "$rc" = 0 ] && grep -q 'final ok$' "$T/out" && ok || bad "$ARGS: rc=$rc $(cat "$T/out" "$T/err")"
+    r=$(log_summary)
+    set -- $r
+    awk -v m="$2" 'BEGIN { exit !(m <= 0.05 + 1e-9) }' && ok || bad "a step of $2 above max_step 0.05"
+    shift 2
+    FINAL=$*
+    # shellcheck disable=SC2086
+    END=$($Q stream --map $MAP --modbus "tcp://127.0.0.1:$PORT" --dry-run $ARGS "$f" |
+        sed -n 's/^dry-run: plan over \([0-9.]*\) s .*/\1/p')
+}
+printf '0,0,0,0,0,0,0\n0.2,0.37,0,0,0,0,-0.1\n' > "$T/disc.csv"
+ARGS="--rate 30 --profile trapezoid --vmax 2 --amax 4 --sync none --discrete"
+stream_end disc
+[ "$FINAL" = "0.37 0 0 0 0 -0.1" ] && ok || bad "discrete: final targets '$FINAL'"
+want=$(awk 'BEGIN { t = 2 * sqrt(0.37 / 4); k = int(t * 30); if (k < t * 30) k++; printf "%.3f", 0.2 + k / 30 }')
+[ "$want" = 0.833 ] && [ "$END" = "$want" ] && ok || bad "discrete: plan ends at '$END' s, want $want s"
+printf '0,0,0,0,0,0,0\n0.5,0.001,0,0,0,0,0\n' > "$T/mind.csv"
+ARGS="--rate 100 --profile scurve --vmax 2 --amax 4 --jmax 10 --min-duration 2"
+stream_end mind
+[ "$FINAL" = "0.001 0 0 0 0 0" ] && ok || bad "min-duration: final targets '$FINAL'"
+[ "$END" = 2.500 ] && ok || bad "min-duration: plan ends at '$END' s, want 2.500 s"
+
 # 2. --dry-run: the RTU wire budget for 6 int32 joints at 115200 8N1 (one FC16 of 12
 #    registers: 33 + 8 bytes at 86.8 us per char, plus 2 x 1.75 ms of t3.5 = 7059 us)
 $Q stream --map $MAP --modbus rtu:/dev/null,115200,8N1 --rate 100 --dry-run "$T/keys" > "$T/out" 2>&1; rc=$?

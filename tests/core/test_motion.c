@@ -1485,6 +1485,69 @@ static void test_phase_step_asym(void **state)
     assert_int_equal(qo_motion_sync_used(&pl), QO_MOTION_SYNC_TIME);
 }
 
+/* make check-motion test_timing case 645, joint 1 (NONE, period 0.041511 s): braking toward a
+ * near target, a0 ramped to zero first. The transfer to the velocity that ramp reaches (vs)
+ * was built with a rounding pulse of 4.5e-5 s (v1 - v0 to the ulp of v0), whose residual hid
+ * the minimum next to vs: 0.2146 s, 3.6 % above the optimum 0.20722 s, so the plan took 6
+ * ticks (0.249 s) where the 5th (0.207556 s) comes after the optimum. Now: the minimum is the
+ * reference's; with the period the joint arrives at that minimum, before the 5th tick, and is
+ * at rest on its target at the tick. The planner's exact-duration family (extremum velocity +
+ * cruise) has no profile of 5 ticks, so the joint is reported in `unsynced` (motion.h: it
+ * arrives early and waits at rest); the reference's two-cruise family finds a 5-tick profile
+ * only as that same wait (its last phase a hold at rest after arriving). */
+static void test_timing_case_645(void **state)
+{
+    qo_motion_planner_f32 pl;
+    qo_motion_joint_f32 jt[1];
+    qo_motion_limits_f32 l = qo_motion_limits_default;
+    qo_motion_settings_f32 st = { QO_MOTION_SCURVE, QO_MOTION_SYNC_NONE };
+    const float p0 = 1.66447747f, v0 = 2.923208f, a0 = -11.5861197f, tg = 1.98817897f, period = 0.041511024f;
+    float pos, vel, acc;
+    mref_lim r;
+    double tr, t5 = 5.0 * (double)period;
+    int pass, s;
+    (void)state;
+    l.vmax = 2.97598052f;
+    l.amax = 19.8998394f;
+    l.jmax = 466.118378f;
+    r.vmax = l.vmax;
+    r.vmin = -r.vmax;
+    r.amax = l.amax;
+    r.amin = -r.amax;
+    r.jmax = l.jmax;
+    tr = mref_min_time(&r, p0, v0, a0, tg, 0.0, 0.0);
+    if (!(fabs(tr - 0.207219) < 1e-5)) fail_msg("reference %.9g, want 0.207219", tr);
+    {
+        mref_prof pr;
+        if (!mref_exact_time(&r, p0, v0, a0, tg, 0.0, 0.0, t5, &pr) || pr.n < 2 || pr.j[pr.n - 1] != 0.0 ||
+            !(fabs(pr.d[pr.n - 1] - (t5 - tr)) < 2e-5))
+            fail_msg("the reference's 5-tick profile is not the minimum and a wait at rest");
+    }
+    for (pass = 0; pass < 2; pass++) {
+        assert_int_equal(qo_motion_init_f32(&pl, jt, 1, &l, &p0, 0.0f, &st), QO_OK);
+        if (pass) assert_int_equal(qo_motion_set_timing_f32(&pl, 0.0f, period), QO_OK);
+        force_state(&pl, 0, p0, v0, a0);
+        assert_int_equal(qo_motion_set_target_f32(&pl, 0.0f, &tg, NULL), QO_OK);
+        if (fabs(jt[0].duration - tr) > 1e-5 * tr || pl.unsynced != (uint32_t)pass)
+            fail_msg("period %g: duration %.9g s, reference %.9g s (unsynced %u)", pass ? (double)period : 0.0,
+                     (double)jt[0].duration, tr, (unsigned)pl.unsynced);
+        /* at the target, at rest, from its end through the 5th tick */
+        for (s = 0; s <= 10; s++) {
+            float t = jt[0].duration + (float)(t5 - jt[0].duration) * (float)s / 10.0f;
+            assert_int_equal(qo_motion_sample_f32(&pl, t, &pos, &vel, &acc), QO_OK);
+            if (fabs(pos - tg) > 1e-6 || fabs(vel) > 1e-4 || fabs(acc) > 1e-3)
+                fail_msg("period %g: at %.9g s at %.9g %g %g, target %.9g at rest", pass ? (double)period : 0.0,
+                         (double)t, (double)pos, (double)vel, (double)acc, (double)tg);
+        }
+        for (s = 0; s <= 2000; s++) {
+            assert_int_equal(qo_motion_sample_f32(&pl, jt[0].duration * (float)s / 2000.0f, &pos, &vel, &acc), QO_OK);
+            if (fabs(vel) > l.vmax * (1.0 + 1e-6) || fabs(acc) > l.amax * (1.0 + 1e-6))
+                fail_msg("period %g: sample %d: v %g a %g outside the limits", pass ? (double)period : 0.0, s,
+                         (double)vel, (double)acc);
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1507,6 +1570,7 @@ int main(void)
         cmocka_unit_test(test_issue_case_5781),
         cmocka_unit_test(test_issue_wide_cases),
         cmocka_unit_test(test_phase_step_asym),
+        cmocka_unit_test(test_timing_case_645),
     };
     return cmocka_run_group_tests_name("motion", tests, NULL, NULL);
 }

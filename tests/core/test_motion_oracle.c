@@ -582,23 +582,36 @@ static void test_oracle_stress(void **state)
     assert_int_equal(bad, 0);
 }
 
-/* 1 if T is a whole number of periods to float32 rounding of the phase sums. */
+/* How far a synchronised joint may end from the common duration T [s]: motion.h's
+ * QO_MOTION_SYNC_END_ULPS float32 ulps of T. */
+static double sync_tol(double T)
+{
+    float f = (float)T;
+    return QO_MOTION_SYNC_END_ULPS * (double)(nextafterf(f, INFINITY) - f);
+}
+
+/* Largest |joint duration - T| in float32 ulps of T seen by test_timing (printed). */
+static double g_sync_ulps;
+
+/* 1 if T is a whole number of periods to float32 rounding: the planner's T is the float32
+ * product k * period (half an ulp) and the joints end within sync_tol of it. */
 static int on_tick(double T, double period)
 {
     double k = floor(T / period + 0.5);
-    return fabs(T - k * period) <= 4e-7 * T + 1e-9;
+    return fabs(T - k * period) <= sync_tol(T) + 0.5 * sync_tol(T) / QO_MOTION_SYNC_END_ULPS;
 }
 
 /* qo_motion_set_timing_f32: minimum duration and durations rounded up to a control period, in
  * every sync mode, from moving starts; the duration is the smallest allowed one above the
- * reference minimum, limits hold, every synchronised joint ends on the tick. */
+ * reference minimum, limits hold, every synchronised joint ends on the tick.
+ * QO_MOTION_ORACLE_FIRST / _NUM select cases (the same cases as a full run). */
 static void test_timing(void **state)
 {
     ref_rng g;
-    int cs, bad = 0;
+    int cs, bad = 0, nuns = 0, first = env_int("QO_MOTION_ORACLE_FIRST", 0), num = env_int("QO_MOTION_ORACLE_NUM", ORACLE_GROUPS(600));
     (void)state;
     g.s = 1104;
-    for (cs = 0; cs < ORACLE_GROUPS(600) && bad < 10; cs++) {
+    for (cs = 0; cs < ORACLE_GROUPS(600) && cs - first < num && bad < 10; cs++) {
         qo_motion_planner_f32 pl;
         qo_motion_joint_f32 jts[NJ];
         jcase c[NJ];
@@ -607,8 +620,9 @@ static void test_timing(void **state)
         double mind = cs % 5 == 0 ? 0.0 : ref_rng_range(&g, 0.0, 3.0), tref[NJ], tmax = 0.0, T;
         float pos[NJ];
         size_t i;
+        for (i = 0; i < NJ; i++) rand_case(&g, &c[i]);
+        if (cs < first) continue;
         for (i = 0; i < NJ; i++) {
-            rand_case(&g, &c[i]);
             tref[i] = ref_time(&c[i]);
             tmax = fmax(tmax, tref[i]);
         }
@@ -630,9 +644,21 @@ static void test_timing(void **state)
                 print_case("timing: limit exceeded", cs, i, &c[i], Ti, 0.0);
                 bad++;
             }
-            if (sync != QO_MOTION_SYNC_NONE && synced && fabs(Ti - T) > 4e-7 * T + 1e-9) {
+            if (sync != QO_MOTION_SYNC_NONE && synced && T > 0.0)
+                g_sync_ulps = fmax(g_sync_ulps, fabs(Ti - T) / (sync_tol(T) / QO_MOTION_SYNC_END_ULPS));
+            if (sync != QO_MOTION_SYNC_NONE && synced && fabs(Ti - T) > sync_tol(T)) {
                 print_case("timing: joint not synchronised", cs, i, &c[i], Ti, T);
                 bad++;
+            }
+            /* motion.h: a joint the exact-duration search cannot stretch keeps its own minimum,
+             * arrives early and waits at rest (targets here are at rest): that minimum must be
+             * the reference's (case 645's joint took 6 ticks from a minimum 3.6 % too slow) */
+            if (!synced) {
+                nuns++;
+                if (jts[i].nph == 0 || fabs(Ti - tref[i]) > RELTIME * tref[i] || c[i].vf != 0.0f || c[i].af != 0.0f) {
+                    print_case("timing: unsynced joint not at its minimum", cs, i, &c[i], Ti, tref[i]);
+                    bad++;
+                }
             }
             if (sync == QO_MOTION_SYNC_NONE && synced && jts[i].nph > 0) {
                 if (Ti < lo * (1.0 - 1e-6) || (period > 0.0 && !on_tick(Ti, period)) ||
@@ -652,6 +678,9 @@ static void test_timing(void **state)
             }
         }
     }
+    print_message("timing: %d cases, synchronised joints end within %.2f ulps of T (bound %d), %d joints "
+                  "unsynced (at their minimum), %d failures\n",
+                  cs - first, g_sync_ulps, QO_MOTION_SYNC_END_ULPS, nuns, bad);
     assert_int_equal(bad, 0);
 }
 
@@ -685,9 +714,10 @@ static void test_timing_args(void **state)
     assert_true(pl.joints[0].duration < 0.5f); /* a safety stop ignores the rules */
 }
 
-/* Velocity interface: from random moving states to random target velocities in the minimum
- * time of the velocity change (reference), within the limits, continuous at the call, then on at
- * the target velocity; a later set_target leaves velocity mode without a jump; bad input. */
+/* Velocity interface: from random moving states (asymmetric limits, the joints on their way to
+ * moving target states) to random target velocities in [vmin, vmax] in the minimum time of the
+ * velocity change (reference), within the limits, continuous at the call, then on at the
+ * target velocity; a later set_target leaves velocity mode without a jump; bad input. */
 static void test_velocity(void **state)
 {
     ref_rng g;
@@ -703,8 +733,12 @@ static void test_velocity(void **state)
         size_t i;
         qo_motion_sync sync = (qo_motion_sync)(cs % 3);
         for (i = 0; i < NJ; i++) {
-            rand_case(&g, &c[i]);
-            vt[i] = (float)(ref_rng_range(&g, -1.0, 1.0) * c[i].lim.vmax);
+            mref_lim r;
+            /* asymmetric limits on about half the joints (vmin, amin), moving target states
+             * before the call; the target velocity anywhere in [vmin, vmax] */
+            rand_case_mix(&g, &c[i], 1);
+            r = ref_lim_of(&c[i].lim);
+            vt[i] = (float)ref_rng_range(&g, r.vmin, r.vmax);
             if (cs % 7 == 0) vt[i] = 0.0f;
         }
         assert_int_equal(plan_cases(&pl, jts, c, NJ, sync), QO_OK);
@@ -764,6 +798,7 @@ static void test_velocity(void **state)
                 bad++;
             }
     }
+    print_message("velocity: %d groups of %d joints, %d failures\n", cs, NJ, bad);
     assert_int_equal(bad, 0);
 }
 

@@ -232,6 +232,15 @@ extern "C" {
  * float32 time axis at sub-millisecond resolution. */
 #define QO_MOTION_DURATION_MAX 1e4f
 #define QO_MOTION_PERIOD_MIN 1e-6f
+/* A synchronised joint (TIME, PHASE, and the rounded durations of qo_motion_set_timing_f32)
+ * ends within QO_MOTION_SYNC_END_ULPS float32 ulps of the common duration T (ulp(4.4 s) =
+ * 4.8e-7 s): its profile is solved for T, but each phase duration is a float32 value and the
+ * plan's end is their float32 sum (up to 11 phases, each addition rounding by up to ulp(T)/2),
+ * and the durations themselves carry the rounding of the solve (T minus the ramps' times).
+ * The phases are not forced to sum to T bit for bit: that would move the end position by the
+ * velocity times the correction, and the position is what the end snaps to. make check-motion
+ * (test_timing) prints the largest seen: 4 ulps. */
+#define QO_MOTION_SYNC_END_ULPS 8
 /* Upper bound of root-search steps in one solve (typically 5-12 are used; bounded anyway). */
 #define QO_MOTION_BISECT_ITERS 48
 
@@ -466,11 +475,14 @@ int qo_motion_done_f32(const qo_motion_planner_f32 *pl, float t);
  * Duration rules for the plans made from now on (set_target, set_limits; not the safety stops
  * of brake and of bad input, which stop as fast as possible). A plan that moves lasts at least
  * `min_duration` seconds, and with `period` > 0 its duration is rounded up to a whole number of
- * periods, so that it ends on a control tick (to float32 rounding of the phase sums, ~1e-7
- * relative). With SYNC_TIME the common duration obeys the rules; with SYNC_NONE each joint's own;
- * SYNC_PHASE is used only if its straight line already obeys them, else the plan falls back to
- * TIME (sync_used says so). A joint that cannot be given the longer duration (the sync gap
- * described above) keeps its own minimum time and its bit in `unsynced` is set. 0 = off (the
+ * periods, so that it ends on a control tick (within QO_MOTION_SYNC_END_ULPS float32 ulps of
+ * the tick: the phase sums). With SYNC_TIME the common duration obeys the rules; with
+ * SYNC_NONE each joint's own; SYNC_PHASE is used only if its straight line already obeys
+ * them, else the plan falls back to TIME (sync_used says so). A joint that cannot be given
+ * the longer duration (the sync gap described above) keeps its own minimum time, arrives
+ * early and waits at rest, and its bit in `unsynced` is set (e.g. make check-motion
+ * test_timing case 645: minimum 0.20722 s, period 0.041511 s; no profile of the family has
+ * 5 ticks, so it waits 0.34 ms for the 5th instead of taking 6). 0 = off (the
  * default after init). Does not re-plan: the rules apply from the next re-plan.
  * Returns QO_OK; QO_E_NULL; QO_E_STATE (not initialised); QO_E_ARG (either value negative, NaN,
  * above QO_MOTION_DURATION_MAX, or a period in (0, QO_MOTION_PERIOD_MIN): rules unchanged).
