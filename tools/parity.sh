@@ -17,7 +17,9 @@
 #   - a family (the concept before the dot) is declared in more than one header pair, or in a
 #     header not named after it (mat3 lives in convert.h);
 #   - a function with a core suffix (_f32, _q30, _q28, _q16) declared in a header that has a
-#     block is in no block (a new function must say which concept it is).
+#     block is in no block (a new function must say which concept it is);
+#   - a public name (function or type, qo_<family>_...) is declared outside its family's header
+#     pair: the name says the header (FAMILIES below; the value types of types.h excepted).
 set -eu
 export LC_ALL=C
 cd "$(dirname "$0")/.."
@@ -87,6 +89,40 @@ while IFS="$(printf '\t')" read -r fam h; do
     [ "$fam" = "$h" ] || { [ "$fam" = mat3 ] && [ "$h" = convert ]; } ||
         err "family $fam lives in $h.h: a family's home is the header named after it (mat3: convert.h)"
 done < "$W.homes"
+
+# every public name in the header of its family: qo_<family>_... is declared in <home>.h or
+# <home>_fx.h. One line per home: the header, then the families (name prefixes) it holds.
+FAMILIES='quat quat
+convert mat3 axis_angle rotvec
+euler euler
+euler_seq euler_seq
+interp interp
+gimbal gimbal
+spline spline
+motion motion
+traj traj
+fmath fm
+fxmath fx
+fxconv q16 q28 q30 fxconv
+sink sink
+status status'
+for f in "$H"/*.h; do
+    grep -E '^[A-Za-z_}]' "$f" | grep -oE '\bqo_[a-z0-9_]+(\(|;| \{)' | sed -E 's/(\(|;| \{)$//' |
+        sed "s|^|$(basename "$f")\t|"
+done | sort -u | awk -F '\t' -v fams="$FAMILIES" '
+    BEGIN {
+        n = split(fams, lines, "\n")
+        for (i = 1; i <= n; i++) { k = split(lines[i], w, " "); for (j = 2; j <= k; j++) home[w[j]] = w[1] }
+    }
+    $1 == "types.h" { next }
+    {
+        name = substr($2, 4); best = ""
+        for (fam in home) if ((name == fam || index(name, fam "_") == 1) && length(fam) > length(best)) best = fam
+        h = $1; sub(/(_fx)?\.h$/, "", h)
+        if (best == "") print $2 " (" $1 "): no family: add its prefix to FAMILIES in tools/parity.sh"
+        else if (home[best] != h) print $2 " is declared in " $1 ": family " best " lives in " home[best] ".h"
+    }' > "$W.names"
+while read -r line; do err "$line"; done < "$W.names"
 
 [ $fail = 0 ] || { echo "parity: FAIL (the blocks are at the top of $H/*.h; see tools/parity.sh)" >&2; exit 1; }
 

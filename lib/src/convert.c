@@ -24,7 +24,7 @@
  * s < ~5e-4: a factor of 7 of margin. */
 #define CONV_COND_MAX 3e3f
 
-/* Largest max|M^T M - I| that qo_quat_from_mat3_f32 converts without projecting onto the
+/* Largest max|M^T M - I| that qo_mat3_to_quat_f32 converts without projecting onto the
  * nearest rotation first: ~4 float32 ulps of 1, above the ~2e-7 of a rounded rotation. */
 #define CONV_SHEPPERD_DIRECT_TOL 5e-7f
 
@@ -156,7 +156,7 @@ static float mat3_orthogonality_error(const qo_mat3_f32 *m)
     return worst;
 }
 
-qo_status qo_quat_from_axis_angle_f32(qo_vec3_f32 axis, float angle, qo_quat_f32 *out)
+qo_status qo_axis_angle_to_quat_f32(qo_vec3_f32 axis, float angle, qo_quat_f32 *out)
 {
     qo_quat_f32 u;
     qo_status st;
@@ -179,7 +179,7 @@ qo_status qo_quat_from_axis_angle_f32(qo_vec3_f32 axis, float angle, qo_quat_f32
     return QO_OK;
 }
 
-qo_status qo_quat_to_axis_angle_f32(qo_quat_f32 q, qo_vec3_f32 *axis, float *angle)
+qo_status qo_axis_angle_from_quat_f32(qo_quat_f32 q, qo_vec3_f32 *axis, float *angle)
 {
     qo_quat_f32 n, v;
     qo_status st;
@@ -200,7 +200,7 @@ qo_status qo_quat_to_axis_angle_f32(qo_quat_f32 q, qo_vec3_f32 *axis, float *ang
     return QO_OK;
 }
 
-qo_status qo_quat_from_rotvec_f32(qo_vec3_f32 rv, qo_quat_f32 *out)
+qo_status qo_rotvec_to_quat_f32(qo_vec3_f32 rv, qo_quat_f32 *out)
 {
     float theta, h, k;
     if (out == NULL) return QO_E_NULL;
@@ -224,7 +224,7 @@ qo_status qo_quat_from_rotvec_f32(qo_vec3_f32 rv, qo_quat_f32 *out)
     return QO_OK;
 }
 
-qo_status qo_quat_to_rotvec_f32(qo_quat_f32 q, qo_vec3_f32 *out)
+qo_status qo_rotvec_from_quat_f32(qo_quat_f32 q, qo_vec3_f32 *out)
 {
     qo_quat_f32 n, v;
     qo_status st;
@@ -249,7 +249,7 @@ qo_status qo_quat_to_rotvec_f32(qo_quat_f32 q, qo_vec3_f32 *out)
     return QO_OK;
 }
 
-qo_status qo_quat_to_mat3_full_f32(qo_quat_f32 q, qo_mat3_f32 *out)
+qo_status qo_mat3_from_quat_full_f32(qo_quat_f32 q, qo_mat3_f32 *out)
 {
     qo_quat_f32 n;
     qo_status st;
@@ -258,7 +258,7 @@ qo_status qo_quat_to_mat3_full_f32(qo_quat_f32 q, qo_mat3_f32 *out)
     st = qo_quat_normalize_f32(q, &n);
     if (st != QO_OK) return st;
     /* |n| is 1 to a few ulp: the inline path takes it */
-    return qo_quat_to_mat3_f32(n, out);
+    return qo_mat3_from_quat_f32(n, out);
 }
 
 /* fmaxf(v, FLT_MIN) without the libm call (NaN gives FLT_MIN as there). */
@@ -328,7 +328,7 @@ static qo_status quat_from_pivot(const qo_mat3_f32 *m, qo_quat_f32 *out)
     return QO_OK;
 }
 
-/* The full check of qo_quat_from_mat3_f32, for the matrices the fast test below does not pass. */
+/* The full check of qo_mat3_to_quat_f32, for the matrices the fast test below does not pass. */
 static qo_status quat_from_mat3_checked(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     qo_mat3_f32 r;
@@ -384,7 +384,7 @@ static int mat3_is_rotation_direct(const qo_mat3_f32 *m)
 #endif
 }
 
-qo_status qo_quat_from_mat3_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
+qo_status qo_mat3_to_quat_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     if (out == NULL) return QO_E_NULL;
     if (m == NULL) {
@@ -398,7 +398,7 @@ qo_status qo_quat_from_mat3_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
     return quat_from_mat3_checked(m, out);
 }
 
-qo_status qo_quat_from_mat3_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
+qo_status qo_mat3_to_quat_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     if (out == NULL) return QO_E_NULL;
     if (m == NULL) {
@@ -485,7 +485,7 @@ qo_status qo_mat3_orthonormalize_f32(const qo_mat3_f32 *m, qo_mat3_f32 *out)
     return QO_OK;
 }
 
-qo_status qo_quat_from_mat3_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
+qo_status qo_mat3_to_quat_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     qo_mat3_f32 r;
     qo_status st;
@@ -493,5 +493,5 @@ qo_status qo_quat_from_mat3_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
     *out = qo_quat_identity_f32();
     st = qo_mat3_orthonormalize_f32(m, &r);
     if (st != QO_OK) return st;
-    return qo_quat_from_mat3_f32(&r, out);
+    return qo_mat3_to_quat_f32(&r, out);
 }

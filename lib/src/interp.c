@@ -137,7 +137,7 @@ static qo_status check_t(float t)
     return QO_OK;
 }
 
-qo_status qo_quat_lerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out)
+qo_status qo_interp_lerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out)
 {
     qo_status st;
     if (out == NULL) return QO_E_NULL;
@@ -154,7 +154,7 @@ qo_status qo_quat_lerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *o
     return QO_OK;
 }
 
-qo_status qo_quat_nlerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out)
+qo_status qo_interp_nlerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out)
 {
     qo_quat_f32 ua, ub;
     qo_status st;
@@ -252,7 +252,7 @@ static qo_status slerp_common(qo_quat_f32 a, qo_quat_f32 b, float t, int longway
     /* The flipped copy is what every branch below uses (including the series branch), so a
      * and -a interpolate to a unit quaternion, never through the origin. */
     if (longway ? (d > 0.0f) : (d < 0.0f)) ub = neg_q(ub);
-    /* the short way once the inputs are unit (qo_quat_slerp_f32's one-pass case); its
+    /* the short way once the inputs are unit (qo_interp_slerp_f32's one-pass case); its
      * endpoints are the unit inputs as normalised here (normalising twice can move the last
      * bit) */
     if (!longway) {
@@ -261,7 +261,7 @@ static qo_status slerp_common(qo_quat_f32 a, qo_quat_f32 b, float t, int longway
             *out = ub;
             return QO_OK;
         }
-        return qo_quat_slerp_f32(ua, ub, t, out);
+        return qo_interp_slerp_f32(ua, ub, t, out);
     }
     th = angle4(ua, ub, &sin_th);
     if (QO_PI_F - th < QO_SLERP_SERIES_ANGLE) return QO_E_DEGENERATE;
@@ -315,7 +315,7 @@ static qo_status slerp_end(qo_quat_f32 a, qo_quat_f32 b, float t, int flip, qo_q
     return QO_OK;
 }
 
-qo_status qo_quat_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out)
+qo_status qo_interp_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out)
 {
     /* The common case in one pass: both squared norms in qo_quat_normalize_f32's fast range
      * (so finite and non-zero) and t in [0, 1]. Everything else - every error, NaN t, inputs
@@ -369,12 +369,12 @@ qo_status qo_quat_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *
     return QO_OK;
 }
 
-qo_status qo_quat_slerp_long_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out)
+qo_status qo_interp_slerp_long_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out)
 {
     return slerp_common(a, b, t, 1, out);
 }
 
-qo_status qo_quat_slerp_rate_f32(qo_quat_f32 a, qo_quat_f32 b, float duration,
+qo_status qo_interp_slerp_rate_f32(qo_quat_f32 a, qo_quat_f32 b, float duration,
                                  qo_vec3_f32 *omega)
 {
     qo_quat_f32 ua, ub;
@@ -431,7 +431,7 @@ static qo_quat_f32 next_key(qo_quat_f32 k, qo_quat_f32 prev)
     return align_to(u, prev);
 }
 
-qo_status qo_quat_align_keys_f32(const qo_quat_f32 *keys, size_t n, qo_quat_f32 *out)
+qo_status qo_interp_align_keys_f32(const qo_quat_f32 *keys, size_t n, qo_quat_f32 *out)
 {
     size_t i;
     qo_status st;
@@ -472,7 +472,7 @@ static qo_quat_f32 casteljau(qo_quat_f32 *p, size_t n, float t)
     return p[0];
 }
 
-qo_status qo_quat_bezier_f32(const qo_quat_f32 *ctrl, size_t n, float t, qo_quat_f32 *out)
+qo_status qo_interp_bezier_f32(const qo_quat_f32 *ctrl, size_t n, float t, qo_quat_f32 *out)
 {
     qo_quat_f32 p[QO_BEZIER_MAX_POINTS];
     size_t i;
@@ -493,12 +493,12 @@ qo_status qo_quat_bezier_f32(const qo_quat_f32 *ctrl, size_t n, float t, qo_quat
     return QO_OK;
 }
 
-qo_status qo_quat_bezier3_f32(qo_quat_f32 q0, qo_quat_f32 q1, qo_quat_f32 q2, qo_quat_f32 q3,
+qo_status qo_interp_bezier3_f32(qo_quat_f32 q0, qo_quat_f32 q1, qo_quat_f32 q2, qo_quat_f32 q3,
                               float t, qo_quat_f32 *out)
 {
     qo_quat_f32 c[4];
     c[0] = q0; c[1] = q1; c[2] = q2; c[3] = q3;
-    return qo_quat_bezier_f32(c, 4, t, out);
+    return qo_interp_bezier_f32(c, 4, t, out);
 }
 
 /* Slerp(q_i, Bisect(Double(q_{i-1}, q_i), q_{i+1}), u) for u = +-1/3: returns a_i and b_i. */
@@ -525,7 +525,7 @@ static qo_quat_f32 end_control(qo_quat_f32 q_end, qo_quat_f32 q_near, qo_quat_f3
     return r;
 }
 
-qo_status qo_quat_spline_controls_f32(const qo_quat_f32 *keys, size_t n,
+qo_status qo_interp_spline_controls_f32(const qo_quat_f32 *keys, size_t n,
                                       qo_quat_f32 *a, qo_quat_f32 *b)
 {
     qo_quat_f32 qm, qc, qn;
@@ -569,7 +569,7 @@ qo_status qo_quat_spline_controls_f32(const qo_quat_f32 *keys, size_t n,
     return QO_OK;
 }
 
-qo_status qo_quat_spline_eval_f32(const qo_quat_f32 *keys, const qo_quat_f32 *a,
+qo_status qo_interp_spline_eval_f32(const qo_quat_f32 *keys, const qo_quat_f32 *a,
                                   const qo_quat_f32 *b, size_t n, float s, qo_quat_f32 *out)
 {
     qo_quat_f32 p[4];
@@ -604,7 +604,7 @@ qo_status qo_quat_spline_eval_f32(const qo_quat_f32 *keys, const qo_quat_f32 *a,
     return QO_OK;
 }
 
-qo_status qo_quat_squad_f32(qo_quat_f32 q0, qo_quat_f32 s0, qo_quat_f32 s1, qo_quat_f32 q1,
+qo_status qo_interp_squad_f32(qo_quat_f32 q0, qo_quat_f32 s0, qo_quat_f32 s1, qo_quat_f32 q1,
                             float t, qo_quat_f32 *out)
 {
     qo_quat_f32 p[4], x, y;
@@ -640,7 +640,7 @@ static qo_vec3_f32 log_unit(qo_quat_f32 q)
     return l;
 }
 
-qo_status qo_quat_squad_controls_f32(const qo_quat_f32 *keys, size_t n, qo_quat_f32 *s)
+qo_status qo_interp_squad_controls_f32(const qo_quat_f32 *keys, size_t n, qo_quat_f32 *s)
 {
     qo_quat_f32 qm, qc, qn, qci, e;
     qo_vec3_f32 l1, l2, arg;

@@ -808,7 +808,7 @@ static void test_f32_simd_same_bits_as_scalar(void **state)
             print_q("q", a); print_q("simd", rq); print_q("scalar", sq);
             fail_msg("case %ld: normalize differs (status %d, scalar %d)", i, (int)rs, (int)ss);
         }
-        rs = qo_quat_to_mat3_f32(a, &rm);
+        rs = qo_mat3_from_quat_f32(a, &rm);
         ss = scalar_quat_to_mat3_f32(a, &sm);
         for (k = 0; k < 9; k++) {
             if (rs != ss || !same_f(rm.m[k / 3][k % 3], sm.m[k / 3][k % 3])) {

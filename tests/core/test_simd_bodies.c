@@ -1,7 +1,7 @@
 /*
  * The SIMD bodies of the float32 core against their portable scalar bodies, bit for bit
  * (issue 14: the same results on every target, and x86-64 is the only one with these bodies):
- *  - qo_quat_slerp_f32's SSE2 body (three dot products, the range test and the half-arc series
+ *  - qo_interp_slerp_f32's SSE2 body (three dot products, the range test and the half-arc series
  *    4-wide) against its scalar body: this file compiles lib/src/interp.c once more with
  *    QO_NO_SIMD under other names (scalar_*), and the library's result must be the same bits
  *    and status on random pairs, both sides of every branch (flip, t <= 1/2, endpoints, the
@@ -34,32 +34,32 @@
 
 /* qorient/interp.h comes in with interp.c below, its names renamed there. */
 /* lib/src/interp.c again, every external name renamed (so it links beside the library). */
-#define qo_quat_lerp_f32 scalar_quat_lerp_f32
-#define qo_quat_nlerp_f32 scalar_quat_nlerp_f32
-#define qo_quat_slerp_f32 scalar_quat_slerp_f32
-#define qo_quat_slerp_long_f32 scalar_quat_slerp_long_f32
-#define qo_quat_slerp_rate_f32 scalar_quat_slerp_rate_f32
-#define qo_quat_align_keys_f32 scalar_quat_align_keys_f32
-#define qo_quat_bezier_f32 scalar_quat_bezier_f32
-#define qo_quat_bezier3_f32 scalar_quat_bezier3_f32
-#define qo_quat_spline_controls_f32 scalar_quat_spline_controls_f32
-#define qo_quat_spline_eval_f32 scalar_quat_spline_eval_f32
-#define qo_quat_squad_f32 scalar_quat_squad_f32
-#define qo_quat_squad_controls_f32 scalar_quat_squad_controls_f32
+#define qo_interp_lerp_f32 scalar_quat_lerp_f32
+#define qo_interp_nlerp_f32 scalar_quat_nlerp_f32
+#define qo_interp_slerp_f32 scalar_quat_slerp_f32
+#define qo_interp_slerp_long_f32 scalar_quat_slerp_long_f32
+#define qo_interp_slerp_rate_f32 scalar_quat_slerp_rate_f32
+#define qo_interp_align_keys_f32 scalar_quat_align_keys_f32
+#define qo_interp_bezier_f32 scalar_quat_bezier_f32
+#define qo_interp_bezier3_f32 scalar_quat_bezier3_f32
+#define qo_interp_spline_controls_f32 scalar_quat_spline_controls_f32
+#define qo_interp_spline_eval_f32 scalar_quat_spline_eval_f32
+#define qo_interp_squad_f32 scalar_quat_squad_f32
+#define qo_interp_squad_controls_f32 scalar_quat_squad_controls_f32
 #include "../lib/src/interp.c"
-#undef qo_quat_lerp_f32
-#undef qo_quat_nlerp_f32
-#undef qo_quat_slerp_f32
-#undef qo_quat_slerp_long_f32
-#undef qo_quat_slerp_rate_f32
-#undef qo_quat_align_keys_f32
-#undef qo_quat_bezier_f32
-#undef qo_quat_bezier3_f32
-#undef qo_quat_spline_controls_f32
-#undef qo_quat_spline_eval_f32
-#undef qo_quat_squad_f32
-#undef qo_quat_squad_controls_f32
-qo_status qo_quat_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out);
+#undef qo_interp_lerp_f32
+#undef qo_interp_nlerp_f32
+#undef qo_interp_slerp_f32
+#undef qo_interp_slerp_long_f32
+#undef qo_interp_slerp_rate_f32
+#undef qo_interp_align_keys_f32
+#undef qo_interp_bezier_f32
+#undef qo_interp_bezier3_f32
+#undef qo_interp_spline_controls_f32
+#undef qo_interp_spline_eval_f32
+#undef qo_interp_squad_f32
+#undef qo_interp_squad_controls_f32
+qo_status qo_interp_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out);
 #include "qorient/fmath.h"
 #include "../lib/src/fmath_internal.h"
 
@@ -130,7 +130,7 @@ static void test_slerp_simd_same_bits(void **state)
         b = quat4(b.w * sb, b.x * sb, b.y * sb, b.z * sb);
         memset(&q1, 0x5a, sizeof q1);
         memset(&q2, 0xa5, sizeof q2);
-        s1 = qo_quat_slerp_f32(a, b, t, &q1);
+        s1 = qo_interp_slerp_f32(a, b, t, &q1);
         s2 = scalar_quat_slerp_f32(a, b, t, &q2);
         if (s1 != s2 || !same_quat_bits(q1, q2))
             fail_msg("slerp case %ld (kind %d): SIMD status %d (%a, %a, %a, %a), scalar status %d "

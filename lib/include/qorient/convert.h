@@ -1,13 +1,13 @@
 /* parity float32 (tools/parity.sh writes docs/PARITY.md from these blocks):
- *   convert.from_axis_angle    qo_quat_from_axis_angle_f32
- *   convert.to_axis_angle      qo_quat_to_axis_angle_f32
- *   convert.from_rotvec        qo_quat_from_rotvec_f32
- *   convert.to_rotvec          qo_quat_to_rotvec_f32
- *   convert.to_mat3            qo_quat_to_mat3_f32
- *   convert.to_mat3            qo_quat_to_mat3_full_f32 (its out-of-line path)
- *   convert.from_mat3          qo_quat_from_mat3_f32
- *   convert.from_mat3_trusted  qo_quat_from_mat3_trusted_f32
- *   convert.from_mat3_ortho    qo_quat_from_mat3_ortho_f32
+ *   convert.from_axis_angle    qo_axis_angle_to_quat_f32
+ *   convert.to_axis_angle      qo_axis_angle_from_quat_f32
+ *   convert.from_rotvec        qo_rotvec_to_quat_f32
+ *   convert.to_rotvec          qo_rotvec_from_quat_f32
+ *   convert.to_mat3            qo_mat3_from_quat_f32
+ *   convert.to_mat3            qo_mat3_from_quat_full_f32 (its out-of-line path)
+ *   convert.from_mat3          qo_mat3_to_quat_f32
+ *   convert.from_mat3_trusted  qo_mat3_to_quat_trusted_f32
+ *   convert.from_mat3_ortho    qo_mat3_to_quat_ortho_f32
  *   mat3.identity              qo_mat3_identity_f32
  *   mat3.transpose             qo_mat3_transpose_f32
  *   mat3.mul                   qo_mat3_mul_f32
@@ -21,30 +21,30 @@
  *
  * Conventions: see qorient/types.h (quaternions scalar-first, Hamilton, active rotations,
  * right-handed frames; matrices row-major m[row][col] acting on column vectors v' = M v).
- * For every q, qo_quat_to_mat3_f32(q) rotates a vector exactly as qo_quat_rotate_f32(q, .).
+ * For every q, qo_mat3_from_quat_f32(q) rotates a vector exactly as qo_quat_rotate_f32(q, .).
  * Angles are radians.
  *
  * Index:
- *   QO_MAT3_ROTATION_TOL_F32      tolerance of the "is this a rotation matrix" test
- *   qo_quat_from_axis_angle_f32   axis (any length) + angle -> unit quaternion
- *   qo_quat_to_axis_angle_f32     quaternion -> unit axis + angle in [0, pi]
- *   qo_quat_from_rotvec_f32       rotation vector (axis * angle) -> unit quaternion
- *   qo_quat_to_rotvec_f32         quaternion -> rotation vector, |rv| in [0, pi]
- *   qo_quat_to_mat3_f32           quaternion -> rotation matrix (static inline fast path)
- *   qo_quat_to_mat3_full_f32      its out-of-line complete path
- *   qo_quat_from_mat3_f32         rotation matrix -> canonical unit quaternion (strict check)
- *   qo_mat3_orthonormalize_f32    nearest rotation matrix (orthogonal polar factor)
- *   qo_quat_from_mat3_ortho_f32   orthonormalise, then convert (for drifted matrices)
- *   qo_quat_from_mat3_trusted_f32 no rotation check (for matrices known to be rotations)
- *   qo_mat3_mul_vec3_f32          M v
- *   qo_mat3_mul_f32               A B
- *   qo_mat3_transpose_f32         M^T
- *   qo_mat3_identity_f32          I
- *   qo_mat3_det_f32               det M
+ *   QO_MAT3_ROTATION_TOL_F32     tolerance of the "is this a rotation matrix" test
+ *   qo_axis_angle_to_quat_f32    axis (any length) + angle -> unit quaternion
+ *   qo_axis_angle_from_quat_f32  quaternion -> unit axis + angle in [0, pi]
+ *   qo_rotvec_to_quat_f32        rotation vector (axis * angle) -> unit quaternion
+ *   qo_rotvec_from_quat_f32      quaternion -> rotation vector, |rv| in [0, pi]
+ *   qo_mat3_from_quat_f32        quaternion -> rotation matrix (static inline fast path)
+ *   qo_mat3_from_quat_full_f32   its out-of-line complete path
+ *   qo_mat3_to_quat_f32          rotation matrix -> canonical unit quaternion (strict check)
+ *   qo_mat3_orthonormalize_f32   nearest rotation matrix (orthogonal polar factor)
+ *   qo_mat3_to_quat_ortho_f32    orthonormalise, then convert (for drifted matrices)
+ *   qo_mat3_to_quat_trusted_f32 no rotation check (for matrices known to be rotations)
+ *   qo_mat3_mul_vec3_f32         M v
+ *   qo_mat3_mul_f32              A B
+ *   qo_mat3_transpose_f32        M^T
+ *   qo_mat3_identity_f32         I
+ *   qo_mat3_det_f32              det M
  *
- * Sign of returned quaternions: qo_quat_from_mat3_f32 / _ortho_f32 return the canonical sign
- * (w >= 0, ties as qo_quat_canonical_f32). qo_quat_from_axis_angle_f32 and
- * qo_quat_from_rotvec_f32 return (cos(angle/2), sin(angle/2) * unit axis) exactly as the
+ * Sign of returned quaternions: qo_mat3_to_quat_f32 / _ortho_f32 return the canonical sign
+ * (w >= 0, ties as qo_quat_canonical_f32). qo_axis_angle_to_quat_f32 and
+ * qo_rotvec_to_quat_f32 return (cos(angle/2), sin(angle/2) * unit axis) exactly as the
  * formula gives it, so an angle beyond pi gives w < 0 (the same rotation; canonicalise with
  * qo_quat_canonical_f32 if you need the short representative).
  */
@@ -63,13 +63,13 @@ extern "C" {
 #endif
 
 /*
- * A matrix is accepted as a rotation by qo_quat_from_mat3_f32 when every entry of M^T M - I
+ * A matrix is accepted as a rotation by qo_mat3_to_quat_f32 when every entry of M^T M - I
  * is at most this in magnitude and det M > 0. 1e-4 is ~800 float32 ulps of 1: it accepts a
  * rotation matrix that went through a few dozen float32 products (each adds ~1e-7 of
  * non-orthogonality) or was printed with 5-6 significant digits, and still rejects anything
  * visibly scaled or sheared (a 1e-4 error in M^T M is a ~5e-5 scale or shear). Matrices
  * further off must be repaired explicitly with qo_mat3_orthonormalize_f32 /
- * qo_quat_from_mat3_ortho_f32 - we never silently guess.
+ * qo_mat3_to_quat_ortho_f32 - we never silently guess.
  */
 #define QO_MAT3_ROTATION_TOL_F32 1e-4f
 
@@ -83,7 +83,7 @@ extern "C" {
  * NaN/Inf; QO_E_DEGENERATE if axis is (0,0,0) (whatever the angle). *out is the identity on
  * every error.
  */
-qo_status qo_quat_from_axis_angle_f32(qo_vec3_f32 axis, float angle, qo_quat_f32 *out);
+qo_status qo_axis_angle_to_quat_f32(qo_vec3_f32 axis, float angle, qo_quat_f32 *out);
 
 /*
  * Axis and angle of the rotation q (q need not be unit: it is normalised first). The short
@@ -96,7 +96,7 @@ qo_status qo_quat_from_axis_angle_f32(qo_vec3_f32 axis, float angle, qo_quat_f32
  * QO_E_NONFINITE for a NaN/Inf component; QO_E_DEGENERATE for q == 0. On every error
  * *axis = (1, 0, 0) and *angle = 0.
  */
-qo_status qo_quat_to_axis_angle_f32(qo_quat_f32 q, qo_vec3_f32 *axis, float *angle);
+qo_status qo_axis_angle_from_quat_f32(qo_quat_f32 q, qo_vec3_f32 *axis, float *angle);
 
 /*
  * Unit quaternion of the rotation vector rv (axis * angle, radians: |rv| is the angle, its
@@ -107,7 +107,7 @@ qo_status qo_quat_to_axis_angle_f32(qo_quat_f32 q, qo_vec3_f32 *axis, float *ang
  * QO_E_RANGE if |rv| overflows float (components near FLT_MAX; such an angle has no
  * meaningful float32 rotation). *out is the identity on every error.
  */
-qo_status qo_quat_from_rotvec_f32(qo_vec3_f32 rv, qo_quat_f32 *out);
+qo_status qo_rotvec_to_quat_f32(qo_vec3_f32 rv, qo_quat_f32 *out);
 
 /*
  * Rotation vector (unit axis * angle, radians) of q. q is normalised, then the canonical sign
@@ -117,13 +117,13 @@ qo_status qo_quat_from_rotvec_f32(qo_vec3_f32 rv, qo_quat_f32 *out);
  * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_NONFINITE for a NaN/Inf component;
  * QO_E_DEGENERATE for q == 0. *out is (0, 0, 0) on every error.
  */
-qo_status qo_quat_to_rotvec_f32(qo_quat_f32 q, qo_vec3_f32 *out);
+qo_status qo_rotvec_from_quat_f32(qo_quat_f32 q, qo_vec3_f32 *out);
 
 /*
- * qo_quat_to_mat3_f32's complete path, out of line (every input; for |q|^2 outside
- * [1e-30, 1e30] it normalises with range scaling first). Same contract as qo_quat_to_mat3_f32.
+ * qo_mat3_from_quat_f32's complete path, out of line (every input; for |q|^2 outside
+ * [1e-30, 1e30] it normalises with range scaling first). Same contract as qo_mat3_from_quat_f32.
  */
-qo_status qo_quat_to_mat3_full_f32(qo_quat_f32 q, qo_mat3_f32 *out);
+qo_status qo_mat3_from_quat_full_f32(qo_quat_f32 q, qo_mat3_f32 *out);
 
 /*
  * Canonical unit quaternion (w >= 0) of the rotation matrix *m (row-major, v' = M v).
@@ -140,7 +140,7 @@ qo_status qo_quat_to_mat3_full_f32(qo_quat_f32 q, qo_mat3_f32 *out);
  * QO_E_NOT_ROTATION for a matrix that is scaled, sheared, a reflection (det < 0) or singular.
  * *out is the identity on every error.
  */
-qo_status qo_quat_from_mat3_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
+qo_status qo_mat3_to_quat_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 
 /*
  * The rotation matrix nearest *m in the Frobenius norm: the orthogonal factor R of the polar
@@ -165,28 +165,28 @@ qo_status qo_mat3_orthonormalize_f32(const qo_mat3_f32 *m, qo_mat3_f32 *out);
 
 /*
  * Canonical unit quaternion of the rotation nearest *m: qo_mat3_orthonormalize_f32 followed by
- * qo_quat_from_mat3_f32. Use it when the caller KNOWS the matrix is a drifted or noisy
- * rotation (integrated, filtered, read from a sensor); qo_quat_from_mat3_f32 refuses such
+ * qo_mat3_to_quat_f32. Use it when the caller KNOWS the matrix is a drifted or noisy
+ * rotation (integrated, filtered, read from a sensor); qo_mat3_to_quat_f32 refuses such
  * matrices instead of guessing.
  * Returns QO_OK, QO_E_NULL, QO_E_NONFINITE, QO_E_NOT_ROTATION (as for
  * qo_mat3_orthonormalize_f32). *out is the identity on every error.
  */
-qo_status qo_quat_from_mat3_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
+qo_status qo_mat3_to_quat_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 
 /*
  * Canonical unit quaternion of *m for callers whose matrix is KNOWN to be a rotation (built
  * from a quaternion or from rotations, to float rounding): the pivoting formula of
- * qo_quat_from_mat3_f32 (Shepperd: largest of trace, m00, m11, m22, normalised in one step),
+ * qo_mat3_to_quat_f32 (Shepperd: largest of trace, m00, m11, m22, normalised in one step),
  * without the rotation check (orthogonality, determinant) that costs most of
- * qo_quat_from_mat3_f32. For a float-rounded rotation the result is the same rotation to
+ * qo_mat3_to_quat_f32. For a float-rounded rotation the result is the same rotation to
  * ~2e-7 rad (bench/accuracy_convert.c). A matrix that is not a rotation gives an unspecified
- * unit quaternion (never NaN from finite input) - use qo_quat_from_mat3_f32 or _ortho_f32
+ * unit quaternion (never NaN from finite input) - use qo_mat3_to_quat_f32 or _ortho_f32
  * when that can happen.
  * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NONFINITE for a NaN/Inf entry (or
  * entries so large that the formula overflows: not a rotation). *out is the identity on every
  * error.
  */
-qo_status qo_quat_from_mat3_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
+qo_status qo_mat3_to_quat_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 
 /* M v (no checks; NaN propagates). */
 qo_vec3_f32 qo_mat3_mul_vec3_f32(const qo_mat3_f32 *m, qo_vec3_f32 v);
@@ -209,7 +209,7 @@ float qo_mat3_det_f32(const qo_mat3_f32 *m);
  * to the library when the caller does not contract a*b+c, see quat.h) -------------------- */
 #if defined(QORIENT_CONVERT_EXTERN_DEFS)
 #define QO_CONVERT_INLINE
-qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out);
+qo_status qo_mat3_from_quat_f32(qo_quat_f32 q, qo_mat3_f32 *out);
 #else
 #define QO_CONVERT_INLINE static inline
 #endif
@@ -224,9 +224,9 @@ qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out);
  * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_NONFINITE for a NaN/Inf component;
  * QO_E_DEGENERATE for q == 0. *out is the identity matrix on every error.
  * Inline: |q|^2 in [1e-30, 1e30] (q finite, non-zero, no scaling needed) is handled here;
- * the rest by qo_quat_to_mat3_full_f32.
+ * the rest by qo_mat3_from_quat_full_f32.
  */
-QO_CONVERT_INLINE qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out)
+QO_CONVERT_INLINE qo_status qo_mat3_from_quat_f32(qo_quat_f32 q, qo_mat3_f32 *out)
 {
 #if QO_SIMD_SSE2
     /* The scalar body below, lane for lane in the same order (see quat.h's QO_SIMD_SSE2):
@@ -235,7 +235,7 @@ QO_CONVERT_INLINE qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out)
     __m128 n4 = qo_quat_internal_sum4_ss(_mm_mul_ps(q4, q4));
     const float n = _mm_cvtss_f32(n4);
     __m128 u, uu, s, da, db, d, pr, wr, pl, mi, lo;
-    if (out == NULL || !(n >= 1e-30f && !(n > 1e30f))) return qo_quat_to_mat3_full_f32(q, out);
+    if (out == NULL || !(n >= 1e-30f && !(n > 1e30f))) return qo_mat3_from_quat_full_f32(q, out);
     n4 = _mm_div_ss(_mm_set_ss(1.0f), _mm_sqrt_ss(n4));
     u = _mm_mul_ps(q4, _mm_shuffle_ps(n4, n4, 0));                          /* w x y z */
     uu = _mm_mul_ps(u, u);
@@ -267,7 +267,7 @@ QO_CONVERT_INLINE qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out)
 #else
     float s = q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z;
     float w, x, y, z, xx, yy, zz, xy, xz, yz, wx, wy, wz;
-    if (out == NULL || !(s >= 1e-30f && s <= 1e30f)) return qo_quat_to_mat3_full_f32(q, out);
+    if (out == NULL || !(s >= 1e-30f && s <= 1e30f)) return qo_mat3_from_quat_full_f32(q, out);
     /* Normalising is kept although s = 2/|n|^2 below would absorb any scale: measured, the
      * unnormalised form is up to 1.4x less accurate. */
     s = 1.0f / sqrtf(s);

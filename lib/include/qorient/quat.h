@@ -23,20 +23,20 @@
  * Conventions: see qorient/types.h (scalar-first, Hamilton, active, right-handed).
  *
  * Index:
- *   qo_quat_identity_f32     (1, 0, 0, 0)
- *   qo_quat_mul_f32          Hamilton product a*b (apply b first, then a)
- *   qo_quat_conj_f32         conjugate (w, -x, -y, -z)
- *   qo_quat_dot_f32          4-D dot product
- *   qo_quat_norm_f32         Euclidean length, overflow-safe
- *   qo_quat_normalize_f32    unit length; zero / non-finite input -> identity + status
- *   qo_quat_inverse_f32      q^-1 = conj(q) / |q|^2; zero / non-finite -> identity + status
- *   qo_quat_canonical_f32    the sign with w >= 0 (ties broken by the first non-zero of x, y, z)
- *   qo_quat_rotate_f32       rotate a vector by a unit quaternion: q v q*
- *   qo_quat_angle_between_f32  rotation angle from a to b, in [0, pi]
- *   qo_quat_exp_f32          exp of a pure quaternion (0, v), v in radians
- *   qo_quat_log_f32          log of a quaternion, vector part in radians
- *   qo_quat_integrate_f32    advance an orientation by a body-frame angular velocity over dt
- *   qo_quat_is_finite_f32    all four components finite
+ *   qo_quat_identity_f32        (1, 0, 0, 0)
+ *   qo_quat_mul_f32             Hamilton product a*b (apply b first, then a)
+ *   qo_quat_conj_f32            conjugate (w, -x, -y, -z)
+ *   qo_quat_dot_f32             4-D dot product
+ *   qo_quat_norm_f32            Euclidean length, overflow-safe
+ *   qo_quat_normalize_f32       unit length; zero / non-finite input -> identity + status
+ *   qo_quat_inverse_f32         q^-1 = conj(q) / |q|^2; zero / non-finite -> identity + status
+ *   qo_quat_canonical_f32       the sign with w >= 0 (ties broken by the first non-zero of x, y, z)
+ *   qo_quat_rotate_f32          rotate a vector by a unit quaternion: q v q*
+ *   qo_quat_angle_between_f32   rotation angle from a to b, in [0, pi]
+ *   qo_quat_exp_f32             exp of a pure quaternion (0, v), v in radians
+ *   qo_quat_log_f32             log of a quaternion, vector part in radians
+ *   qo_quat_integrate_f32       advance an orientation by a body-frame angular velocity over dt
+ *   qo_quat_is_finite_f32       all four components finite
  *   qo_quat_normalize_full_f32  the out-of-line complete path of qo_quat_normalize_f32
  *
  * Inline functions: identity, mul, conj, dot, rotate, is_finite, canonical and normalize's fast
@@ -47,7 +47,7 @@
  * clang honours the #pragma STDC FP_CONTRACT OFF below; gcc ignores it, and contracts by
  * default in its GNU modes (-std=gnu99/gnu11) on FMA targets (aarch64, x86-64 with -mfma):
  * there compile with -ffp-contract=off (or -std=c99/c11) for bit-identical results.
- * On SSE2 targets (x86-64) mul, rotate, normalize and qo_quat_to_mat3_f32 have 4-wide bodies
+ * On SSE2 targets (x86-64) mul, rotate, normalize and qo_mat3_from_quat_f32 have 4-wide bodies
  * with the scalar code's per-component rounding order, so the bits are the same (see
  * QO_SIMD_SSE2 below; tests/core/test_quat.c compares both bodies on 1e6 inputs).
  */

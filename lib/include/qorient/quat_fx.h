@@ -150,7 +150,7 @@ qo_status qo_quat_log_q30(qo_quat_q30 q, qo_vec3_q28 *out);
  * dtheta = omega * dt is the rotation vector (Q3.28 radians, in the body's own axes) turned
  * through in this step - the caller forms it in whatever time format it uses, so no time
  * format is imposed here. Exact for a constant omega over the step (no first-order drift); the
- * half-angle is never rounded (see qo_quat_from_rotvec_q30). For a WORLD-frame increment use
+ * half-angle is never rounded (see qo_rotvec_to_quat_q30). For a WORLD-frame increment use
  * exp(dtheta/2) * q, i.e. qo_quat_mul_q30(from_rotvec(dtheta), q).
  * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_DEGENERATE if q is zero (*out = identity).
  */
