@@ -1,13 +1,9 @@
 /* Fixed-point per-tick sampling of a motion plan (integer only). See qorient/motion_fx.h. */
 #include "qorient/motion_fx.h"
 
-/* Floor of x / 2^s without relying on the implementation-defined right shift of negatives. */
-static int64_t floor_shr(int64_t x, unsigned s)
-{
-    if (x >= 0) return (int64_t)((uint64_t)x >> s);
-    return -(int64_t)(((uint64_t)(-(x + 1))) >> s) - 1;
-}
+#include "fx_internal.h"
 
+/* Floor of x / 2^s without relying on the implementation-defined right shift of negatives. */
 static int64_t sat_add(int64_t a, int64_t b, int *ovf)
 {
     if (b > 0 && a > INT64_MAX - b) {
@@ -44,12 +40,22 @@ static int64_t mul_q16(int64_t a, int32_t b, int *ovf)
     uint32_t hu = (uint32_t)(ua >> 32);
     int64_t hi = hu >= 0x80000000u ? (int64_t)hu - (int64_t)4294967296 : (int64_t)hu;
     int64_t ph = hi * (int64_t)b;              /* |.| <= 2^62 */
-    int64_t pl = floor_shr(lo * (int64_t)b + 32768, 16); /* |lo * b| < 2^63 */
+    int64_t pl = qo_fx_rshift_floor(lo * (int64_t)b + 32768, 16); /* |lo * b| < 2^63 */
     if (ph >= ((int64_t)1 << 46) || ph <= -((int64_t)1 << 46)) {
         *ovf = 1;
         return ph > 0 ? INT64_MAX : -INT64_MAX;
     }
     return ph * 65536 + pl;
+}
+
+/* c[0] tau^(n-1) + ... + c[n-1] by Horner's rule in Q31.32, saturating; one call site of
+ * mul_q16 keeps the sampler small on Cortex-M0 (gcc inlines a helper called once). */
+static int64_t horner_q16(const int64_t *c, unsigned n, int32_t tau, int *ovf)
+{
+    int64_t r = c[0];
+    unsigned j;
+    for (j = 1; j < n; j++) r = sat_add(mul_q16(r, tau, ovf), c[j], ovf);
+    return r;
 }
 
 /* Q31.32 -> Q16.16, rounded, saturated. */
@@ -60,7 +66,7 @@ static qo_q16 out_q16(int64_t r, int *ovf)
         *ovf = 1;
         return INT32_MAX;
     }
-    q = floor_shr(r + 32768, 16);
+    q = qo_fx_rshift_floor(r + 32768, 16);
     if (q > INT32_MAX) {
         *ovf = 1;
         return INT32_MAX;
@@ -96,23 +102,24 @@ qo_status qo_motion_sample_q16(const qo_motion_table_q16 *table, qo_q16 t, qo_q1
         const qo_motion_seg_q16 *sg = &table->segs[i * QO_MOTION_Q16_SEGS];
         unsigned k = QO_MOTION_Q16_SEGS - 1;
         int32_t tau;
-        int64_t r, c2x2;
+        int64_t c[4];
         while (k > 0 && sg[k].t > t) k--;
         sg += k;
         tau = t - sg->t;
-        r = sat_add(mul_q16(sg->c3, tau, &ovf), sg->c2, &ovf);
-        r = sat_add(mul_q16(r, tau, &ovf), sg->c1, &ovf);
-        r = sat_add(mul_q16(r, tau, &ovf), sg->c0, &ovf);
-        pos[i] = out_q16(r, &ovf);
-        c2x2 = sat_mul_k(sg->c2, 2, &ovf);
+        c[0] = sg->c3;
+        c[1] = sg->c2;
+        c[2] = sg->c1;
+        c[3] = sg->c0;
+        pos[i] = out_q16(horner_q16(c, 4, tau, &ovf), &ovf);
+        c[1] = sat_mul_k(sg->c2, 2, &ovf);
         if (vel) {
-            r = sat_add(mul_q16(sat_mul_k(sg->c3, 3, &ovf), tau, &ovf), c2x2, &ovf);
-            r = sat_add(mul_q16(r, tau, &ovf), sg->c1, &ovf);
-            vel[i] = out_q16(r, &ovf);
+            c[0] = sat_mul_k(sg->c3, 3, &ovf);
+            c[2] = sg->c1;
+            vel[i] = out_q16(horner_q16(c, 3, tau, &ovf), &ovf);
         }
         if (acc) {
-            r = sat_add(mul_q16(sat_mul_k(sg->c3, 6, &ovf), tau, &ovf), c2x2, &ovf);
-            acc[i] = out_q16(r, &ovf);
+            c[0] = sat_mul_k(sg->c3, 6, &ovf);
+            acc[i] = out_q16(horner_q16(c, 2, tau, &ovf), &ovf);
         }
     }
     if (ovf) return QO_E_OVERFLOW;
