@@ -138,14 +138,14 @@ static void hw_wait_for_interrupt(void)
         uint32_t d;
         if (sim_pwm[a] < 500u || sim_pwm[a] > 2500u) {
             print_error("tick %u: axis %u pulse %u us outside 500..2500\n", (unsigned)g_ticks, a,
-                        sim_pwm[a]);
+                        (unsigned)sim_pwm[a]);
             sim_failures++;
         }
         d = sim_pwm[a] > sim_prev_pwm[a] ? sim_pwm[a] - sim_prev_pwm[a]
                                          : sim_prev_pwm[a] - sim_pwm[a];
         if (sim_have_pwm && d > step_max) {
-            print_error("tick %u: axis %u jumped %u us (%u -> %u)\n", (unsigned)g_ticks, a, d,
-                        sim_prev_pwm[a], sim_pwm[a]);
+            print_error("tick %u: axis %u jumped %u us (%u -> %u)\n", (unsigned)g_ticks, a,
+                        (unsigned)d, (unsigned)sim_prev_pwm[a], (unsigned)sim_pwm[a]);
             sim_failures++;
         }
         sim_prev_pwm[a] = sim_pwm[a];
