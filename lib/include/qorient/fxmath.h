@@ -6,7 +6,7 @@
  * hidden state, safe from interrupts and on several cores at once.
  *
  * Index:
- *   QO_Q28_PI, QO_Q28_HALF_PI, QO_Q28_TWO_PI   pi, pi/2, 2pi in Q3.28 (each rounded to nearest)
+ *   QO_Q28_PI, QO_Q28_HALF_PI, QO_Q28_TWO_PI   (qorient/types.h) pi, pi/2, 2pi in Q3.28
  *   qo_fx_sat_i32          saturate an int64 to int32
  *   qo_fx_mul32_i64        exact signed 32x32 -> 64 product (static inline; 4 16x16 products on ARMv6-M)
  *   qo_fx_umul32_u64       exact unsigned 32x32 -> 64 product (static inline; likewise)
@@ -95,12 +95,6 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/* pi, pi/2 and 2pi in Q3.28, each rounded to nearest (so 2*HALF_PI == PI - 1 LSB, and
- * TWO_PI == 2*PI - 1 LSB: use the constant you mean). */
-#define QO_Q28_PI      ((qo_q28)843314857)   /* 3.14159265 */
-#define QO_Q28_HALF_PI ((qo_q28)421657428)   /* 1.57079633 */
-#define QO_Q28_TWO_PI  ((qo_q28)1686629713)  /* 6.28318531 */
 
 /* v clamped to [INT32_MIN, INT32_MAX]. */
 int32_t qo_fx_sat_i32(int64_t v);

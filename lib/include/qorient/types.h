@@ -52,6 +52,12 @@ typedef int32_t qo_q16;
 #define QO_Q28_ONE ((qo_q28)0x10000000)   /* 1.0 in Q3.28 */
 #define QO_Q16_ONE ((qo_q16)0x00010000)   /* 1.0 in Q16.16 */
 
+/* pi, pi/2 and 2pi in Q3.28, each rounded to nearest (so 2*HALF_PI == PI - 1 LSB, and
+ * TWO_PI == 2*PI - 1 LSB: use the constant you mean). */
+#define QO_Q28_PI      ((qo_q28)843314857)   /* 3.14159265 */
+#define QO_Q28_HALF_PI ((qo_q28)421657428)   /* 1.57079633 */
+#define QO_Q28_TWO_PI  ((qo_q28)1686629713)  /* 6.28318531 */
+
 /* Quaternion with Q1.30 components, scalar first; same conventions as qo_quat_f32. */
 typedef struct qo_quat_q30 { qo_q30 w, x, y, z; } qo_quat_q30;
 
