@@ -1,31 +1,31 @@
-#include "linux/modbus_pack.h"
+#include "linux/modbus_reg.h"
 
 #include <float.h>
 #include <math.h>
 #include <string.h>
 
-size_t qo_reg_type_width(qo_reg_type type)
+size_t qo_modbus_reg_type_width(qo_modbus_reg_type type)
 {
     switch (type) {
-    case QO_REG_INT16:
-    case QO_REG_UINT16: return 1;
-    case QO_REG_INT32:
-    case QO_REG_UINT32:
-    case QO_REG_FLOAT32: return 2;
+    case QO_MODBUS_REG_INT16:
+    case QO_MODBUS_REG_UINT16: return 1;
+    case QO_MODBUS_REG_INT32:
+    case QO_MODBUS_REG_UINT32:
+    case QO_MODBUS_REG_FLOAT32: return 2;
     default: return 0;
     }
 }
 
-qo_status qo_reg_type_range(qo_reg_type type, double *lo, double *hi)
+qo_status qo_modbus_reg_type_range(qo_modbus_reg_type type, double *lo, double *hi)
 {
     double l = 0.0, h = 0.0;
     qo_status st = QO_OK;
     switch (type) {
-    case QO_REG_INT16: l = -32768.0; h = 32767.0; break;
-    case QO_REG_UINT16: l = 0.0; h = 65535.0; break;
-    case QO_REG_INT32: l = -2147483648.0; h = 2147483647.0; break;
-    case QO_REG_UINT32: l = 0.0; h = 4294967295.0; break;
-    case QO_REG_FLOAT32: l = -(double)FLT_MAX; h = (double)FLT_MAX; break;
+    case QO_MODBUS_REG_INT16: l = -32768.0; h = 32767.0; break;
+    case QO_MODBUS_REG_UINT16: l = 0.0; h = 65535.0; break;
+    case QO_MODBUS_REG_INT32: l = -2147483648.0; h = 2147483647.0; break;
+    case QO_MODBUS_REG_UINT32: l = 0.0; h = 4294967295.0; break;
+    case QO_MODBUS_REG_FLOAT32: l = -(double)FLT_MAX; h = (double)FLT_MAX; break;
     default: st = QO_E_ARG; break;
     }
     if (lo == NULL || hi == NULL) return QO_E_NULL;
@@ -34,17 +34,17 @@ qo_status qo_reg_type_range(qo_reg_type type, double *lo, double *hi)
     return st;
 }
 
-static qo_status check_format(const qo_reg_format *f)
+static qo_status check_format(const qo_modbus_reg_format *f)
 {
-    if (qo_reg_type_width(f->type) == 0) return QO_E_ARG;
-    if (f->order != QO_WORD_HI_FIRST && f->order != QO_WORD_LO_FIRST) return QO_E_ARG;
+    if (qo_modbus_reg_type_width(f->type) == 0) return QO_E_ARG;
+    if (f->order != QO_MODBUS_REG_HI_FIRST && f->order != QO_MODBUS_REG_LO_FIRST) return QO_E_ARG;
     if (!isfinite(f->scale) || f->scale == 0.0 || !isfinite(f->offset)) return QO_E_CONFIG;
     return QO_OK;
 }
 
 /* The checks both conversions start with, in their documented order: out NULL (nothing
  * written), then *out = 0, f NULL, a bad format, a non-finite input. */
-static qo_status conv_args(const qo_reg_format *f, double in, double *out)
+static qo_status conv_args(const qo_modbus_reg_format *f, double in, double *out)
 {
     qo_status st;
     if (out == NULL) return QO_E_NULL;
@@ -55,7 +55,7 @@ static qo_status conv_args(const qo_reg_format *f, double in, double *out)
     return isfinite(in) ? QO_OK : QO_E_NONFINITE;
 }
 
-qo_status qo_reg_raw_from_value(const qo_reg_format *f, double value, double *raw)
+qo_status qo_modbus_reg_raw_from_value(const qo_modbus_reg_format *f, double value, double *raw)
 {
     qo_status st = conv_args(f, value, raw);
     double r;
@@ -66,7 +66,7 @@ qo_status qo_reg_raw_from_value(const qo_reg_format *f, double value, double *ra
     return QO_OK;
 }
 
-qo_status qo_reg_value_from_raw(const qo_reg_format *f, double raw, double *value)
+qo_status qo_modbus_reg_value_from_raw(const qo_modbus_reg_format *f, double raw, double *value)
 {
     qo_status st = conv_args(f, raw, value);
     double v;
@@ -78,34 +78,34 @@ qo_status qo_reg_value_from_raw(const qo_reg_format *f, double raw, double *valu
     return QO_OK;
 }
 
-static void put32(qo_word_order order, uint32_t u, uint16_t *regs)
+static void put32(qo_modbus_reg_word_order order, uint32_t u, uint16_t *regs)
 {
     uint16_t hi = (uint16_t)(u >> 16), lo = (uint16_t)(u & 0xFFFFu);
-    regs[0] = order == QO_WORD_HI_FIRST ? hi : lo;
-    regs[1] = order == QO_WORD_HI_FIRST ? lo : hi;
+    regs[0] = order == QO_MODBUS_REG_HI_FIRST ? hi : lo;
+    regs[1] = order == QO_MODBUS_REG_HI_FIRST ? lo : hi;
 }
 
-static uint32_t get32(qo_word_order order, const uint16_t *regs)
+static uint32_t get32(qo_modbus_reg_word_order order, const uint16_t *regs)
 {
-    uint32_t hi = order == QO_WORD_HI_FIRST ? regs[0] : regs[1];
-    uint32_t lo = order == QO_WORD_HI_FIRST ? regs[1] : regs[0];
+    uint32_t hi = order == QO_MODBUS_REG_HI_FIRST ? regs[0] : regs[1];
+    uint32_t lo = order == QO_MODBUS_REG_HI_FIRST ? regs[1] : regs[0];
     return (hi << 16) | lo;
 }
 
-qo_status qo_reg_pack_raw(qo_reg_type type, qo_word_order order, double raw, uint16_t *regs,
+qo_status qo_modbus_reg_pack_raw(qo_modbus_reg_type type, qo_modbus_reg_word_order order, double raw, uint16_t *regs,
                           double *packed_raw)
 {
     double lo, hi, r;
-    size_t w = qo_reg_type_width(type);
+    size_t w = qo_modbus_reg_type_width(type);
     qo_status st = QO_OK;
     if (packed_raw != NULL) *packed_raw = 0.0;
     if (regs == NULL) return QO_E_NULL;
     regs[0] = 0;
     if (w == 2) regs[1] = 0;
-    if (w == 0 || (order != QO_WORD_HI_FIRST && order != QO_WORD_LO_FIRST)) return QO_E_ARG;
+    if (w == 0 || (order != QO_MODBUS_REG_HI_FIRST && order != QO_MODBUS_REG_LO_FIRST)) return QO_E_ARG;
     if (!isfinite(raw)) return QO_E_NONFINITE;
-    (void)qo_reg_type_range(type, &lo, &hi);
-    if (type == QO_REG_FLOAT32) {
+    (void)qo_modbus_reg_type_range(type, &lo, &hi);
+    if (type == QO_MODBUS_REG_FLOAT32) {
         float fv;
         uint32_t u;
         if (raw > hi) { r = hi; st = QO_E_OVERFLOW; }
@@ -123,29 +123,29 @@ qo_status qo_reg_pack_raw(qo_reg_type type, qo_word_order order, double raw, uin
     if (r > hi) { r = hi; st = QO_E_OVERFLOW; }
     else if (r < lo) { r = lo; st = QO_E_OVERFLOW; }
     switch (type) {
-    case QO_REG_INT16: regs[0] = (uint16_t)(int16_t)r; break;
-    case QO_REG_UINT16: regs[0] = (uint16_t)r; break;
-    case QO_REG_INT32: put32(order, (uint32_t)(int32_t)r, regs); break;
+    case QO_MODBUS_REG_INT16: regs[0] = (uint16_t)(int16_t)r; break;
+    case QO_MODBUS_REG_UINT16: regs[0] = (uint16_t)r; break;
+    case QO_MODBUS_REG_INT32: put32(order, (uint32_t)(int32_t)r, regs); break;
     default: put32(order, (uint32_t)r, regs); break;
     }
     if (packed_raw != NULL) *packed_raw = r;
     return st;
 }
 
-qo_status qo_reg_unpack_raw(qo_reg_type type, qo_word_order order, const uint16_t *regs,
+qo_status qo_modbus_reg_unpack_raw(qo_modbus_reg_type type, qo_modbus_reg_word_order order, const uint16_t *regs,
                             double *raw)
 {
     uint32_t u;
     if (raw == NULL) return QO_E_NULL;
     *raw = 0.0;
     if (regs == NULL) return QO_E_NULL;
-    if (qo_reg_type_width(type) == 0 || (order != QO_WORD_HI_FIRST && order != QO_WORD_LO_FIRST))
+    if (qo_modbus_reg_type_width(type) == 0 || (order != QO_MODBUS_REG_HI_FIRST && order != QO_MODBUS_REG_LO_FIRST))
         return QO_E_ARG;
     switch (type) {
-    case QO_REG_INT16: *raw = (double)(int16_t)regs[0]; break;
-    case QO_REG_UINT16: *raw = (double)regs[0]; break;
-    case QO_REG_INT32: *raw = (double)(int32_t)get32(order, regs); break;
-    case QO_REG_UINT32: *raw = (double)get32(order, regs); break;
+    case QO_MODBUS_REG_INT16: *raw = (double)(int16_t)regs[0]; break;
+    case QO_MODBUS_REG_UINT16: *raw = (double)regs[0]; break;
+    case QO_MODBUS_REG_INT32: *raw = (double)(int32_t)get32(order, regs); break;
+    case QO_MODBUS_REG_UINT32: *raw = (double)get32(order, regs); break;
     default: {
         float fv;
         u = get32(order, regs);
@@ -158,20 +158,20 @@ qo_status qo_reg_unpack_raw(qo_reg_type type, qo_word_order order, const uint16_
     return QO_OK;
 }
 
-qo_status qo_reg_pack(const qo_reg_format *f, double value, uint16_t *regs)
+qo_status qo_modbus_reg_pack(const qo_modbus_reg_format *f, double value, uint16_t *regs)
 {
     double raw;
     qo_status st;
     if (regs == NULL) return QO_E_NULL;
     regs[0] = 0;
     if (f == NULL) return QO_E_NULL;
-    if (qo_reg_type_width(f->type) == 2) regs[1] = 0;
-    st = qo_reg_raw_from_value(f, value, &raw);
+    if (qo_modbus_reg_type_width(f->type) == 2) regs[1] = 0;
+    st = qo_modbus_reg_raw_from_value(f, value, &raw);
     if (st != QO_OK) return st;
-    return qo_reg_pack_raw(f->type, f->order, raw, regs, NULL);
+    return qo_modbus_reg_pack_raw(f->type, f->order, raw, regs, NULL);
 }
 
-qo_status qo_reg_unpack(const qo_reg_format *f, const uint16_t *regs, double *value)
+qo_status qo_modbus_reg_unpack(const qo_modbus_reg_format *f, const uint16_t *regs, double *value)
 {
     double raw;
     qo_status st;
@@ -180,7 +180,7 @@ qo_status qo_reg_unpack(const qo_reg_format *f, const uint16_t *regs, double *va
     if (f == NULL || regs == NULL) return QO_E_NULL;
     st = check_format(f);
     if (st != QO_OK) return st;
-    st = qo_reg_unpack_raw(f->type, f->order, regs, &raw);
+    st = qo_modbus_reg_unpack_raw(f->type, f->order, regs, &raw);
     if (st != QO_OK) return st;
-    return qo_reg_value_from_raw(f, raw, value);
+    return qo_modbus_reg_value_from_raw(f, raw, value);
 }
