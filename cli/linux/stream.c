@@ -465,7 +465,8 @@ int qo_cli_stream(int argc, char **argv)
         strcpy(buf, lines);
         for (p = buf; *p; p++) if (*p == ':') *p = ',';
         n = 0;
-        if (qo_cli_parse_numbers(buf, sp, QO_GPIO_SINK_MAX_LINES, &n) != 0 || n == 0 || n % 2) n = 0;
+        if (qo_cli_parse_numbers(buf, sp, QO_GPIO_SINK_MAX_LINES, &n) != 0 || n == 0 || n % 2)
+            n = 0;
         /* line offsets are unsigned: -1 or 1e30 would not convert (undefined behaviour) */
         for (i = 0; i < n; i++)
             if (!(sp[i] >= 0.0 && sp[i] <= 65535.0 && sp[i] == floor(sp[i]))) n = 0;

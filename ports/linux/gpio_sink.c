@@ -319,7 +319,8 @@ qo_status qo_gpio_sink_position(const qo_gpio_sink *g, size_t joint, int64_t *st
     if (steps) *steps = 0;
     if (!g || !steps) return QO_E_NULL;
     if (!g->open) return QO_E_STATE;
-    if (joint >= g->cfg.n_joints || g->cfg.joint[joint].kind != QO_GPIO_SINK_STEP_DIR) return QO_E_RANGE;
+    if (joint >= g->cfg.n_joints || g->cfg.joint[joint].kind != QO_GPIO_SINK_STEP_DIR)
+        return QO_E_RANGE;
     *steps = g->js[joint].position;
     return QO_OK;
 }
@@ -519,7 +520,7 @@ const char *qo_gpio_sink_libgpiod_api(void) { return "v1"; }
 #endif
 
 qo_status qo_gpio_sink_libgpiod_backend(qo_gpio_sink_libgpiod *store, const char *consumer,
-                                   qo_gpio_sink_backend *be)
+                                        qo_gpio_sink_backend *be)
 {
     if (be) memset(be, 0, sizeof *be);
     if (!store || !be) return QO_E_NULL;

@@ -3,18 +3,22 @@
  * demo-grade option, hobby-servo PWM) on GPIO lines, through libgpiod or a fake backend.
  *
  * Index:
- *   qo_gpio_sink_line                  how a line is found: chip (name, path or label) + offset, or line name
- *   qo_gpio_sink_joint                 per joint: kind, lines, steps per unit, max rate, dir setup, invert
- *   qo_gpio_sink_config           period, pulse window, step high time, joints
- *   qo_gpio_sink_backend               pin toggling table: open, set_value, close (+ clock, sleep)
- *   qo_gpio_sink_config_default   const defaults of the config (every joint = qo_gpio_sink_joint_default)
- *   qo_gpio_sink_joint_default         const defaults of one joint
- *   qo_gpio_sink_open()           check the config, open every line through the backend
- *   qo_gpio_sink_write()          one tick: emit the owed steps / servo frame (the view's write)
- *   qo_gpio_sink_as_sink()        fills the qo_sink view of a sink (write, close; service = NULL)
- *   qo_gpio_sink_position()       steps emitted so far for a step/dir joint
- *   qo_gpio_sink_close()          drive step lines low and close every line (the view's close)
- *   qo_gpio_sink_libgpiod_backend()    the libgpiod backend (v1 API default, v2 when QO_GPIOD_V2)
+ *   qo_gpio_sink_line            how a line is found: chip (name, path or label) + offset, or
+ *                                line name
+ *   qo_gpio_sink_joint           per joint: kind, lines, steps per unit, max rate, dir setup,
+ *                                invert
+ *   qo_gpio_sink_config          period, pulse window, step high time, joints
+ *   qo_gpio_sink_backend         pin toggling table: open, set_value, close (+ clock, sleep)
+ *   qo_gpio_sink_config_default  const defaults of the config (every joint =
+ *                                qo_gpio_sink_joint_default)
+ *   qo_gpio_sink_joint_default   const defaults of one joint
+ *   qo_gpio_sink_open()          check the config, open every line through the backend
+ *   qo_gpio_sink_write()         one tick: emit the owed steps / servo frame (the view's write)
+ *   qo_gpio_sink_as_sink()       fills the qo_sink view of a sink (write, close; service = NULL)
+ *   qo_gpio_sink_position()      steps emitted so far for a step/dir joint
+ *   qo_gpio_sink_close()         drive step lines low and close every line (the view's close)
+ *   qo_gpio_sink_libgpiod_backend()  the libgpiod backend (v1 API default, v2 when QO_GPIOD_V2)
+ *   qo_gpio_sink_libgpiod_api()  "v1" or "v2"
  *
  * Step/dir model. Each joint keeps `position`, the signed count of steps emitted (positive =
  * positive joint direction). A tick with target x owes round(x * steps_per_unit) - position
@@ -81,8 +85,8 @@ typedef enum qo_gpio_sink_joint_kind {
 
 typedef struct qo_gpio_sink_joint {
     qo_gpio_sink_joint_kind kind;
-    qo_gpio_sink_line step;          /* step line; for a servo, the PWM line */
-    qo_gpio_sink_line dir;           /* step/dir only */
+    qo_gpio_sink_line step;     /* step line; for a servo, the PWM line */
+    qo_gpio_sink_line dir;      /* step/dir only */
     double steps_per_unit;      /* steps per joint unit (rad or m), finite, > 0 */
     double max_rate_hz;         /* max step rate, finite, > 0 */
     double dir_setup_us;        /* min time from a dir change to the next rise, [0, 1e6] */
@@ -196,7 +200,8 @@ void qo_gpio_sink_close(qo_gpio_sink *g);
 /* Storage of the libgpiod backend (one per sink); members private. */
 typedef struct qo_gpio_sink_libgpiod {
     void *chip[QO_GPIO_SINK_MAX_LINES];
-    void *line[QO_GPIO_SINK_MAX_LINES];   /* v1: struct gpiod_line *; v2: struct gpiod_line_request * */
+    void *line[QO_GPIO_SINK_MAX_LINES]; /* v1: struct gpiod_line *;
+                                           v2: struct gpiod_line_request * */
     unsigned offset[QO_GPIO_SINK_MAX_LINES];
     int used[QO_GPIO_SINK_MAX_LINES];
     const char *consumer;
@@ -212,7 +217,7 @@ typedef struct qo_gpio_sink_libgpiod {
  * than QO_GPIO_SINK_MAX_LINES lines are open. Returns QO_OK or QO_E_NULL.
  */
 qo_status qo_gpio_sink_libgpiod_backend(qo_gpio_sink_libgpiod *store, const char *consumer,
-                                   qo_gpio_sink_backend *be);
+                                        qo_gpio_sink_backend *be);
 
 /* "v1" or "v2": which libgpiod API this build uses. */
 const char *qo_gpio_sink_libgpiod_api(void);

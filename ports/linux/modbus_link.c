@@ -182,8 +182,8 @@ void qo_modbus_link_tcp_reset(qo_modbus_link_tcp *t, int fd)
     clock_gettime(CLOCK_MONOTONIC, &t->last_rx);
 }
 
-qo_status qo_modbus_link_tcp_send(qo_modbus_link_tcp *t, unsigned unit, const uint8_t *pdu, size_t len,
-                             int tag)
+qo_status qo_modbus_link_tcp_send(qo_modbus_link_tcp *t, unsigned unit, const uint8_t *pdu,
+                                  size_t len, int tag)
 {
     uint8_t adu[7 + QO_MODBUS_LINK_PDU_MAX];
     qo_modbus_link_tcp_slot *sl;

@@ -4,15 +4,16 @@
  * transaction id.
  *
  * Index:
- *   qo_modbus_link_spec, qo_modbus_link_parse_spec()   "tcp://HOST:PORT" / "rtu:DEVICE,BAUD,8N1"
- *   qo_modbus_link_new_ctx()                       a libmodbus context for a parsed spec
- *   qo_modbus_link_connect()                  (re)connect a context; TCP: hand the socket over
- *   qo_modbus_link_backoff                         exponential reconnection backoff
- *   qo_modbus_link_tcp                             one TCP connection's outstanding requests
+ *   qo_modbus_link_spec, qo_modbus_link_parse_spec()  "tcp://HOST:PORT" / "rtu:DEVICE,BAUD,8N1"
+ *   qo_modbus_link_new_ctx()       a libmodbus context for a parsed spec
+ *   qo_modbus_link_connect()       (re)connect a context; TCP: hand the socket over
+ *   qo_modbus_link_backoff         exponential reconnection backoff
+ *   qo_modbus_link_tcp             one TCP connection's outstanding requests
  *   qo_modbus_link_tcp_reset()     a new socket: forget every request and partial frame
  *   qo_modbus_link_tcp_send()      send one request PDU to a unit (at most one outstanding each)
  *   qo_modbus_link_tcp_pump()      read replies until one unit's arrives or a deadline passes
- *   qo_modbus_link_tcp_busy(), qo_modbus_link_tcp_done(), qo_modbus_link_tcp_take(), qo_modbus_link_tcp_abandon()
+ *   qo_modbus_link_tcp_busy(), qo_modbus_link_tcp_done(), qo_modbus_link_tcp_take(),
+ *   qo_modbus_link_tcp_abandon()
  *
  * Why TCP requests do not go through libmodbus's request functions: a reply later than the
  * response timeout must be accepted (the drive applied the write; its state is known), not
@@ -36,19 +37,22 @@
 
 #include "qorient/status.h"
 
-typedef enum qo_modbus_link_transport { QO_MODBUS_LINK_TCP = 0, QO_MODBUS_LINK_RTU } qo_modbus_link_transport;
+typedef enum qo_modbus_link_transport {
+    QO_MODBUS_LINK_TCP = 0,
+    QO_MODBUS_LINK_RTU
+} qo_modbus_link_transport;
 
 #define QO_MODBUS_LINK_SPEC_MAX 128
 
 typedef struct qo_modbus_link_spec {
     qo_modbus_link_transport transport;
     char host[QO_MODBUS_LINK_SPEC_MAX];   /* TCP: address or name, IPv6 without its brackets */
-    int port;                        /* TCP: 0..65535 (0 = ephemeral, listen side only) */
+    int port;                             /* TCP: 0..65535 (0 = ephemeral, listen side only) */
     char device[QO_MODBUS_LINK_SPEC_MAX]; /* RTU: serial device path */
-    int baud;                        /* RTU: > 0 */
-    char parity;                     /* RTU: 'N', 'E' or 'O' */
-    int data_bits;                   /* RTU: 5..8 */
-    int stop_bits;                   /* RTU: 1 or 2 */
+    int baud;                             /* RTU: > 0 */
+    char parity;                          /* RTU: 'N', 'E' or 'O' */
+    int data_bits;                        /* RTU: 5..8 */
+    int stop_bits;                        /* RTU: 1 or 2 */
 } qo_modbus_link_spec;
 
 /* Parses "tcp://HOST:PORT" (PORT optional, default 502; HOST may be empty: 127.0.0.1; an
@@ -133,8 +137,8 @@ void qo_modbus_link_tcp_reset(qo_modbus_link_tcp *t, int fd);
  * new transaction id and notes it outstanding with `tag`. Returns QO_OK; QO_E_NULL;
  * QO_E_RANGE (length); QO_E_STATE (that unit has a request outstanding, or no socket);
  * QO_E_DISCONNECTED (the socket failed; the connection must be dropped). */
-qo_status qo_modbus_link_tcp_send(qo_modbus_link_tcp *t, unsigned unit, const uint8_t *pdu, size_t len,
-                             int tag);
+qo_status qo_modbus_link_tcp_send(qo_modbus_link_tcp *t, unsigned unit, const uint8_t *pdu,
+                                  size_t len, int tag);
 
 /* Reads whatever replies arrive, matching each to its unit's outstanding request by
  * transaction id (a reply matching none is dropped and counted in `stale`), until `unit`'s

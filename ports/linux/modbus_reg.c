@@ -92,8 +92,8 @@ static uint32_t get32(qo_modbus_reg_word_order order, const uint16_t *regs)
     return (hi << 16) | lo;
 }
 
-qo_status qo_modbus_reg_pack_raw(qo_modbus_reg_type type, qo_modbus_reg_word_order order, double raw, uint16_t *regs,
-                          double *packed_raw)
+qo_status qo_modbus_reg_pack_raw(qo_modbus_reg_type type, qo_modbus_reg_word_order order,
+                                 double raw, uint16_t *regs, double *packed_raw)
 {
     double lo, hi, r;
     size_t w = qo_modbus_reg_type_width(type);
@@ -102,7 +102,8 @@ qo_status qo_modbus_reg_pack_raw(qo_modbus_reg_type type, qo_modbus_reg_word_ord
     if (regs == NULL) return QO_E_NULL;
     regs[0] = 0;
     if (w == 2) regs[1] = 0;
-    if (w == 0 || (order != QO_MODBUS_REG_HI_FIRST && order != QO_MODBUS_REG_LO_FIRST)) return QO_E_ARG;
+    if (w == 0 || (order != QO_MODBUS_REG_HI_FIRST && order != QO_MODBUS_REG_LO_FIRST))
+        return QO_E_ARG;
     if (!isfinite(raw)) return QO_E_NONFINITE;
     (void)qo_modbus_reg_type_range(type, &lo, &hi);
     if (type == QO_MODBUS_REG_FLOAT32) {
@@ -132,14 +133,15 @@ qo_status qo_modbus_reg_pack_raw(qo_modbus_reg_type type, qo_modbus_reg_word_ord
     return st;
 }
 
-qo_status qo_modbus_reg_unpack_raw(qo_modbus_reg_type type, qo_modbus_reg_word_order order, const uint16_t *regs,
-                            double *raw)
+qo_status qo_modbus_reg_unpack_raw(qo_modbus_reg_type type, qo_modbus_reg_word_order order,
+                                   const uint16_t *regs, double *raw)
 {
     uint32_t u;
     if (raw == NULL) return QO_E_NULL;
     *raw = 0.0;
     if (regs == NULL) return QO_E_NULL;
-    if (qo_modbus_reg_type_width(type) == 0 || (order != QO_MODBUS_REG_HI_FIRST && order != QO_MODBUS_REG_LO_FIRST))
+    if (qo_modbus_reg_type_width(type) == 0 ||
+        (order != QO_MODBUS_REG_HI_FIRST && order != QO_MODBUS_REG_LO_FIRST))
         return QO_E_ARG;
     switch (type) {
     case QO_MODBUS_REG_INT16: *raw = (double)(int16_t)regs[0]; break;

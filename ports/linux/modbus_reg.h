@@ -2,7 +2,8 @@
  * ports/linux/modbus_reg.h - joint values <-> Modbus holding registers, by our own code.
  *
  * Index:
- *   qo_modbus_reg_type, qo_modbus_reg_word_order, qo_modbus_reg_format   how one joint value sits in registers
+ *   qo_modbus_reg_type, qo_modbus_reg_word_order, qo_modbus_reg_format
+ *                                    how one joint value sits in registers
  *   qo_modbus_reg_type_width()       registers per value (1 or 2)
  *   qo_modbus_reg_type_range()       the type's raw range [lo, hi]
  *   qo_modbus_reg_raw_from_value()   joint units -> raw register units (scale, invert, offset)
@@ -76,13 +77,13 @@ qo_status qo_modbus_reg_value_from_raw(const qo_modbus_reg_format *f, double raw
  * *packed_raw (may be NULL) receives the raw value actually encoded.
  * Returns QO_OK; QO_E_OVERFLOW when saturated (regs hold the saturated value); QO_E_NULL;
  * QO_E_ARG for an unknown type or order; QO_E_NONFINITE for NaN/Inf (regs zero, raw 0). */
-qo_status qo_modbus_reg_pack_raw(qo_modbus_reg_type type, qo_modbus_reg_word_order order, double raw, uint16_t *regs,
-                          double *packed_raw);
+qo_status qo_modbus_reg_pack_raw(qo_modbus_reg_type type, qo_modbus_reg_word_order order,
+                                 double raw, uint16_t *regs, double *packed_raw);
 
 /* Decodes registers regs[0..width-1] into the raw value. Returns QO_OK, QO_E_NULL, QO_E_ARG
  * (unknown type or order), or QO_E_NONFINITE for a float32 NaN/Inf bit pattern (*raw = 0). */
-qo_status qo_modbus_reg_unpack_raw(qo_modbus_reg_type type, qo_modbus_reg_word_order order, const uint16_t *regs,
-                            double *raw);
+qo_status qo_modbus_reg_unpack_raw(qo_modbus_reg_type type, qo_modbus_reg_word_order order,
+                                   const uint16_t *regs, double *raw);
 
 /* qo_modbus_reg_raw_from_value then qo_modbus_reg_pack_raw. On a conversion error regs are zeroed.
  * Returns the first error, QO_E_OVERFLOW for saturation, else QO_OK. */

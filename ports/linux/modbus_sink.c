@@ -43,7 +43,7 @@ struct qo_modbus_sink {
     int last_errno;        /* errno of the last failed request */
     struct timespec tick_deadline; /* TCP: the tick waits for outstanding replies until this */
     uint32_t silence_us;   /* the effective silence before a TCP link counts as broken */
-    qo_modbus_link_tcp *tcp;    /* TCP: requests matched by transaction id; NULL on RTU */
+    qo_modbus_link_tcp *tcp; /* TCP: requests matched by transaction id; NULL on RTU */
     int connect_ok;        /* the last do_connect got the link up (its requests failed) */
     int in_tick;           /* inside write() or settle: tick_deadline bounds the waits */
     qo_modbus_sink_stats st;
@@ -467,9 +467,11 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
     s->map = map;
     s->set = *settings;
     s->st.last_error = QO_OK;
-    qo_modbus_link_backoff_init(&s->backoff, settings->reconnect_min_us, settings->reconnect_max_us);
+    qo_modbus_link_backoff_init(&s->backoff, settings->reconnect_min_us,
+                                settings->reconnect_max_us);
     st = qo_modbus_link_parse_spec(spec, &s->spec);
-    if (st == QO_OK && (s->spec.transport == QO_MODBUS_LINK_TCP && s->spec.port == 0)) st = QO_E_CONFIG;
+    if (st == QO_OK && (s->spec.transport == QO_MODBUS_LINK_TCP && s->spec.port == 0))
+        st = QO_E_CONFIG;
     if (st == QO_OK) {
         s->js = calloc(map->n_joints, sizeof *s->js);
         if (s->js == NULL) st = QO_E_CAPACITY;
@@ -620,7 +622,8 @@ static qo_status settle_slave(qo_modbus_sink *s, size_t g0)
             double raw;
             if (!q->uncertain) continue;
             if (st == QO_OK) {
-                if (qo_modbus_reg_unpack_raw(j->fmt.type, j->fmt.order, regs + it->offset, &raw) != QO_OK)
+                if (qo_modbus_reg_unpack_raw(j->fmt.type, j->fmt.order, regs + it->offset,
+                                             &raw) != QO_OK)
                     return QO_E_PROTOCOL;
             } else if (j->has_feedback) {
                 /* Weaker: feedback lags the target (see modbus_sink.h). */

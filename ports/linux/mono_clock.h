@@ -5,8 +5,8 @@
  *
  * Index:
  *   qo_mono_clock_now_ns()          CLOCK_MONOTONIC now, ns
- *   qo_mono_clock_sleep_until_ns()  clock_nanosleep(TIMER_ABSTIME) until abs_ns; 0 or an errno value
- *                             (EINTR included: the callers retry)
+ *   qo_mono_clock_sleep_until_ns()  clock_nanosleep(TIMER_ABSTIME) until abs_ns; 0 or an errno
+ *                                   value (EINTR included: the callers retry)
  */
 #ifndef QORIENT_MONO_CLOCK_H
 #define QORIENT_MONO_CLOCK_H

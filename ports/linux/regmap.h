@@ -2,7 +2,8 @@
  * ports/linux/regmap.h - the Modbus register map of a drive bank, read from an INI file.
  *
  * Index:
- *   qo_regmap, qo_regmap_joint, qo_regmap_slave, qo_regmap_write   the parsed map (fixed capacity)
+ *   qo_regmap, qo_regmap_joint, qo_regmap_slave, qo_regmap_write
+ *                            the parsed map (fixed capacity)
  *   qo_regmap_load()         parse a file (inih)
  *   qo_regmap_parse()        parse text in memory (same rules; for tests and embedded maps)
  *   qo_regmap_find_slave()   the settings of one slave id

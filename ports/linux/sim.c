@@ -86,7 +86,8 @@ static void physics(qo_sim *s)
         q->position += (q->target - q->position) * a;
         if (j->has_feedback) {
             uint16_t regs[2];
-            (void)qo_modbus_reg_pack(&j->fmt, q->position, regs); /* saturation is what a drive does */
+            /* saturation is what a drive does */
+            (void)qo_modbus_reg_pack(&j->fmt, q->position, regs);
             s->maps[j->slave]->tab_registers[j->feedback] = regs[0];
             if (qo_modbus_reg_type_width(j->fmt.type) == 2)
                 s->maps[j->slave]->tab_registers[j->feedback + 1] = regs[1];

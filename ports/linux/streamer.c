@@ -48,7 +48,8 @@ void qo_streamer_jitter_hist_add(qo_streamer_jitter_hist *h, uint64_t latency_ns
     if (latency_ns > h->max_ns) h->max_ns = latency_ns;
 }
 
-qo_status qo_streamer_jitter_hist_percentile(const qo_streamer_jitter_hist *h, double q, uint64_t *out_ns)
+qo_status qo_streamer_jitter_hist_percentile(const qo_streamer_jitter_hist *h, double q,
+                                             uint64_t *out_ns)
 {
     uint64_t rank, seen = 0;
     size_t i;

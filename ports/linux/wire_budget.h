@@ -3,8 +3,8 @@
  * highest tick rate a serial (RTU) line therefore allows.
  *
  * Index:
- *   qo_wire_budget_request      one FC16 request of a tick: slave, registers, frame sizes, time
- *   qo_wire_budget       the whole tick: requests, bytes, time per tick, highest rate
+ *   qo_wire_budget_request    one FC16 request of a tick: slave, registers, frame sizes, time
+ *   qo_wire_budget            the whole tick: requests, bytes, time per tick, highest rate
  *   qo_wire_budget_compute()  from a register map and a parsed connection spec
  *
  * Model (Modbus over serial line, V1.02): a request is sent, the drive answers, and the line

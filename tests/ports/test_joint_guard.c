@@ -41,7 +41,8 @@ static void test_window_random(void **state)
     unsigned t, k, sent = 0, blocked = 0;
     (void)state;
     for (t = 0; t < 4; t++) {
-        qo_regmap_joint j = joint(types[t], types[t] == QO_MODBUS_REG_UINT16 ? 100.0 : 1000.0, 0.05);
+        qo_regmap_joint j =
+            joint(types[t], types[t] == QO_MODBUS_REG_UINT16 ? 100.0 : 1000.0, 0.05);
         for (k = 0; k < 20000; k++) {
             qo_joint_guard g;
             uint16_t regs[2];
@@ -58,14 +59,16 @@ static void test_window_random(void **state)
             a = g.hi - g.step;
             b = g.lo + g.step;
             if (st != QO_OK) {
-                if (st != QO_E_INFEASIBLE || a <= b - (types[t] == QO_MODBUS_REG_FLOAT32 ? 0.01 : 1.0))
+                if (st != QO_E_INFEASIBLE ||
+                    a <= b - (types[t] == QO_MODBUS_REG_FLOAT32 ? 0.01 : 1.0))
                     fail_msg("type %u case %u: %s with window [%g, %g]", t, k, qo_status_str(st), a, b);
                 assert_true(g.uncertain);
                 blocked++;
                 continue;
             }
             sent++;
-            assert_int_equal(qo_modbus_reg_unpack_raw(j.fmt.type, j.fmt.order, regs, &raw_sent), QO_OK);
+            assert_int_equal(qo_modbus_reg_unpack_raw(j.fmt.type, j.fmt.order, regs, &raw_sent),
+                             QO_OK);
             if (raw_sent != g.cmd) fail_msg("type %u case %u: packed %.9g, cmd %.9g", t, k, raw_sent, g.cmd);
             /* the independent check: within max_step of both ends of what the drive may hold */
             if (fabs(raw_sent - g.lo) > g.step + 1e-9 || fabs(raw_sent - g.hi) > g.step + 1e-9)

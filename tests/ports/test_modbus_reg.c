@@ -20,14 +20,19 @@ static double uniform(double lo, double hi)
     return lo + (hi - lo) * ((double)(next_u64() >> 11) / 9007199254740992.0);
 }
 
-static qo_modbus_reg_format fmt(qo_modbus_reg_type t, qo_modbus_reg_word_order o, double scale, double offset, int inv)
+static qo_modbus_reg_format fmt(qo_modbus_reg_type t, qo_modbus_reg_word_order o, double scale,
+                                double offset, int inv)
 {
-    qo_modbus_reg_format f = { .type = t, .order = o, .scale = scale, .offset = offset, .invert = inv };
+    qo_modbus_reg_format f = { .type = t, .order = o, .scale = scale, .offset = offset,
+                               .invert = inv };
     return f;
 }
 /* The format the tests start from: type t as is (high word first, scale 1, no offset, no
  * inversion); a test states only what it changes. */
-static qo_modbus_reg_format plain(qo_modbus_reg_type t) { return fmt(t, QO_MODBUS_REG_HI_FIRST, 1.0, 0.0, 0); }
+static qo_modbus_reg_format plain(qo_modbus_reg_type t)
+{
+    return fmt(t, QO_MODBUS_REG_HI_FIRST, 1.0, 0.0, 0);
+}
 
 static void test_float32_bits_and_word_order(void **state)
 {
@@ -110,7 +115,8 @@ static void test_integer_edges(void **state)
     assert_int_equal(qo_modbus_reg_pack(&f, 4294967295.0, r), QO_OK);
     assert_int_equal(r[0], 0xFFFF);
     assert_int_equal(r[1], 0xFFFF);
-    assert_int_equal(qo_modbus_reg_pack_raw(QO_MODBUS_REG_UINT32, QO_MODBUS_REG_HI_FIRST, 4294967296.0, r, &raw),
+    assert_int_equal(qo_modbus_reg_pack_raw(QO_MODBUS_REG_UINT32, QO_MODBUS_REG_HI_FIRST,
+                                            4294967296.0, r, &raw),
                      QO_E_OVERFLOW);
     assert_true(raw == 4294967295.0);
 }
@@ -209,8 +215,12 @@ static void test_bad_inputs(void **state)
     f.type = QO_MODBUS_REG_INT16;
     f.order = (qo_modbus_reg_word_order)7;
     assert_int_equal(qo_modbus_reg_pack(&f, 1.0, r), QO_E_ARG);
-    assert_int_equal(qo_modbus_reg_unpack_raw(QO_MODBUS_REG_INT16, QO_MODBUS_REG_HI_FIRST, NULL, &v), QO_E_NULL);
-    assert_int_equal(qo_modbus_reg_pack_raw(QO_MODBUS_REG_INT16, QO_MODBUS_REG_HI_FIRST, NAN, r, &v), QO_E_NONFINITE);
+    assert_int_equal(qo_modbus_reg_unpack_raw(QO_MODBUS_REG_INT16, QO_MODBUS_REG_HI_FIRST, NULL,
+                                              &v),
+                     QO_E_NULL);
+    assert_int_equal(qo_modbus_reg_pack_raw(QO_MODBUS_REG_INT16, QO_MODBUS_REG_HI_FIRST, NAN, r,
+                                            &v),
+                     QO_E_NONFINITE);
     assert_true(v == 0.0);
 }
 

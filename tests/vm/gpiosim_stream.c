@@ -242,7 +242,8 @@ static int count_free(const qo_gpio_sink_config *cfg, size_t n)
 }
 
 /* Part D: an open that fails on joint 1's dir line must release joint 0's and joint 1's step. */
-static int open_error(const char *what, qo_gpio_sink_line bad, qo_status want, const qo_gpio_sink_backend *be)
+static int open_error(const char *what, qo_gpio_sink_line bad, qo_status want,
+                      const qo_gpio_sink_backend *be)
 {
     static qo_gpio_sink sink;
     qo_gpio_sink_config c = g_cfg;
@@ -308,11 +309,12 @@ int main(int argc, char **argv)
         g_label[i] = argv[3 + 3 * i];
     }
     for (i = 0; i < NID; i++) g_role_joint[i] = -1;
-    printf("QOVM: libgpiod %s API; chips %s (%s), %s (%s)\n", qo_gpio_sink_libgpiod_api(), g_chip[0],
-           g_label[0], g_chip[1], g_label[1]);
+    printf("QOVM: libgpiod %s API; chips %s (%s), %s (%s)\n", qo_gpio_sink_libgpiod_api(),
+           g_chip[0], g_label[0], g_chip[1], g_label[1]);
     make_config();
 
-    if (qo_gpio_sink_libgpiod_backend(&store, "qorient-vm", &g_inner) != QO_OK) return fail("backend");
+    if (qo_gpio_sink_libgpiod_backend(&store, "qorient-vm", &g_inner) != QO_OK)
+        return fail("backend");
     be = g_inner;
     be.open = chk_open;
     be.set_value = chk_set;
