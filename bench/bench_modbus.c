@@ -116,7 +116,7 @@ int main(int argc, char **argv)
     if (n <= 0) n = 3000;
     printf("bench_modbus: loopback TCP, simulator in-process (own thread), %d updates per loop, "
            "best of 3 rounds\n", n);
-    printf("%-7s %-22s %12s %14s %8s\n", "joints", "path", "updates/s", "cpu us/update",
+    printf("%-7s %-24s %12s %14s %8s\n", "joints", "path", "updates/s", "cpu us/update",
            "failed");
     for (si = 0; si < 2; si++) {
         int nj = sizes[si], r;
@@ -158,10 +158,10 @@ int main(int argc, char **argv)
             if (p < pk) pk = p;
         }
         qo_sim_stop(sim);
-        printf("%-7d %-22s %12.0f %14.2f %8d\n", nj, "qo_modbus_sink_write", bs.ups, bs.cpu_us,
+        printf("%-7d %-24s %12.0f %14.2f %8d\n", nj, "qo_modbus_sink_write", bs.ups, bs.cpu_us,
                bs.failed);
-        printf("%-7d %-22s %12.0f %14.2f %8d\n", nj, "bare FC16 loop", bb.ups, bb.cpu_us, bb.failed);
-        printf("%-7d %-22s %12s %14.3f\n", nj, "qo_modbus_reg_pack only", "-", pk / 1000.0);
+        printf("%-7d %-24s %12.0f %14.2f %8d\n", nj, "bare FC16 loop", bb.ups, bb.cpu_us, bb.failed);
+        printf("%-7d %-24s %12s %14.3f\n", nj, "qo_modbus_reg_pack only", "-", pk / 1000.0);
     }
     return 0;
 }
