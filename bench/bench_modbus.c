@@ -6,7 +6,7 @@
  *   - updates/s through qo_modbus_sink_write (limit + pack + FC16 + reply),
  *   - updates/s of a bare libmodbus modbus_write_registers loop on the same simulator, same run,
  *   - CPU time of the calling thread per update (CLOCK_THREAD_CPUTIME_ID) for both,
- *   - CPU time of packing alone (qo_reg_pack of every joint, no I/O).
+ *   - CPU time of packing alone (qo_modbus_reg_pack of every joint, no I/O).
  * Rounds alternate sink and bare loops; the best of 3 rounds is printed (the machine is shared).
  * Loopback timing says nothing about a real RS-485 bus: see the research notes' bus budget. */
 #include <math.h>
@@ -16,7 +16,7 @@
 
 #include <modbus.h>
 
-#include "linux/modbus_pack.h"
+#include "linux/modbus_reg.h"
 #include "linux/modbus_sink.h"
 #include "linux/regmap.h"
 #include "linux/sim.h"
@@ -102,7 +102,7 @@ static double pack_ns(int nj, int n)
     int k, j;
     for (k = 0; k < n; k++)
         for (j = 0; j < nj; j++) {
-            (void)qo_reg_pack(&map.joints[j].fmt, 0.5 * sin(0.01 * k + j), regs);
+            (void)qo_modbus_reg_pack(&map.joints[j].fmt, 0.5 * sin(0.01 * k + j), regs);
             sink ^= regs[1];
         }
     (void)sink;
@@ -116,7 +116,7 @@ int main(int argc, char **argv)
     if (n <= 0) n = 3000;
     printf("bench_modbus: loopback TCP, simulator in-process (own thread), %d updates per loop, "
            "best of 3 rounds\n", n);
-    printf("%-7s %-22s %12s %14s %8s\n", "joints", "path", "updates/s", "cpu us/update",
+    printf("%-7s %-24s %12s %14s %8s\n", "joints", "path", "updates/s", "cpu us/update",
            "failed");
     for (si = 0; si < 2; si++) {
         int nj = sizes[si], r;
@@ -158,10 +158,10 @@ int main(int argc, char **argv)
             if (p < pk) pk = p;
         }
         qo_sim_stop(sim);
-        printf("%-7d %-22s %12.0f %14.2f %8d\n", nj, "qo_modbus_sink_write", bs.ups, bs.cpu_us,
+        printf("%-7d %-24s %12.0f %14.2f %8d\n", nj, "qo_modbus_sink_write", bs.ups, bs.cpu_us,
                bs.failed);
-        printf("%-7d %-22s %12.0f %14.2f %8d\n", nj, "bare FC16 loop", bb.ups, bb.cpu_us, bb.failed);
-        printf("%-7d %-22s %12s %14.3f\n", nj, "qo_reg_pack only", "-", pk / 1000.0);
+        printf("%-7d %-24s %12.0f %14.2f %8d\n", nj, "bare FC16 loop", bb.ups, bb.cpu_us, bb.failed);
+        printf("%-7d %-24s %12s %14.3f\n", nj, "qo_modbus_reg_pack only", "-", pk / 1000.0);
     }
     return 0;
 }

@@ -1,5 +1,5 @@
 /*
- * fuzz/fuzz_modbus_pack.c - Modbus value packing (ports/linux/modbus_pack.h) fed raw bytes:
+ * fuzz/fuzz_modbus_pack.c - Modbus value packing (ports/linux/modbus_reg.h) fed raw bytes:
  * register formats with any type / word order value (also unknown ones), any double scale and
  * offset (zero, NaN, Inf, denormal), any value, and raw register words.
  * Properties from the header: documented statuses; raw_from_value / value_from_raw give a
@@ -9,7 +9,7 @@
  * register words is finite or QO_E_NONFINITE with 0.
  */
 #include "fuzz_common.h"
-#include "linux/modbus_pack.h"
+#include "linux/modbus_reg.h"
 
 #ifndef QO_FUZZ_ENTRY
 #define QO_FUZZ_ENTRY LLVMFuzzerTestOneInput
@@ -41,32 +41,32 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size);
 int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
 {
     qo_fz f = qo_fz_init(data, size);
-    qo_reg_format fm;
+    qo_modbus_reg_format fm;
     uint16_t regs[3], in[2];
     double value, raw, packed, back, lo, hi;
     size_t w;
     qo_status st, sr;
 
-    fm.type = (qo_reg_type)(qo_fz_u8(&f) % 7u);
-    fm.order = (qo_word_order)(qo_fz_u8(&f) % 3u);
+    fm.type = (qo_modbus_reg_type)(qo_fz_u8(&f) % 7u);
+    fm.order = (qo_modbus_reg_word_order)(qo_fz_u8(&f) % 3u);
     fm.scale = fuzz_mp_f64(&f);
     fm.offset = fuzz_mp_f64(&f);
     fm.invert = qo_fz_u8(&f) & 1u;
     value = fuzz_mp_f64(&f);
     in[0] = (uint16_t)qo_fz_u32(&f);
     in[1] = (uint16_t)qo_fz_u32(&f);
-    w = qo_reg_type_width(fm.type);
+    w = qo_modbus_reg_type_width(fm.type);
     QO_FUZZ_CHECK(w == ((int)fm.type <= 1 ? 1u : (int)fm.type <= 4 ? 2u : 0u), "width of type %d = %zu", (int)fm.type, w);
-    st = qo_reg_type_range(fm.type, &lo, &hi);
+    st = qo_modbus_reg_type_range(fm.type, &lo, &hi);
     QO_FUZZ_CHECK(w ? st == QO_OK && lo < hi : st == QO_E_ARG && lo == 0.0 && hi == 0.0, "type_range %d", (int)st);
 
     /* value -> raw */
     raw = 1.0;
-    st = qo_reg_raw_from_value(&fm, value, &raw);
+    st = qo_modbus_reg_raw_from_value(&fm, value, &raw);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_ARG || st == QO_E_CONFIG || st == QO_E_NONFINITE, "raw_from_value status %d", (int)st);
     if (st == QO_OK) {
         QO_FUZZ_CHECK(isfinite(raw), "raw_from_value %g", raw);
-        sr = qo_reg_value_from_raw(&fm, raw, &back);
+        sr = qo_modbus_reg_value_from_raw(&fm, raw, &back);
         QO_FUZZ_CHECK(sr == QO_OK || sr == QO_E_NONFINITE, "value_from_raw status %d", (int)sr);
         if (sr == QO_OK) QO_FUZZ_CHECK(isfinite(back), "value_from_raw %g", back);
         else QO_FUZZ_CHECK(back == 0.0, "value_from_raw error output %g", back);
@@ -79,7 +79,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     regs[0] = regs[1] = 0xA5A5u;
     regs[2] = 0x5A5Au;
     packed = 7.0;
-    st = qo_reg_pack_raw(fm.type, fm.order, raw, regs, &packed);
+    st = qo_modbus_reg_pack_raw(fm.type, fm.order, raw, regs, &packed);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_OVERFLOW || st == QO_E_ARG || st == QO_E_NONFINITE, "pack_raw status %d", (int)st);
     QO_FUZZ_CHECK(regs[2] == 0x5A5Au && (w == 2 || st == QO_E_ARG || regs[1] == 0xA5A5u), "pack_raw wrote past %zu registers", w);
     if (st == QO_E_NONFINITE) {
@@ -87,17 +87,17 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     } else if (st == QO_OK || st == QO_E_OVERFLOW) {
         double un = 3.0;
         QO_FUZZ_CHECK(isfinite(packed) && packed >= lo && packed <= hi, "packed %g outside [%g, %g]", packed, lo, hi);
-        if (st == QO_OK && fm.type != QO_REG_FLOAT32) QO_FUZZ_CHECK(fabs(packed - raw) <= 0.5, "pack_raw %g -> %g", raw, packed);
-        sr = qo_reg_unpack_raw(fm.type, fm.order, regs, &un);
+        if (st == QO_OK && fm.type != QO_MODBUS_REG_FLOAT32) QO_FUZZ_CHECK(fabs(packed - raw) <= 0.5, "pack_raw %g -> %g", raw, packed);
+        sr = qo_modbus_reg_unpack_raw(fm.type, fm.order, regs, &un);
         QO_FUZZ_CHECK(sr == QO_OK && un == packed, "unpack_raw of pack_raw(%g): %d %g, packed %g", raw, (int)sr, un, packed);
     }
 
     /* whole conversion, and any register words */
-    st = qo_reg_pack(&fm, value, regs);
+    st = qo_modbus_reg_pack(&fm, value, regs);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_OVERFLOW || st == QO_E_ARG || st == QO_E_CONFIG || st == QO_E_NONFINITE,
                   "pack status %d", (int)st);
     back = 5.0;
-    st = qo_reg_unpack(&fm, in, &back);
+    st = qo_modbus_reg_unpack(&fm, in, &back);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_ARG || st == QO_E_CONFIG || st == QO_E_NONFINITE, "unpack status %d", (int)st);
     if (st == QO_OK) QO_FUZZ_CHECK(isfinite(back), "unpack %g", back);
     else QO_FUZZ_CHECK(back == 0.0, "unpack error output %g", back);

@@ -23,11 +23,11 @@ static void fuzz_regmap_check_map(const qo_regmap *m)
     QO_FUZZ_CHECK(m->n_slaves >= 1 && m->n_slaves <= QO_REGMAP_MAX_SLAVES, "n_slaves %zu", m->n_slaves);
     for (i = 0; i < m->n_joints; i++) {
         const qo_regmap_joint *jt = &m->joints[i];
-        size_t w = qo_reg_type_width(jt->fmt.type);
+        size_t w = qo_modbus_reg_type_width(jt->fmt.type);
         QO_FUZZ_CHECK(memchr(jt->name, '\0', sizeof jt->name) != NULL, "joint %zu name not terminated", i);
         QO_FUZZ_CHECK(jt->slave >= 1 && jt->slave <= 255, "joint %zu slave %u", i, jt->slave);
         QO_FUZZ_CHECK(w == 1 || w == 2, "joint %zu type %d", i, (int)jt->fmt.type);
-        QO_FUZZ_CHECK(jt->fmt.order == QO_WORD_HI_FIRST || jt->fmt.order == QO_WORD_LO_FIRST, "joint %zu order", i);
+        QO_FUZZ_CHECK(jt->fmt.order == QO_MODBUS_REG_HI_FIRST || jt->fmt.order == QO_MODBUS_REG_LO_FIRST, "joint %zu order", i);
         QO_FUZZ_CHECK(isfinite(jt->fmt.scale) && jt->fmt.scale != 0.0 && isfinite(jt->fmt.offset),
                       "joint %zu scale %g offset %g", i, jt->fmt.scale, jt->fmt.offset);
         QO_FUZZ_CHECK(!isnan(jt->min) && !isnan(jt->max) && jt->min <= jt->max, "joint %zu limits [%g, %g]", i,
@@ -41,7 +41,7 @@ static void fuzz_regmap_check_map(const qo_regmap *m)
         QO_FUZZ_CHECK(qo_regmap_find_slave(m, jt->slave) != NULL, "joint %zu slave %u has no entry", i, jt->slave);
         for (j = 0; j < i; j++) {
             const qo_regmap_joint *o = &m->joints[j];
-            size_t wo = qo_reg_type_width(o->fmt.type);
+            size_t wo = qo_modbus_reg_type_width(o->fmt.type);
             if (o->slave != jt->slave) continue;
             QO_FUZZ_CHECK((unsigned long)jt->address + w <= o->address || (unsigned long)o->address + wo <= jt->address,
                           "joints %zu and %zu overlap on slave %u", j, i, jt->slave);
@@ -68,7 +68,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     char err[200];
     size_t err_len = 1 + size % sizeof err, n, i;
     char *text = malloc(size + 1);
-    qo_reg_write w[QO_REGMAP_MAX_WRITES];
+    qo_regmap_write w[QO_REGMAP_MAX_WRITES];
     qo_status st;
 
     if (text == NULL) return 0;

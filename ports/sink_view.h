@@ -2,9 +2,9 @@
  * ports/sink_view.h - what every port's qo_sink view does alike (ports/mock, ports/linux), so
  * the sinks fill and report the same way (portable: no OS header).
  *
- *   qo_port_sink_view(obj, ops, out)   *out = *ops with ctx = obj; QO_OK. QO_E_NULL if out is
+ *   qo_sink_view_fill(obj, ops, out)   *out = *ops with ctx = obj; QO_OK. QO_E_NULL if out is
  *                                      NULL (nothing written) or obj is NULL (*out zeroed).
- *   qo_port_sink_stats(src, out)       *out = *src; QO_OK. QO_E_NULL if out is NULL, or src is
+ *   qo_sink_view_stats(src, out)       *out = *src; QO_OK. QO_E_NULL if out is NULL, or src is
  *                                      NULL (the sink's object was NULL: *out zeroed).
  */
 #ifndef QORIENT_PORTS_SINK_VIEW_H
@@ -14,7 +14,7 @@
 
 #include "qorient/sink.h"
 
-static inline qo_status qo_port_sink_view(void *obj, const qo_sink *ops, qo_sink *out)
+static inline qo_status qo_sink_view_fill(void *obj, const qo_sink *ops, qo_sink *out)
 {
     if (out == NULL) return QO_E_NULL;
     memset(out, 0, sizeof *out);
@@ -24,7 +24,7 @@ static inline qo_status qo_port_sink_view(void *obj, const qo_sink *ops, qo_sink
     return QO_OK;
 }
 
-static inline qo_status qo_port_sink_stats(const qo_sink_stats *src, qo_sink_stats *out)
+static inline qo_status qo_sink_view_stats(const qo_sink_stats *src, qo_sink_stats *out)
 {
     if (out == NULL) return QO_E_NULL;
     if (src == NULL) {

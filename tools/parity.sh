@@ -18,8 +18,10 @@
 #     header not named after it (mat3 lives in convert.h);
 #   - a function with a core suffix (_f32, _q30, _q28, _q16) declared in a header that has a
 #     block is in no block (a new function must say which concept it is);
-#   - a public name (function or type, qo_<family>_...) is declared outside its family's header
-#     pair: the name says the header (FAMILIES below; the value types of types.h excepted).
+#   - a public name (function, type or object, qo_<family>_...) is declared outside its family's
+#     header pair: the name says the header (FAMILIES below; the value types of types.h
+#     excepted). The ports' headers too (PORT_FAMILIES: a port header's family is its file
+#     name), and there also every QO_ macro and enum constant (QO_<FAMILY>_...).
 set -eu
 export LC_ALL=C
 cd "$(dirname "$0")/.."
@@ -92,6 +94,7 @@ done < "$W.homes"
 
 # every public name in the header of its family: qo_<family>_... is declared in <home>.h or
 # <home>_fx.h. One line per home: the header, then the families (name prefixes) it holds.
+# A name belongs to the longest family it starts with (qo_euler_seq_parse: euler_seq).
 FAMILIES='quat quat
 convert mat3 axis_angle rotvec
 euler euler
@@ -106,25 +109,68 @@ fxmath fx
 fxconv q16 q28 q30 fxconv
 sink sink
 status status'
-for f in "$H"/*.h; do
-    grep -E '^[A-Za-z_}]' "$f" | grep -oE '\bqo_[a-z0-9_]+(\(|;| \{)' | sed -E 's/(\(|;| \{)$//' |
-        sed "s|^|$(basename "$f")\t|"
-done | sort -u | awk -F '\t' -v fams="$FAMILIES" '
+# The ports' headers (installed under qorient/ports/) follow the same rule with no exception:
+# a port header's family is its file name, so qo_modbus_link_tcp_take is in modbus_link.h and
+# a sub-family reads as a word after it (_tcp_, _backoff_, _jitter_hist_, _libgpiod_). Here
+# the ports' macros and enum constants follow it too: QO_<FAMILY>_... (QO_MODBUS_REG_INT16).
+PORT_FAMILIES='ports/sink_view sink_view
+ports/mock/mock_sink mock_sink
+ports/linux/gpio_sink gpio_sink
+ports/linux/joint_guard joint_guard
+ports/linux/modbus_layout modbus_layout
+ports/linux/modbus_link modbus_link
+ports/linux/modbus_reg modbus_reg
+ports/linux/modbus_sink modbus_sink
+ports/linux/mono_clock mono_clock
+ports/linux/regmap regmap
+ports/linux/sim sim
+ports/linux/streamer streamer
+ports/linux/wire_budget wire_budget'
+PORT_HDRS=$(ls ports/*.h ports/*/*.h)
+homes=$(printf '%s\n' "$FAMILIES" | sed "s|^|$H/|"; printf '%s\n' "$PORT_FAMILIES")
+
+# names: lines outside comments and bodies (column 0) declaring a function "qo_x(", a type or
+# object "qo_x;" / "qo_x {", or a function-pointer type "(*qo_x)"
+for f in "$H"/*.h $PORT_HDRS; do
+    grep -E '^[A-Za-z_}]' "$f" | grep -oE '\bqo_[a-z0-9_]+(\(|;| \{|\))' | sed -E 's/(\(|;| \{|\))$//' |
+        sed "s|^|$f\t|"
+done | sort -u | awk -F '\t' -v homes="$homes" -v core="$H/" '
     BEGIN {
-        n = split(fams, lines, "\n")
+        n = split(homes, lines, "\n")
         for (i = 1; i <= n; i++) { k = split(lines[i], w, " "); for (j = 2; j <= k; j++) home[w[j]] = w[1] }
     }
-    $1 == "types.h" { next }
+    $1 == core "types.h" { next }
     {
         name = substr($2, 4); best = ""
         for (fam in home) if ((name == fam || index(name, fam "_") == 1) && length(fam) > length(best)) best = fam
         h = $1; sub(/(_fx)?\.h$/, "", h)
-        if (best == "") print $2 " (" $1 "): no family: add its prefix to FAMILIES in tools/parity.sh"
+        if (best == "") print $2 " (" $1 "): no family: add its prefix to FAMILIES (core) or PORT_FAMILIES in tools/parity.sh"
         else if (home[best] != h) print $2 " is declared in " $1 ": family " best " lives in " home[best] ".h"
     }' > "$W.names"
+# the ports: every #define and enum constant QO_<FAMILY>_... of its header's family
+for f in $PORT_HDRS; do
+    awk -v f="$f" '
+        /^#define QO_/ { n = $2; sub(/\(.*/, "", n); print f "\t" n }
+        /enum[^;]*\{/ { inenum = 1 }
+        inenum {
+            line = $0; sub(/\/\*.*/, "", line)
+            while (match(line, /QO_[A-Z0-9_]+/)) { print f "\t" substr(line, RSTART, RLENGTH); line = substr(line, RSTART + RLENGTH) }
+        }
+        inenum && /\}/ { inenum = 0 }' "$f"
+done | sort -u | awk -F '\t' -v homes="$PORT_FAMILIES" '
+    BEGIN {
+        n = split(homes, lines, "\n")
+        for (i = 1; i <= n; i++) { k = split(lines[i], w, " "); for (j = 2; j <= k; j++) fam[w[1]] = fam[w[1]] " " toupper(w[j]) }
+    }
+    {
+        h = $1; sub(/\.h$/, "", h); ok = 0
+        k = split(fam[h], fs, " ")
+        for (j = 1; j <= k; j++) if (index($2, "QO_" fs[j] "_") == 1) ok = 1
+        if (!ok) print $2 " (" $1 "): a port macro or enum constant starts with its header family, QO_" (k ? fs[1] : "?") "_"
+    }' >> "$W.names"
 while read -r line; do err "$line"; done < "$W.names"
 
-[ $fail = 0 ] || { echo "parity: FAIL (the blocks are at the top of $H/*.h; see tools/parity.sh)" >&2; exit 1; }
+[ $fail = 0 ] || { echo "parity: FAIL (the blocks are at the top of $H/*.h, the families in tools/parity.sh)" >&2; exit 1; }
 
 # the table
 {

@@ -105,7 +105,7 @@ int main(int argc, char **argv)
     static struct move mv;
     static qo_streamer st;
     static qo_wire_budget wb;    /* ~10 KiB */
-    qo_modbus_spec spec;
+    qo_modbus_link_spec spec;
     double longest_us = 0.0;
     float start[QO_REGMAP_MAX_JOINTS], first[QO_REGMAP_MAX_JOINTS];
     qo_modbus_sink_settings ss = qo_modbus_sink_settings_default;
@@ -153,7 +153,7 @@ int main(int argc, char **argv)
     }
 
     /* What one tick costs on a serial line (TCP has no such bound). */
-    if (qo_modbus_parse_spec(argv[2], &spec) != QO_OK) {
+    if (qo_modbus_link_parse_spec(argv[2], &spec) != QO_OK) {
         fprintf(stderr, "stream_modbus: '%s' is not tcp://HOST:PORT or rtu:DEVICE,BAUD,8N1\n",
                 argv[2]);
         return usage();
@@ -162,7 +162,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "stream_modbus: %s: cannot group the registers into requests\n", argv[1]);
         return 1;
     }
-    if (spec.transport == QO_MODBUS_RTU && EX_RATE_HZ > wb.max_rate_hz) {
+    if (spec.transport == QO_MODBUS_LINK_RTU && EX_RATE_HZ > wb.max_rate_hz) {
         fprintf(stderr, "stream_modbus: %.0f Hz needs more than %s carries (%.0f us per tick, "
                 "at most %.1f Hz): raise the baud rate or lower EX_RATE_HZ\n", EX_RATE_HZ,
                 argv[2], wb.tick_us, wb.max_rate_hz);
@@ -226,7 +226,7 @@ int main(int argc, char **argv)
     if (s == QO_OK && mv.ended) {
         qo_traj_ns end = 0;
         float goal[QO_REGMAP_MAX_JOINTS];
-        qo_modbus_settle_report rep;
+        qo_modbus_sink_settle_report rep;
         (void)qo_traj_end_time(&mv.tr, &end);
         s = qo_traj_sample(&mv.tr, end, goal, NULL, NULL, NULL);
         if (s == QO_OK)

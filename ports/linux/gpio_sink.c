@@ -32,14 +32,14 @@
 
 /* Every joint of the default config is the default joint: its initializer, 32 times. */
 #define QO_GPIO_JOINT_DEFAULT_INIT                                                          \
-    { .kind = QO_GPIO_STEP_DIR, .steps_per_unit = 200.0, .max_rate_hz = 1000.0,           \
+    { .kind = QO_GPIO_SINK_STEP_DIR, .steps_per_unit = 200.0, .max_rate_hz = 1000.0,           \
       .dir_setup_us = 5.0, .servo_center_us = 1500.0, .servo_us_per_unit = 500.0,         \
       .servo_min_us = 1000.0, .servo_max_us = 2000.0 }
 #define QO_GPIO_J4 QO_GPIO_JOINT_DEFAULT_INIT, QO_GPIO_JOINT_DEFAULT_INIT, \
                    QO_GPIO_JOINT_DEFAULT_INIT, QO_GPIO_JOINT_DEFAULT_INIT
-typedef char qo_gpio_default_covers_every_joint[QO_GPIO_MAX_JOINTS == 32u ? 1 : -1];
+typedef char qo_gpio_default_covers_every_joint[QO_GPIO_SINK_MAX_JOINTS == 32u ? 1 : -1];
 
-const qo_gpio_joint qo_gpio_joint_default = QO_GPIO_JOINT_DEFAULT_INIT;
+const qo_gpio_sink_joint qo_gpio_sink_joint_default = QO_GPIO_JOINT_DEFAULT_INIT;
 
 const qo_gpio_sink_config qo_gpio_sink_config_default = {
     .period_s = 0.002, .window = 0.75, .step_high_us = 5.0, .servo_frame_us = 20000.0,
@@ -47,21 +47,21 @@ const qo_gpio_sink_config qo_gpio_sink_config_default = {
 };
 
 static int finite_in(double v, double lo, double hi) { return isfinite(v) && v >= lo && v <= hi; }
-static int line_given(const qo_gpio_line *l) { return l->chip != NULL || l->name != NULL; }
+static int line_given(const qo_gpio_sink_line *l) { return l->chip != NULL || l->name != NULL; }
 static uint64_t us_to_ns(double us) { return (uint64_t)llround(us * 1000.0); }
 
 static qo_status check_config(const qo_gpio_sink_config *c)
 {
     size_t i;
     if (c->n_joints == 0) return QO_E_TOO_FEW;
-    if (c->n_joints > QO_GPIO_MAX_JOINTS) return QO_E_CAPACITY;
+    if (c->n_joints > QO_GPIO_SINK_MAX_JOINTS) return QO_E_CAPACITY;
     if (!finite_in(c->period_s, 1e-6, 10.0) || !finite_in(c->window, 1e-3, 1.0) ||
         !finite_in(c->step_high_us, 1e-3, 1e6) || !finite_in(c->servo_frame_us, 1.0, 1e7))
         return QO_E_LIMIT;
     for (i = 0; i < c->n_joints; i++) {
-        const qo_gpio_joint *j = &c->joint[i];
+        const qo_gpio_sink_joint *j = &c->joint[i];
         double window_us = c->period_s * c->window * 1e6;
-        if (j->kind == QO_GPIO_STEP_DIR) {
+        if (j->kind == QO_GPIO_SINK_STEP_DIR) {
             if (!line_given(&j->step) || !line_given(&j->dir)) return QO_E_NULL;
             if (!finite_in(j->steps_per_unit, 1e-9, 1e12) || !finite_in(j->max_rate_hz, 1e-6, 1e7) ||
                 !finite_in(j->dir_setup_us, 0.0, 1e6))
@@ -69,7 +69,7 @@ static qo_status check_config(const qo_gpio_sink_config *c)
             if (!(c->step_high_us < 1e6 / j->max_rate_hz)) return QO_E_CONFIG;
             /* a window that cannot hold one pulse after a direction change would stall forever */
             if (!(c->step_high_us + j->dir_setup_us < window_us)) return QO_E_CONFIG;
-        } else if (j->kind == QO_GPIO_SERVO_PWM) {
+        } else if (j->kind == QO_GPIO_SINK_SERVO_PWM) {
             if (!line_given(&j->step)) return QO_E_NULL;
             if (!isfinite(j->servo_center_us) || !isfinite(j->servo_us_per_unit) ||
                 !finite_in(j->servo_min_us, 1.0, 1e6) || !finite_in(j->servo_max_us, 1.0, 1e6) ||
@@ -88,7 +88,7 @@ static void close_all(qo_gpio_sink *g)
 {
     size_t i;
     for (i = 0; i < g->cfg.n_joints; i++) {
-        qo_gpio_joint_state *s = &g->js[i];
+        qo_gpio_sink_joint_state *s = &g->js[i];
         if (s->step_h >= 0) {
             (void)g->be.set_value(g->be.ctx, s->step_h, 0);
             g->be.close(g->be.ctx, s->step_h);
@@ -101,7 +101,7 @@ static void close_all(qo_gpio_sink *g)
     }
 }
 
-static uint64_t servo_width_ns(const qo_gpio_joint *j, double x)
+static uint64_t servo_width_ns(const qo_gpio_sink_joint *j, double x)
 {
     double w = j->servo_center_us + x * j->servo_us_per_unit;
     if (w < j->servo_min_us) w = j->servo_min_us;
@@ -110,7 +110,7 @@ static uint64_t servo_width_ns(const qo_gpio_joint *j, double x)
 }
 
 qo_status qo_gpio_sink_open(qo_gpio_sink *g, const qo_gpio_sink_config *cfg,
-                            const qo_gpio_backend *be)
+                            const qo_gpio_sink_backend *be)
 {
     qo_status st;
     size_t i;
@@ -121,18 +121,18 @@ qo_status qo_gpio_sink_open(qo_gpio_sink *g, const qo_gpio_sink_config *cfg,
     if (st != QO_OK) return st;
     g->cfg = *cfg;
     g->be = *be;
-    if (!g->be.now_ns) g->be.now_ns = qo_mono_now_ns;
-    if (!g->be.sleep_until_ns) g->be.sleep_until_ns = qo_mono_sleep_until_ns;
+    if (!g->be.now_ns) g->be.now_ns = qo_mono_clock_now_ns;
+    if (!g->be.sleep_until_ns) g->be.sleep_until_ns = qo_mono_clock_sleep_until_ns;
     g->period_ns = (uint64_t)llround(cfg->period_s * 1e9);
     g->window_ns = (uint64_t)llround(cfg->period_s * cfg->window * 1e9);
     for (i = 0; i < cfg->n_joints; i++) { g->js[i].step_h = -1; g->js[i].dir_h = -1; }
     for (i = 0; i < cfg->n_joints; i++) {
-        const qo_gpio_joint *j = &cfg->joint[i];
-        qo_gpio_joint_state *s = &g->js[i];
+        const qo_gpio_sink_joint *j = &cfg->joint[i];
+        qo_gpio_sink_joint_state *s = &g->js[i];
         st = g->be.open(g->be.ctx, &j->step, 0, &s->step_h);
         if (st != QO_OK) { s->step_h = -1; break; }
         s->high_ns = us_to_ns(cfg->step_high_us);
-        if (j->kind == QO_GPIO_STEP_DIR) {
+        if (j->kind == QO_GPIO_SINK_STEP_DIR) {
             st = g->be.open(g->be.ctx, &j->dir, 0, &s->dir_h);
             if (st != QO_OK) { s->dir_h = -1; break; }
             s->dir_level = 0;
@@ -168,8 +168,8 @@ static qo_status keep_first(qo_status cur, qo_status st) { return cur != QO_OK ?
 static qo_status plan_step(qo_gpio_sink *g, size_t i, float target, uint64_t start,
                            uint64_t win_end, joint_plan *p)
 {
-    const qo_gpio_joint *j = &g->cfg.joint[i];
-    qo_gpio_joint_state *s = &g->js[i];
+    const qo_gpio_sink_joint *j = &g->cfg.joint[i];
+    qo_gpio_sink_joint_state *s = &g->js[i];
     double d, r;
     int64_t desired, owed;
     uint64_t first, span, cap, mag;
@@ -210,8 +210,8 @@ static qo_status plan_step(qo_gpio_sink *g, size_t i, float target, uint64_t sta
 static qo_status plan_servo(qo_gpio_sink *g, size_t i, float target, uint64_t start,
                             uint64_t win_end, joint_plan *p)
 {
-    const qo_gpio_joint *j = &g->cfg.joint[i];
-    qo_gpio_joint_state *s = &g->js[i];
+    const qo_gpio_sink_joint *j = &g->cfg.joint[i];
+    qo_gpio_sink_joint_state *s = &g->js[i];
     qo_status st = QO_OK;
     uint64_t at;
     if (isfinite(target)) s->servo_width_ns = servo_width_ns(j, (double)target);
@@ -236,7 +236,7 @@ static void sleep_until(qo_gpio_sink *g, uint64_t t)
 
 qo_status qo_gpio_sink_write(qo_gpio_sink *g, const float *targets, size_t n, uint64_t tick)
 {
-    joint_plan plan[QO_GPIO_MAX_JOINTS];
+    joint_plan plan[QO_GPIO_SINK_MAX_JOINTS];
     qo_status res = QO_OK;
     uint64_t start, win_end;
     size_t i;
@@ -248,7 +248,7 @@ qo_status qo_gpio_sink_write(qo_gpio_sink *g, const float *targets, size_t n, ui
     start = g->be.now_ns(g->be.ctx);
     win_end = start + g->window_ns;
     for (i = 0; i < n; i++) {
-        qo_status st = g->cfg.joint[i].kind == QO_GPIO_STEP_DIR
+        qo_status st = g->cfg.joint[i].kind == QO_GPIO_SINK_STEP_DIR
                            ? plan_step(g, i, targets[i], start, win_end, &plan[i])
                            : plan_servo(g, i, targets[i], start, win_end, &plan[i]);
         res = keep_first(res, st);
@@ -256,7 +256,7 @@ qo_status qo_gpio_sink_write(qo_gpio_sink *g, const float *targets, size_t n, ui
     /* Emit the edges of all joints in time order; each joint reschedules from actual times. */
     for (;;) {
         joint_plan *p = NULL;
-        qo_gpio_joint_state *s;
+        qo_gpio_sink_joint_state *s;
         size_t k = 0;
         uint64_t t;
         for (i = 0; i < n; i++)
@@ -270,7 +270,7 @@ qo_status qo_gpio_sink_write(qo_gpio_sink *g, const float *targets, size_t n, ui
             continue;
         }
         t = g->be.now_ns(g->be.ctx);
-        if (g->cfg.joint[k].kind == QO_GPIO_SERVO_PWM) {
+        if (g->cfg.joint[k].kind == QO_GPIO_SINK_SERVO_PWM) {
             if (p->rising) { p->rising = 0; p->next_ns = t + s->servo_width_ns; }
             else p->active = 0;
             continue;
@@ -311,7 +311,7 @@ qo_status qo_gpio_sink_as_sink(qo_gpio_sink *g, qo_sink *out)
 {
     /* flush, stats, service: none (every write is emitted at once; no link to revive) */
     static const qo_sink ops = { .write = sink_write, .close = sink_close };
-    return qo_port_sink_view(g, &ops, out);
+    return qo_sink_view_fill(g, &ops, out);
 }
 
 qo_status qo_gpio_sink_position(const qo_gpio_sink *g, size_t joint, int64_t *steps)
@@ -319,7 +319,8 @@ qo_status qo_gpio_sink_position(const qo_gpio_sink *g, size_t joint, int64_t *st
     if (steps) *steps = 0;
     if (!g || !steps) return QO_E_NULL;
     if (!g->open) return QO_E_STATE;
-    if (joint >= g->cfg.n_joints || g->cfg.joint[joint].kind != QO_GPIO_STEP_DIR) return QO_E_RANGE;
+    if (joint >= g->cfg.n_joints || g->cfg.joint[joint].kind != QO_GPIO_SINK_STEP_DIR)
+        return QO_E_RANGE;
     *steps = g->js[joint].position;
     return QO_OK;
 }
@@ -333,10 +334,10 @@ void qo_gpio_sink_close(qo_gpio_sink *g)
 
 /* ---- libgpiod backend ------------------------------------------------------------------ */
 
-static int lg_slot(qo_gpio_libgpiod *b)
+static int lg_slot(qo_gpio_sink_libgpiod *b)
 {
     int i;
-    for (i = 0; i < (int)QO_GPIO_MAX_LINES; i++)
+    for (i = 0; i < (int)QO_GPIO_SINK_MAX_LINES; i++)
         if (!b->used[i]) return i;
     return -1;
 }
@@ -401,9 +402,9 @@ static struct gpiod_chip *lg2_find_line(const char *name, unsigned *offset)
     return NULL;
 }
 
-static qo_status lg_open(void *ctx, const qo_gpio_line *line, int initial, int *handle)
+static qo_status lg_open(void *ctx, const qo_gpio_sink_line *line, int initial, int *handle)
 {
-    qo_gpio_libgpiod *b = ctx;
+    qo_gpio_sink_libgpiod *b = ctx;
     struct gpiod_chip *chip;
     struct gpiod_line_settings *ls = NULL;
     struct gpiod_line_config *lc = NULL;
@@ -444,8 +445,8 @@ static qo_status lg_open(void *ctx, const qo_gpio_line *line, int initial, int *
 
 static qo_status lg_set(void *ctx, int h, int v)
 {
-    qo_gpio_libgpiod *b = ctx;
-    if (h < 0 || h >= (int)QO_GPIO_MAX_LINES || !b->used[h]) return QO_E_ARG;
+    qo_gpio_sink_libgpiod *b = ctx;
+    if (h < 0 || h >= (int)QO_GPIO_SINK_MAX_LINES || !b->used[h]) return QO_E_ARG;
     return gpiod_line_request_set_value((struct gpiod_line_request *)b->line[h], b->offset[h],
                                         v ? GPIOD_LINE_VALUE_ACTIVE : GPIOD_LINE_VALUE_INACTIVE) == 0
                ? QO_OK : QO_E_IO;
@@ -453,21 +454,21 @@ static qo_status lg_set(void *ctx, int h, int v)
 
 static void lg_close(void *ctx, int h)
 {
-    qo_gpio_libgpiod *b = ctx;
-    if (h < 0 || h >= (int)QO_GPIO_MAX_LINES || !b->used[h]) return;
+    qo_gpio_sink_libgpiod *b = ctx;
+    if (h < 0 || h >= (int)QO_GPIO_SINK_MAX_LINES || !b->used[h]) return;
     gpiod_line_request_release((struct gpiod_line_request *)b->line[h]);
     b->used[h] = 0;
     b->line[h] = NULL;
 }
 
-const char *qo_gpio_libgpiod_api(void) { return "v2"; }
+const char *qo_gpio_sink_libgpiod_api(void) { return "v2"; }
 
 #else
 /* ==== libgpiod 1.6.x (v1 API, GPIO uAPI v1: needs CONFIG_GPIO_CDEV_V1) ==== */
 
-static qo_status lg_open(void *ctx, const qo_gpio_line *line, int initial, int *handle)
+static qo_status lg_open(void *ctx, const qo_gpio_sink_line *line, int initial, int *handle)
 {
-    qo_gpio_libgpiod *b = ctx;
+    qo_gpio_sink_libgpiod *b = ctx;
     struct gpiod_chip *chip = NULL;
     struct gpiod_line *l;
     int slot = lg_slot(b);
@@ -499,15 +500,15 @@ static qo_status lg_open(void *ctx, const qo_gpio_line *line, int initial, int *
 
 static qo_status lg_set(void *ctx, int h, int v)
 {
-    qo_gpio_libgpiod *b = ctx;
-    if (h < 0 || h >= (int)QO_GPIO_MAX_LINES || !b->used[h]) return QO_E_ARG;
+    qo_gpio_sink_libgpiod *b = ctx;
+    if (h < 0 || h >= (int)QO_GPIO_SINK_MAX_LINES || !b->used[h]) return QO_E_ARG;
     return gpiod_line_set_value((struct gpiod_line *)b->line[h], v ? 1 : 0) == 0 ? QO_OK : QO_E_IO;
 }
 
 static void lg_close(void *ctx, int h)
 {
-    qo_gpio_libgpiod *b = ctx;
-    if (h < 0 || h >= (int)QO_GPIO_MAX_LINES || !b->used[h]) return;
+    qo_gpio_sink_libgpiod *b = ctx;
+    if (h < 0 || h >= (int)QO_GPIO_SINK_MAX_LINES || !b->used[h]) return;
     gpiod_line_release((struct gpiod_line *)b->line[h]);
     gpiod_chip_close((struct gpiod_chip *)b->chip[h]);
     b->used[h] = 0;
@@ -515,11 +516,11 @@ static void lg_close(void *ctx, int h)
     b->chip[h] = NULL;
 }
 
-const char *qo_gpio_libgpiod_api(void) { return "v1"; }
+const char *qo_gpio_sink_libgpiod_api(void) { return "v1"; }
 #endif
 
-qo_status qo_gpio_libgpiod_backend(qo_gpio_libgpiod *store, const char *consumer,
-                                   qo_gpio_backend *be)
+qo_status qo_gpio_sink_libgpiod_backend(qo_gpio_sink_libgpiod *store, const char *consumer,
+                                        qo_gpio_sink_backend *be)
 {
     if (be) memset(be, 0, sizeof *be);
     if (!store || !be) return QO_E_NULL;
@@ -529,7 +530,7 @@ qo_status qo_gpio_libgpiod_backend(qo_gpio_libgpiod *store, const char *consumer
     be->open = lg_open;
     be->set_value = lg_set;
     be->close = lg_close;
-    be->now_ns = qo_mono_now_ns;
-    be->sleep_until_ns = qo_mono_sleep_until_ns;
+    be->now_ns = qo_mono_clock_now_ns;
+    be->sleep_until_ns = qo_mono_clock_sleep_until_ns;
     return QO_OK;
 }

@@ -3,18 +3,22 @@
  * demo-grade option, hobby-servo PWM) on GPIO lines, through libgpiod or a fake backend.
  *
  * Index:
- *   qo_gpio_line                  how a line is found: chip (name, path or label) + offset, or line name
- *   qo_gpio_joint                 per joint: kind, lines, steps per unit, max rate, dir setup, invert
- *   qo_gpio_sink_config           period, pulse window, step high time, joints
- *   qo_gpio_backend               pin toggling table: open, set_value, close (+ clock, sleep)
- *   qo_gpio_sink_config_default   const defaults of the config (every joint = qo_gpio_joint_default)
- *   qo_gpio_joint_default         const defaults of one joint
- *   qo_gpio_sink_open()           check the config, open every line through the backend
- *   qo_gpio_sink_write()          one tick: emit the owed steps / servo frame (the view's write)
- *   qo_gpio_sink_as_sink()        fills the qo_sink view of a sink (write, close; service = NULL)
- *   qo_gpio_sink_position()       steps emitted so far for a step/dir joint
- *   qo_gpio_sink_close()          drive step lines low and close every line (the view's close)
- *   qo_gpio_libgpiod_backend()    the libgpiod backend (v1 API default, v2 when QO_GPIOD_V2)
+ *   qo_gpio_sink_line            how a line is found: chip (name, path or label) + offset, or
+ *                                line name
+ *   qo_gpio_sink_joint           per joint: kind, lines, steps per unit, max rate, dir setup,
+ *                                invert
+ *   qo_gpio_sink_config          period, pulse window, step high time, joints
+ *   qo_gpio_sink_backend         pin toggling table: open, set_value, close (+ clock, sleep)
+ *   qo_gpio_sink_config_default  const defaults of the config (every joint =
+ *                                qo_gpio_sink_joint_default)
+ *   qo_gpio_sink_joint_default   const defaults of one joint
+ *   qo_gpio_sink_open()          check the config, open every line through the backend
+ *   qo_gpio_sink_write()         one tick: emit the owed steps / servo frame (the view's write)
+ *   qo_gpio_sink_as_sink()       fills the qo_sink view of a sink (write, close; service = NULL)
+ *   qo_gpio_sink_position()      steps emitted so far for a step/dir joint
+ *   qo_gpio_sink_close()         drive step lines low and close every line (the view's close)
+ *   qo_gpio_sink_libgpiod_backend()  the libgpiod backend (v1 API default, v2 when QO_GPIOD_V2)
+ *   qo_gpio_sink_libgpiod_api()  "v1" or "v2"
  *
  * Step/dir model. Each joint keeps `position`, the signed count of steps emitted (positive =
  * positive joint direction). A tick with target x owes round(x * steps_per_unit) - position
@@ -37,7 +41,7 @@
  * out: user-space edges (one ioctl each) are only good for low rates (a few kHz at most, with
  * jitter of tens to hundreds of us on non-RT kernels).
  *
- * Servo PWM (QO_GPIO_SERVO_PWM, demo grade). One line per joint; every servo_frame_us (20000
+ * Servo PWM (QO_GPIO_SINK_SERVO_PWM, demo grade). One line per joint; every servo_frame_us (20000
  * = 50 Hz) a tick starts a pulse of width center + x * us_per_unit, clamped to [min, max] us
  * (1000..2000 typical). The pulse is timed by a user-space sleep, so its width jitters by the
  * wake-up latency (each us is ~0.1-0.2 degrees on a hobby servo): use hardware PWM or a
@@ -60,29 +64,29 @@
 extern "C" {
 #endif
 
-#define QO_GPIO_MAX_JOINTS 32u
-#define QO_GPIO_MAX_LINES (2u * QO_GPIO_MAX_JOINTS)
+#define QO_GPIO_SINK_MAX_JOINTS 32u
+#define QO_GPIO_SINK_MAX_LINES (2u * QO_GPIO_SINK_MAX_JOINTS)
 
 /*
  * A line: if `name` is not NULL the line is searched by its name (label) on every chip;
  * otherwise `chip` names the chip (a path "/dev/gpiochip0", a name "gpiochip0", or a chip
  * label such as "pinctrl-rp1", the robust choice on a Pi 5) and `offset` the line on it.
  */
-typedef struct qo_gpio_line {
+typedef struct qo_gpio_sink_line {
     const char *chip;
     unsigned offset;
     const char *name;
-} qo_gpio_line;
+} qo_gpio_sink_line;
 
-typedef enum qo_gpio_joint_kind {
-    QO_GPIO_STEP_DIR = 0,
-    QO_GPIO_SERVO_PWM = 1
-} qo_gpio_joint_kind;
+typedef enum qo_gpio_sink_joint_kind {
+    QO_GPIO_SINK_STEP_DIR = 0,
+    QO_GPIO_SINK_SERVO_PWM = 1
+} qo_gpio_sink_joint_kind;
 
-typedef struct qo_gpio_joint {
-    qo_gpio_joint_kind kind;
-    qo_gpio_line step;          /* step line; for a servo, the PWM line */
-    qo_gpio_line dir;           /* step/dir only */
+typedef struct qo_gpio_sink_joint {
+    qo_gpio_sink_joint_kind kind;
+    qo_gpio_sink_line step;     /* step line; for a servo, the PWM line */
+    qo_gpio_sink_line dir;      /* step/dir only */
     double steps_per_unit;      /* steps per joint unit (rad or m), finite, > 0 */
     double max_rate_hz;         /* max step rate, finite, > 0 */
     double dir_setup_us;        /* min time from a dir change to the next rise, [0, 1e6] */
@@ -90,15 +94,15 @@ typedef struct qo_gpio_joint {
     double servo_center_us;     /* servo: pulse width at target 0 */
     double servo_us_per_unit;   /* servo: width change per joint unit (sign = direction) */
     double servo_min_us, servo_max_us; /* servo: clamp, 0 < min <= max */
-} qo_gpio_joint;
+} qo_gpio_sink_joint;
 
 typedef struct qo_gpio_sink_config {
     double period_s;            /* the streamer period (s), finite, (0, 10] */
     double window;              /* fraction of the period pulses may use, (0, 1]; default 0.75 */
     double step_high_us;        /* step pulse high time, > 0, < 1/max_rate_hz; default 5 */
     double servo_frame_us;      /* servo frame, default 20000 (50 Hz) */
-    size_t n_joints;            /* 1..QO_GPIO_MAX_JOINTS */
-    qo_gpio_joint joint[QO_GPIO_MAX_JOINTS];
+    size_t n_joints;            /* 1..QO_GPIO_SINK_MAX_JOINTS */
+    qo_gpio_sink_joint joint[QO_GPIO_SINK_MAX_JOINTS];
 } qo_gpio_sink_config;
 
 /*
@@ -108,17 +112,17 @@ typedef struct qo_gpio_sink_config {
  * sleep_until_ns returns 0 or an errno value (EINTR is retried by the sink).
  * A test backend records edges with the fake clock's timestamps.
  */
-typedef struct qo_gpio_backend {
+typedef struct qo_gpio_sink_backend {
     void *ctx;
-    qo_status (*open)(void *ctx, const qo_gpio_line *line, int initial, int *handle);
+    qo_status (*open)(void *ctx, const qo_gpio_sink_line *line, int initial, int *handle);
     qo_status (*set_value)(void *ctx, int handle, int value);
     void (*close)(void *ctx, int handle);
     uint64_t (*now_ns)(void *ctx);
     int (*sleep_until_ns)(void *ctx, uint64_t abs_ns);
-} qo_gpio_backend;
+} qo_gpio_sink_backend;
 
 /* Per-joint state; private. */
-typedef struct qo_gpio_joint_state {
+typedef struct qo_gpio_sink_joint_state {
     int step_h, dir_h;
     int64_t position;
     int dir_level;
@@ -129,12 +133,12 @@ typedef struct qo_gpio_joint_state {
     uint64_t servo_next_frame_ns;
     int servo_started;
     uint64_t servo_width_ns;
-} qo_gpio_joint_state;
+} qo_gpio_sink_joint_state;
 
 typedef struct qo_gpio_sink {
     qo_gpio_sink_config cfg;
-    qo_gpio_backend be;
-    qo_gpio_joint_state js[QO_GPIO_MAX_JOINTS];
+    qo_gpio_sink_backend be;
+    qo_gpio_sink_joint_state js[QO_GPIO_SINK_MAX_JOINTS];
     uint64_t period_ns, window_ns;
     int open;
 } qo_gpio_sink;
@@ -142,19 +146,19 @@ typedef struct qo_gpio_sink {
 /*
  * Defaults, copied by value (cfg = qo_gpio_sink_config_default): period 0.002 s (500 Hz),
  * window 0.75, step_high_us 5, servo frame 20000 us, n_joints 0 and every joint =
- * qo_gpio_joint_default: a step/dir joint with 200 steps/unit, 1000 Hz, dir setup 5 us, no
+ * qo_gpio_sink_joint_default: a step/dir joint with 200 steps/unit, 1000 Hz, dir setup 5 us, no
  * invert, servo 1500 +- 500 us/unit clamped to 1000..2000. Lines are left empty (chip NULL,
  * name NULL): set n_joints and each joint's lines.
  */
 extern const qo_gpio_sink_config qo_gpio_sink_config_default;
-extern const qo_gpio_joint qo_gpio_joint_default;
+extern const qo_gpio_sink_joint qo_gpio_sink_joint_default;
 
 /*
  * Checks cfg, then opens every line through be (step lines low; dir lines at level 0, which
  * counts as a direction change at open time for the setup delay). On any failure the lines
  * already opened are closed again. Returns QO_OK; QO_E_NULL (g, cfg, be or a required backend
  * function NULL, or a joint with neither chip nor name); QO_E_TOO_FEW (n_joints 0);
- * QO_E_CAPACITY (n_joints > QO_GPIO_MAX_JOINTS); QO_E_LIMIT (period, window, rate, steps per
+ * QO_E_CAPACITY (n_joints > QO_GPIO_SINK_MAX_JOINTS); QO_E_LIMIT (period, window, rate, steps per
  * unit, high time, setup or servo widths not finite or out of range); QO_E_ARG (unknown joint
  * kind); QO_E_CONFIG (high time not below 1/max rate, high time + dir setup not below the
  * window, a servo pulse that does not fit the window or the frame, or the backend could not
@@ -162,7 +166,7 @@ extern const qo_gpio_joint qo_gpio_joint_default;
  * On error g is not open (write returns QO_E_STATE).
  */
 qo_status qo_gpio_sink_open(qo_gpio_sink *g, const qo_gpio_sink_config *cfg,
-                            const qo_gpio_backend *be);
+                            const qo_gpio_sink_backend *be);
 
 /*
  * One tick (what the qo_sink write of qo_gpio_sink_as_sink calls). targets[j] in joint units; n must be
@@ -194,13 +198,14 @@ void qo_gpio_sink_close(qo_gpio_sink *g);
 /* ---- libgpiod backend ------------------------------------------------------------------ */
 
 /* Storage of the libgpiod backend (one per sink); members private. */
-typedef struct qo_gpio_libgpiod {
-    void *chip[QO_GPIO_MAX_LINES];
-    void *line[QO_GPIO_MAX_LINES];   /* v1: struct gpiod_line *; v2: struct gpiod_line_request * */
-    unsigned offset[QO_GPIO_MAX_LINES];
-    int used[QO_GPIO_MAX_LINES];
+typedef struct qo_gpio_sink_libgpiod {
+    void *chip[QO_GPIO_SINK_MAX_LINES];
+    void *line[QO_GPIO_SINK_MAX_LINES]; /* v1: struct gpiod_line *;
+                                           v2: struct gpiod_line_request * */
+    unsigned offset[QO_GPIO_SINK_MAX_LINES];
+    int used[QO_GPIO_SINK_MAX_LINES];
     const char *consumer;
-} qo_gpio_libgpiod;
+} qo_gpio_sink_libgpiod;
 
 /*
  * Fills *be with the libgpiod backend using *store (zeroed here) and consumer name `consumer`
@@ -209,13 +214,13 @@ typedef struct qo_gpio_libgpiod {
  * neither QO_GPIOD_V1 nor QO_GPIOD_V2 defined the header decides (only v1 defines
  * GPIOD_LINE_BULK_MAX_LINES). The backend's open returns QO_E_CONFIG when the chip or line
  * does not exist, QO_E_IO when the request fails (busy, permission), QO_E_CAPACITY when more
- * than QO_GPIO_MAX_LINES lines are open. Returns QO_OK or QO_E_NULL.
+ * than QO_GPIO_SINK_MAX_LINES lines are open. Returns QO_OK or QO_E_NULL.
  */
-qo_status qo_gpio_libgpiod_backend(qo_gpio_libgpiod *store, const char *consumer,
-                                   qo_gpio_backend *be);
+qo_status qo_gpio_sink_libgpiod_backend(qo_gpio_sink_libgpiod *store, const char *consumer,
+                                        qo_gpio_sink_backend *be);
 
 /* "v1" or "v2": which libgpiod API this build uses. */
-const char *qo_gpio_libgpiod_api(void);
+const char *qo_gpio_sink_libgpiod_api(void);
 
 #ifdef __cplusplus
 }

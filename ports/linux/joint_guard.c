@@ -8,7 +8,7 @@ void qo_joint_guard_init(qo_joint_guard *g, const qo_regmap_joint *j)
 {
     memset(g, 0, sizeof *g);
     g->step = j->max_step * fabs(j->fmt.scale);
-    (void)qo_reg_type_range(j->fmt.type, &g->tlo, &g->thi);
+    (void)qo_modbus_reg_type_range(j->fmt.type, &g->tlo, &g->thi);
 }
 
 /* A value inside the window cannot be sent: hold the slave and read the joint back. */
@@ -26,11 +26,11 @@ qo_status qo_joint_guard_limit(qo_joint_guard *g, const qo_regmap_joint *j, doub
     *changed = 0;
     if (v < j->min) v = j->min;
     if (v > j->max) v = j->max;
-    if (v != target) *changed |= QO_GUARD_CLAMPED;
-    (void)qo_reg_raw_from_value(&j->fmt, v, &raw); /* finite: checked by the caller */
+    if (v != target) *changed |= QO_JOINT_GUARD_CLAMPED;
+    (void)qo_modbus_reg_raw_from_value(&j->fmt, v, &raw); /* finite: checked by the caller */
     if (raw < g->tlo || raw > g->thi) {
         raw = raw < g->tlo ? g->tlo : g->thi;
-        *changed |= QO_GUARD_SATURATED;
+        *changed |= QO_JOINT_GUARD_SATURATED;
     }
     if (g->have && g->step > 0.0) {
         double a = g->hi - g->step, b = g->lo + g->step;
@@ -40,20 +40,20 @@ qo_status qo_joint_guard_limit(qo_joint_guard *g, const qo_regmap_joint *j, doub
         if (!(a <= b)) return blocked(g);
         if (raw < a || raw > b) {
             raw = raw < a ? a : b;
-            *changed |= QO_GUARD_RATE_LIMITED;
+            *changed |= QO_JOINT_GUARD_RATE_LIMITED;
         }
-        (void)qo_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
+        (void)qo_modbus_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
         /* Rounding to the register's resolution must not push the step past max_step. */
         for (tries = 0; tries < 4 && (packed > b || packed < a); tries++) {
-            if (j->fmt.type == QO_REG_FLOAT32)
+            if (j->fmt.type == QO_MODBUS_REG_FLOAT32)
                 raw = (double)nextafterf((float)packed, packed > b ? -INFINITY : INFINITY);
             else
                 raw = packed > b ? floor(b) : ceil(a);
-            (void)qo_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
+            (void)qo_modbus_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
         }
         if (packed > b || packed < a) return blocked(g);
     } else {
-        (void)qo_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
+        (void)qo_modbus_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
     }
     g->cmd = packed;
     return QO_OK;
@@ -65,10 +65,10 @@ double qo_joint_guard_goal(const qo_joint_guard *g, const qo_regmap_joint *j, do
     double v = target, raw, packed;
     if (v < j->min) v = j->min;
     if (v > j->max) v = j->max;
-    (void)qo_reg_raw_from_value(&j->fmt, v, &raw);
+    (void)qo_modbus_reg_raw_from_value(&j->fmt, v, &raw);
     if (raw < g->tlo) raw = g->tlo;
     if (raw > g->thi) raw = g->thi;
-    (void)qo_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
+    (void)qo_modbus_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
     return packed;
 }
 

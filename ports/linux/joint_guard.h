@@ -42,15 +42,15 @@ typedef struct qo_joint_guard {
 } qo_joint_guard;
 
 /* What qo_joint_guard_limit changed (bits). */
-#define QO_GUARD_CLAMPED 1u      /* min/max of the map */
-#define QO_GUARD_SATURATED 2u    /* the register type's range */
-#define QO_GUARD_RATE_LIMITED 4u /* max_step */
+#define QO_JOINT_GUARD_CLAMPED 1u      /* min/max of the map */
+#define QO_JOINT_GUARD_SATURATED 2u    /* the register type's range */
+#define QO_JOINT_GUARD_RATE_LIMITED 4u /* max_step */
 
 /* Nothing known; step and type range from the joint `j`. */
 void qo_joint_guard_init(qo_joint_guard *g, const qo_regmap_joint *j);
 
 /* Limits the finite `target` (joint units) and packs it into regs (the joint's 1 or 2
- * registers); g->cmd is the raw value packed. *changed gets the QO_GUARD_* bits. Returns
+ * registers); g->cmd is the raw value packed. *changed gets the QO_JOINT_GUARD_* bits. Returns
  * QO_OK, or QO_E_INFEASIBLE (nothing may be sent to this joint's slave; regs unspecified,
  * g->uncertain set). */
 qo_status qo_joint_guard_limit(qo_joint_guard *g, const qo_regmap_joint *j, double target,

@@ -22,7 +22,7 @@ qo_status qo_modbus_layout_build(const qo_regmap *map, qo_modbus_layout *out)
 {
     struct cell cells[QO_MODBUS_LAYOUT_MAX];
     size_t nc = 0, i, k;
-    qo_modbus_request *r = NULL;
+    qo_modbus_layout_request *r = NULL;
     if (out == NULL) return QO_E_NULL;
     out->n_requests = 0;
     out->n_items = 0;
@@ -33,7 +33,7 @@ qo_status qo_modbus_layout_build(const qo_regmap *map, qo_modbus_layout *out)
     for (i = 0; i < map->n_joints; i++) {
         const qo_regmap_joint *j = &map->joints[i];
         const qo_regmap_slave *sl = qo_regmap_find_slave(map, j->slave);
-        unsigned w = (unsigned)qo_reg_type_width(j->fmt.type);
+        unsigned w = (unsigned)qo_modbus_reg_type_width(j->fmt.type);
         unsigned maxr = sl != NULL ? sl->max_registers : QO_REGMAP_MAX_REGISTERS;
         if (w == 0 || (unsigned)j->address + w > 65536u || w > maxr) return QO_E_CONFIG;
         cells[nc].slave = j->slave;

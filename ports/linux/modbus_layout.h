@@ -4,7 +4,7 @@
  * budget (and so `stream --dry-run`) counts with it, so the two cannot disagree.
  *
  * Index:
- *   qo_modbus_item, qo_modbus_request, qo_modbus_layout
+ *   qo_modbus_layout_item, qo_modbus_layout_request, qo_modbus_layout
  *   qo_modbus_layout_build()   map -> requests
  *
  * Rules: the cells (each joint's target registers, 1 or 2, and every slave's `constant`
@@ -25,25 +25,25 @@
 #define QO_MODBUS_LAYOUT_MAX \
     (QO_REGMAP_MAX_JOINTS + QO_REGMAP_MAX_SLAVES * QO_REGMAP_MAX_WRITES)
 
-typedef struct qo_modbus_item {
+typedef struct qo_modbus_layout_item {
     size_t joint;    /* joint index in the map */
     unsigned offset; /* first register of the joint inside its request */
-} qo_modbus_item;
+} qo_modbus_layout_item;
 
-typedef struct qo_modbus_request {
+typedef struct qo_modbus_layout_request {
     unsigned slave;
     unsigned gap_us;            /* the slave's silence after the request */
     uint16_t start;             /* first register */
     unsigned count;             /* registers, 1..max_registers of the slave */
     uint16_t regs[QO_REGMAP_MAX_REGISTERS]; /* constants filled in; joints packed per tick */
     size_t first_item, n_items; /* the joints it carries: item[first_item ...] */
-} qo_modbus_request;
+} qo_modbus_layout_request;
 
 typedef struct qo_modbus_layout {
     size_t n_requests;
-    qo_modbus_request req[QO_MODBUS_LAYOUT_MAX];
+    qo_modbus_layout_request req[QO_MODBUS_LAYOUT_MAX];
     size_t n_items;
-    qo_modbus_item item[QO_REGMAP_MAX_JOINTS];
+    qo_modbus_layout_item item[QO_REGMAP_MAX_JOINTS];
 } qo_modbus_layout;
 
 /* Fills *out (about 90 KiB: not for the stack) with the requests of one tick of `map`.

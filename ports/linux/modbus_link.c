@@ -28,7 +28,7 @@ static int parse_int(const char *s, size_t len, long lo, long hi, long *out)
     return 0;
 }
 
-qo_status qo_modbus_parse_spec(const char *text, qo_modbus_spec *out)
+qo_status qo_modbus_link_parse_spec(const char *text, qo_modbus_link_spec *out)
 {
     if (out == NULL) return QO_E_NULL;
     memset(out, 0, sizeof *out);
@@ -48,7 +48,7 @@ qo_status qo_modbus_parse_spec(const char *text, qo_modbus_spec *out)
         }
         if (hl >= sizeof out->host) goto bad;
         if (colon != NULL && parse_int(colon + 1, strlen(colon + 1), 0, 65535, &port) != 0) goto bad;
-        out->transport = QO_MODBUS_TCP;
+        out->transport = QO_MODBUS_LINK_TCP;
         if (hl == 0) strcpy(out->host, "127.0.0.1");
         else {
             memcpy(out->host, h, hl);
@@ -61,7 +61,7 @@ qo_status qo_modbus_parse_spec(const char *text, qo_modbus_spec *out)
         const char *d = text + 4, *c1 = strchr(d, ',');
         size_t dl = c1 != NULL ? (size_t)(c1 - d) : strlen(d);
         long baud = 19200;
-        out->transport = QO_MODBUS_RTU;
+        out->transport = QO_MODBUS_LINK_RTU;
         out->parity = 'E';
         out->data_bits = 8;
         out->stop_bits = 1;
@@ -95,10 +95,10 @@ bad:
     return QO_E_CONFIG;
 }
 
-modbus_t *qo_modbus_new_ctx(const qo_modbus_spec *spec)
+modbus_t *qo_modbus_link_new_ctx(const qo_modbus_link_spec *spec)
 {
     if (spec == NULL) return NULL;
-    if (spec->transport == QO_MODBUS_TCP) {
+    if (spec->transport == QO_MODBUS_LINK_TCP) {
         struct in_addr a;
         char port[16];
         /* modbus_new_tcp takes IPv4 literals only; names and IPv6 go through the _pi API. */
@@ -106,7 +106,7 @@ modbus_t *qo_modbus_new_ctx(const qo_modbus_spec *spec)
         snprintf(port, sizeof port, "%d", spec->port);
         return modbus_new_tcp_pi(spec->host, port);
     }
-    if (spec->transport == QO_MODBUS_RTU)
+    if (spec->transport == QO_MODBUS_LINK_RTU)
         return modbus_new_rtu(spec->device, spec->baud, spec->parity, spec->data_bits,
                               spec->stop_bits);
     return NULL;
@@ -114,7 +114,7 @@ modbus_t *qo_modbus_new_ctx(const qo_modbus_spec *spec)
 
 /* ---- backoff and connection ------------------------------------------------------------ */
 
-void qo_modbus_backoff_init(qo_modbus_backoff *b, uint32_t min_us, uint32_t max_us)
+void qo_modbus_link_backoff_init(qo_modbus_link_backoff *b, uint32_t min_us, uint32_t max_us)
 {
     b->min_us = min_us;
     b->max_us = max_us;
@@ -122,12 +122,12 @@ void qo_modbus_backoff_init(qo_modbus_backoff *b, uint32_t min_us, uint32_t max_
     clock_gettime(CLOCK_MONOTONIC, &b->next);
 }
 
-void qo_modbus_backoff_now(qo_modbus_backoff *b)
+void qo_modbus_link_backoff_now(qo_modbus_link_backoff *b)
 {
     clock_gettime(CLOCK_MONOTONIC, &b->next);
 }
 
-int qo_modbus_backoff_due(const qo_modbus_backoff *b)
+int qo_modbus_link_backoff_due(const qo_modbus_link_backoff *b)
 {
     struct timespec now;
     clock_gettime(CLOCK_MONOTONIC, &now);
@@ -135,7 +135,7 @@ int qo_modbus_backoff_due(const qo_modbus_backoff *b)
            (now.tv_sec == b->next.tv_sec && now.tv_nsec >= b->next.tv_nsec);
 }
 
-uint32_t qo_modbus_backoff_failed(qo_modbus_backoff *b)
+uint32_t qo_modbus_link_backoff_failed(qo_modbus_link_backoff *b)
 {
     uint64_t w = b->cur_us == 0 ? b->min_us : (uint64_t)b->cur_us * 2u;
     if (w > b->max_us) w = b->max_us;
@@ -150,27 +150,27 @@ uint32_t qo_modbus_backoff_failed(qo_modbus_backoff *b)
     return b->cur_us;
 }
 
-void qo_modbus_backoff_reset(qo_modbus_backoff *b)
+void qo_modbus_link_backoff_reset(qo_modbus_link_backoff *b)
 {
     b->cur_us = 0;
 }
 
-qo_status qo_modbus_link_connect(modbus_t *ctx, const qo_modbus_spec *spec, int rs485,
-                                 qo_modbus_tcp *tcp)
+qo_status qo_modbus_link_connect(modbus_t *ctx, const qo_modbus_link_spec *spec, int rs485,
+                                 qo_modbus_link_tcp *tcp)
 {
     if (ctx == NULL || spec == NULL) return QO_E_NULL;
     modbus_close(ctx);
     if (modbus_connect(ctx) != 0) return errno == ETIMEDOUT ? QO_E_TIMEOUT : QO_E_DISCONNECTED;
-    if (spec->transport == QO_MODBUS_RTU && rs485)
+    if (spec->transport == QO_MODBUS_LINK_RTU && rs485)
         (void)modbus_rtu_set_serial_mode(ctx, MODBUS_RTU_RS485);
-    if (tcp != NULL) qo_modbus_tcp_reset(tcp, modbus_get_socket(ctx));
+    if (tcp != NULL) qo_modbus_link_tcp_reset(tcp, modbus_get_socket(ctx));
     else modbus_flush(ctx);
     return QO_OK;
 }
 
 /* ---- TCP ------------------------------------------------------------------------------- */
 
-void qo_modbus_tcp_reset(qo_modbus_tcp *t, int fd)
+void qo_modbus_link_tcp_reset(qo_modbus_link_tcp *t, int fd)
 {
     uint16_t tid;
     if (t == NULL) return;
@@ -182,14 +182,14 @@ void qo_modbus_tcp_reset(qo_modbus_tcp *t, int fd)
     clock_gettime(CLOCK_MONOTONIC, &t->last_rx);
 }
 
-qo_status qo_modbus_tcp_send(qo_modbus_tcp *t, unsigned unit, const uint8_t *pdu, size_t len,
-                             int tag)
+qo_status qo_modbus_link_tcp_send(qo_modbus_link_tcp *t, unsigned unit, const uint8_t *pdu,
+                                  size_t len, int tag)
 {
-    uint8_t adu[7 + QO_MODBUS_PDU_MAX];
-    qo_modbus_tcp_slot *sl;
+    uint8_t adu[7 + QO_MODBUS_LINK_PDU_MAX];
+    qo_modbus_link_tcp_slot *sl;
     size_t off = 0;
     if (t == NULL || pdu == NULL) return QO_E_NULL;
-    if (len < 1 || len > QO_MODBUS_PDU_MAX || unit > 255) return QO_E_RANGE;
+    if (len < 1 || len > QO_MODBUS_LINK_PDU_MAX || unit > 255) return QO_E_RANGE;
     sl = &t->slot[unit];
     if (t->fd < 0 || sl->busy) return QO_E_STATE;
     t->next_tid++;
@@ -218,15 +218,15 @@ qo_status qo_modbus_tcp_send(qo_modbus_tcp *t, unsigned unit, const uint8_t *pdu
 
 /* Takes every complete frame out of the receive buffer. QO_E_PROTOCOL when a header is not
  * Modbus TCP (protocol id, length): after that the byte stream cannot be re-framed. */
-static qo_status parse_frames(qo_modbus_tcp *t)
+static qo_status parse_frames(qo_modbus_link_tcp *t)
 {
     while (t->rx_len >= 7) {
         const uint8_t *f = t->rx;
         unsigned tid = ((unsigned)f[0] << 8) | f[1];
         unsigned proto = ((unsigned)f[2] << 8) | f[3];
         unsigned len = ((unsigned)f[4] << 8) | f[5];
-        qo_modbus_tcp_slot *sl = &t->slot[f[6]];
-        if (proto != 0 || len < 2 || len > QO_MODBUS_PDU_MAX + 1) return QO_E_PROTOCOL;
+        qo_modbus_link_tcp_slot *sl = &t->slot[f[6]];
+        if (proto != 0 || len < 2 || len > QO_MODBUS_LINK_PDU_MAX + 1) return QO_E_PROTOCOL;
         if (t->rx_len < 6 + (size_t)len) break;
         if (sl->busy && !sl->done && sl->tid == tid) {
             sl->done = 1;
@@ -252,7 +252,7 @@ static int ms_until(const struct timespec *deadline)
     return (int)((ns + 999999) / 1000000);
 }
 
-qo_status qo_modbus_tcp_pump(qo_modbus_tcp *t, int unit, const struct timespec *deadline)
+qo_status qo_modbus_link_tcp_pump(qo_modbus_link_tcp *t, int unit, const struct timespec *deadline)
 {
     if (t == NULL) return QO_E_NULL;
     if (t->fd < 0) return QO_E_DISCONNECTED;
@@ -278,25 +278,25 @@ qo_status qo_modbus_tcp_pump(qo_modbus_tcp *t, int unit, const struct timespec *
     }
 }
 
-int qo_modbus_tcp_busy(const qo_modbus_tcp *t, unsigned unit)
+int qo_modbus_link_tcp_busy(const qo_modbus_link_tcp *t, unsigned unit)
 {
     return t != NULL && unit <= 255 && t->slot[unit].busy;
 }
 
-int qo_modbus_tcp_done(const qo_modbus_tcp *t, unsigned unit)
+int qo_modbus_link_tcp_done(const qo_modbus_link_tcp *t, unsigned unit)
 {
     return t != NULL && unit <= 255 && t->slot[unit].busy && t->slot[unit].done;
 }
 
-int qo_modbus_tcp_take(qo_modbus_tcp *t, unsigned unit, qo_modbus_tcp_slot *out)
+int qo_modbus_link_tcp_take(qo_modbus_link_tcp *t, unsigned unit, qo_modbus_link_tcp_slot *out)
 {
-    if (!qo_modbus_tcp_done(t, unit) || out == NULL) return 0;
+    if (!qo_modbus_link_tcp_done(t, unit) || out == NULL) return 0;
     *out = t->slot[unit];
     memset(&t->slot[unit], 0, sizeof t->slot[unit]);
     return 1;
 }
 
-void qo_modbus_tcp_abandon(qo_modbus_tcp *t, unsigned unit)
+void qo_modbus_link_tcp_abandon(qo_modbus_link_tcp *t, unsigned unit)
 {
     if (t != NULL && unit <= 255) memset(&t->slot[unit], 0, sizeof t->slot[unit]);
 }

@@ -17,7 +17,7 @@ const qo_modbus_sink_settings qo_modbus_sink_settings_default = {
     20000u,                 /* response_timeout_us */
     5000u,                  /* byte_timeout_us */
     5u,                     /* fail_threshold */
-    QO_MODBUS_ON_FAIL_HOLD, /* on_fail */
+    QO_MODBUS_SINK_ON_FAIL_HOLD, /* on_fail */
     50000u,                 /* reconnect_min_us */
     2000000u,               /* reconnect_max_us */
     0,                      /* rs485 */
@@ -31,19 +31,19 @@ const qo_modbus_sink_settings qo_modbus_sink_settings_default = {
 struct qo_modbus_sink {
     const qo_regmap *map;
     qo_modbus_sink_settings set;
-    qo_modbus_spec spec;
+    qo_modbus_link_spec spec;
     modbus_t *ctx;
     int connected, closed, disabled;
     qo_modbus_layout *lay;  /* the requests of one tick */
     qo_joint_guard *js;
-    qo_modbus_backoff backoff;
+    qo_modbus_link_backoff backoff;
     unsigned bus_failures; /* consecutive ticks failed on the bus (argument errors excluded) */
     unsigned cur_slave;    /* slave of the request in progress (modbus_set_slave) */
     int drained;           /* RTU: the line was drained this tick */
     int last_errno;        /* errno of the last failed request */
     struct timespec tick_deadline; /* TCP: the tick waits for outstanding replies until this */
     uint32_t silence_us;   /* the effective silence before a TCP link counts as broken */
-    qo_modbus_tcp *tcp;    /* TCP: requests matched by transaction id; NULL on RTU */
+    qo_modbus_link_tcp *tcp; /* TCP: requests matched by transaction id; NULL on RTU */
     int connect_ok;        /* the last do_connect got the link up (its requests failed) */
     int in_tick;           /* inside write() or settle: tick_deadline bounds the waits */
     qo_modbus_sink_stats st;
@@ -115,13 +115,13 @@ static void link_down(qo_modbus_sink *s)
         size_t i;
         s->st.stale_replies += s->tcp->stale;
         s->tcp->stale = 0;
-        qo_modbus_tcp_reset(s->tcp, -1);
+        qo_modbus_link_tcp_reset(s->tcp, -1);
         /* an outstanding write's reply will never be read: old or new, read back */
         for (i = 0; i < s->map->n_joints; i++) s->js[i].pend = 0;
     }
     s->connected = 0;
     s->st.common.connected = 0;
-    qo_modbus_backoff_now(&s->backoff); /* first reconnection may be tried at once */
+    qo_modbus_link_backoff_now(&s->backoff); /* first reconnection may be tried at once */
 }
 
 /* One request's bookkeeping after a libmodbus call that returned rc. */
@@ -163,7 +163,7 @@ static int64_t us_between(const struct timespec *a, const struct timespec *b)
  * what it carried, or, after an exception, what it held before. */
 static void group_answered(qo_modbus_sink *s, size_t g, int applied)
 {
-    const qo_modbus_request *gr = &s->lay->req[g];
+    const qo_modbus_layout_request *gr = &s->lay->req[g];
     size_t i;
     for (i = 0; i < gr->n_items; i++)
         qo_joint_guard_answered(&s->js[s->lay->item[gr->first_item + i].joint], applied);
@@ -172,7 +172,7 @@ static void group_answered(qo_modbus_sink *s, size_t g, int applied)
 /* The meaning of a reply PDU to a request with function code fc: QO_OK (rregs filled for
  * FC03, when rregs is not NULL); QO_E_PROTOCOL for an exception (*applied 0) or a malformed
  * reply (*applied 1: the drive took the request, what it did is unknown). */
-static qo_status judge_reply(qo_modbus_sink *s, const qo_modbus_tcp_slot *r, unsigned count,
+static qo_status judge_reply(qo_modbus_sink *s, const qo_modbus_link_tcp_slot *r, unsigned count,
                              uint16_t *rregs, int *applied)
 {
     unsigned k;
@@ -202,9 +202,9 @@ bad:
 /* A reply that came after the call that sent its request returned: taken and applied. */
 static void take_late(qo_modbus_sink *s, unsigned slave)
 {
-    qo_modbus_tcp_slot r;
+    qo_modbus_link_tcp_slot r;
     int applied;
-    if (!qo_modbus_tcp_take(s->tcp, slave, &r)) return;
+    if (!qo_modbus_link_tcp_take(s->tcp, slave, &r)) return;
     s->st.late_replies++;
     (void)judge_reply(s, &r, 0, NULL, &applied);
     /* a late read-back or init write changes nothing: its joints are read back again */
@@ -216,7 +216,7 @@ static void take_late(qo_modbus_sink *s, unsigned slave)
 static qo_status tcp_collect(qo_modbus_sink *s)
 {
     size_t i;
-    qo_status st = qo_modbus_tcp_pump(s->tcp, -1, NULL);
+    qo_status st = qo_modbus_link_tcp_pump(s->tcp, -1, NULL);
     if (st != QO_OK) {
         if (st == QO_E_PROTOCOL) s->st.protocol_errors++;
         return QO_E_DISCONNECTED;
@@ -234,13 +234,13 @@ static qo_status tcp_wait_free(qo_modbus_sink *s, unsigned slave)
 {
     struct timespec now;
     qo_status st;
-    if (!qo_modbus_tcp_busy(s->tcp, slave)) return QO_OK;
+    if (!qo_modbus_link_tcp_busy(s->tcp, slave)) return QO_OK;
     if (!s->in_tick) {
         /* outside a tick (open, reconnection, feedback reads): one response timeout */
         now_ts(&s->tick_deadline);
         add_us(&s->tick_deadline, s->set.response_timeout_us);
     }
-    st = qo_modbus_tcp_pump(s->tcp, (int)slave, &s->tick_deadline);
+    st = qo_modbus_link_tcp_pump(s->tcp, (int)slave, &s->tick_deadline);
     if (st == QO_OK) {
         take_late(s, slave);
         return QO_OK;
@@ -256,7 +256,7 @@ static qo_status tcp_wait_free(qo_modbus_sink *s, unsigned slave)
         return QO_E_DISCONNECTED;
     }
     s->st.abandoned++;
-    qo_modbus_tcp_abandon(s->tcp, slave);
+    qo_modbus_link_tcp_abandon(s->tcp, slave);
     mark_slave_uncertain(s, slave);
     return QO_OK;
 }
@@ -270,10 +270,10 @@ static qo_status xfer(qo_modbus_sink *s, unsigned slave, int fc, uint16_t addr, 
                       const uint16_t *wregs, uint16_t *rregs, int tag, int *uncertain,
                       int *pending, int *sent)
 {
-    uint8_t pdu[QO_MODBUS_PDU_MAX];
+    uint8_t pdu[QO_MODBUS_LINK_PDU_MAX];
     size_t len = 0, k;
     struct timespec dl;
-    qo_modbus_tcp_slot r;
+    qo_modbus_link_tcp_slot r;
     qo_status st;
     int rc, applied;
     *uncertain = 0;
@@ -312,11 +312,11 @@ static qo_status xfer(qo_modbus_sink *s, unsigned slave, int fc, uint16_t addr, 
         }
     }
     s->st.requests++;
-    st = qo_modbus_tcp_send(s->tcp, slave, pdu, len, tag);
+    st = qo_modbus_link_tcp_send(s->tcp, slave, pdu, len, tag);
     if (st == QO_OK) {
         now_ts(&dl);
         add_us(&dl, s->set.response_timeout_us);
-        st = qo_modbus_tcp_pump(s->tcp, (int)slave, &dl);
+        st = qo_modbus_link_tcp_pump(s->tcp, (int)slave, &dl);
     }
     if (st == QO_E_TIMEOUT) {
         s->st.timeouts++;
@@ -333,7 +333,7 @@ static qo_status xfer(qo_modbus_sink *s, unsigned slave, int fc, uint16_t addr, 
         s->st.last_error = QO_E_DISCONNECTED;
         return QO_E_DISCONNECTED;
     }
-    (void)qo_modbus_tcp_take(s->tcp, slave, &r);
+    (void)qo_modbus_link_tcp_take(s->tcp, slave, &r);
     st = judge_reply(s, &r, count, rregs, &applied);
     if (st != QO_OK) {
         s->st.requests_failed++;
@@ -350,7 +350,7 @@ static qo_status send_writes(qo_modbus_sink *s, int disable)
     int unc;
     for (i = 0; i < s->map->n_slaves; i++) {
         const qo_regmap_slave *sl = &s->map->slaves[i];
-        const qo_reg_write *w = disable ? sl->disable : sl->init;
+        const qo_regmap_write *w = disable ? sl->disable : sl->init;
         size_t n = disable ? sl->n_disable : sl->n_init;
         for (k = 0; k < n; k++) {
             qo_status st;
@@ -373,10 +373,10 @@ static qo_status read_joint_feedback(qo_modbus_sink *s, size_t i, double *raw)
     const qo_regmap_slave *sl = qo_regmap_find_slave(s->map, j->slave);
     *raw = 0.0;
     st = xfer(s, j->slave, MODBUS_FC_READ_HOLDING_REGISTERS, j->feedback,
-              (unsigned)qo_reg_type_width(j->fmt.type), NULL, regs, -1, &unc, &pend, &sent);
+              (unsigned)qo_modbus_reg_type_width(j->fmt.type), NULL, regs, -1, &unc, &pend, &sent);
     if (sl != NULL) sleep_us(sl->gap_us);
     if (st != QO_OK) return st;
-    return qo_reg_unpack_raw(j->fmt.type, j->fmt.order, regs, raw);
+    return qo_modbus_reg_unpack_raw(j->fmt.type, j->fmt.order, regs, raw);
 }
 
 static qo_status seed_from_feedback(qo_modbus_sink *s)
@@ -416,14 +416,14 @@ static qo_status do_connect(qo_modbus_sink *s)
     if (st != QO_OK) {
         modbus_close(s->ctx);
         s->connected = 0;
-        if (s->tcp != NULL) qo_modbus_tcp_reset(s->tcp, -1);
+        if (s->tcp != NULL) qo_modbus_link_tcp_reset(s->tcp, -1);
         s->connect_ok = 1; /* the link came up; the drives' answers did not */
         return st;
     }
     s->st.common.connected = 1;
     s->st.common.consecutive_failures = 0;
     s->bus_failures = 0;
-    qo_modbus_backoff_reset(&s->backoff);
+    qo_modbus_link_backoff_reset(&s->backoff);
     s->st.backoff_us = 0;
     return QO_OK;
 }
@@ -445,7 +445,7 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
     if (settings->response_timeout_us > 10000000u || settings->byte_timeout_us > 10000000u ||
         settings->open_timeout_us > 10000000u || settings->silence_us > 60000000u ||
         settings->reconnect_max_us < settings->reconnect_min_us ||
-        (settings->on_fail != QO_MODBUS_ON_FAIL_HOLD && settings->on_fail != QO_MODBUS_ON_FAIL_DISABLE))
+        (settings->on_fail != QO_MODBUS_SINK_ON_FAIL_HOLD && settings->on_fail != QO_MODBUS_SINK_ON_FAIL_DISABLE))
         return QO_E_CONFIG;
     /* A map may be built by hand rather than by qo_regmap_load: check what the sink relies on. */
     for (i = 0; i < map->n_slaves; i++)
@@ -454,9 +454,9 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
     for (i = 0; i < map->n_joints; i++) {
         const qo_regmap_joint *j = &map->joints[i];
         const qo_regmap_slave *sl = qo_regmap_find_slave(map, j->slave);
-        size_t w = qo_reg_type_width(j->fmt.type);
+        size_t w = qo_modbus_reg_type_width(j->fmt.type);
         double raw;
-        if (w == 0 || qo_reg_raw_from_value(&j->fmt, 0.0, &raw) != QO_OK ||
+        if (w == 0 || qo_modbus_reg_raw_from_value(&j->fmt, 0.0, &raw) != QO_OK ||
             (size_t)j->address + w > 65536u || j->slave < 1 || j->slave > 255 ||
             !(j->max_step >= 0.0) || !isfinite(j->max_step) || j->min > j->max ||
             (sl != NULL && w > sl->max_registers))
@@ -467,9 +467,11 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
     s->map = map;
     s->set = *settings;
     s->st.last_error = QO_OK;
-    qo_modbus_backoff_init(&s->backoff, settings->reconnect_min_us, settings->reconnect_max_us);
-    st = qo_modbus_parse_spec(spec, &s->spec);
-    if (st == QO_OK && (s->spec.transport == QO_MODBUS_TCP && s->spec.port == 0)) st = QO_E_CONFIG;
+    qo_modbus_link_backoff_init(&s->backoff, settings->reconnect_min_us,
+                                settings->reconnect_max_us);
+    st = qo_modbus_link_parse_spec(spec, &s->spec);
+    if (st == QO_OK && (s->spec.transport == QO_MODBUS_LINK_TCP && s->spec.port == 0))
+        st = QO_E_CONFIG;
     if (st == QO_OK) {
         s->js = calloc(map->n_joints, sizeof *s->js);
         if (s->js == NULL) st = QO_E_CAPACITY;
@@ -479,10 +481,10 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
         st = s->lay == NULL ? QO_E_CAPACITY : qo_modbus_layout_build(map, s->lay);
         if (st == QO_OK) s->st.groups = (unsigned)s->lay->n_requests;
     }
-    if (st == QO_OK && s->spec.transport == QO_MODBUS_TCP) {
+    if (st == QO_OK && s->spec.transport == QO_MODBUS_LINK_TCP) {
         s->tcp = calloc(1, sizeof *s->tcp);
         if (s->tcp == NULL) st = QO_E_CAPACITY;
-        else qo_modbus_tcp_reset(s->tcp, -1);
+        else qo_modbus_link_tcp_reset(s->tcp, -1);
     }
     s->silence_us = settings->silence_us;
     if (s->silence_us == 0) {
@@ -493,7 +495,7 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
     }
     if (st == QO_OK) {
         for (i = 0; i < map->n_joints; i++) qo_joint_guard_init(&s->js[i], &map->joints[i]);
-        s->ctx = qo_modbus_new_ctx(&s->spec);
+        s->ctx = qo_modbus_link_new_ctx(&s->spec);
         if (s->ctx == NULL) st = QO_E_CONFIG;
     }
     if (st == QO_OK) {
@@ -512,7 +514,7 @@ qo_status qo_modbus_sink_open(const char *spec, const qo_regmap *map,
              * does not come up at all fails at once. */
             uint32_t back = settings->reconnect_min_us;
             int tries;
-            for (tries = 0; st != QO_OK && s->connect_ok && tries < QO_MODBUS_OPEN_RETRIES; tries++) {
+            for (tries = 0; st != QO_OK && s->connect_ok && tries < QO_MODBUS_SINK_OPEN_RETRIES; tries++) {
                 s->st.reconnect_attempts++;
                 sleep_us(back);
                 back = back > settings->reconnect_max_us / 2 ? settings->reconnect_max_us : 2 * back;
@@ -537,9 +539,9 @@ static qo_status limit_joint(qo_modbus_sink *s, size_t i, double target, uint16_
 {
     unsigned changed;
     qo_status st = qo_joint_guard_limit(&s->js[i], &s->map->joints[i], target, regs, &changed);
-    if (changed & QO_GUARD_CLAMPED) s->st.clamped++;
-    if (changed & QO_GUARD_SATURATED) s->st.saturated++;
-    if (changed & QO_GUARD_RATE_LIMITED) s->st.rate_limited++;
+    if (changed & QO_JOINT_GUARD_CLAMPED) s->st.clamped++;
+    if (changed & QO_JOINT_GUARD_SATURATED) s->st.saturated++;
+    if (changed & QO_JOINT_GUARD_RATE_LIMITED) s->st.rate_limited++;
     if (st != QO_OK) s->st.blocked++;
     else if (changed) s->st.common.limited++;
     return st;
@@ -592,9 +594,9 @@ static qo_status settle_slave(qo_modbus_sink *s, size_t g0)
         for (i = 0; i < s->lay->req[g].n_items; i++)
             if (s->js[s->lay->item[s->lay->req[g].first_item + i].joint].uncertain) any = 1;
     if (!any) return QO_OK;
-    if (s->spec.transport == QO_MODBUS_RTU) drain_line(s);
+    if (s->spec.transport == QO_MODBUS_LINK_RTU) drain_line(s);
     for (g = g0; g < s->lay->n_requests && s->lay->req[g].slave == slave; g++) {
-        const qo_modbus_request *gr = &s->lay->req[g];
+        const qo_modbus_layout_request *gr = &s->lay->req[g];
         uint16_t regs[QO_REGMAP_MAX_REGISTERS];
         qo_status st;
         int unc, pend, sent, need = 0;
@@ -614,13 +616,14 @@ static qo_status settle_slave(qo_modbus_sink *s, size_t g0)
             return st;
         if (st != QO_OK) s->st.readback_fallbacks++;
         for (i = 0; i < gr->n_items; i++) {
-            const qo_modbus_item *it = &s->lay->item[gr->first_item + i];
+            const qo_modbus_layout_item *it = &s->lay->item[gr->first_item + i];
             const qo_regmap_joint *j = &s->map->joints[it->joint];
             qo_joint_guard *q = &s->js[it->joint];
             double raw;
             if (!q->uncertain) continue;
             if (st == QO_OK) {
-                if (qo_reg_unpack_raw(j->fmt.type, j->fmt.order, regs + it->offset, &raw) != QO_OK)
+                if (qo_modbus_reg_unpack_raw(j->fmt.type, j->fmt.order, regs + it->offset,
+                                             &raw) != QO_OK)
                     return QO_E_PROTOCOL;
             } else if (j->has_feedback) {
                 /* Weaker: feedback lags the target (see modbus_sink.h). */
@@ -639,7 +642,7 @@ static qo_status settle_slave(qo_modbus_sink *s, size_t g0)
 static void fail_action(qo_modbus_sink *s)
 {
     s->st.actions++;
-    if (s->set.on_fail == QO_MODBUS_ON_FAIL_DISABLE) {
+    if (s->set.on_fail == QO_MODBUS_SINK_ON_FAIL_DISABLE) {
         s->disabled = 1;
         s->st.disabled = 1;
         if (s->connected) (void)send_writes(s, 1); /* best effort: the link is failing */
@@ -672,7 +675,7 @@ static qo_status tick_result(qo_modbus_sink *s, qo_status st)
     s->st.last_error = st;
     if (st == QO_E_DISCONNECTED && s->connected) {
         link_down(s);
-        if (s->set.on_fail == QO_MODBUS_ON_FAIL_DISABLE) {
+        if (s->set.on_fail == QO_MODBUS_SINK_ON_FAIL_DISABLE) {
             s->disabled = 1;
             s->st.disabled = 1;
             s->st.actions++;
@@ -707,7 +710,7 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
     }
     s->in_tick = 1;
     for (g = 0; g < s->lay->n_requests && st == QO_OK; g++) {
-        qo_modbus_request *gr = &s->lay->req[g];
+        qo_modbus_layout_request *gr = &s->lay->req[g];
         int unc, pend, sent;
         if (g == 0 || gr->slave != s->lay->req[g - 1].slave) {
             /* First group of a slave: read back what is uncertain, then limit and pack every
@@ -727,7 +730,7 @@ qo_status qo_modbus_sink_write(qo_modbus_sink *s, const float *targets, size_t n
             if (st != QO_OK) break;
             for (h = g; h < s->lay->n_requests && s->lay->req[h].slave == gr->slave; h++)
                 for (i = 0; i < s->lay->req[h].n_items; i++) {
-                    const qo_modbus_item *it = &s->lay->item[s->lay->req[h].first_item + i];
+                    const qo_modbus_layout_item *it = &s->lay->item[s->lay->req[h].first_item + i];
                     if (limit_joint(s, it->joint, (double)targets[it->joint],
                                     s->lay->req[h].regs + it->offset) != QO_OK)
                         blocked = 1;
@@ -792,14 +795,14 @@ qo_status qo_modbus_sink_service(qo_modbus_sink *s)
     if (s == NULL) return QO_E_NULL;
     if (s->closed) return QO_E_STATE;
     if (s->connected) return QO_OK;
-    if (!qo_modbus_backoff_due(&s->backoff)) return QO_E_DISCONNECTED;
+    if (!qo_modbus_link_backoff_due(&s->backoff)) return QO_E_DISCONNECTED;
     s->st.reconnect_attempts++;
     st = do_connect(s);
     if (st == QO_OK) {
         s->st.common.reconnects++;
         return QO_OK;
     }
-    s->st.backoff_us = qo_modbus_backoff_failed(&s->backoff);
+    s->st.backoff_us = qo_modbus_link_backoff_failed(&s->backoff);
     return st;
 }
 
@@ -830,8 +833,8 @@ qo_status qo_modbus_sink_seed(qo_modbus_sink *s, const float *positions, size_t 
         const qo_regmap_joint *j = &s->map->joints[i];
         uint16_t regs[2];
         double raw, packed;
-        (void)qo_reg_raw_from_value(&j->fmt, (double)positions[i], &raw);
-        (void)qo_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
+        (void)qo_modbus_reg_raw_from_value(&j->fmt, (double)positions[i], &raw);
+        (void)qo_modbus_reg_pack_raw(j->fmt.type, j->fmt.order, raw, regs, &packed);
         s->js[i].have = 1;
         s->js[i].lo = s->js[i].hi = packed;
     }
@@ -852,7 +855,7 @@ qo_status qo_modbus_sink_read_feedback(qo_modbus_sink *s, float *out, size_t n)
         double raw, v;
         if (!s->map->joints[i].has_feedback) continue;
         st = read_joint_feedback(s, i, &raw);
-        if (st == QO_OK) st = qo_reg_value_from_raw(&s->map->joints[i].fmt, raw, &v);
+        if (st == QO_OK) st = qo_modbus_reg_value_from_raw(&s->map->joints[i].fmt, raw, &v);
         if (st == QO_OK) out[i] = (float)v;
     }
     if (st != QO_OK)
@@ -885,7 +888,7 @@ double qo_modbus_sink_settle_time(const qo_modbus_sink *s, const float *final, s
     double ticks = 1.0;
     size_t i;
     if (!args_ok(s, final, n) || !(period_s > 0.0) || !isfinite(period_s))
-        return QO_MODBUS_SETTLE_SLACK_S;
+        return QO_MODBUS_SINK_SETTLE_SLACK_S;
     for (i = 0; i < n; i++) {
         const qo_joint_guard *q = &s->js[i];
         double g = goal_raw(s, i, (double)final[i]), d, t;
@@ -894,7 +897,7 @@ double qo_modbus_sink_settle_time(const qo_modbus_sink *s, const float *final, s
         t = ceil(d / q->step) + 1.0;
         if (t > ticks) ticks = t;
     }
-    return 2.0 * ticks * period_s + QO_MODBUS_SETTLE_SLACK_S;
+    return 2.0 * ticks * period_s + QO_MODBUS_SINK_SETTLE_SLACK_S;
 }
 
 static double since_s(const struct timespec *t0)
@@ -923,7 +926,7 @@ static qo_status confirm_targets(qo_modbus_sink *s)
 }
 
 static void settle_report(const qo_modbus_sink *s, const double *goal,
-                          qo_modbus_settle_report *out)
+                          qo_modbus_sink_settle_report *out)
 {
     size_t i;
     out->reached = 1;
@@ -931,8 +934,8 @@ static void settle_report(const qo_modbus_sink *s, const double *goal,
         const qo_regmap_joint *j = &s->map->joints[i];
         const qo_joint_guard *q = &s->js[i];
         double v = NAN, gv = NAN;
-        (void)qo_reg_value_from_raw(&j->fmt, goal[i], &gv);
-        if (q->have && q->lo == q->hi) (void)qo_reg_value_from_raw(&j->fmt, q->lo, &v);
+        (void)qo_modbus_reg_value_from_raw(&j->fmt, goal[i], &gv);
+        if (q->have && q->lo == q->hi) (void)qo_modbus_reg_value_from_raw(&j->fmt, q->lo, &v);
         out->goal[i] = gv;
         out->held[i] = v;
         out->short_of[i] = !joint_holds(s, i, goal[i]);
@@ -942,7 +945,7 @@ static void settle_report(const qo_modbus_sink *s, const double *goal,
 
 qo_status qo_modbus_sink_settle(qo_modbus_sink *s, const float *final, size_t n,
                                 double period_s, double deadline_s,
-                                qo_modbus_settle_report *out)
+                                qo_modbus_sink_settle_report *out)
 {
     double goal[QO_REGMAP_MAX_JOINTS];
     struct timespec t0, next;
@@ -1050,12 +1053,12 @@ static void sink_service(void *ctx)
 static qo_status sink_stats(void *ctx, qo_sink_stats *out)
 {
     const qo_modbus_sink *s = ctx;
-    return qo_port_sink_stats(s != NULL ? &s->st.common : NULL, out);
+    return qo_sink_view_stats(s != NULL ? &s->st.common : NULL, out);
 }
 
 qo_status qo_modbus_sink_as_sink(qo_modbus_sink *s, qo_sink *out)
 {
     static const qo_sink ops = { .write = sink_write, .flush = sink_flush, .close = sink_close,
                                  .stats = sink_stats, .service = sink_service };
-    return qo_port_sink_view(s, &ops, out);
+    return qo_sink_view_fill(s, &ops, out);
 }

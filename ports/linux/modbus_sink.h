@@ -63,7 +63,7 @@
  *      timeout plus the drain (about two response timeouts) that slips past both can still
  *      be misattributed: RTU has no transaction id; keep the timeout above the drive's worst
  *      reply latency.
- *   4. the targets and the slaves' constant registers are packed (linux/modbus_pack.h) and
+ *   4. the targets and the slaves' constant registers are packed (linux/modbus_reg.h) and
  *      sent as one FC16 per run of strictly contiguous registers of one slave, split at the
  *      slave's max_registers (never inside a 32-bit value); runs go out in slave, then
  *      address order, each followed by the slave's gap_us of silence;
@@ -110,10 +110,10 @@
 #include "linux/modbus_link.h"
 #include "linux/regmap.h"
 
-typedef enum qo_modbus_fail_action {
-    QO_MODBUS_ON_FAIL_HOLD = 0, /* drives keep their last target; resume after reconnect */
-    QO_MODBUS_ON_FAIL_DISABLE   /* send the disable writes; stay disabled until enable() */
-} qo_modbus_fail_action;
+typedef enum qo_modbus_sink_fail_action {
+    QO_MODBUS_SINK_ON_FAIL_HOLD = 0, /* drives keep their last target; resume after reconnect */
+    QO_MODBUS_SINK_ON_FAIL_DISABLE   /* send the disable writes; stay disabled until enable() */
+} qo_modbus_sink_fail_action;
 
 typedef struct qo_modbus_sink_settings {
     uint32_t response_timeout_us; /* first reply byte (and TCP connect); keep it below the
@@ -123,7 +123,7 @@ typedef struct qo_modbus_sink_settings {
     uint32_t byte_timeout_us;     /* between reply bytes; 0 = whole reply within the response
                                      timeout */
     unsigned fail_threshold;      /* consecutive failed ticks before the action; >= 1 */
-    qo_modbus_fail_action on_fail;
+    qo_modbus_sink_fail_action on_fail;
     uint32_t reconnect_min_us;    /* first backoff after a failed reconnection; >= 1 */
     uint32_t reconnect_max_us;    /* backoff ceiling; >= reconnect_min_us */
     int rs485;                    /* RTU: try MODBUS_RTU_RS485 mode (failure is ignored:
@@ -184,11 +184,11 @@ typedef struct qo_modbus_sink qo_modbus_sink;
 
 /* qo_modbus_sink_open retries a connection whose link came up but whose init writes or
  * feedback reads failed (an exception, a lost reply) this many times, with the backoff. */
-#define QO_MODBUS_OPEN_RETRIES 4
+#define QO_MODBUS_SINK_OPEN_RETRIES 4
 
 /* Validates settings (NULL = defaults) and `map` (kept by pointer: it must outlive the sink),
  * connects to `spec`, sends the init writes and seeds from feedback (retried up to
- * QO_MODBUS_OPEN_RETRIES times with the reconnection backoff when the link came up but a
+ * QO_MODBUS_SINK_OPEN_RETRIES times with the reconnection backoff when the link came up but a
  * request failed: one exception while connecting does not fail the open).
  * Returns QO_OK with *out set; on error *out is NULL and nothing stays open:
  * QO_E_NULL; QO_E_CONFIG (bad spec, empty map, bad settings); QO_E_LIMIT (a zero timeout);
@@ -232,7 +232,7 @@ qo_status qo_modbus_sink_seed(qo_modbus_sink *s, const float *positions, size_t 
 qo_status qo_modbus_sink_read_feedback(qo_modbus_sink *s, float *out, size_t n);
 
 /* What qo_modbus_sink_settle found. Joint units; NaN where nothing is known. */
-typedef struct qo_modbus_settle_report {
+typedef struct qo_modbus_sink_settle_report {
     int reached;                        /* 1: every joint holds its goal (read back) */
     uint64_t ticks;                     /* writes sent while settling */
     double elapsed_s;                   /* time spent settling */
@@ -245,15 +245,15 @@ typedef struct qo_modbus_settle_report {
                                            or read back), NaN when unknown (a write of unknown
                                            outcome) */
     int short_of[QO_REGMAP_MAX_JOINTS]; /* 1 when held != goal (or unknown) at the end */
-} qo_modbus_settle_report;
+} qo_modbus_sink_settle_report;
 
 /* The default settle deadline in seconds for `final` (n joint targets, joint units) at one
  * write per `period_s`: twice the time the max_step catch-up needs from what the drives
  * are known to hold (ceil(distance / max_step) ticks for the slowest joint, plus one), plus
- * QO_MODBUS_SETTLE_SLACK_S for replies and read-backs. A joint without max_step, or whose
- * held value is unknown, needs one tick. Returns the deadline, or QO_MODBUS_SETTLE_SLACK_S
+ * QO_MODBUS_SINK_SETTLE_SLACK_S for replies and read-backs. A joint without max_step, or whose
+ * held value is unknown, needs one tick. Returns the deadline, or QO_MODBUS_SINK_SETTLE_SLACK_S
  * when an argument is NULL, n does not match, a target is not finite or period_s <= 0. */
-#define QO_MODBUS_SETTLE_SLACK_S 0.5
+#define QO_MODBUS_SINK_SETTLE_SLACK_S 0.5
 double qo_modbus_sink_settle_time(const qo_modbus_sink *s, const float *final, size_t n,
                                   double period_s);
 
@@ -271,7 +271,7 @@ double qo_modbus_sink_settle_time(const qo_modbus_sink *s, const float *final, s
  * sink, after the streamer stopped. */
 qo_status qo_modbus_sink_settle(qo_modbus_sink *s, const float *final, size_t n,
                                 double period_s, double deadline_s,
-                                qo_modbus_settle_report *out);
+                                qo_modbus_sink_settle_report *out);
 
 /* Copies the counters (zeroed when s is NULL). QO_OK or QO_E_NULL. */
 qo_status qo_modbus_sink_get_stats(const qo_modbus_sink *s, qo_modbus_sink_stats *out);

@@ -3,7 +3,7 @@
 
 #include <time.h>
 
-uint64_t qo_mono_now_ns(void *ctx)
+uint64_t qo_mono_clock_now_ns(void *ctx)
 {
     struct timespec ts;
     (void)ctx;
@@ -11,7 +11,7 @@ uint64_t qo_mono_now_ns(void *ctx)
     return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
 }
 
-int qo_mono_sleep_until_ns(void *ctx, uint64_t abs_ns)
+int qo_mono_clock_sleep_until_ns(void *ctx, uint64_t abs_ns)
 {
     struct timespec ts;
     (void)ctx;

@@ -98,7 +98,7 @@ static int parse_bool(const char *s, int *out)
     return -1;
 }
 
-qo_status qo_regmap_parse_writes(const char *text, qo_reg_write *out, size_t max, size_t *n)
+qo_status qo_regmap_parse_writes(const char *text, qo_regmap_write *out, size_t max, size_t *n)
 {
     const char *p = text;
     size_t k = 0;
@@ -190,8 +190,8 @@ static void begin_section(struct parser *p, const char *sect)
         j = &p->map->joints[p->map->n_joints];
         memset(j, 0, sizeof *j);
         memcpy(j->name, nm, strlen(nm) + 1);
-        j->fmt.type = QO_REG_TYPE_COUNT_; /* "unset" until type = ... */
-        j->fmt.order = QO_WORD_HI_FIRST;
+        j->fmt.type = QO_MODBUS_REG_TYPE_COUNT_; /* "unset" until type = ... */
+        j->fmt.order = QO_MODBUS_REG_HI_FIRST;
         j->fmt.scale = 1.0;
         j->min = -INFINITY;
         j->max = INFINITY;
@@ -247,16 +247,16 @@ static void joint_key(struct parser *p, const char *key, const char *val)
         if (parse_long(val, 0, 65535, &l)) BAD("address (0..65535)"); else j->address = (uint16_t)l;
     } else if (!strcmp(key, "type")) {
         if (mark(p, JK_TYPE, key)) return;
-        if (!strcmp(val, "int16")) j->fmt.type = QO_REG_INT16;
-        else if (!strcmp(val, "uint16")) j->fmt.type = QO_REG_UINT16;
-        else if (!strcmp(val, "int32")) j->fmt.type = QO_REG_INT32;
-        else if (!strcmp(val, "uint32")) j->fmt.type = QO_REG_UINT32;
-        else if (!strcmp(val, "float32")) j->fmt.type = QO_REG_FLOAT32;
+        if (!strcmp(val, "int16")) j->fmt.type = QO_MODBUS_REG_INT16;
+        else if (!strcmp(val, "uint16")) j->fmt.type = QO_MODBUS_REG_UINT16;
+        else if (!strcmp(val, "int32")) j->fmt.type = QO_MODBUS_REG_INT32;
+        else if (!strcmp(val, "uint32")) j->fmt.type = QO_MODBUS_REG_UINT32;
+        else if (!strcmp(val, "float32")) j->fmt.type = QO_MODBUS_REG_FLOAT32;
         else BAD("type (int16 uint16 int32 uint32 float32)");
     } else if (!strcmp(key, "order")) {
         if (mark(p, JK_ORDER, key)) return;
-        if (!strcmp(val, "hi-first")) j->fmt.order = QO_WORD_HI_FIRST;
-        else if (!strcmp(val, "lo-first")) j->fmt.order = QO_WORD_LO_FIRST;
+        if (!strcmp(val, "hi-first")) j->fmt.order = QO_MODBUS_REG_HI_FIRST;
+        else if (!strcmp(val, "lo-first")) j->fmt.order = QO_MODBUS_REG_LO_FIRST;
         else BAD("order (hi-first or lo-first)");
     } else if (!strcmp(key, "scale")) {
         if (mark(p, JK_SCALE, key)) return;
@@ -290,7 +290,7 @@ static void joint_key(struct parser *p, const char *key, const char *val)
 }
 
 /* Parses a write list; a continuation line appends to the entries already read. */
-static void write_list(struct parser *p, const char *key, const char *val, qo_reg_write *out,
+static void write_list(struct parser *p, const char *key, const char *val, qo_regmap_write *out,
                        size_t *n)
 {
     size_t have = p->cont ? *n : 0, got = 0;
@@ -478,7 +478,7 @@ static void validate(struct parser *p)
             fail(p, QO_E_CONFIG, j->line, "joint '%s' has no '%s'", j->name, missing);
             return;
         }
-        w = qo_reg_type_width(j->fmt.type);
+        w = qo_modbus_reg_type_width(j->fmt.type);
         if ((unsigned)j->address + w - 1 > 65535u ||
             (j->has_feedback && (unsigned)j->feedback + w - 1 > 65535u)) {
             fail(p, QO_E_CONFIG, j->line, "joint '%s': registers run past 65535", j->name);
@@ -497,7 +497,7 @@ static void validate(struct parser *p)
     }
     for (i = 0; i < map->n_joints; i++) {
         const qo_regmap_joint *j = &map->joints[i];
-        unsigned w = (unsigned)qo_reg_type_width(j->fmt.type);
+        unsigned w = (unsigned)qo_modbus_reg_type_width(j->fmt.type);
         sp[ns].slave = j->slave; sp[ns].addr = j->address; sp[ns].n = w;
         sp[ns].line = (unsigned)j->line;
         snprintf(sp[ns].label, sizeof sp[ns].label, "joint '%s' target", j->name);

@@ -2,7 +2,8 @@
  * ports/linux/regmap.h - the Modbus register map of a drive bank, read from an INI file.
  *
  * Index:
- *   qo_regmap, qo_regmap_joint, qo_regmap_slave, qo_reg_write   the parsed map (fixed capacity)
+ *   qo_regmap, qo_regmap_joint, qo_regmap_slave, qo_regmap_write
+ *                            the parsed map (fixed capacity)
  *   qo_regmap_load()         parse a file (inih)
  *   qo_regmap_parse()        parse text in memory (same rules; for tests and embedded maps)
  *   qo_regmap_find_slave()   the settings of one slave id
@@ -59,7 +60,7 @@
 #include <stdint.h>
 
 #include "qorient/status.h"
-#include "linux/modbus_pack.h"
+#include "linux/modbus_reg.h"
 
 #define QO_REGMAP_MAX_JOINTS 64
 #define QO_REGMAP_MAX_SLAVES 16
@@ -69,16 +70,16 @@
 #define QO_REGMAP_MAX_BYTES (1024 * 1024) /* a map file is read up to this size ... */
 #define QO_REGMAP_MAX_LINES 20000         /* ... and this many lines, then refused */
 
-typedef struct qo_reg_write {
+typedef struct qo_regmap_write {
     uint16_t address;
     uint16_t value;
-} qo_reg_write;
+} qo_regmap_write;
 
 typedef struct qo_regmap_joint {
     char name[QO_REGMAP_NAME_MAX];
     unsigned slave;          /* 1..255 */
     uint16_t address;        /* first target register */
-    qo_reg_format fmt;
+    qo_modbus_reg_format fmt;
     double min, max;         /* joint units; -INFINITY / INFINITY when unset */
     double max_step;         /* joint units per tick; 0 = unlimited */
     int has_feedback;
@@ -90,11 +91,11 @@ typedef struct qo_regmap_slave {
     unsigned id;             /* 1..255 */
     unsigned max_registers;  /* 1..123 */
     unsigned gap_us;         /* 0..1000000 */
-    qo_reg_write init[QO_REGMAP_MAX_WRITES];
+    qo_regmap_write init[QO_REGMAP_MAX_WRITES];
     size_t n_init;
-    qo_reg_write disable[QO_REGMAP_MAX_WRITES];
+    qo_regmap_write disable[QO_REGMAP_MAX_WRITES];
     size_t n_disable;
-    qo_reg_write constant[QO_REGMAP_MAX_WRITES];
+    qo_regmap_write constant[QO_REGMAP_MAX_WRITES];
     size_t n_constant;
     int line;                /* line of [slave.ID], 0 for a slave without a section */
 } qo_regmap_slave;
@@ -124,6 +125,6 @@ const qo_regmap_slave *qo_regmap_find_slave(const qo_regmap *map, unsigned id);
 /* Parses "ADDR=VALUE, ADDR=VALUE ..." (commas and/or blanks between entries) into
  * out[0..max-1], *n entries. Returns QO_OK; QO_E_NULL; QO_E_CONFIG for a malformed entry or
  * value out of range; QO_E_CAPACITY for more than max entries. *n is 0 on error. */
-qo_status qo_regmap_parse_writes(const char *text, qo_reg_write *out, size_t max, size_t *n);
+qo_status qo_regmap_parse_writes(const char *text, qo_regmap_write *out, size_t max, size_t *n);
 
 #endif /* QORIENT_REGMAP_H */

@@ -29,7 +29,7 @@ struct sim_joint {
 struct qo_sim {
     const qo_regmap *map;
     qo_sim_settings set;
-    qo_modbus_spec spec;
+    qo_modbus_link_spec spec;
     modbus_t *ctx;
     int listen_fd, client_fd, dev_fd;
     int port;
@@ -86,9 +86,10 @@ static void physics(qo_sim *s)
         q->position += (q->target - q->position) * a;
         if (j->has_feedback) {
             uint16_t regs[2];
-            (void)qo_reg_pack(&j->fmt, q->position, regs); /* saturation is what a drive does */
+            /* saturation is what a drive does */
+            (void)qo_modbus_reg_pack(&j->fmt, q->position, regs);
             s->maps[j->slave]->tab_registers[j->feedback] = regs[0];
-            if (qo_reg_type_width(j->fmt.type) == 2)
+            if (qo_modbus_reg_type_width(j->fmt.type) == 2)
                 s->maps[j->slave]->tab_registers[j->feedback + 1] = regs[1];
         }
     }
@@ -100,10 +101,10 @@ static void note_write(qo_sim *s, unsigned slave, unsigned addr, unsigned n, uin
     size_t i;
     for (i = 0; i < s->map->n_joints; i++) {
         const qo_regmap_joint *j = &s->map->joints[i];
-        unsigned w = (unsigned)qo_reg_type_width(j->fmt.type);
+        unsigned w = (unsigned)qo_modbus_reg_type_width(j->fmt.type);
         double v;
         if (j->slave != slave || j->address + w <= addr || addr + n <= j->address) continue;
-        if (qo_reg_unpack(&j->fmt, &s->maps[slave]->tab_registers[j->address], &v) != QO_OK)
+        if (qo_modbus_reg_unpack(&j->fmt, &s->maps[slave]->tab_registers[j->address], &v) != QO_OK)
             continue; /* a float NaN pattern: the drive keeps its old target */
         s->joints[i].target = v;
         s->st.target_writes++;
@@ -283,7 +284,7 @@ static int reads_a_target(const qo_sim *s, unsigned slave, const uint8_t *req, i
     n = ((unsigned)req[off + 3] << 8) | req[off + 4];
     for (i = 0; i < s->map->n_joints; i++) {
         const qo_regmap_joint *j = &s->map->joints[i];
-        unsigned w = (unsigned)qo_reg_type_width(j->fmt.type);
+        unsigned w = (unsigned)qo_modbus_reg_type_width(j->fmt.type);
         if (j->slave == slave && j->address < addr + n && addr < j->address + w) return 1;
     }
     return 0;
@@ -301,7 +302,7 @@ static void serve(qo_sim *s, const uint8_t *req, int len)
     pthread_mutex_lock(&s->mu);
     if (slave > 255 || s->maps[slave] == NULL) {
         pthread_mutex_unlock(&s->mu);
-        if (s->spec.transport == QO_MODBUS_TCP)
+        if (s->spec.transport == QO_MODBUS_LINK_TCP)
             modbus_reply_exception(s->ctx, req, MODBUS_EXCEPTION_GATEWAY_TARGET);
         return;
     }
@@ -326,7 +327,7 @@ static void serve(qo_sim *s, const uint8_t *req, int len)
         modbus_reply_exception(s->ctx, req, MODBUS_EXCEPTION_SLAVE_OR_SERVER_FAILURE);
         break;
     case QO_SIM_FAULT_CLOSE:
-        if (s->spec.transport == QO_MODBUS_TCP && s->client_fd >= 0) {
+        if (s->spec.transport == QO_MODBUS_LINK_TCP && s->client_fd >= 0) {
             close(s->client_fd);
             s->client_fd = -1;
         }
@@ -514,7 +515,7 @@ static void rtu_loop(qo_sim *s)
 static void *thread_main(void *arg)
 {
     qo_sim *s = arg;
-    if (s->spec.transport == QO_MODBUS_TCP) tcp_loop(s);
+    if (s->spec.transport == QO_MODBUS_LINK_TCP) tcp_loop(s);
     else rtu_loop(s);
     return NULL;
 }
@@ -525,7 +526,7 @@ static void destroy(qo_sim *s)
     if (s->client_fd >= 0) close(s->client_fd);
     if (s->listen_fd >= 0) close(s->listen_fd);
     if (s->ctx != NULL) {
-        if (s->spec.transport == QO_MODBUS_RTU) modbus_close(s->ctx);
+        if (s->spec.transport == QO_MODBUS_LINK_RTU) modbus_close(s->ctx);
         modbus_free(s->ctx);
     }
     for (i = 0; i < 256; i++)
@@ -582,9 +583,9 @@ qo_status qo_sim_start(const char *spec, const qo_regmap *map, const qo_sim_sett
     s->set = *settings;
     s->rng = settings->seed;
     s->lag_rng = settings->seed ^ 0x5A5A5A5A5A5A5A5Aull;
-    st = qo_modbus_parse_spec(spec, &s->spec);
+    st = qo_modbus_link_parse_spec(spec, &s->spec);
     if (st != QO_OK) goto fail;
-    if (s->spec.transport == QO_MODBUS_TCP) {
+    if (s->spec.transport == QO_MODBUS_LINK_TCP) {
         struct in_addr ia;
         struct in6_addr ia6;
         /* "localhost" is the IPv4 loopback here: one address to bind, one to print */
@@ -606,14 +607,14 @@ qo_status qo_sim_start(const char *spec, const qo_regmap *map, const qo_sim_sett
         const qo_regmap_joint *j = &map->joints[i];
         double v = 0.0;
         if (s->maps[j->slave] == NULL) { st = QO_E_CONFIG; goto fail; }
-        (void)qo_reg_unpack(&j->fmt, &s->maps[j->slave]->tab_registers[j->address], &v);
+        (void)qo_modbus_reg_unpack(&j->fmt, &s->maps[j->slave]->tab_registers[j->address], &v);
         s->joints[i].target = s->joints[i].position = v;
     }
-    s->ctx = qo_modbus_new_ctx(&s->spec);
+    s->ctx = qo_modbus_link_new_ctx(&s->spec);
     if (s->ctx == NULL) { st = QO_E_CONFIG; goto fail; }
     modbus_set_indication_timeout(s->ctx, 0, 200000);
     modbus_set_byte_timeout(s->ctx, 0, 100000);
-    if (s->spec.transport == QO_MODBUS_TCP) {
+    if (s->spec.transport == QO_MODBUS_LINK_TCP) {
         struct sockaddr_storage a;
         socklen_t al = sizeof a;
         struct in_addr ia;

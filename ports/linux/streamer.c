@@ -16,29 +16,29 @@
 
 /* ---- histogram ---------------------------------------------------------------------------- */
 
-void qo_jitter_hist_reset(qo_jitter_hist *h)
+void qo_streamer_jitter_hist_reset(qo_streamer_jitter_hist *h)
 {
     if (h) memset(h, 0, sizeof *h);
 }
 
 static size_t hist_bin_of(uint64_t ns)
 {
-    uint64_t fine_top = (uint64_t)QO_JITTER_FINE_BINS * QO_JITTER_FINE_NS;
+    uint64_t fine_top = (uint64_t)QO_STREAMER_JITTER_FINE_BINS * QO_STREAMER_JITTER_FINE_NS;
     uint64_t b;
-    if (ns < fine_top) return (size_t)(ns / QO_JITTER_FINE_NS);
-    b = (ns - fine_top) / QO_JITTER_COARSE_NS;
-    if (b >= QO_JITTER_COARSE_BINS) b = QO_JITTER_COARSE_BINS - 1u;
-    return (size_t)(QO_JITTER_FINE_BINS + b);
+    if (ns < fine_top) return (size_t)(ns / QO_STREAMER_JITTER_FINE_NS);
+    b = (ns - fine_top) / QO_STREAMER_JITTER_COARSE_NS;
+    if (b >= QO_STREAMER_JITTER_COARSE_BINS) b = QO_STREAMER_JITTER_COARSE_BINS - 1u;
+    return (size_t)(QO_STREAMER_JITTER_FINE_BINS + b);
 }
 
 static uint64_t hist_bin_low(size_t i)
 {
-    if (i < QO_JITTER_FINE_BINS) return (uint64_t)i * QO_JITTER_FINE_NS;
-    return (uint64_t)QO_JITTER_FINE_BINS * QO_JITTER_FINE_NS +
-           (uint64_t)(i - QO_JITTER_FINE_BINS) * QO_JITTER_COARSE_NS;
+    if (i < QO_STREAMER_JITTER_FINE_BINS) return (uint64_t)i * QO_STREAMER_JITTER_FINE_NS;
+    return (uint64_t)QO_STREAMER_JITTER_FINE_BINS * QO_STREAMER_JITTER_FINE_NS +
+           (uint64_t)(i - QO_STREAMER_JITTER_FINE_BINS) * QO_STREAMER_JITTER_COARSE_NS;
 }
 
-void qo_jitter_hist_add(qo_jitter_hist *h, uint64_t latency_ns)
+void qo_streamer_jitter_hist_add(qo_streamer_jitter_hist *h, uint64_t latency_ns)
 {
     size_t i;
     if (!h) return;
@@ -48,7 +48,8 @@ void qo_jitter_hist_add(qo_jitter_hist *h, uint64_t latency_ns)
     if (latency_ns > h->max_ns) h->max_ns = latency_ns;
 }
 
-qo_status qo_jitter_hist_percentile(const qo_jitter_hist *h, double q, uint64_t *out_ns)
+qo_status qo_streamer_jitter_hist_percentile(const qo_streamer_jitter_hist *h, double q,
+                                             uint64_t *out_ns)
 {
     uint64_t rank, seen = 0;
     size_t i;
@@ -60,10 +61,10 @@ qo_status qo_jitter_hist_percentile(const qo_jitter_hist *h, double q, uint64_t 
     rank = (uint64_t)ceil(q * (double)h->count);
     if (rank < 1) rank = 1;
     if (rank > h->count) rank = h->count;
-    for (i = 0; i < QO_JITTER_BINS; i++) {
+    for (i = 0; i < QO_STREAMER_JITTER_BINS; i++) {
         seen += h->bin[i];
         if (seen >= rank) {
-            *out_ns = (i == QO_JITTER_BINS - 1u) ? h->max_ns : hist_bin_low(i);
+            *out_ns = (i == QO_STREAMER_JITTER_BINS - 1u) ? h->max_ns : hist_bin_low(i);
             return QO_OK;
         }
     }
@@ -91,8 +92,8 @@ qo_status qo_streamer_init(qo_streamer *s, const qo_streamer_config *cfg)
     if (cfg->n_joints > QO_STREAMER_MAX_JOINTS) return QO_E_CAPACITY;
     if (cfg->rt_priority < 0 || cfg->rt_priority > 99) return QO_E_RANGE;
     s->cfg = *cfg;
-    if (!s->cfg.now) { s->cfg.now = qo_mono_now_ns; }
-    if (!s->cfg.sleep_until) { s->cfg.sleep_until = qo_mono_sleep_until_ns; }
+    if (!s->cfg.now) { s->cfg.now = qo_mono_clock_now_ns; }
+    if (!s->cfg.sleep_until) { s->cfg.sleep_until = qo_mono_clock_sleep_until_ns; }
     s->period_ns = (uint64_t)llround(1e9 / cfg->rate_hz);
     /* Priority inheritance: a low-priority reader holding the lock cannot be preempted for
      * long by mid-priority work while the RT thread wants the lock (it only try-locks anyway). */
@@ -103,7 +104,7 @@ qo_status qo_streamer_init(qo_streamer *s, const qo_streamer_config *cfg)
         pthread_mutexattr_destroy(&ma);
     }
     if (!ok) return QO_E_IO;
-    qo_jitter_hist_reset(&s->hist);
+    qo_streamer_jitter_hist_reset(&s->hist);
     s->origin_ns = s->cfg.now(s->cfg.clock_ctx);
     s->next_ns = s->origin_ns;
     s->run_status = QO_OK;
@@ -126,7 +127,7 @@ static void merge_pending(qo_streamer *s)
     if (p->period_err_max_ns > l->period_err_max_ns) l->period_err_max_ns = p->period_err_max_ns;
     l->origin_ns = s->origin_ns;
     l->span_ns = s->next_ns - s->origin_ns; /* consistent with the counts merged here */
-    for (i = 0; i < s->pend_n; i++) qo_jitter_hist_add(&s->hist, s->pend_lat[i]);
+    for (i = 0; i < s->pend_n; i++) qo_streamer_jitter_hist_add(&s->hist, s->pend_lat[i]);
     s->pend_n = 0;
     {
         uint64_t keep = p->sink_errors_consecutive;
@@ -192,7 +193,7 @@ qo_status qo_streamer_tick(qo_streamer *s)
     s->pend.ticks++;
     if (pthread_mutex_trylock(&s->lock) == 0) {
         merge_pending(s);
-        qo_jitter_hist_add(&s->hist, lat);
+        qo_streamer_jitter_hist_add(&s->hist, lat);
         pthread_mutex_unlock(&s->lock);
     } else if (s->pend_n < QO_STREAMER_PENDING) {
         s->pend_lat[s->pend_n++] = lat;
@@ -358,8 +359,8 @@ qo_status qo_streamer_stats_read(qo_streamer *s, qo_streamer_stats *out)
     *out = s->live;
     out->lat_count = s->hist.count;
     out->lat_max_ns = s->hist.max_ns;
-    (void)qo_jitter_hist_percentile(&s->hist, 0.50, &out->lat_p50_ns);
-    (void)qo_jitter_hist_percentile(&s->hist, 0.99, &out->lat_p99_ns);
+    (void)qo_streamer_jitter_hist_percentile(&s->hist, 0.50, &out->lat_p50_ns);
+    (void)qo_streamer_jitter_hist_percentile(&s->hist, 0.99, &out->lat_p99_ns);
     pthread_mutex_unlock(&s->lock);
     return QO_OK;
 }

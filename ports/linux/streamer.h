@@ -3,23 +3,25 @@
  * the joint targets of each tick to a sink (Modbus, GPIO, mock...).
  *
  * Index:
- *   qo_sink                       the consumer interface (write one tick, optional service)
- *   qo_sample_fn                  the producer callback (targets at a time in seconds)
- *   qo_jitter_hist_reset()        empty a wake-latency histogram
- *   qo_jitter_hist_add()          add one latency sample (ns)
- *   qo_jitter_hist_percentile()   nearest-rank percentile of the histogram (ns, bin resolution)
- *   qo_streamer_config_default    const defaults: 500 Hz, SCHED_FIFO 80, mlockall, real clock
- *   qo_streamer_init()            check a config and prepare a streamer (no thread, no RT yet)
- *   qo_streamer_tick()            one period: wait for the deadline, sample, write, skip overruns
- *   qo_streamer_run()             the loop in the calling thread until stop, then the final write
- *   qo_streamer_start()           the loop in a new thread (qo_streamer_run in it)
- *   qo_streamer_join()            wait for the thread started by qo_streamer_start
- *   qo_streamer_request_stop()    set the stop flag (async-signal-safe)
- *   qo_streamer_stop_flag()       the flag itself, for an application's own signal handler
+ *   qo_sink                        the consumer interface (write one tick, optional service)
+ *   qo_streamer_sample_fn          the producer callback (targets at a time in seconds)
+ *   qo_streamer_clock_now_fn, qo_streamer_clock_sleep_until_fn   an injected clock
+ *   qo_streamer_jitter_hist        a wake-latency histogram:
+ *   qo_streamer_jitter_hist_reset()       empty it
+ *   qo_streamer_jitter_hist_add()         add one latency sample (ns)
+ *   qo_streamer_jitter_hist_percentile()  nearest-rank percentile (ns, bin resolution)
+ *   qo_streamer_config_default     const defaults: 500 Hz, SCHED_FIFO 80, mlockall, real clock
+ *   qo_streamer_init()             check a config and prepare a streamer (no thread, no RT yet)
+ *   qo_streamer_tick()             one period: wait for the deadline, sample, write, skip overruns
+ *   qo_streamer_run()              the loop in the calling thread until stop, then the final write
+ *   qo_streamer_start()            the loop in a new thread (qo_streamer_run in it)
+ *   qo_streamer_join()             wait for the thread started by qo_streamer_start
+ *   qo_streamer_request_stop()     set the stop flag (async-signal-safe)
+ *   qo_streamer_stop_flag()        the flag itself, for an application's own signal handler
  *   qo_streamer_install_stop_signals()  SIGINT/SIGTERM set the flag of one streamer
- *   qo_streamer_finish()          hand the sink the defined final target (last sampled)
- *   qo_streamer_stats_read()      copy of the statistics, safe from any thread while running
- *   qo_streamer_rt_report()       what the real-time setup achieved and why not (text)
+ *   qo_streamer_finish()           hand the sink the defined final target (last sampled)
+ *   qo_streamer_stats_read()       copy of the statistics, safe from any thread while running
+ *   qo_streamer_rt_report()        what the real-time setup achieved and why not (text)
  *
  * Timing model. Deadlines are absolute: D_k = D_0 + k * period on the injected clock
  * (CLOCK_MONOTONIC by default), slept to with clock_nanosleep(TIMER_ABSTIME), so the loop
@@ -74,7 +76,7 @@ extern "C" {
  * origin) into targets. Returns QO_OK, or an error status (the streamer then holds the last
  * good target).
  */
-typedef qo_status (*qo_sample_fn)(void *ctx, double t_seconds, float *targets, size_t n);
+typedef qo_status (*qo_streamer_sample_fn)(void *ctx, double t_seconds, float *targets, size_t n);
 
 /* ---- wake-latency histogram ------------------------------------------------------------ */
 
@@ -83,23 +85,23 @@ typedef qo_status (*qo_sample_fn)(void *ctx, double t_seconds, float *targets, s
  * bins 0..1023 are 1 us wide (0 to 1.024 ms), bins 1024..2047 are 64 us wide (up to 66.56 ms),
  * the last bin also takes everything above. `max_ns` keeps the exact maximum.
  */
-#define QO_JITTER_FINE_BINS 1024u
-#define QO_JITTER_COARSE_BINS 1024u
-#define QO_JITTER_BINS (QO_JITTER_FINE_BINS + QO_JITTER_COARSE_BINS)
-#define QO_JITTER_FINE_NS 1000u      /* width of a fine bin */
-#define QO_JITTER_COARSE_NS 64000u   /* width of a coarse bin */
+#define QO_STREAMER_JITTER_FINE_BINS 1024u
+#define QO_STREAMER_JITTER_COARSE_BINS 1024u
+#define QO_STREAMER_JITTER_BINS (QO_STREAMER_JITTER_FINE_BINS + QO_STREAMER_JITTER_COARSE_BINS)
+#define QO_STREAMER_JITTER_FINE_NS 1000u    /* width of a fine bin */
+#define QO_STREAMER_JITTER_COARSE_NS 64000u /* width of a coarse bin */
 
-typedef struct qo_jitter_hist {
-    uint32_t bin[QO_JITTER_BINS];
+typedef struct qo_streamer_jitter_hist {
+    uint32_t bin[QO_STREAMER_JITTER_BINS];
     uint64_t count;
     uint64_t max_ns;
-} qo_jitter_hist;
+} qo_streamer_jitter_hist;
 
 /* Empties h. NULL is ignored. */
-void qo_jitter_hist_reset(qo_jitter_hist *h);
+void qo_streamer_jitter_hist_reset(qo_streamer_jitter_hist *h);
 
 /* Adds one latency (ns) to h; a bin saturates at UINT32_MAX instead of wrapping. NULL ignored. */
-void qo_jitter_hist_add(qo_jitter_hist *h, uint64_t latency_ns);
+void qo_streamer_jitter_hist_add(qo_streamer_jitter_hist *h, uint64_t latency_ns);
 
 /*
  * Nearest-rank percentile: the q-quantile sample is the one of rank ceil(q * count) (rank 1 for
@@ -109,7 +111,8 @@ void qo_jitter_hist_add(qo_jitter_hist *h, uint64_t latency_ns);
  * q in [0, 1]. Returns QO_OK; QO_E_NULL (h or out_ns NULL), QO_E_RANGE (q outside [0,1] or
  * NaN), QO_E_TOO_FEW (empty histogram). *out_ns is 0 on every error.
  */
-qo_status qo_jitter_hist_percentile(const qo_jitter_hist *h, double q, uint64_t *out_ns);
+qo_status qo_streamer_jitter_hist_percentile(const qo_streamer_jitter_hist *h, double q,
+                                             uint64_t *out_ns);
 
 /* ---- streamer ---------------------------------------------------------------------------- */
 
@@ -117,20 +120,21 @@ qo_status qo_jitter_hist_percentile(const qo_jitter_hist *h, double q, uint64_t 
 #define QO_STREAMER_PENDING 32u
 
 /* Injected time source: monotonic nanoseconds. */
-typedef uint64_t (*qo_clock_now_fn)(void *ctx);
+typedef uint64_t (*qo_streamer_clock_now_fn)(void *ctx);
 /* Injected sleep to an absolute time of the same clock: 0 when reached, EINTR if interrupted. */
-typedef int (*qo_clock_sleep_until_fn)(void *ctx, uint64_t abs_ns);
+typedef int (*qo_streamer_clock_sleep_until_fn)(void *ctx, uint64_t abs_ns);
 
 typedef struct qo_streamer_config {
     double rate_hz;               /* ticks per second, (0, 100000]; default 500 */
     size_t n_joints;              /* 1..QO_STREAMER_MAX_JOINTS */
-    qo_sample_fn sample;          /* required */
+    qo_streamer_sample_fn sample; /* required */
     void *sample_ctx;
     qo_sink sink;                 /* sink.write required */
     int rt_priority;              /* SCHED_FIFO priority 1..99 for run/start; 0 = leave the policy alone */
     int lock_memory;              /* nonzero: mlockall(MCL_CURRENT|MCL_FUTURE) in run/start */
-    qo_clock_now_fn now;          /* NULL: CLOCK_MONOTONIC */
-    qo_clock_sleep_until_fn sleep_until; /* NULL: clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME) */
+    qo_streamer_clock_now_fn now; /* NULL: CLOCK_MONOTONIC */
+    qo_streamer_clock_sleep_until_fn sleep_until; /* NULL: clock_nanosleep(CLOCK_MONOTONIC,
+                                                     TIMER_ABSTIME) */
     void *clock_ctx;
 } qo_streamer_config;
 
@@ -173,7 +177,7 @@ typedef struct qo_streamer {
     /* statistics: live under `lock`, pending private to the loop thread */
     pthread_mutex_t lock;
     qo_streamer_stats live;
-    qo_jitter_hist hist;
+    qo_streamer_jitter_hist hist;
     qo_streamer_stats pend;
     uint64_t pend_lat[QO_STREAMER_PENDING];
     uint32_t pend_n;

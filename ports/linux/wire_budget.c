@@ -7,7 +7,7 @@
 
 #include "linux/modbus_layout.h"
 
-qo_status qo_wire_budget_compute(const qo_regmap *map, const qo_modbus_spec *spec,
+qo_status qo_wire_budget_compute(const qo_regmap *map, const qo_modbus_link_spec *spec,
                                  double turnaround_us, qo_wire_budget *out)
 {
     qo_modbus_layout *lay;
@@ -19,7 +19,7 @@ qo_status qo_wire_budget_compute(const qo_regmap *map, const qo_modbus_spec *spe
     if (map == NULL || spec == NULL) return QO_E_NULL;
     if (!isfinite(turnaround_us) || turnaround_us < 0) return QO_E_RANGE;
     if (map->n_joints == 0) return QO_E_CONFIG;
-    rtu = spec->transport == QO_MODBUS_RTU;
+    rtu = spec->transport == QO_MODBUS_LINK_RTU;
     if (rtu) {
         if (spec->baud <= 0) return QO_E_CONFIG;
         out->bits_per_char = 1u + (unsigned)spec->data_bits + (spec->parity == 'N' ? 0u : 1u) +
@@ -31,10 +31,10 @@ qo_status qo_wire_budget_compute(const qo_regmap *map, const qo_modbus_spec *spe
     lay = malloc(sizeof *lay);
     if (lay == NULL) return QO_E_CAPACITY;
     st = qo_modbus_layout_build(map, lay);
-    if (st == QO_OK && lay->n_requests > QO_WIRE_MAX_REQUESTS) st = QO_E_CAPACITY;
+    if (st == QO_OK && lay->n_requests > QO_WIRE_BUDGET_MAX_REQUESTS) st = QO_E_CAPACITY;
     for (k = 0; st == QO_OK && k < lay->n_requests; k++) {
-        const qo_modbus_request *q = &lay->req[k];
-        qo_wire_request *r = &out->req[out->n_requests++];
+        const qo_modbus_layout_request *q = &lay->req[k];
+        qo_wire_budget_request *r = &out->req[out->n_requests++];
         r->slave = q->slave;
         r->first = q->start;
         r->registers = q->count;

@@ -3,8 +3,8 @@
  * highest tick rate a serial (RTU) line therefore allows.
  *
  * Index:
- *   qo_wire_request      one FC16 request of a tick: slave, registers, frame sizes, time
- *   qo_wire_budget       the whole tick: requests, bytes, time per tick, highest rate
+ *   qo_wire_budget_request    one FC16 request of a tick: slave, registers, frame sizes, time
+ *   qo_wire_budget            the whole tick: requests, bytes, time per tick, highest rate
  *   qo_wire_budget_compute()  from a register map and a parsed connection spec
  *
  * Model (Modbus over serial line, V1.02): a request is sent, the drive answers, and the line
@@ -29,19 +29,19 @@
 #include "linux/regmap.h"
 #include "qorient/status.h"
 
-#define QO_WIRE_MAX_REQUESTS 256
+#define QO_WIRE_BUDGET_MAX_REQUESTS 256
 
-typedef struct qo_wire_request {
+typedef struct qo_wire_budget_request {
     unsigned slave;
     uint16_t first;        /* first register */
     unsigned registers;    /* count */
     unsigned request_bytes, reply_bytes;
     double time_us;        /* on an RTU line, including the gaps; 0 for TCP */
-} qo_wire_request;
+} qo_wire_budget_request;
 
 typedef struct qo_wire_budget {
     size_t n_requests;
-    qo_wire_request req[QO_WIRE_MAX_REQUESTS];
+    qo_wire_budget_request req[QO_WIRE_BUDGET_MAX_REQUESTS];
     unsigned bits_per_char;   /* RTU: 10 or 11 (or 9..12 for other frames) */
     double char_us;           /* RTU: one character, us */
     double t35_us;            /* RTU: inter-frame silence, us */
@@ -51,9 +51,9 @@ typedef struct qo_wire_budget {
 
 /* Fills *out for `map` over `spec` with the drive's `turnaround_us` (>= 0) per request.
  * Returns QO_OK; QO_E_NULL; QO_E_CONFIG (as qo_modbus_layout_build);
- * QO_E_CAPACITY (more than QO_WIRE_MAX_REQUESTS requests, or out of memory); QO_E_RANGE
+ * QO_E_CAPACITY (more than QO_WIRE_BUDGET_MAX_REQUESTS requests, or out of memory); QO_E_RANGE
  * (turnaround negative or not finite). *out is zeroed on error. */
-qo_status qo_wire_budget_compute(const qo_regmap *map, const qo_modbus_spec *spec,
+qo_status qo_wire_budget_compute(const qo_regmap *map, const qo_modbus_link_spec *spec,
                                  double turnaround_us, qo_wire_budget *out);
 
 #endif

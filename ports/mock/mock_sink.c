@@ -58,7 +58,7 @@ static void mock_close(void *ctx)
 static qo_status mock_stats(void *ctx, qo_sink_stats *out)
 {
     const qo_mock_sink *m = ctx;
-    return qo_port_sink_stats(m != NULL ? &m->stats : NULL, out);
+    return qo_sink_view_stats(m != NULL ? &m->stats : NULL, out);
 }
 
 qo_status qo_mock_sink_init(qo_mock_sink *m, size_t n_joints, float *values, uint64_t *ticks,
@@ -78,7 +78,7 @@ qo_status qo_mock_sink_init(qo_mock_sink *m, size_t n_joints, float *values, uin
     {
         static const qo_sink ops = { .write = mock_write, .flush = mock_flush, .close = mock_close,
                                      .stats = mock_stats };
-        return qo_port_sink_view(m, &ops, sink);
+        return qo_sink_view_fill(m, &ops, sink);
     }
 }
 

@@ -20,7 +20,7 @@ static const char map_text[] =
 int main(void)
 {
     static qo_regmap map;
-    qo_modbus_spec spec;
+    qo_modbus_link_spec spec;
     char err[128];
     qo_status s;
 
@@ -30,10 +30,10 @@ int main(void)
                map.n_joints);
         return 1;
     }
-    s = qo_modbus_parse_spec("rtu:/dev/ttyAMA0,115200,8N1", &spec);
-    if (s != QO_OK || spec.transport != QO_MODBUS_RTU || spec.baud != 115200 ||
+    s = qo_modbus_link_parse_spec("rtu:/dev/ttyAMA0,115200,8N1", &spec);
+    if (s != QO_OK || spec.transport != QO_MODBUS_LINK_RTU || spec.baud != 115200 ||
         spec.parity != 'N') {
-        printf("consumer_ports: FAIL: qo_modbus_parse_spec: %s\n", qo_status_str(s));
+        printf("consumer_ports: FAIL: qo_modbus_link_parse_spec: %s\n", qo_status_str(s));
         return 1;
     }
     {

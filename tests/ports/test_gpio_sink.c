@@ -40,7 +40,7 @@ typedef struct fakebe {
 } fakebe;
 static fakebe B;
 
-static qo_status fb_open(void *ctx, const qo_gpio_line *line, int initial, int *h)
+static qo_status fb_open(void *ctx, const qo_gpio_sink_line *line, int initial, int *h)
 {
     fakebe *b = ctx;
     assert_non_null(line);
@@ -75,9 +75,9 @@ static int fb_sleep(void *ctx, uint64_t t)
     return 0;
 }
 
-static qo_gpio_backend fake_backend(void)
+static qo_gpio_sink_backend fake_backend(void)
 {
-    qo_gpio_backend be = { .ctx = &B, .open = fb_open, .set_value = fb_set, .close = fb_close,
+    qo_gpio_sink_backend be = { .ctx = &B, .open = fb_open, .set_value = fb_set, .close = fb_close,
                            .now_ns = fb_now, .sleep_until_ns = fb_sleep };
     return be;
 }
@@ -95,10 +95,10 @@ static qo_gpio_sink_config C;
 /* Joint j: step handle 2j, dir handle 2j+1 (open order), when all joints are step/dir. */
 static void make_config(size_t n, double rate, double setup_us, int invert)
 {
-    qo_gpio_joint j;
+    qo_gpio_sink_joint j;
     size_t i;
     C = qo_gpio_sink_config_default;
-    j = qo_gpio_joint_default;
+    j = qo_gpio_sink_joint_default;
     C.n_joints = n;
     for (i = 0; i < n; i++) {
         C.joint[i] = j;
@@ -115,7 +115,7 @@ static void make_config(size_t n, double rate, double setup_us, int invert)
 
 static void open_sink(void)
 {
-    qo_gpio_backend be = fake_backend();
+    qo_gpio_sink_backend be = fake_backend();
     assert_int_equal(qo_gpio_sink_open(&G, &C, &be), QO_OK);
 }
 
@@ -401,7 +401,7 @@ static void test_random_invariants(void **state)
 /* Demo servo PWM: 50 Hz frames, width = clamp(1500 + 500 x) us, NaN holds the width. */
 static void test_servo_pwm(void **state)
 {
-    qo_gpio_joint j;
+    qo_gpio_sink_joint j;
     const float xs[] = { 0.0f, 0.5f, -0.5f, 3.0f, -3.0f, NAN, 0.25f };
     size_t k, rises = 0;
     uint64_t last_rise = 0, rise_t = 0;
@@ -410,11 +410,11 @@ static void test_servo_pwm(void **state)
     reset_backend();
     ntick = 0;
     C = qo_gpio_sink_config_default;
-    j = qo_gpio_joint_default;
+    j = qo_gpio_sink_joint_default;
     C.period_s = 0.004; /* 250 Hz; window 3 ms > 2 ms pulse */
     C.n_joints = 1;
     C.joint[0] = j;
-    C.joint[0].kind = QO_GPIO_SERVO_PWM;
+    C.joint[0].kind = QO_GPIO_SINK_SERVO_PWM;
     C.joint[0].step.chip = "fake";
     P_NS = 4000000u;
     open_sink();
@@ -453,7 +453,7 @@ static void test_servo_pwm(void **state)
 
 static void test_config_errors(void **state)
 {
-    qo_gpio_backend be;
+    qo_gpio_sink_backend be;
     qo_gpio_sink_config bad;
     float x[2] = { 0.0f, 0.0f };
     int64_t p;
@@ -465,9 +465,9 @@ static void test_config_errors(void **state)
     assert_int_equal(qo_gpio_sink_open(&G, NULL, &be), QO_E_NULL);
     assert_int_equal(qo_gpio_sink_open(&G, &C, NULL), QO_E_NULL);
     assert_int_equal(qo_gpio_sink_write(&G, x, 2, 0), QO_E_STATE);
-    { qo_gpio_backend b2 = be; b2.set_value = NULL; assert_int_equal(qo_gpio_sink_open(&G, &C, &b2), QO_E_NULL); }
+    { qo_gpio_sink_backend b2 = be; b2.set_value = NULL; assert_int_equal(qo_gpio_sink_open(&G, &C, &b2), QO_E_NULL); }
     bad = C; bad.n_joints = 0; assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_E_TOO_FEW);
-    bad = C; bad.n_joints = QO_GPIO_MAX_JOINTS + 1; assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_E_CAPACITY);
+    bad = C; bad.n_joints = QO_GPIO_SINK_MAX_JOINTS + 1; assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_E_CAPACITY);
     bad = C; bad.period_s = 0.0; assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_E_LIMIT);
     bad = C; bad.period_s = NAN; assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_E_LIMIT);
     bad = C; bad.window = 1.5; assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_E_LIMIT);
@@ -475,7 +475,7 @@ static void test_config_errors(void **state)
     bad = C; bad.joint[1].max_rate_hz = INFINITY; assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_E_LIMIT);
     bad = C; bad.joint[0].steps_per_unit = -5.0; assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_E_LIMIT);
     bad = C; bad.joint[0].dir_setup_us = -1.0; assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_E_LIMIT);
-    bad = C; bad.joint[0].kind = (qo_gpio_joint_kind)7; assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_E_ARG);
+    bad = C; bad.joint[0].kind = (qo_gpio_sink_joint_kind)7; assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_E_ARG);
     bad = C; bad.joint[0].dir.chip = NULL; assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_E_NULL);
     bad = C; bad.step_high_us = 1000.0; /* = 1/max_rate: no low time left */
     assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_E_CONFIG);
@@ -485,7 +485,7 @@ static void test_config_errors(void **state)
     assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_OK);
     qo_gpio_sink_close(&G);
     reset_backend();
-    bad = C; bad.joint[0].kind = QO_GPIO_SERVO_PWM; /* 2 ms pulse in a 1.5 ms window */
+    bad = C; bad.joint[0].kind = QO_GPIO_SINK_SERVO_PWM; /* 2 ms pulse in a 1.5 ms window */
     assert_int_equal(qo_gpio_sink_open(&G, &bad, &be), QO_E_CONFIG);
     assert_int_equal(B.nopen, 0);
     /* backend open failure on the 3rd line: the two opened are closed again */
@@ -590,17 +590,17 @@ static void test_sink_view_write_close(void **state)
 }
 
 /* The defaults are constants (one idiom with the streamer and the Modbus sink): the documented
- * values, and every one of the QO_GPIO_MAX_JOINTS joints equal to the default joint. */
+ * values, and every one of the QO_GPIO_SINK_MAX_JOINTS joints equal to the default joint. */
 static void test_default_constants(void **state)
 {
     const qo_gpio_sink_config *c = &qo_gpio_sink_config_default;
-    const qo_gpio_joint *j = &qo_gpio_joint_default;
+    const qo_gpio_sink_joint *j = &qo_gpio_sink_joint_default;
     size_t i;
     (void)state;
     assert_true(c->period_s == 0.002 && c->window == 0.75 && c->step_high_us == 5.0);
     assert_true(c->servo_frame_us == 20000.0);
     assert_int_equal(c->n_joints, 0);
-    assert_int_equal(j->kind, QO_GPIO_STEP_DIR);
+    assert_int_equal(j->kind, QO_GPIO_SINK_STEP_DIR);
     assert_true(j->steps_per_unit == 200.0 && j->max_rate_hz == 1000.0 && j->dir_setup_us == 5.0);
     assert_int_equal(j->invert_dir, 0);
     assert_true(j->servo_center_us == 1500.0 && j->servo_us_per_unit == 500.0);
@@ -609,7 +609,7 @@ static void test_default_constants(void **state)
     assert_null(j->step.name);
     assert_null(j->dir.chip);
     assert_null(j->dir.name);
-    for (i = 0; i < QO_GPIO_MAX_JOINTS; i++)
+    for (i = 0; i < QO_GPIO_SINK_MAX_JOINTS; i++)
         if (memcmp(&c->joint[i], j, sizeof *j) != 0) fail_msg("default joint %u differs", (unsigned)i);
 }
 
@@ -617,15 +617,15 @@ static void test_default_constants(void **state)
  * configuration error and leaks nothing (ASan). */
 static void test_libgpiod_backend_without_chips(void **state)
 {
-    static qo_gpio_libgpiod store;
-    qo_gpio_backend be;
-    qo_gpio_line l;
+    static qo_gpio_sink_libgpiod store;
+    qo_gpio_sink_backend be;
+    qo_gpio_sink_line l;
     int h = 7;
     (void)state;
-    assert_int_equal(qo_gpio_libgpiod_backend(NULL, NULL, &be), QO_E_NULL);
-    assert_int_equal(qo_gpio_libgpiod_backend(&store, NULL, &be), QO_OK);
+    assert_int_equal(qo_gpio_sink_libgpiod_backend(NULL, NULL, &be), QO_E_NULL);
+    assert_int_equal(qo_gpio_sink_libgpiod_backend(&store, NULL, &be), QO_OK);
     assert_string_equal(store.consumer, "qorient");
-    assert_true(strcmp(qo_gpio_libgpiod_api(), "v1") == 0 || strcmp(qo_gpio_libgpiod_api(), "v2") == 0);
+    assert_true(strcmp(qo_gpio_sink_libgpiod_api(), "v1") == 0 || strcmp(qo_gpio_sink_libgpiod_api(), "v2") == 0);
     memset(&l, 0, sizeof l);
     l.chip = "qorient-no-such-chip";
     assert_int_equal(be.open(be.ctx, &l, 0, &h), QO_E_CONFIG);

@@ -52,7 +52,7 @@ static void random_map(unsigned seed_case)
                 if (w > sl->max_registers) w = 1;
                 j->slave = sl->id;
                 j->address = (uint16_t)a;
-                j->fmt.type = w == 2 ? QO_REG_INT32 : QO_REG_INT16;
+                j->fmt.type = w == 2 ? QO_MODBUS_REG_INT32 : QO_MODBUS_REG_INT16;
                 j->fmt.scale = 1.0;
                 owner[s][a] = 1 + (int)nj;
                 if (w == 2) owner[s][a + 1] = 1000 + (int)nj;
@@ -73,7 +73,7 @@ static void random_map(unsigned seed_case)
     if (nj == 0) { /* at least one joint */
         map.joints[0].slave = 1;
         map.joints[0].address = 200;
-        map.joints[0].fmt.type = QO_REG_INT16;
+        map.joints[0].fmt.type = QO_MODBUS_REG_INT16;
         map.joints[0].fmt.scale = 1.0;
         owner[0][200] = 1;
         nj = 1;
@@ -89,7 +89,7 @@ static void check_layout(unsigned c)
     memset(seen, 0, sizeof seen);
     assert_int_equal(qo_modbus_layout_build(&map, &lay), QO_OK);
     for (r = 0; r < lay.n_requests; r++) {
-        const qo_modbus_request *q = &lay.req[r];
+        const qo_modbus_layout_request *q = &lay.req[r];
         const qo_regmap_slave *sl = qo_regmap_find_slave(&map, q->slave);
         assert_non_null(sl);
         if (q->count < 1 || q->count > sl->max_registers)
@@ -106,13 +106,13 @@ static void check_layout(unsigned c)
         if (a < 256 && owner[q->slave - 1][a] >= 1000 && owner[q->slave - 1][a] < 2000)
             fail_msg("case %u: request %u cuts a 32-bit value", c, (unsigned)r);
         for (i = 0; i < q->n_items; i++) {
-            const qo_modbus_item *it = &lay.item[q->first_item + i];
+            const qo_modbus_layout_item *it = &lay.item[q->first_item + i];
             const qo_regmap_joint *j = &map.joints[it->joint];
             if (j->slave != q->slave || j->address != q->start + it->offset)
                 fail_msg("case %u: joint %u at offset %u of request %u", c, (unsigned)it->joint, it->offset, (unsigned)r);
         }
         if (r > 0) {
-            const qo_modbus_request *p = &lay.req[r - 1];
+            const qo_modbus_layout_request *p = &lay.req[r - 1];
             if (p->slave > q->slave || (p->slave == q->slave && p->start >= q->start))
                 fail_msg("case %u: requests out of order", c);
             if (p->slave == q->slave && (unsigned)p->start + p->count == q->start) {
@@ -146,7 +146,7 @@ static void test_random_maps(void **state)
 static void test_constant_only_slave(void **state)
 {
     char err[256];
-    qo_modbus_spec spec;
+    qo_modbus_link_spec spec;
     (void)state;
     assert_int_equal(qo_regmap_parse("[slave.2]\nconstant = 0x10=5, 0x11=6\n"
                                      "[joint.a]\nslave = 1\naddress = 0\ntype = int32\n",
@@ -159,7 +159,7 @@ static void test_constant_only_slave(void **state)
     assert_int_equal(lay.req[1].n_items, 0);
     assert_int_equal(lay.req[1].regs[0], 5);
     assert_int_equal(lay.req[1].regs[1], 6);
-    assert_int_equal(qo_modbus_parse_spec("rtu:/dev/null,115200,8N1", &spec), QO_OK);
+    assert_int_equal(qo_modbus_link_parse_spec("rtu:/dev/null,115200,8N1", &spec), QO_OK);
     assert_int_equal(qo_wire_budget_compute(&map, &spec, 0.0, &wb), QO_OK);
     assert_int_equal(wb.n_requests, 2);
     assert_int_equal(wb.req[1].slave, 2);
@@ -176,13 +176,13 @@ static void test_bad_maps(void **state)
     map.n_joints = 1;
     map.joints[0].slave = 1;
     map.joints[0].address = 65535;
-    map.joints[0].fmt.type = QO_REG_INT32; /* runs past 65535 */
+    map.joints[0].fmt.type = QO_MODBUS_REG_INT32; /* runs past 65535 */
     assert_int_equal(qo_modbus_layout_build(&map, &lay), QO_E_CONFIG);
     assert_int_equal(lay.n_requests, 0);
     map.joints[0].address = 0;
-    map.joints[0].fmt.type = QO_REG_TYPE_COUNT_;
+    map.joints[0].fmt.type = QO_MODBUS_REG_TYPE_COUNT_;
     assert_int_equal(qo_modbus_layout_build(&map, &lay), QO_E_CONFIG);
-    map.joints[0].fmt.type = QO_REG_INT32;
+    map.joints[0].fmt.type = QO_MODBUS_REG_INT32;
     map.n_slaves = 1;
     map.slaves[0].id = 1;
     map.slaves[0].max_registers = 1; /* a 32-bit value cannot fit */

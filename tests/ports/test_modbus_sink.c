@@ -404,7 +404,7 @@ static void test_disable_action_and_enable(void **state)
     int tries;
     (void)state;
     load_map("disable.ini", disable_map);
-    g.set.on_fail = QO_MODBUS_ON_FAIL_DISABLE;
+    g.set.on_fail = QO_MODBUS_SINK_ON_FAIL_DISABLE;
     s = rig_tcp(&g, &ss);
     assert_int_equal(qo_sim_get_register(g.sim, 1, 200, &reg), QO_OK);
     assert_int_equal(reg, 1); /* init write */
@@ -491,7 +491,7 @@ static void test_grouping(void **state)
 
 static void test_arguments_and_specs(void **state)
 {
-    qo_modbus_spec sp;
+    qo_modbus_link_spec sp;
     qo_modbus_sink *s = (qo_modbus_sink *)&sp;
     qo_modbus_sink_settings set = test_settings();
     qo_sim *sim = NULL;
@@ -500,26 +500,26 @@ static void test_arguments_and_specs(void **state)
     float t[NJ] = { 0, 0, 0, 0, 0, 0 };
     qo_sim_stats a, b;
     (void)state;
-    assert_int_equal(qo_modbus_parse_spec("tcp://10.0.0.2:1502", &sp), QO_OK);
-    assert_int_equal(sp.transport, QO_MODBUS_TCP);
+    assert_int_equal(qo_modbus_link_parse_spec("tcp://10.0.0.2:1502", &sp), QO_OK);
+    assert_int_equal(sp.transport, QO_MODBUS_LINK_TCP);
     assert_string_equal(sp.host, "10.0.0.2");
     assert_int_equal(sp.port, 1502);
-    assert_int_equal(qo_modbus_parse_spec("tcp://:7", &sp), QO_OK);
+    assert_int_equal(qo_modbus_link_parse_spec("tcp://:7", &sp), QO_OK);
     assert_string_equal(sp.host, "127.0.0.1");
-    assert_int_equal(qo_modbus_parse_spec("tcp://host", &sp), QO_OK);
+    assert_int_equal(qo_modbus_link_parse_spec("tcp://host", &sp), QO_OK);
     assert_int_equal(sp.port, 502);
-    assert_int_equal(qo_modbus_parse_spec("rtu:/dev/ttyUSB0,115200,8N1", &sp), QO_OK);
-    assert_int_equal(sp.transport, QO_MODBUS_RTU);
+    assert_int_equal(qo_modbus_link_parse_spec("rtu:/dev/ttyUSB0,115200,8N1", &sp), QO_OK);
+    assert_int_equal(sp.transport, QO_MODBUS_LINK_RTU);
     assert_string_equal(sp.device, "/dev/ttyUSB0");
     assert_int_equal(sp.baud, 115200);
     assert_int_equal(sp.parity, 'N');
     assert_int_equal(sp.data_bits, 8);
     assert_int_equal(sp.stop_bits, 1);
-    assert_int_equal(qo_modbus_parse_spec("rtu:/dev/ttyS1,9600,7O2", &sp), QO_OK);
+    assert_int_equal(qo_modbus_link_parse_spec("rtu:/dev/ttyS1,9600,7O2", &sp), QO_OK);
     assert_int_equal(sp.parity, 'O');
     assert_int_equal(sp.data_bits, 7);
     assert_int_equal(sp.stop_bits, 2);
-    assert_int_equal(qo_modbus_parse_spec("rtu:/dev/ttyS1", &sp), QO_OK);
+    assert_int_equal(qo_modbus_link_parse_spec("rtu:/dev/ttyS1", &sp), QO_OK);
     assert_int_equal(sp.baud, 19200);
     assert_int_equal(sp.parity, 'E');
     {
@@ -529,10 +529,10 @@ static void test_arguments_and_specs(void **state)
                                      "rtu:/dev/x,96k", "" };
         size_t i;
         for (i = 0; i < sizeof bad / sizeof bad[0]; i++)
-            if (qo_modbus_parse_spec(bad[i], &sp) != QO_E_CONFIG || sp.port != 0)
+            if (qo_modbus_link_parse_spec(bad[i], &sp) != QO_E_CONFIG || sp.port != 0)
                 fail_msg("spec '%s' accepted", bad[i]);
     }
-    assert_int_equal(qo_modbus_parse_spec(NULL, &sp), QO_E_NULL);
+    assert_int_equal(qo_modbus_link_parse_spec(NULL, &sp), QO_E_NULL);
     load_six();
     /* open errors leave *out NULL */
     assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:0", &map, &set, &s), QO_E_CONFIG);
@@ -545,31 +545,31 @@ static void test_arguments_and_specs(void **state)
     set = test_settings();
     /* a host name goes through modbus_new_tcp_pi; the simulator listens on literals and
      * localhost only */
-    assert_int_equal(qo_modbus_parse_spec("tcp://localhost:1", &sp), QO_OK);
+    assert_int_equal(qo_modbus_link_parse_spec("tcp://localhost:1", &sp), QO_OK);
     {
-        modbus_t *ctx = qo_modbus_new_ctx(&sp);
+        modbus_t *ctx = qo_modbus_link_new_ctx(&sp);
         assert_non_null(ctx);
         modbus_free(ctx);
         assert_int_equal(qo_sim_start("tcp://no-such-host.invalid:0", &map, NULL, &sim), QO_E_CONFIG);
         assert_null(sim);
     }
     /* IPv6 in brackets */
-    assert_int_equal(qo_modbus_parse_spec("tcp://[::1]:1502", &sp), QO_OK);
+    assert_int_equal(qo_modbus_link_parse_spec("tcp://[::1]:1502", &sp), QO_OK);
     assert_string_equal(sp.host, "::1");
     assert_int_equal(sp.port, 1502);
-    assert_int_equal(qo_modbus_parse_spec("tcp://[fe80::1]", &sp), QO_OK);
+    assert_int_equal(qo_modbus_link_parse_spec("tcp://[fe80::1]", &sp), QO_OK);
     assert_string_equal(sp.host, "fe80::1");
     assert_int_equal(sp.port, 502);
-    assert_int_equal(qo_modbus_parse_spec("tcp://[::1", &sp), QO_E_CONFIG);
-    assert_int_equal(qo_modbus_parse_spec("tcp://[]:1", &sp), QO_E_CONFIG);
-    assert_int_equal(qo_modbus_parse_spec("tcp://[::1]x", &sp), QO_E_CONFIG);
-    assert_int_equal(qo_modbus_parse_spec("tcp://[::1]:", &sp), QO_E_CONFIG);
+    assert_int_equal(qo_modbus_link_parse_spec("tcp://[::1", &sp), QO_E_CONFIG);
+    assert_int_equal(qo_modbus_link_parse_spec("tcp://[]:1", &sp), QO_E_CONFIG);
+    assert_int_equal(qo_modbus_link_parse_spec("tcp://[::1]x", &sp), QO_E_CONFIG);
+    assert_int_equal(qo_modbus_link_parse_spec("tcp://[::1]:", &sp), QO_E_CONFIG);
     /* port 1 on loopback: nobody listens */
     assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_DISCONNECTED);
     assert_null(s);
     assert_int_equal(qo_modbus_sink_open(NULL, &map, &set, &s), QO_E_NULL);
     /* hand-made maps are checked: bad type, zero scale, NaN max_step, too few registers */
-    map.joints[2].fmt.type = QO_REG_TYPE_COUNT_;
+    map.joints[2].fmt.type = QO_MODBUS_REG_TYPE_COUNT_;
     assert_int_equal(qo_modbus_sink_open("tcp://127.0.0.1:1", &map, &set, &s), QO_E_CONFIG);
     load_six();
     map.joints[2].fmt.scale = 0.0;
@@ -943,7 +943,7 @@ static void test_settle_until_held(void **state)
         struct rig g;
         qo_sim_settings ss = rig_plain(&g, 0.0);
         qo_modbus_sink *s;
-        qo_modbus_settle_report rep;
+        qo_modbus_sink_settle_report rep;
         float zero[NJ] = { 0 };
         double dl;
         qo_status st;
@@ -958,7 +958,7 @@ static void test_settle_until_held(void **state)
         (void)qo_modbus_sink_write(s, final, NJ, 1);
         /* 3.2 / 0.05 = 64 ticks for the slowest joint: 2 x 65 ticks of 2 ms + 0.5 s */
         dl = qo_modbus_sink_settle_time(s, final, NJ, 0.002);
-        if (fabs(dl - (2.0 * 65 * 0.002 + QO_MODBUS_SETTLE_SLACK_S)) > 2 * 0.002 + 1e-9)
+        if (fabs(dl - (2.0 * 65 * 0.002 + QO_MODBUS_SINK_SETTLE_SLACK_S)) > 2 * 0.002 + 1e-9)
             fail_msg("%s: default deadline %.6f s", cases[c].name, dl);
         /* a deadline of 0 writes nothing and names the joints that are short */
         st = qo_modbus_sink_settle(s, final, NJ, 0.002, 0.0, &rep);
@@ -989,7 +989,7 @@ static void test_settle_matches_drive(void **state)
     struct rig g;
     qo_sim_settings ss = rig_plain(&g, 0.0);
     qo_modbus_sink *s;
-    qo_modbus_settle_report rep;
+    qo_modbus_sink_settle_report rep;
     size_t i;
     (void)state;
     ss.seed = 7;
@@ -1128,20 +1128,20 @@ static void test_sim_lag_dist(void **state)
 static void test_link_backoff(void **state)
 {
     static const uint32_t want[] = { 1000, 2000, 4000, 5000, 5000 };
-    qo_modbus_backoff b;
+    qo_modbus_link_backoff b;
     size_t i;
     (void)state;
-    qo_modbus_backoff_init(&b, 1000, 5000);
-    assert_true(qo_modbus_backoff_due(&b));
-    for (i = 0; i < sizeof want / sizeof want[0]; i++) assert_int_equal(qo_modbus_backoff_failed(&b), want[i]);
-    assert_false(qo_modbus_backoff_due(&b)); /* 5 ms ahead */
-    qo_modbus_backoff_now(&b);
-    assert_true(qo_modbus_backoff_due(&b));
-    qo_modbus_backoff_reset(&b);
-    assert_int_equal(qo_modbus_backoff_failed(&b), 1000);
-    qo_modbus_backoff_init(&b, 1500000, 2500000); /* carries into the seconds */
-    assert_int_equal(qo_modbus_backoff_failed(&b), 1500000);
-    assert_int_equal(qo_modbus_backoff_failed(&b), 2500000);
+    qo_modbus_link_backoff_init(&b, 1000, 5000);
+    assert_true(qo_modbus_link_backoff_due(&b));
+    for (i = 0; i < sizeof want / sizeof want[0]; i++) assert_int_equal(qo_modbus_link_backoff_failed(&b), want[i]);
+    assert_false(qo_modbus_link_backoff_due(&b)); /* 5 ms ahead */
+    qo_modbus_link_backoff_now(&b);
+    assert_true(qo_modbus_link_backoff_due(&b));
+    qo_modbus_link_backoff_reset(&b);
+    assert_int_equal(qo_modbus_link_backoff_failed(&b), 1000);
+    qo_modbus_link_backoff_init(&b, 1500000, 2500000); /* carries into the seconds */
+    assert_int_equal(qo_modbus_link_backoff_failed(&b), 1500000);
+    assert_int_equal(qo_modbus_link_backoff_failed(&b), 2500000);
     assert_true(b.next.tv_nsec >= 0 && b.next.tv_nsec < 1000000000L);
     assert_int_equal(qo_modbus_link_connect(NULL, NULL, 0, NULL), QO_E_NULL);
 }

@@ -53,8 +53,8 @@ static void test_parse_good(void **state)
     assert_string_equal(a->name, "a");
     assert_int_equal(a->slave, 3);
     assert_int_equal(a->address, 0x6201);
-    assert_int_equal(a->fmt.type, QO_REG_INT32);
-    assert_int_equal(a->fmt.order, QO_WORD_LO_FIRST);
+    assert_int_equal(a->fmt.type, QO_MODBUS_REG_INT32);
+    assert_int_equal(a->fmt.order, QO_MODBUS_REG_LO_FIRST);
     assert_true(a->fmt.scale == 1591.5 && a->fmt.offset == -7.0 && a->fmt.invert == 1);
     assert_true(a->min == -1.5 && a->max == 2.5 && a->max_step == 0.02);
     assert_true(a->has_feedback && a->feedback == 0x602A);
@@ -62,8 +62,8 @@ static void test_parse_good(void **state)
     /* defaults; "010" is decimal ten, not octal */
     assert_string_equal(b->name, "b");
     assert_int_equal(b->address, 10);
-    assert_int_equal(b->fmt.type, QO_REG_FLOAT32);
-    assert_int_equal(b->fmt.order, QO_WORD_HI_FIRST);
+    assert_int_equal(b->fmt.type, QO_MODBUS_REG_FLOAT32);
+    assert_int_equal(b->fmt.order, QO_MODBUS_REG_HI_FIRST);
     assert_true(b->fmt.scale == 1.0 && b->fmt.offset == 0.0 && b->fmt.invert == 0);
     assert_true(isinf(b->min) && b->min < 0 && isinf(b->max) && b->max > 0);
     assert_true(b->max_step == 0.0 && !b->has_feedback);
@@ -202,7 +202,7 @@ static void test_example_files(void **state)
     assert_int_equal(map.n_joints, 6);
     for (i = 0; i < 6; i++) {
         assert_int_equal(map.joints[i].address, 2 * i);
-        assert_int_equal(map.joints[i].fmt.type, QO_REG_INT32);
+        assert_int_equal(map.joints[i].fmt.type, QO_MODBUS_REG_INT32);
         assert_true(map.joints[i].has_feedback);
     }
     assert_int_equal(qo_regmap_load("examples/maps/leadshine_cs2rs_pr.ini", &map, err, sizeof err),
@@ -270,7 +270,7 @@ static void test_long_lists(void **state)
 static void test_null_and_small_buffers(void **state)
 {
     char err[8];
-    qo_reg_write w[2];
+    qo_regmap_write w[2];
     size_t n = 9;
     (void)state;
     assert_int_equal(qo_regmap_parse(NULL, "x", &map, err, sizeof err), QO_E_NULL);

@@ -317,11 +317,11 @@ static uint64_t brute_pct(const uint64_t *sorted, size_t n, double q)
 }
 static uint64_t width_at(uint64_t v) { return v < 1024000u ? 1000u : 64000u; }
 
-static void check_pct(const qo_jitter_hist *h, const uint64_t *sorted, size_t n, double q,
+static void check_pct(const qo_streamer_jitter_hist *h, const uint64_t *sorted, size_t n, double q,
                       const char *label)
 {
     uint64_t got, want = brute_pct(sorted, n, q);
-    assert_int_equal(qo_jitter_hist_percentile(h, q, &got), QO_OK);
+    assert_int_equal(qo_streamer_jitter_hist_percentile(h, q, &got), QO_OK);
     if (want >= 1024000u + 1023u * 64000u || q == 1.0) {
         if (got != (q == 1.0 ? sorted[n - 1] : h->max_ns))
             fail_msg("%s q=%g overflow/max: got %llu", label, q, (unsigned long long)got);
@@ -335,7 +335,7 @@ static void check_pct(const qo_jitter_hist *h, const uint64_t *sorted, size_t n,
 static void test_hist_percentiles_vs_brute_force(void **state)
 {
     static uint64_t v[20000];
-    static qo_jitter_hist h;
+    static qo_streamer_jitter_hist h;
     const double qs[] = { 0.0, 0.001, 0.25, 0.5, 0.9, 0.99, 0.999, 1.0 };
     const size_t sizes[] = { 1, 2, 3, 99, 100, 101, 20000 };
     size_t si, i, qi;
@@ -344,34 +344,34 @@ static void test_hist_percentiles_vs_brute_force(void **state)
     sm.s = 42;
     for (si = 0; si < sizeof sizes / sizeof sizes[0]; si++) {
         size_t n = sizes[si];
-        qo_jitter_hist_reset(&h);
+        qo_streamer_jitter_hist_reset(&h);
         for (i = 0; i < n; i++) {
             uint64_t r = sm_below(100);
             /* mostly fine bins, some coarse, a few past the overflow edge, and bin edges */
             v[i] = r < 70 ? sm_below(1024000) : r < 95 ? sm_below(66560000) :
                    r < 98 ? 66560000u + sm_below(1000000000) : (uint64_t)(sm_below(4) * 1000u);
-            qo_jitter_hist_add(&h, v[i]);
+            qo_streamer_jitter_hist_add(&h, v[i]);
         }
         qsort(v, n, sizeof v[0], cmp_u64);
         for (qi = 0; qi < sizeof qs / sizeof qs[0]; qi++) check_pct(&h, v, n, qs[qi], "random");
     }
     /* exact bin edges */
-    qo_jitter_hist_reset(&h);
-    qo_jitter_hist_add(&h, 1023999u);
-    qo_jitter_hist_add(&h, 1024000u);
-    assert_int_equal(qo_jitter_hist_percentile(&h, 0.5, &out), QO_OK);
+    qo_streamer_jitter_hist_reset(&h);
+    qo_streamer_jitter_hist_add(&h, 1023999u);
+    qo_streamer_jitter_hist_add(&h, 1024000u);
+    assert_int_equal(qo_streamer_jitter_hist_percentile(&h, 0.5, &out), QO_OK);
     assert_int_equal(out, 1023000u);
-    assert_int_equal(qo_jitter_hist_percentile(&h, 0.51, &out), QO_OK);
+    assert_int_equal(qo_streamer_jitter_hist_percentile(&h, 0.51, &out), QO_OK);
     assert_int_equal(out, 1024000u);
     /* errors */
-    assert_int_equal(qo_jitter_hist_percentile(&h, -0.1, &out), QO_E_RANGE);
+    assert_int_equal(qo_streamer_jitter_hist_percentile(&h, -0.1, &out), QO_E_RANGE);
     assert_int_equal(out, 0);
-    assert_int_equal(qo_jitter_hist_percentile(&h, 1.01, &out), QO_E_RANGE);
-    assert_int_equal(qo_jitter_hist_percentile(&h, NAN, &out), QO_E_RANGE);
-    assert_int_equal(qo_jitter_hist_percentile(NULL, 0.5, &out), QO_E_NULL);
-    assert_int_equal(qo_jitter_hist_percentile(&h, 0.5, NULL), QO_E_NULL);
-    qo_jitter_hist_reset(&h);
-    assert_int_equal(qo_jitter_hist_percentile(&h, 0.5, &out), QO_E_TOO_FEW);
+    assert_int_equal(qo_streamer_jitter_hist_percentile(&h, 1.01, &out), QO_E_RANGE);
+    assert_int_equal(qo_streamer_jitter_hist_percentile(&h, NAN, &out), QO_E_RANGE);
+    assert_int_equal(qo_streamer_jitter_hist_percentile(NULL, 0.5, &out), QO_E_NULL);
+    assert_int_equal(qo_streamer_jitter_hist_percentile(&h, 0.5, NULL), QO_E_NULL);
+    qo_streamer_jitter_hist_reset(&h);
+    assert_int_equal(qo_streamer_jitter_hist_percentile(&h, 0.5, &out), QO_E_TOO_FEW);
 }
 
 /* The streamer's own p50/p99/max equal the brute-force percentiles of the injected lateness. */

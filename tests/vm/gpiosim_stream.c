@@ -45,8 +45,8 @@
 #define NID (NCHIP * LPC)
 
 static const char *g_sysdir[NCHIP], *g_chip[NCHIP], *g_label[NCHIP];
-static qo_gpio_backend g_inner;
-static int g_id_of[QO_GPIO_MAX_LINES]; /* handle -> line id */
+static qo_gpio_sink_backend g_inner;
+static int g_id_of[QO_GPIO_SINK_MAX_LINES]; /* handle -> line id */
 static int g_level[NID];               /* level read back from the kernel */
 static int g_role_joint[NID], g_role_step[NID];
 static int g_step_id[NJ], g_dir_id[NJ], g_invert[NJ];
@@ -78,7 +78,7 @@ static int read_level(int id)
 }
 
 /* The line id a description names in the VM's layout; -1 when it names none of ours. */
-static int line_id(const qo_gpio_line *l)
+static int line_id(const qo_gpio_sink_line *l)
 {
     const char *c = l->chip;
     int k;
@@ -103,7 +103,7 @@ static void timing_fail(const char *what, int j, uint64_t seen, uint64_t want)
     g_timing++;
 }
 
-static qo_status chk_open(void *ctx, const qo_gpio_line *line, int initial, int *h)
+static qo_status chk_open(void *ctx, const qo_gpio_sink_line *line, int initial, int *h)
 {
     qo_status st = g_inner.open(ctx, line, initial, h);
     int id = line_id(line);
@@ -184,11 +184,11 @@ static qo_gpio_sink_config g_cfg;
 
 static void make_config(void)
 {
-    qo_gpio_joint j;
+    qo_gpio_sink_joint j;
     static char path1[80];
     int k;
     g_cfg = qo_gpio_sink_config_default;
-    j = qo_gpio_joint_default;
+    j = qo_gpio_sink_joint_default;
     g_cfg.period_s = 0.004;
     g_cfg.window = 0.75;
     g_cfg.step_high_us = 20.0;
@@ -229,11 +229,11 @@ static void make_config(void)
  */
 static int count_free(const qo_gpio_sink_config *cfg, size_t n)
 {
-    static qo_gpio_libgpiod store;
-    qo_gpio_backend be;
+    static qo_gpio_sink_libgpiod store;
+    qo_gpio_sink_backend be;
     int h, free_n = 0;
     size_t k;
-    if (qo_gpio_libgpiod_backend(&store, "qorient-vm-probe", &be) != QO_OK) return -1;
+    if (qo_gpio_sink_libgpiod_backend(&store, "qorient-vm-probe", &be) != QO_OK) return -1;
     for (k = 0; k < n; k++) {
         if (be.open(be.ctx, &cfg->joint[k].step, 0, &h) == QO_OK) { free_n++; be.close(be.ctx, h); }
         if (be.open(be.ctx, &cfg->joint[k].dir, 0, &h) == QO_OK) { free_n++; be.close(be.ctx, h); }
@@ -242,7 +242,8 @@ static int count_free(const qo_gpio_sink_config *cfg, size_t n)
 }
 
 /* Part D: an open that fails on joint 1's dir line must release joint 0's and joint 1's step. */
-static int open_error(const char *what, qo_gpio_line bad, qo_status want, const qo_gpio_backend *be)
+static int open_error(const char *what, qo_gpio_sink_line bad, qo_status want,
+                      const qo_gpio_sink_backend *be)
 {
     static qo_gpio_sink sink;
     qo_gpio_sink_config c = g_cfg;
@@ -261,7 +262,7 @@ static int open_error(const char *what, qo_gpio_line bad, qo_status want, const 
 }
 
 /* Part E: a child opens the sink, moves, and exits (or is killed) without closing. */
-static int exit_release(int kill_it, const qo_gpio_backend *be)
+static int exit_release(int kill_it, const qo_gpio_sink_backend *be)
 {
     static qo_gpio_sink sink;
     int status, n;
@@ -290,13 +291,13 @@ static int exit_release(int kill_it, const qo_gpio_backend *be)
 
 int main(int argc, char **argv)
 {
-    static qo_gpio_libgpiod store, hold_store;
+    static qo_gpio_sink_libgpiod store, hold_store;
     static qo_gpio_sink sink;
     static qo_streamer str;
-    qo_gpio_backend be, hold;
+    qo_gpio_sink_backend be, hold;
     qo_streamer_config sc;
     qo_streamer_stats st;
-    qo_gpio_line bad;
+    qo_gpio_sink_line bad;
     int64_t p[NJ], pa[NJ];
     long neta[NJ], dca2;
     size_t k;
@@ -308,11 +309,12 @@ int main(int argc, char **argv)
         g_label[i] = argv[3 + 3 * i];
     }
     for (i = 0; i < NID; i++) g_role_joint[i] = -1;
-    printf("QOVM: libgpiod %s API; chips %s (%s), %s (%s)\n", qo_gpio_libgpiod_api(), g_chip[0],
-           g_label[0], g_chip[1], g_label[1]);
+    printf("QOVM: libgpiod %s API; chips %s (%s), %s (%s)\n", qo_gpio_sink_libgpiod_api(),
+           g_chip[0], g_label[0], g_chip[1], g_label[1]);
     make_config();
 
-    if (qo_gpio_libgpiod_backend(&store, "qorient-vm", &g_inner) != QO_OK) return fail("backend");
+    if (qo_gpio_sink_libgpiod_backend(&store, "qorient-vm", &g_inner) != QO_OK)
+        return fail("backend");
     be = g_inner;
     be.open = chk_open;
     be.set_value = chk_set;
@@ -394,7 +396,7 @@ int main(int argc, char **argv)
     if (i != 2 * NJ) return fail("lines held after close");
 
     /* Part D: failed opens release what they opened. A line held by another request is busy. */
-    if (qo_gpio_libgpiod_backend(&hold_store, "qorient-vm-holder", &hold) != QO_OK ||
+    if (qo_gpio_sink_libgpiod_backend(&hold_store, "qorient-vm-holder", &hold) != QO_OK ||
         hold.open(hold.ctx, &g_cfg.joint[1].dir, 0, &hold_h) != QO_OK)
         return fail("cannot hold a line");
     {
