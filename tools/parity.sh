@@ -16,12 +16,14 @@
 #     function that does not exist);
 #   - a family (the concept before the dot) is declared in more than one header pair, or in a
 #     header not named after it (mat3 lives in convert.h);
-#   - a function with a core suffix (_f32, _q30, _q28, _q16) declared in a header that has a
-#     block is in no block (a new function must say which concept it is);
-#   - a public name (function, type or object, qo_<family>_...) is declared outside its family's
-#     header pair: the name says the header (FAMILIES below; the value types of types.h
-#     excepted). The ports' headers too (PORT_FAMILIES: a port header's family is its file
-#     name), and there also every QO_ macro and enum constant (QO_<FAMILY>_...).
+#   - a function declared in a header that has a block is in no block (a new function must
+#     say which concept it is; names with _internal_ are not API and are exempt);
+#   - a public name (function, type, tag or object, qo_<family>_...) is declared outside its
+#     family's header pair: the name says the header (FAMILIES below; the value types of
+#     types.h excepted), and every QO_ macro and enum constant starts with its header's family
+#     (QO_<FAMILY>_..., the shared constants' homes named below). The ports' headers too
+#     (PORT_FAMILIES: a port header's family is its file name). Names are read by
+#     tools/public_names.py, a small C parser, not by grep.
 set -eu
 export LC_ALL=C
 cd "$(dirname "$0")/.."
@@ -48,12 +50,13 @@ done > "$W.entries"
 fail=0
 err() { echo "parity: $*" >&2; fail=1; }
 
-# declarations: lines outside comments and function bodies (they start at column 0 with a
-# letter) naming a function, "... qo_name(" (the first such name of the line)
-for f in "$H"/*.h; do
-    grep -E '^[A-Za-z_]' "$f" | grep -oE '\bqo_[a-z0-9_]+\(' | sed 's/($//' |
-        sed "s|^|$(basename "$f")\t|"
-done | sort -u > "$W.decl"
+# every name the public headers declare at file scope (tools/public_names.py: a small C
+# parser, so continuation lines, typedef lists, function-pointer types, objects, enum
+# constants and macros are all seen): FILE<TAB>NAME<TAB>KIND
+PORT_HDRS=$(ls ports/*.h ports/*/*.h)
+python3 tools/public_names.py "$H"/*.h $PORT_HDRS > "$W.all" || { echo "parity: cannot parse the headers" >&2; exit 1; }
+awk -F '\t' -v h="$H/" 'index($1, h) == 1 && $3 == "func" { f = substr($1, length(h) + 1); print f "\t" $2 }' \
+    "$W.all" | sort -u > "$W.decl"
 
 # every named function is declared somewhere
 cut -f3 "$W.entries" | grep -v '^-$' | sort -u | while read -r fn; do
@@ -61,11 +64,11 @@ cut -f3 "$W.entries" | grep -v '^-$' | sort -u | while read -r fn; do
 done > "$W.missing"
 while read -r fn; do err "$fn is in a parity block but declared in no public header"; done < "$W.missing"
 
-# every suffixed function of a header with a block is in some block
+# every function of a header with a block is in some block
 cut -f5 "$W.entries" | sort -u > "$W.hdrs"
 while IFS="$(printf '\t')" read -r hdr fn; do
     grep -qx "$hdr" "$W.hdrs" || continue
-    case $fn in *_f32|*_q30|*_q28|*_q16) ;; *) continue;; esac
+    case $fn in *_internal_*) continue;; esac   # named internal: not API (quat.h's SIMD helpers)
     cut -f3 "$W.entries" | grep -qx "$fn" || err "$fn ($hdr) is in no parity block: add it with its concept"
 done < "$W.decl"
 
@@ -96,7 +99,7 @@ done < "$W.homes"
 # <home>_fx.h. One line per home: the header, then the families (name prefixes) it holds.
 # A name belongs to the longest family it starts with (qo_euler_seq_parse: euler_seq).
 FAMILIES='quat quat
-convert mat3 axis_angle rotvec
+convert convert mat3 axis_angle rotvec
 euler euler
 euler_seq euler_seq
 interp interp
@@ -126,48 +129,43 @@ ports/linux/regmap regmap
 ports/linux/sim sim
 ports/linux/streamer streamer
 ports/linux/wire_budget wire_budget'
-PORT_HDRS=$(ls ports/*.h ports/*/*.h)
 homes=$(printf '%s\n' "$FAMILIES" | sed "s|^|$H/|"; printf '%s\n' "$PORT_FAMILIES")
 
-# names: lines outside comments and bodies (column 0) declaring a function "qo_x(", a type or
-# object "qo_x;" / "qo_x {", or a function-pointer type "(*qo_x)"
-for f in "$H"/*.h $PORT_HDRS; do
-    grep -E '^[A-Za-z_}]' "$f" | grep -oE '\bqo_[a-z0-9_]+(\(|;| \{|\))' | sed -E 's/(\(|;| \{|\))$//' |
-        sed "s|^|$f\t|"
-done | sort -u | awk -F '\t' -v homes="$homes" -v core="$H/" '
+# every lower-case name (function, type, tag, object) in the header of its family
+awk -F '\t' -v homes="$homes" -v core="$H/" '
     BEGIN {
         n = split(homes, lines, "\n")
         for (i = 1; i <= n; i++) { k = split(lines[i], w, " "); for (j = 2; j <= k; j++) home[w[j]] = w[1] }
     }
-    $1 == core "types.h" { next }
+    $3 == "macro" || $3 == "enum" { next }
+    $1 == core "types.h" && $3 != "func" { next }
     {
+        if ($2 !~ /^qo_/) { print $2 " (" $1 "): a public name starts with qo_"; next }
         name = substr($2, 4); best = ""
         for (fam in home) if ((name == fam || index(name, fam "_") == 1) && length(fam) > length(best)) best = fam
         h = $1; sub(/(_fx)?\.h$/, "", h)
         if (best == "") print $2 " (" $1 "): no family: add its prefix to FAMILIES (core) or PORT_FAMILIES in tools/parity.sh"
         else if (home[best] != h) print $2 " is declared in " $1 ": family " best " lives in " home[best] ".h"
-    }' > "$W.names"
-# the ports: every #define and enum constant QO_<FAMILY>_... of its header's family
-for f in $PORT_HDRS; do
-    awk -v f="$f" '
-        /^#define QO_/ { n = $2; sub(/\(.*/, "", n); print f "\t" n }
-        /enum[^;]*\{/ { inenum = 1 }
-        inenum {
-            line = $0; sub(/\/\*.*/, "", line)
-            while (match(line, /QO_[A-Z0-9_]+/)) { print f "\t" substr(line, RSTART, RLENGTH); line = substr(line, RSTART + RLENGTH) }
-        }
-        inenum && /\}/ { inenum = 0 }' "$f"
-done | sort -u | awk -F '\t' -v homes="$PORT_FAMILIES" '
+    }' "$W.all" > "$W.names"
+# every macro and enum constant QO_<FAMILY>_... of its header's family (include guards
+# QORIENT_..._H aside). The core's shared constants have fixed homes: the status codes
+# (QO_OK, QO_E_...) in status.h, the fixed-point formats' constants (QO_Q30_ONE, QO_Q28_PI)
+# in types.h, the Euler sequences (QO_EULER_XYZ) in euler_seq.h, which the euler family shares.
+awk -F '\t' -v homes="$homes" -v core="$H/" '
     BEGIN {
         n = split(homes, lines, "\n")
-        for (i = 1; i <= n; i++) { k = split(lines[i], w, " "); for (j = 2; j <= k; j++) fam[w[1]] = fam[w[1]] " " toupper(w[j]) }
+        for (i = 1; i <= n; i++) { k = split(lines[i], w, " "); for (j = 2; j <= k; j++) fams[w[1]] = fams[w[1]] " " toupper(w[j]) }
+        fams[core "types"] = " Q16 Q28 Q30"; fams[core "version"] = " VERSION"
+        fams[core "status"] = fams[core "status"] " E"; fams[core "euler_seq"] = fams[core "euler_seq"] " EULER"
     }
+    $3 != "macro" && $3 != "enum" { next }
+    $2 ~ /^QORIENT_[A-Z0-9_]*_H$/ || $2 == "QO_OK" && $1 == core "status.h" { next }
     {
-        h = $1; sub(/\.h$/, "", h); ok = 0
-        k = split(fam[h], fs, " ")
+        h = $1; sub(/(_fx)?\.h$/, "", h); ok = 0
+        k = split(fams[h], fs, " ")
         for (j = 1; j <= k; j++) if (index($2, "QO_" fs[j] "_") == 1) ok = 1
-        if (!ok) print $2 " (" $1 "): a port macro or enum constant starts with its header family, QO_" (k ? fs[1] : "?") "_"
-    }' >> "$W.names"
+        if (!ok) print $2 " (" $1 "): a macro or enum constant starts with its header family, QO_" (k ? fs[1] : "?") "_"
+    }' "$W.all" >> "$W.names"
 while read -r line; do err "$line"; done < "$W.names"
 
 [ $fail = 0 ] || { echo "parity: FAIL (the blocks are at the top of $H/*.h, the families in tools/parity.sh)" >&2; exit 1; }

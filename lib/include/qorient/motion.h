@@ -11,6 +11,7 @@
  *   motion.query   qo_motion_done_f32
  *   motion.query   qo_motion_duration_f32
  *   motion.query   qo_motion_end_time_f32
+ *   motion.query   qo_motion_sync_used
  *   motion.sample  qo_motion_sample_f32
  *   motion.export  qo_motion_export_q16 (float32 code: writes the fixed core's table)
  */

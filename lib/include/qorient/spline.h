@@ -1,4 +1,5 @@
 /* parity float32 (tools/parity.sh writes docs/PARITY.md from these blocks):
+ *   spline.storage qo_spline_coef_len
  *   spline.plan    qo_spline_init_f32
  *   spline.sample  qo_spline_sample_f32
  *   spline.export  qo_spline_export_q16 (float32 code: writes the fixed core's table)

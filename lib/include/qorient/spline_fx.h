@@ -1,4 +1,5 @@
 /* parity fixed (tools/parity.sh writes docs/PARITY.md from these blocks):
+ *   spline.storage qo_spline_q16_len
  *   spline.plan    - planned in float32 (host or main loop): the fixed core samples the export
  *   spline.sample  qo_spline_sample_q16
  *   spline.export  - qo_spline_sample_q16 reads the table qo_spline_export_q16 writes

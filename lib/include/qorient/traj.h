@@ -1,12 +1,23 @@
 /* parity float32 (tools/parity.sh writes docs/PARITY.md from these blocks):
+ *   traj.storage   qo_traj_store_len
  *   traj.plan      qo_traj_init_keys
  *   traj.plan      qo_traj_init_targets
+ *   traj.plan      qo_traj_set_timing
+ *   traj.plan      qo_traj_set_joint_sync
  *   traj.plan      qo_traj_push
+ *   traj.plan      qo_traj_prepare
  *   traj.sample    qo_traj_sample
+ *   traj.query     qo_traj_joints
+ *   traj.query     qo_traj_end_time
+ *   traj.query     qo_traj_done
+ *   traj.time      qo_traj_ns_from_s
  */
 /* parity fixed:
  *   traj.plan      - float32 only: one object over the spline and the motion planner
  *   traj.sample    - sample the exported Q16 tables (spline_fx.h, motion_fx.h)
+ *   traj.storage   - the Q16 tables size themselves (qo_spline_q16_len, QO_MOTION_Q16_SEGS)
+ *   traj.query     - the times are in the float32 object that exported the tables
+ *   traj.time      - the integer time is the API's own: the Q16 tables take Q16.16 seconds
  */
 /*
  * qorient/traj.h - one trajectory object over N joints: keyframes or timed targets, float32.
