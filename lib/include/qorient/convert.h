@@ -174,14 +174,18 @@ qo_status qo_mat3_orthonormalize_f32(const qo_mat3_f32 *m, qo_mat3_f32 *out);
 qo_status qo_quat_from_mat3_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 
 /*
- * Canonical unit quaternion of *m for callers whose matrix is KNOWN to be a rotation (built
- * from a quaternion or from rotations, to float rounding): the pivoting formula of
- * qo_quat_from_mat3_f32 (Shepperd: largest of trace, m00, m11, m22, normalised in one step),
- * without the rotation check (orthogonality, determinant) that costs most of
- * qo_quat_from_mat3_f32. For a float-rounded rotation the result is the same rotation to
- * ~2e-7 rad (bench/accuracy_convert.c). A matrix that is not a rotation gives an unspecified
- * unit quaternion (never NaN from finite input) - use qo_quat_from_mat3_f32 or _ortho_f32
- * when that can happen.
+ * Canonical quaternion (w >= 0) of *m for callers whose matrix is KNOWN to be a rotation (built
+ * from a quaternion or from rotations, to float rounding), without the rotation check
+ * (orthogonality, determinant) of qo_quat_from_mat3_f32. Shepperd's method with one square
+ * root and one divide: the pivot is the trace when it is >= 0, else the largest diagonal
+ * entry, and q = v / (2 sqrt(c)) for that pivot's vector v and c = 4 p^2 (|v| = 2 sqrt(c) for
+ * a rotation, so the pivot vector is not normalised by its own length).
+ * Defined for rotation matrices within QO_MAT3_ROTATION_TOL_F32 (max |M^T M - I|): for a
+ * float-rounded rotation the result is the same rotation to ~2e-7 rad and |q| = 1 to ~1e-6
+ * (bench/accuracy_convert.c); off a rotation by e, |q| is off 1 by about e. For any other
+ * finite matrix the quaternion is unspecified (not unit, possibly not near any rotation of
+ * it), but finite, never NaN, with w >= 0 - use qo_quat_from_mat3_f32 or _ortho_f32 when
+ * that can happen.
  * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NONFINITE for a NaN/Inf entry (or
  * entries so large that the formula overflows: not a rotation). *out is the identity on every
  * error.
