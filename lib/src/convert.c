@@ -25,6 +25,20 @@
  * s < ~5e-4: a factor of 7 of margin. */
 #define CONV_COND_MAX 3e3f
 
+/* On the rare paths of qo_quat_from_mat3_f32: kept out of line, so that the common case makes
+ * no call and needs no stack frame (gcc and clang; elsewhere a plain static function). */
+#if defined(__GNUC__)
+#define CONV_COLD __attribute__((noinline, cold))
+#else
+#define CONV_COLD
+#endif
+/* quat_from_pivot is rare only where quat_from_pivot_sse2 answers first */
+#if QO_SIMD_SSE2
+#define CONV_COLD_SSE2 CONV_COLD
+#else
+#define CONV_COLD_SSE2
+#endif
+
 /* Largest max|M^T M - I| that qo_quat_from_mat3_f32 converts without projecting onto the
  * nearest rotation first: ~4 float32 ulps of 1, above the ~2e-7 of a rounded rotation. */
 #define CONV_SHEPPERD_DIRECT_TOL 5e-7f
@@ -339,7 +353,7 @@ static inline int quat_from_pivot_sse2(const qo_mat3_f32 *m, qo_quat_f32 *out)
 }
 #endif
 
-static qo_status quat_from_pivot(const qo_mat3_f32 *m, qo_quat_f32 *out)
+static CONV_COLD_SSE2 qo_status quat_from_pivot(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     qo_quat_f32 v;
     int p, flip;
@@ -360,7 +374,7 @@ static qo_status quat_from_pivot(const qo_mat3_f32 *m, qo_quat_f32 *out)
 }
 
 /* The full check of qo_quat_from_mat3_f32, for the matrices the fast test below does not pass. */
-static qo_status quat_from_mat3_checked(const qo_mat3_f32 *m, qo_quat_f32 *out)
+static CONV_COLD qo_status quat_from_mat3_checked(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     qo_mat3_f32 r;
     float orth;
@@ -485,11 +499,21 @@ static int quat_from_rotation_fast(const qo_mat3_f32 *m, qo_quat_f32 *out)
         if (w < 0.0f) k = -k;
         else if (!(w > 0.0f)) return 0;
     }
-    /* A finite sum means every term is finite (an Inf gives Inf, Inf - Inf and NaN give NaN),
-     * c among them: then k is finite and non-zero, and with |k| <= 1/2 so is every product. */
-    if (!(fabsf((w + x) + (y + z)) <= FLT_MAX)) return 0;
-    /* + 0.0f: -0.0 -> +0.0 as qo_quat_canonical_f32 */
-    out->w = w * k + 0.0f; out->x = x * k + 0.0f; out->y = y * k + 0.0f; out->z = z * k + 0.0f;
+    /* The four products finite: c is one of the terms, so a NaN/Inf c (k NaN or 0) and a
+     * NaN/Inf v both give a NaN/Inf product, and with |k| <= 1/2 a finite v cannot overflow. */
+    {
+#if QO_SIMD_SSE2
+        const __m128 q4 = _mm_mul_ps(_mm_setr_ps(w, x, y, z), _mm_set1_ps(k));
+        const __m128 d = _mm_sub_ps(q4, q4);                  /* NaN exactly where q4 is not finite */
+        if (_mm_movemask_ps(_mm_cmpunord_ps(d, d))) return 0;
+        _mm_storeu_ps(&out->w, _mm_add_ps(q4, _mm_setzero_ps()));   /* -0.0 -> +0.0 */
+#else
+        w *= k; x *= k; y *= k; z *= k;
+        if (!(isfinite(w) && isfinite(x) && isfinite(y) && isfinite(z))) return 0;
+        /* + 0.0f: -0.0 -> +0.0 as qo_quat_canonical_f32 */
+        out->w = w + 0.0f; out->x = x + 0.0f; out->y = y + 0.0f; out->z = z + 0.0f;
+#endif
+    }
     return 1;
 }
 

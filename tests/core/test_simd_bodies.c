@@ -14,7 +14,8 @@
  *  - qo_quat_from_mat3_f32's SSE2 paths (the direct rotation test, the pivot vector normalised
  *    in registers) against lib/src/convert.c compiled once more with QO_NO_SIMD (nosimd_*), bit
  *    for bit with the status, on rotations of every pivot, half turns, drifted, reflected,
- *    scaled and random matrices, signed zeros and bad entries; rotations also against double.
+ *    scaled and random matrices, signed zeros and bad entries; rotations also against double;
+ *    qo_quat_from_mat3_trusted_f32 (its SSE2 finiteness test and store) on the same matrices.
  * Where SSE2 is not used both sides are the scalar code and only the double check can fail.
  * Linux only (make test, aarch64 and armhf under make test-qemu): it includes private files
  * of lib/src, which keeps it off the Cortex-M list (tests/qemu/run-target.sh is_core).
@@ -99,6 +100,7 @@ qo_status qo_quat_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *
 #undef qo_mat3_orthonormalize_f32
 #undef qo_quat_from_mat3_ortho_f32
 qo_status qo_quat_from_mat3_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
+qo_status qo_quat_from_mat3_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 #include "qorient/fmath.h"
 #include "../lib/src/fmath_internal.h"
 
@@ -277,8 +279,8 @@ static void test_from_mat3_simd_same_bits(void **state)
         const int kind = (int)(ref_rng_next(&rng) % 16u);
         ref_quat rq;
         qo_mat3_f32 m = m2q_input(&rng, kind, &rq);
-        qo_quat_f32 q1, q2;
-        qo_status s1, s2;
+        qo_quat_f32 q1, q2, q3, q4;
+        qo_status s1, s2, s3, s4;
         memset(&q1, 0x5a, sizeof q1);
         memset(&q2, 0xa5, sizeof q2);
         s1 = qo_quat_from_mat3_f32(&m, &q1);
@@ -290,6 +292,16 @@ static void test_from_mat3_simd_same_bits(void **state)
                      (double)q2.x, (double)q2.y, (double)q2.z, (double)m.m[0][0],
                      (double)m.m[0][1], (double)m.m[0][2], (double)m.m[1][0], (double)m.m[1][1],
                      (double)m.m[1][2], (double)m.m[2][0], (double)m.m[2][1], (double)m.m[2][2]);
+        /* the trusted variant: its SSE2 store and finiteness test, on the same matrices */
+        memset(&q3, 0x5a, sizeof q3);
+        memset(&q4, 0xa5, sizeof q4);
+        s3 = qo_quat_from_mat3_trusted_f32(&m, &q3);
+        s4 = nosimd_quat_from_mat3_trusted_f32(&m, &q4);
+        if (s3 != s4 || !same_quat_bits(q3, q4))
+            fail_msg("from_mat3_trusted case %ld (kind %d): SIMD status %d (%a, %a, %a, %a), "
+                     "scalar status %d (%a, %a, %a, %a)", n, kind, (int)s3, (double)q3.w,
+                     (double)q3.x, (double)q3.y, (double)q3.z, (int)s4, (double)q4.w,
+                     (double)q4.x, (double)q4.y, (double)q4.z);
         if (s1 != QO_OK) {
             refused++;
             continue;
