@@ -250,7 +250,10 @@ QO_CONVERT_INLINE qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out)
     s = _mm_add_ss(_mm_add_ss(_mm_add_ss(uu, da), db), QO_SIMD_SHUFFLE_PS(uu, 0xff));
     s = _mm_div_ss(_mm_set_ss(2.0f), s);
     s = _mm_shuffle_ps(s, s, 0);
-    d = _mm_sub_ps(_mm_set1_ps(1.0f), _mm_mul_ps(_mm_add_ps(da, db), s));    /* m22 m11 . m00 */
+    /* 1 - sd as 1 + (-sd), the same rounding; the constants leave the unused lane 2 alone,
+     * which makes gcc read them from memory instead of building a register copy */
+    d = _mm_xor_ps(_mm_mul_ps(_mm_add_ps(da, db), s), _mm_setr_ps(-0.0f, -0.0f, 0.0f, -0.0f));
+    d = _mm_add_ps(d, _mm_setr_ps(1.0f, 1.0f, 0.0f, 1.0f));                   /* m22 m11 . m00 */
     /* w times (w x y z) in place, so the products of x, y, z are laid out to match */
     wr = _mm_mul_ps(QO_SIMD_SHUFFLE_PS(u, 0x00), u);                          /* . wx wy wz */
     pr = _mm_mul_ps(QO_SIMD_SHUFFLE_PS(u, _MM_SHUFFLE(1, 1, 2, 0)),           /* . yz xz xy */
