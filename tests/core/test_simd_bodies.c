@@ -265,6 +265,29 @@ static qo_mat3_f32 m2q_input(ref_rng *rng, int kind, ref_quat *rot)
     return m;
 }
 
+typedef qo_status (*m2q_fn)(const qo_mat3_f32 *m, qo_quat_f32 *out);
+
+/* simd(m) and scalar(m) from different garbage in the outputs: the same status and bits, or
+ * the test fails naming the case, both results and m. Returns the status, *q the result. */
+static qo_status m2q_same_bits(const char *what, long n, int kind, const qo_mat3_f32 *m,
+                               m2q_fn simd, m2q_fn scalar, qo_quat_f32 *q)
+{
+    qo_quat_f32 q2;
+    qo_status s1, s2;
+    memset(q, 0x5a, sizeof *q);
+    memset(&q2, 0xa5, sizeof q2);
+    s1 = simd(m, q);
+    s2 = scalar(m, &q2);
+    if (s1 != s2 || !same_quat_bits(*q, q2))
+        fail_msg("%s case %ld (kind %d): SIMD status %d (%a, %a, %a, %a), scalar status %d (%a, "
+                 "%a, %a, %a); m %a %a %a / %a %a %a / %a %a %a", what, n, kind, (int)s1,
+                 (double)q->w, (double)q->x, (double)q->y, (double)q->z, (int)s2, (double)q2.w,
+                 (double)q2.x, (double)q2.y, (double)q2.z, (double)m->m[0][0],
+                 (double)m->m[0][1], (double)m->m[0][2], (double)m->m[1][0], (double)m->m[1][1],
+                 (double)m->m[1][2], (double)m->m[2][0], (double)m->m[2][1], (double)m->m[2][2]);
+    return s1;
+}
+
 /* qo_quat_from_mat3_f32's SSE2 paths (the direct rotation test, the pivot vector normalised
  * in registers) against the scalar body (convert.c with QO_NO_SIMD), bit for bit with the
  * status, on every kind of m2q_input; each rotation's result also against the double
@@ -279,29 +302,12 @@ static void test_from_mat3_simd_same_bits(void **state)
         const int kind = (int)(ref_rng_next(&rng) % 16u);
         ref_quat rq;
         qo_mat3_f32 m = m2q_input(&rng, kind, &rq);
-        qo_quat_f32 q1, q2, q3, q4;
-        qo_status s1, s2, s3, s4;
-        memset(&q1, 0x5a, sizeof q1);
-        memset(&q2, 0xa5, sizeof q2);
-        s1 = qo_quat_from_mat3_f32(&m, &q1);
-        s2 = nosimd_quat_from_mat3_f32(&m, &q2);
-        if (s1 != s2 || !same_quat_bits(q1, q2))
-            fail_msg("from_mat3 case %ld (kind %d): SIMD status %d (%a, %a, %a, %a), scalar status "
-                     "%d (%a, %a, %a, %a); m %a %a %a / %a %a %a / %a %a %a", n, kind, (int)s1,
-                     (double)q1.w, (double)q1.x, (double)q1.y, (double)q1.z, (int)s2, (double)q2.w,
-                     (double)q2.x, (double)q2.y, (double)q2.z, (double)m.m[0][0],
-                     (double)m.m[0][1], (double)m.m[0][2], (double)m.m[1][0], (double)m.m[1][1],
-                     (double)m.m[1][2], (double)m.m[2][0], (double)m.m[2][1], (double)m.m[2][2]);
+        qo_quat_f32 q1, q3;
+        const qo_status s1 = m2q_same_bits("from_mat3", n, kind, &m, qo_quat_from_mat3_f32,
+                                           nosimd_quat_from_mat3_f32, &q1);
         /* the trusted variant: its SSE2 store and finiteness test, on the same matrices */
-        memset(&q3, 0x5a, sizeof q3);
-        memset(&q4, 0xa5, sizeof q4);
-        s3 = qo_quat_from_mat3_trusted_f32(&m, &q3);
-        s4 = nosimd_quat_from_mat3_trusted_f32(&m, &q4);
-        if (s3 != s4 || !same_quat_bits(q3, q4))
-            fail_msg("from_mat3_trusted case %ld (kind %d): SIMD status %d (%a, %a, %a, %a), "
-                     "scalar status %d (%a, %a, %a, %a)", n, kind, (int)s3, (double)q3.w,
-                     (double)q3.x, (double)q3.y, (double)q3.z, (int)s4, (double)q4.w,
-                     (double)q4.x, (double)q4.y, (double)q4.z);
+        (void)m2q_same_bits("from_mat3_trusted", n, kind, &m, qo_quat_from_mat3_trusted_f32,
+                            nosimd_quat_from_mat3_trusted_f32, &q3);
         if (s1 != QO_OK) {
             refused++;
             continue;
