@@ -63,7 +63,7 @@ static void measure(ref_quat rq, ref_rng *rng)
     int i, j;
 
     /* quat -> mat3: vs the double matrix of the same float q. */
-    s = qo_quat_to_mat3_f32(q, &m);
+    s = qo_mat3_from_quat_f32(q, &m);
     rmd = ref_mat3_from_f32(&m);
     record(C_Q2M, ref_mat3_rotation_distance(&rm, &rmd), s);
 
@@ -72,11 +72,11 @@ static void measure(ref_quat rq, ref_rng *rng)
     mf = ref_mat3_to_f32(&rm);
     rmd = ref_mat3_from_f32(&mf);
     near = ref_mat3_nearest_rotation(&rmd);
-    s = qo_quat_from_mat3_f32(&mf, &q2);
+    s = qo_mat3_to_quat_f32(&mf, &q2);
     record(C_M2Q, ref_quat_angle_between(ref_quat_from_f32(q2), ref_mat3_to_quat(&near)), s);
-    s = qo_quat_from_mat3_trusted_f32(&mf, &q2);
+    s = qo_mat3_to_quat_trusted_f32(&mf, &q2);
     record(C_M2Q_TRUSTED, ref_quat_angle_between(ref_quat_from_f32(q2), ref_mat3_to_quat(&near)), s);
-    s = qo_quat_from_mat3_ortho_f32(&mf, &q2);
+    s = qo_mat3_to_quat_ortho_f32(&mf, &q2);
     record(C_M2Q_ORTHO_EXACT, ref_quat_angle_between(ref_quat_from_f32(q2), ref_mat3_to_quat(&near)), s);
 
     /* Slightly drifted matrix (accepted by the strict path): vs its nearest rotation. */
@@ -84,7 +84,7 @@ static void measure(ref_quat rq, ref_rng *rng)
         for (j = 0; j < 3; j++) mn.m[i][j] = mf.m[i][j] + (float)ref_rng_range(rng, -1e-5, 1e-5);
     rmd = ref_mat3_from_f32(&mn);
     near = ref_mat3_nearest_rotation(&rmd);
-    s = qo_quat_from_mat3_f32(&mn, &q2);
+    s = qo_mat3_to_quat_f32(&mn, &q2);
     record(C_M2Q_DRIFT, ref_quat_angle_between(ref_quat_from_f32(q2), ref_mat3_to_quat(&near)), s);
 
     /* Drifted matrix: uniform noise of 1e-2 on every entry, repaired by the ortho path. */
@@ -92,7 +92,7 @@ static void measure(ref_quat rq, ref_rng *rng)
         for (j = 0; j < 3; j++) mn.m[i][j] = mf.m[i][j] + (float)ref_rng_range(rng, -1e-2, 1e-2);
     rmd = ref_mat3_from_f32(&mn);
     near = ref_mat3_nearest_rotation(&rmd);
-    s = qo_quat_from_mat3_ortho_f32(&mn, &q2);
+    s = qo_mat3_to_quat_ortho_f32(&mn, &q2);
     record(C_M2Q_ORTHO_NOISY, ref_quat_angle_between(ref_quat_from_f32(q2), ref_mat3_to_quat(&near)), s);
     s = qo_mat3_orthonormalize_f32(&mn, &m);
     rmd = ref_mat3_from_f32(&m);
@@ -100,9 +100,9 @@ static void measure(ref_quat rq, ref_rng *rng)
 
     /* quat -> axis-angle and quat -> rotvec: the rotation the float result describes, built
      * in double, vs the input. */
-    s = qo_quat_to_axis_angle_f32(q, &ax, &ang);
+    s = qo_axis_angle_from_quat_f32(q, &ax, &ang);
     record(C_Q2AA, ref_quat_angle_between(ref_quat_from_axis_angle(ref_vec3_from_f32(ax), ang), qd), s);
-    s = qo_quat_to_rotvec_f32(q, &rv);
+    s = qo_rotvec_from_quat_f32(q, &rv);
     {
         ref_vec3 r = ref_vec3_from_f32(rv);
         double th = sqrt(r.x * r.x + r.y * r.y + r.z * r.z);
@@ -118,7 +118,7 @@ static void measure(ref_quat rq, ref_rng *rng)
                        ref_rng_range(rng, -1, 1) * len };
         qo_vec3_f32 af = ref_vec3_to_f32(a);
         float an = (float)ref_rng_range(rng, -2.0 * REF_PI, 2.0 * REF_PI);
-        s = qo_quat_from_axis_angle_f32(af, an, &q2);
+        s = qo_axis_angle_to_quat_f32(af, an, &q2);
         record(C_AA2Q, ref_quat_angle_between(ref_quat_from_f32(q2),
                                               ref_quat_from_axis_angle(ref_vec3_from_f32(af), an)), s);
     }
@@ -128,7 +128,7 @@ static void measure(ref_quat rq, ref_rng *rng)
         double th = sqrt(r.x * r.x + r.y * r.y + r.z * r.z);
         ref_quat e = { 1.0, 0.0, 0.0, 0.0 };
         if (th > 0.0) e = ref_quat_from_axis_angle(r, th);
-        s = qo_quat_from_rotvec_f32(rv, &q2);
+        s = qo_rotvec_to_quat_f32(rv, &q2);
         record(C_RV2Q, ref_quat_angle_between(ref_quat_from_f32(q2), e), s);
         th = pow(10.0, ref_rng_range(rng, -12.0, -1.0));
         r.x *= th; r.y *= th; r.z *= th;
@@ -136,13 +136,13 @@ static void measure(ref_quat rq, ref_rng *rng)
         r = ref_vec3_from_f32(rv);
         th = sqrt(r.x * r.x + r.y * r.y + r.z * r.z);
         if (th > 0.0) e = ref_quat_from_axis_angle(r, th);
-        s = qo_quat_from_rotvec_f32(rv, &q2);
+        s = qo_rotvec_to_quat_f32(rv, &q2);
         record(C_RV2Q, ref_quat_angle_between(ref_quat_from_f32(q2), e), s);
     }
 
     /* Round trip through the matrix. */
-    s = qo_quat_to_mat3_f32(q, &m);
-    if (s == QO_OK) s = qo_quat_from_mat3_f32(&m, &q2);
+    s = qo_mat3_from_quat_f32(q, &m);
+    if (s == QO_OK) s = qo_mat3_to_quat_f32(&m, &q2);
     record(C_Q2M2Q, ref_quat_angle_between(ref_quat_from_f32(q2), qd), s);
 }
 

@@ -9,7 +9,7 @@
  *   - to_euler, generic: uniformly random rotations; the returned angles composed in double
  *     vs the float input rotation (the "recomposition error");
  *   - to_euler at lock: middle angle exactly singular, built in double and rounded to float,
- *     and built by qo_quat_from_euler_f32 with the float nearest the singular angle;
+ *     and built by qo_euler_to_quat_f32 with the float nearest the singular angle;
  *   - singular rotations whose components were then moved by up to 2 ulp each (informative:
  *     how much float noise the lock band absorbs);
  *   - to_euler near lock: middle angle 1e-7 ... 0.035 rad off singular, both sides;
@@ -78,7 +78,7 @@ int main(int argc, char **argv)
 
             /* from_euler */
             e.a1 = (float)ref_rng_range(&rng, -REF_PI, REF_PI); e.a2 = (float)ref_rng_range(&rng, -REF_PI, REF_PI); e.a3 = (float)ref_rng_range(&rng, -REF_PI, REF_PI);
-            qo_quat_from_euler_f32((qo_euler_seq)seq, e, &qf);
+            qo_euler_to_quat_f32((qo_euler_seq)seq, e, &qf);
             upd(&w_from, dq_angle(dq_unit_from_f(qf), ref_quat_from_euler(ref_euler_names[seq], e.a1, e.a2, e.a3)), seq, &s_from);
 
             /* generic: uniform random rotation */
@@ -88,7 +88,7 @@ int main(int argc, char **argv)
             } while (nn > 1.0 || nn < 1e-4);
             qf = f_from(r);
             r = dq_unit_from_f(qf);
-            qo_quat_to_euler_f32(qf, (qo_euler_seq)seq, &o, &info);
+            qo_euler_from_quat_f32(qf, (qo_euler_seq)seq, &o, &info);
             n_cases++;
             if (info.locked) { n_flagged_total++; upd(&max_flag_margin, info.margin, 0, NULL); }
             upd(&w_gen, recomp(seq, o, r), seq, &s_gen);
@@ -98,7 +98,7 @@ int main(int argc, char **argv)
                 qo_euler_f32 prev;
                 prev.a1 = o.a1 + (float)ref_rng_range(&rng, -2, 2); prev.a2 = o.a2 + (float)ref_rng_range(&rng, -2, 2);
                 prev.a3 = o.a3 + (float)ref_rng_range(&rng, -2, 2);
-                qo_quat_to_euler_near_f32(qf, (qo_euler_seq)seq, prev, QO_EULER_LOCK_BAND_F32, &o, &info);
+                qo_euler_from_quat_near_f32(qf, (qo_euler_seq)seq, prev, QO_EULER_LOCK_BAND_F32, &o, &info);
                 upd(&w_nearfn, recomp(seq, o, r), seq, NULL);
             }
 
@@ -108,7 +108,7 @@ int main(int argc, char **argv)
             s = ref_euler_proper(seq) ? (which ? REF_PI : 0.0) : (which ? REF_PI / 2 : -REF_PI / 2);
             qf = f_from(ref_quat_from_euler(ref_euler_names[seq], a1, s, a3));
             r = dq_unit_from_f(qf);
-            qo_quat_to_euler_f32(qf, (qo_euler_seq)seq, &o, &info);
+            qo_euler_from_quat_f32(qf, (qo_euler_seq)seq, &o, &info);
             n_exact++; n_cases++;
             if (info.locked) { n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin, 0, NULL); }
             upd(&max_exact_margin, info.margin, 0, NULL);
@@ -119,9 +119,9 @@ int main(int argc, char **argv)
             {
                 qo_euler_f32 se;
                 se.a1 = (float)ref_rng_range(&rng, -REF_PI, REF_PI); se.a2 = (float)s; se.a3 = (float)ref_rng_range(&rng, -REF_PI, REF_PI);
-                qo_quat_from_euler_f32((qo_euler_seq)seq, se, &qf);
+                qo_euler_to_quat_f32((qo_euler_seq)seq, se, &qf);
                 r = ref_quat_from_euler(ref_euler_names[seq], se.a1, s, se.a3);
-                qo_quat_to_euler_f32(qf, (qo_euler_seq)seq, &o, &info);
+                qo_euler_from_quat_f32(qf, (qo_euler_seq)seq, &o, &info);
                 n_exact++; n_cases++;
                 if (info.locked) { n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin, 0, NULL); }
                 upd(&max_exact_margin_f, info.margin, 0, NULL);
@@ -141,7 +141,7 @@ int main(int argc, char **argv)
                     while (u < 0) { *comp[c] = nextafterf(*comp[c], -INFINITY); u++; }
                 }
                 r = dq_unit_from_f(qf);
-                qo_quat_to_euler_f32(qf, (qo_euler_seq)seq, &o, &info);
+                qo_euler_from_quat_f32(qf, (qo_euler_seq)seq, &o, &info);
                 n_noisy++; n_cases++;
                 if (info.locked) { n_noisy_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin, 0, NULL); }
                 upd(&max_noisy_margin, info.margin, 0, NULL);
@@ -155,7 +155,7 @@ int main(int argc, char **argv)
             a1 = ref_rng_range(&rng, -REF_PI, REF_PI); a3 = ref_rng_range(&rng, -REF_PI, REF_PI);
             qf = f_from(ref_quat_from_euler(ref_euler_names[seq], a1, a2, a3));
             r = dq_unit_from_f(qf);
-            qo_quat_to_euler_f32(qf, (qo_euler_seq)seq, &o, &info);
+            qo_euler_from_quat_f32(qf, (qo_euler_seq)seq, &o, &info);
             n_cases++;
             if (info.locked) {
                 n_flagged_total++;
@@ -195,14 +195,14 @@ int main(int argc, char **argv)
         int r;
         for (r = 0; r < reps; r++) {
             q.x = 0.1f + (float)(r & 255) * 1e-4f;
-            qo_quat_to_euler_f32(q, QO_EULER_ZYX, &o, NULL);
+            qo_euler_from_quat_f32(q, QO_EULER_ZYX, &o, NULL);
             sink += o.a1;
         }
         t1 = now_s();
         for (r = 0; r < reps; r++) {
             qo_quat_f32 qq;
             e.a1 = (float)(r & 255) * 1e-3f;
-            qo_quat_from_euler_f32(QO_EULER_ZYX, e, &qq);
+            qo_euler_to_quat_f32(QO_EULER_ZYX, e, &qq);
             sink += qq.w;
         }
         t2 = now_s();

@@ -12,7 +12,7 @@
  *   - to_euler, generic: uniformly random rotations rounded to Q1.30; the returned Q3.28
  *     angles composed in double vs the Q1.30 input rotation (the "recomposition error");
  *   - to_euler at lock: middle angle exactly singular, built in double and rounded to Q1.30,
- *     and built by qo_quat_from_euler_q30 with the Q3.28 nearest the singular angle;
+ *     and built by qo_euler_to_quat_q30 with the Q3.28 nearest the singular angle;
  *   - singular rotations whose components were then moved by up to 2 LSB each (how much
  *     fixed-point noise the lock band absorbs);
  *   - to_euler near lock: middle angle 1e-9 ... 0.035 rad off singular, both sides;
@@ -88,7 +88,7 @@ int main(int argc, char **argv)
                 double span = (i % 10 == 0) ? 7.999 : REF_PI;
                 e.a1 = ref_to_fixed(ref_rng_range(&rng, -span, span), REF_Q28); e.a2 = ref_to_fixed(ref_rng_range(&rng, -span, span), REF_Q28);
                 e.a3 = ref_to_fixed(ref_rng_range(&rng, -span, span), REF_Q28);
-                if (qo_quat_from_euler_q30(sq, e, &qf) != QO_OK) n_bad_status++;
+                if (qo_euler_to_quat_q30(sq, e, &qf) != QO_OK) n_bad_status++;
                 r = ref_quat_from_euler(ref_euler_names[seq], e.a1 / REF_Q28, e.a2 / REF_Q28, e.a3 / REF_Q28);
                 upd(&w_from, dq_angle(ref_quat_normalize(ref_quat_from_q30(qf)), r), seq, &s_from);
                 d = fabs(qf.w - r.w * REF_Q30);
@@ -107,11 +107,11 @@ int main(int argc, char **argv)
             r.w /= nn; r.x /= nn; r.y /= nn; r.z /= nn;
             qf = ref_quat_to_q30(r);
             r = ref_quat_normalize(ref_quat_from_q30(qf));
-            if (qo_quat_to_euler_q30(qf, sq, &o, &info) != QO_OK) n_bad_status++;
+            if (qo_euler_from_quat_q30(qf, sq, &o, &info) != QO_OK) n_bad_status++;
             n_cases++;
             if (info.locked) { n_flagged_total++; upd(&max_flag_margin, info.margin / REF_Q28, 0, NULL); }
             upd(&w_gen, recomp(seq, o, r), seq, &s_gen);
-            if (qo_quat_to_euler_fast_q30(qf, sq, QO_EULER_LOCK_BAND_Q28, &o, &info) != QO_OK) n_bad_status++;
+            if (qo_euler_from_quat_fast_q30(qf, sq, QO_EULER_LOCK_BAND_Q28, &o, &info) != QO_OK) n_bad_status++;
             upd(&w_fast_gen, recomp(seq, o, r), seq, &s_fast_gen);
 
             /* nearest-solution variant, generic, prev a random nearby-ish triple */
@@ -119,7 +119,7 @@ int main(int argc, char **argv)
                 qo_euler_q28 prev;
                 prev.a1 = o.a1 + ref_to_fixed(ref_rng_range(&rng, -2, 2), REF_Q28); prev.a2 = o.a2 + ref_to_fixed(ref_rng_range(&rng, -2, 2), REF_Q28);
                 prev.a3 = o.a3 + ref_to_fixed(ref_rng_range(&rng, -2, 2), REF_Q28);
-                if (qo_quat_to_euler_near_q30(qf, sq, prev, QO_EULER_LOCK_BAND_Q28, &o, &info) != QO_OK)
+                if (qo_euler_from_quat_near_q30(qf, sq, prev, QO_EULER_LOCK_BAND_Q28, &o, &info) != QO_OK)
                     n_bad_status++;
                 upd(&w_nearfn, recomp(seq, o, r), seq, NULL);
             }
@@ -130,12 +130,12 @@ int main(int argc, char **argv)
             s = ref_euler_proper(seq) ? (which ? REF_PI : 0.0) : (which ? REF_PI / 2 : -REF_PI / 2);
             qf = ref_quat_to_q30(ref_quat_from_euler(ref_euler_names[seq], a1, s, a3));
             r = ref_quat_normalize(ref_quat_from_q30(qf));
-            qo_quat_to_euler_q30(qf, sq, &o, &info);
+            qo_euler_from_quat_q30(qf, sq, &o, &info);
             n_exact++; n_cases++;
             if (info.locked) { n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin / REF_Q28, 0, NULL); }
             upd(&max_exact_margin, info.margin / REF_Q28, 0, NULL);
             upd(&w_lock, recomp(seq, o, r), seq, &s_lock);
-            qo_quat_to_euler_fast_q30(qf, sq, QO_EULER_LOCK_BAND_Q28, &o, &info);
+            qo_euler_from_quat_fast_q30(qf, sq, QO_EULER_LOCK_BAND_Q28, &o, &info);
             if (!info.locked) n_fast_unflagged++;
             upd(&w_fast_lock, recomp(seq, o, r), seq, NULL);
 
@@ -144,9 +144,9 @@ int main(int argc, char **argv)
             {
                 qo_euler_q28 se;
                 se.a1 = ref_to_fixed(ref_rng_range(&rng, -REF_PI, REF_PI), REF_Q28); se.a2 = ref_to_fixed(s, REF_Q28); se.a3 = ref_to_fixed(ref_rng_range(&rng, -REF_PI, REF_PI), REF_Q28);
-                qo_quat_from_euler_q30(sq, se, &qf);
+                qo_euler_to_quat_q30(sq, se, &qf);
                 rr = ref_quat_from_euler(ref_euler_names[seq], se.a1 / REF_Q28, s, se.a3 / REF_Q28);
-                qo_quat_to_euler_q30(qf, sq, &o, &info);
+                qo_euler_from_quat_q30(qf, sq, &o, &info);
                 n_exact++; n_cases++;
                 if (info.locked) { n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin / REF_Q28, 0, NULL); }
                 upd(&max_exact_margin_f, info.margin / REF_Q28, 0, NULL);
@@ -160,7 +160,7 @@ int main(int argc, char **argv)
                 qf.w += (int32_t)(ref_rng_next(&rng) % 5) - 2; qf.x += (int32_t)(ref_rng_next(&rng) % 5) - 2;
                 qf.y += (int32_t)(ref_rng_next(&rng) % 5) - 2; qf.z += (int32_t)(ref_rng_next(&rng) % 5) - 2;
                 r = ref_quat_normalize(ref_quat_from_q30(qf));
-                qo_quat_to_euler_q30(qf, sq, &o, &info);
+                qo_euler_from_quat_q30(qf, sq, &o, &info);
                 n_noisy++; n_exact++; n_cases++;
                 if (info.locked) { n_noisy_flagged++; n_exact_flagged++; n_flagged_total++; upd(&max_flag_margin, info.margin / REF_Q28, 0, NULL); }
                 upd(&max_noisy_margin, info.margin / REF_Q28, 0, NULL);
@@ -174,7 +174,7 @@ int main(int argc, char **argv)
             a1 = ref_rng_range(&rng, -REF_PI, REF_PI); a3 = ref_rng_range(&rng, -REF_PI, REF_PI);
             qf = ref_quat_to_q30(ref_quat_from_euler(ref_euler_names[seq], a1, a2, a3));
             r = ref_quat_normalize(ref_quat_from_q30(qf));
-            qo_quat_to_euler_q30(qf, sq, &o, &info);
+            qo_euler_from_quat_q30(qf, sq, &o, &info);
             n_cases++;
             if (info.locked) {
                 n_flagged_total++;
@@ -183,7 +183,7 @@ int main(int argc, char **argv)
             } else {
                 upd(&w_near_out, recomp(seq, o, r), seq, &s_near);
             }
-            qo_quat_to_euler_fast_q30(qf, sq, QO_EULER_LOCK_BAND_Q28, &o, &info);
+            qo_euler_from_quat_fast_q30(qf, sq, QO_EULER_LOCK_BAND_Q28, &o, &info);
             upd(info.locked ? &w_fast_near_in : &w_fast_near_out, recomp(seq, o, r), seq, NULL);
         }
     }
@@ -206,7 +206,7 @@ int main(int argc, char **argv)
     printf("  largest margin at which lock flagged   = %.3g rad (%.3g deg)   goal <= 2 deg\n",
            max_flag_margin, max_flag_margin * 180.0 / REF_PI);
     printf("  flagged in total                       = %ld of %ld decompositions\n", n_flagged_total, n_cases);
-    printf("  fast tier (qo_quat_to_euler_fast_q30):\n");
+    printf("  fast tier (qo_euler_from_quat_fast_q30):\n");
     printf("    generic worst recomposition          = %.3g rad (%s)   goal <= 2e-7\n", w_fast_gen, ref_euler_names[s_fast_gen]);
     printf("    at exact lock worst recomp.          = %.3g rad, %ld not flagged   goal <= 1e-5, 0\n", w_fast_lock, n_fast_unflagged);
     printf("    near lock worst recomp.              = %.3g rad flagged, %.3g rad not   goal <= 1e-5\n", w_fast_near_in, w_fast_near_out);
@@ -222,14 +222,14 @@ int main(int argc, char **argv)
         int rep;
         for (rep = 0; rep < reps; rep++) {
             q.x = 107374182 + (rep & 255) * 1000;
-            qo_quat_to_euler_q30(q, QO_EULER_ZYX, &o, NULL);
+            qo_euler_from_quat_q30(q, QO_EULER_ZYX, &o, NULL);
             sink += o.a1;
         }
         t1 = now_s();
         for (rep = 0; rep < reps; rep++) {
             qo_quat_q30 qq;
             e.a1 = (rep & 255) * 268435;
-            qo_quat_from_euler_q30(QO_EULER_ZYX, e, &qq);
+            qo_euler_to_quat_q30(QO_EULER_ZYX, e, &qq);
             sink += qq.w;
         }
         t2 = now_s();

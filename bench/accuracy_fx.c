@@ -184,9 +184,9 @@ static void rotations(void)
         {
             double ang = 2 * REF_PI * ref_rng_range(&rng, -1.0, 1.0), s = sin(ang / 2);
             dq ref = { cos(ang / 2), s * v[0], s * v[1], s * v[2] };
-            (void)qo_quat_from_axis_angle_q30(fv, q28(ang), &fr);
+            (void)qo_axis_angle_to_quat_q30(fv, q28(ang), &fr);
             upd(&waa_from, dq_angle(ref_quat_normalize(ref_quat_from_q30(fr)), ref));
-            (void)qo_quat_to_axis_angle_q30(fa, &ax, &an);
+            (void)qo_axis_angle_from_quat_q30(fa, &ax, &an);
             /* rebuild in double and compare rotations */
             s = sin(an / REF_Q28 / 2);
             ref.w = cos(an / REF_Q28 / 2); ref.x = s * ax.x / REF_Q30; ref.y = s * ax.y / REF_Q30; ref.z = s * ax.z / REF_Q30;
@@ -197,24 +197,24 @@ static void rotations(void)
             double ang = REF_PI * ref_rng_unit(&rng), s;
             dq ref;
             rv.x = q28(v[0] * ang); rv.y = q28(v[1] * ang); rv.z = q28(v[2] * ang);
-            (void)qo_quat_from_rotvec_q30(rv, &fr);
+            (void)qo_rotvec_to_quat_q30(rv, &fr);
             s = sin(ang / 2);
             ref.w = cos(ang / 2); ref.x = s * v[0]; ref.y = s * v[1]; ref.z = s * v[2];
             upd(&wrv_from, dq_angle(ref_quat_normalize(ref_quat_from_q30(fr)), ref));
-            (void)qo_quat_to_rotvec_q30(fr, &rv);
+            (void)qo_rotvec_from_quat_q30(fr, &rv);
             r = a.w < 0 ? (dq){ -a.w, -a.x, -a.y, -a.z } : a;
-            (void)qo_quat_to_rotvec_q30(fa, &rv);
+            (void)qo_rotvec_from_quat_q30(fa, &rv);
             e = sqrt(r.x * r.x + r.y * r.y + r.z * r.z);
             e = e > 0 ? 2 * atan2(e, r.w) / e : 2.0;
             upd(&wrv_to, sqrt(pow(rv.x / REF_Q28 - e * r.x, 2) + pow(rv.y / REF_Q28 - e * r.y, 2) + pow(rv.z / REF_Q28 - e * r.z, 2)));
         }
         /* matrix to / from (to: largest entry error, which bounds the rotation error) */
-        (void)qo_quat_to_mat3_q30(fa, &m);
+        (void)qo_mat3_from_quat_q30(fa, &m);
         dq_to_mat(a, dm);
         for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) upd(&wm_to, fabs(m.m[i][j] / REF_Q30 - dm[i][j]));
         dq_to_mat(b, dm);
         for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) m.m[i][j] = q30(dm[i][j]);
-        (void)qo_quat_from_mat3_q30(&m, &fr);
+        (void)qo_mat3_to_quat_q30(&m, &fr);
         upd(&wm_from, dq_angle(ref_quat_from_q30(fr), b));
         /* exp / log of the half-angle vector */
         {
@@ -245,12 +245,12 @@ static void rotations(void)
     report_rad("qo_quat_rotate_q30 (|v| = 1)", wrot);
     report_rad("qo_quat_normalize_q30 (|q| 1e-6..1.9)", wnorm);
     report_rad("qo_quat_normalize_fast_q30 (same)", wnormf);
-    report_rad("qo_quat_from_axis_angle_q30", waa_from);
-    report_rad("qo_quat_to_axis_angle_q30", waa_to);
-    report_rad("qo_quat_from_rotvec_q30", wrv_from);
-    report_rad("qo_quat_to_rotvec_q30", wrv_to);
-    report_rad("qo_quat_to_mat3_q30 (max entry)", wm_to);
-    report_rad("qo_quat_from_mat3_q30", wm_from);
+    report_rad("qo_axis_angle_to_quat_q30", waa_from);
+    report_rad("qo_axis_angle_from_quat_q30", waa_to);
+    report_rad("qo_rotvec_to_quat_q30", wrv_from);
+    report_rad("qo_rotvec_from_quat_q30", wrv_to);
+    report_rad("qo_mat3_from_quat_q30 (max entry)", wm_to);
+    report_rad("qo_mat3_to_quat_q30", wm_from);
     report_rad("qo_quat_exp_q30", wexp);
     report_rad("qo_quat_log_q30 (x2 = rotation)", wlog);
     report_rad("qo_quat_integrate_q30", wint);

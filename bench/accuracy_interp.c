@@ -39,7 +39,7 @@ static void slerp_case(qo_quat_f32 a, qo_quat_f32 b, float t)
     double e;
     if (dq_dot(ua, ub) < 0) ub = dq_neg(ub);
     ref = d_slerp_unit(ua, ub, (double)t);
-    if (qo_quat_slerp_f32(a, b, t, &out) != QO_OK) {
+    if (qo_interp_slerp_f32(a, b, t, &out) != QO_OK) {
         printf("slerp failed\n");
         slerp_rot = INFINITY;
         return;
@@ -121,7 +121,7 @@ int main(void)
         double phi = rot_err(ua, ub), e;
         float t = (float)rng_u();
         if (dq_dot(ua, ub) > 0) ub = dq_neg(ub);
-        if (qo_quat_slerp_long_f32(fa, fb, t, &out) != QO_OK) continue; /* phi < 0.002 refused */
+        if (qo_interp_slerp_long_f32(fa, fb, t, &out) != QO_OK) continue; /* phi < 0.002 refused */
         e = dist4(d_slerp_unit(ua, ub, (double)t), dq_from(out)) * phi;
         if (e > long_k) long_k = e;
         note_norm(out);
@@ -129,14 +129,14 @@ int main(void)
 
     /* ---- Bezier, n = 2..8 ---- */
     for (i = 0; i < n_bez; i++) {
-        qo_quat_f32 c[QO_BEZIER_MAX_POINTS], out;
-        dq p[QO_BEZIER_MAX_POINTS];
+        qo_quat_f32 c[QO_INTERP_BEZIER_MAX_POINTS], out;
+        dq p[QO_INTERP_BEZIER_MAX_POINTS];
         float t = (float)rng_u();
         double e;
-        n = 2 + (size_t)(i % (QO_BEZIER_MAX_POINTS - 1));
+        n = 2 + (size_t)(i % (QO_INTERP_BEZIER_MAX_POINTS - 1));
         rand_keys(c, n, 1.5);
         d_align(c, n, p);
-        qo_quat_bezier_f32(c, n, t, &out);
+        qo_interp_bezier_f32(c, n, t, &out);
         e = dist4(d_bez(p, n, (double)t), dq_from(out));
         if (e > bez_err) bez_err = e;
         note_norm(out);
@@ -150,10 +150,10 @@ int main(void)
         rand_keys(kf, n, (i % 2) ? 1.5 : 3.0);
         d_align(kf, n, q);
         d_spline_controls(q, n, da, db);
-        qo_quat_spline_controls_f32(kf, n, a, b);
+        qo_interp_spline_controls_f32(kf, n, a, b);
         for (j = 0; j < n; j++) {
             double e;
-            qo_quat_spline_eval_f32(kf, a, b, n, (float)j, &out);
+            qo_interp_spline_eval_f32(kf, a, b, n, (float)j, &out);
             e = rot_err(q[j], dq_from(out));
             if (e > key_err) key_err = e;
             note_norm(out);
@@ -165,7 +165,7 @@ int main(void)
             double e;
             if (seg > n - 2) seg = n - 2;
             p[0] = q[seg]; p[1] = da[seg]; p[2] = db[seg + 1]; p[3] = q[seg + 1];
-            qo_quat_spline_eval_f32(kf, a, b, n, s, &out);
+            qo_interp_spline_eval_f32(kf, a, b, n, s, &out);
             e = rot_err(d_bez(p, 4, (double)s - (double)seg), dq_from(out));
             if (e > spl_err) spl_err = e;
             note_norm(out);
@@ -173,7 +173,7 @@ int main(void)
         /* Squad through the same keys (controls computed in float; segment vs double) */
         {
             qo_quat_f32 sq[MAXK];
-            qo_quat_squad_controls_f32(kf, n, sq);
+            qo_interp_squad_controls_f32(kf, n, sq);
             for (k = 0; k < 5; k++) {
                 float t = (float)rng_u();
                 size_t seg = (size_t)(rng_u() * (double)(n - 1));
@@ -183,7 +183,7 @@ int main(void)
                 if (dq_dot(s1, q[seg + 1]) < 0) s1 = dq_neg(s1);
                 x = d_slerp_unit(q[seg], q[seg + 1], (double)t);
                 y = d_slerp_unit(s0, s1, (double)t);
-                qo_quat_squad_f32(kf[seg], sq[seg], sq[seg + 1], kf[seg + 1], t, &out);
+                qo_interp_squad_f32(kf[seg], sq[seg], sq[seg + 1], kf[seg + 1], t, &out);
                 e = rot_err(d_slerp_unit(x, y, 2.0 * (double)t * (1.0 - (double)t)),
                             dq_from(out));
                 if (e > squad_err) squad_err = e;

@@ -9,7 +9,7 @@
  * Goals (exit status 1 if one is missed):
  *   slerp rotation error vs double        <= 1e-6 rad and <= the float32 core's worst on the
  *                                         same cases (random pairs and t + the edge table)
- *   the same for qo_quat_slerp_fast_q30   <= 2e-7 rad (issue 14's bound for the fast tier)
+ *   the same for qo_interp_slerp_fast_q30   <= 2e-7 rad (issue 14's bound for the fast tier)
  *   |norm - 1| of every result            <= 1e-6
  *   spline: error at the keys             <= 1e-6 rad
  * Other figures (nlerp, Bezier, spline between keys, Squad) are reported only. */
@@ -52,7 +52,7 @@ static void slerp_case(dq a, dq b, double t)
     if (xt > QO_Q30_ONE) xt = QO_Q30_ONE;
     if (dq_dot(ua, ub) < 0) ub = dq_neg(ub);
     ref = d_slerp_unit(ua, ub, xt / Q30);
-    if (qo_quat_slerp_q30(xa, xb, xt, &out) != QO_OK) {
+    if (qo_interp_slerp_q30(xa, xb, xt, &out) != QO_OK) {
         n_fail++;
         return;
     }
@@ -63,7 +63,7 @@ static void slerp_case(dq a, dq b, double t)
     note_norm(out);
     n_slerp++;
     /* the fast tier on the same inputs, against the same reference */
-    if (qo_quat_slerp_fast_q30(xa, xb, xt, &out) != QO_OK) {
+    if (qo_interp_slerp_fast_q30(xa, xb, xt, &out) != QO_OK) {
         n_fail++;
         return;
     }
@@ -73,7 +73,7 @@ static void slerp_case(dq a, dq b, double t)
     ua = dq_unit(dq_from_f(fa));
     ub = dq_unit(dq_from_f(fb));
     if (dq_dot(ua, ub) < 0) ub = dq_neg(ub);
-    if (qo_quat_slerp_f32(fa, fb, ft, &fo) != QO_OK) {
+    if (qo_interp_slerp_f32(fa, fb, ft, &fo) != QO_OK) {
         n_fail++;
         return;
     }
@@ -156,7 +156,7 @@ int main(void)
         dq ua = dq_unit(dq_from_x(xa)), ub = dq_unit(dq_from_x(xb));
         double e;
         if (dq_dot(ua, ub) < 0) ub = dq_neg(ub);
-        qo_quat_nlerp_q30(xa, xb, xt, &out);
+        qo_interp_nlerp_q30(xa, xb, xt, &out);
         e = dist4(dq_unit(dq_add(dq_scale(ua, 1 - xt / Q30), dq_scale(ub, xt / Q30))),
                   dq_from_x(out));
         if (e > nlerp_err) nlerp_err = e;
@@ -165,14 +165,14 @@ int main(void)
 
     /* ---- Bezier, n = 2..8 ---- */
     for (i = 0; i < n_bez; i++) {
-        qo_quat_q30 c[QO_BEZIER_MAX_POINTS], out;
-        dq p[QO_BEZIER_MAX_POINTS];
+        qo_quat_q30 c[QO_INTERP_BEZIER_MAX_POINTS], out;
+        dq p[QO_INTERP_BEZIER_MAX_POINTS];
         qo_q30 t = fx_from_d(rng_u(), Q30);
         double e;
-        n = 2 + (size_t)(i % (QO_BEZIER_MAX_POINTS - 1));
+        n = 2 + (size_t)(i % (QO_INTERP_BEZIER_MAX_POINTS - 1));
         rand_keys(c, n, 1.5);
         x_align(c, n, p);
-        qo_quat_bezier_q30(c, n, t, &out);
+        qo_interp_bezier_q30(c, n, t, &out);
         e = dist4(d_bez(p, n, t / Q30), dq_from_x(out));
         if (e > bez_err) bez_err = e;
         note_norm(out);
@@ -186,10 +186,10 @@ int main(void)
         rand_keys(kf, n, (i % 2) ? 1.5 : 3.0);
         x_align(kf, n, q);
         d_spline_controls(q, n, da, db);
-        qo_quat_spline_controls_q30(kf, n, a, b);
+        qo_interp_spline_controls_q30(kf, n, a, b);
         for (j = 0; j < n; j++) {
             double e;
-            qo_quat_spline_eval_q30(kf, a, b, n, (qo_q16)(j * 65536u), &out);
+            qo_interp_spline_eval_q30(kf, a, b, n, (qo_q16)(j * 65536u), &out);
             e = rot_err(q[j], dq_from_x(out));
             if (e > key_err) key_err = e;
             note_norm(out);
@@ -201,7 +201,7 @@ int main(void)
             double e;
             if (seg > n - 2) seg = n - 2;
             p[0] = q[seg]; p[1] = da[seg]; p[2] = db[seg + 1]; p[3] = q[seg + 1];
-            qo_quat_spline_eval_q30(kf, a, b, n, s, &out);
+            qo_interp_spline_eval_q30(kf, a, b, n, s, &out);
             e = rot_err(d_bez(p, 4, s / 65536.0 - (double)seg), dq_from_x(out));
             if (e > spl_err) spl_err = e;
             note_norm(out);
@@ -211,7 +211,7 @@ int main(void)
             qo_quat_q30 sq[MAXK];
             dq ds[MAXK];
             d_squad_controls(q, n, ds);
-            qo_quat_squad_controls_q30(kf, n, sq);
+            qo_interp_squad_controls_q30(kf, n, sq);
             for (j = 0; j < n; j++) {
                 double e = rot_err(ds[j], dq_from_x(sq[j]));
                 if (e > squadc_err) squadc_err = e;
@@ -225,7 +225,7 @@ int main(void)
                 if (dq_dot(s1, q[seg + 1]) < 0) s1 = dq_neg(s1);
                 x = d_slerp_unit(q[seg], q[seg + 1], tt);
                 y = d_slerp_unit(s0, s1, tt);
-                qo_quat_squad_q30(kf[seg], sq[seg], sq[seg + 1], kf[seg + 1], t, &out);
+                qo_interp_squad_q30(kf[seg], sq[seg], sq[seg + 1], kf[seg + 1], t, &out);
                 e = rot_err(d_slerp_unit(x, y, 2.0 * tt * (1.0 - tt)), dq_from_x(out));
                 if (e > squad_err) squad_err = e;
                 note_norm(out);
@@ -238,7 +238,7 @@ int main(void)
            n_slerp, n_random, n_edge, n_fail);
     printf("  worst rotation error, fixed   %.3g rad   (goal <= 1e-6 and <= float32) %s\n",
            slerp_rot, (slerp_rot <= 1e-6 && slerp_rot <= slerp_rot_f) ? "ok" : "MISSED");
-    printf("  worst rotation error, fast    %.3g rad   (qo_quat_slerp_fast_q30; goal <= 2e-7) %s\n",
+    printf("  worst rotation error, fast    %.3g rad   (qo_interp_slerp_fast_q30; goal <= 2e-7) %s\n",
            slerp_rot_fast, slerp_rot_fast <= 2e-7 ? "ok" : "MISSED");
     printf("  worst rotation error, float32 %.3g rad   (same cases, float32 inputs)\n",
            slerp_rot_f);

@@ -67,20 +67,20 @@ static qo_status to_quat_f32(const struct rep_spec *r, const double *v, int degr
         qo_mat3_f32 m;
         int i;
         for (i = 0; i < 9; i++) m.m[i / 3][i % 3] = (float)v[i];
-        return qo_quat_from_mat3_f32(&m, q);
+        return qo_mat3_to_quat_f32(&m, q);
     }
     case REP_ROTVEC: {
         qo_vec3_f32 rv = { (float)v[0] * ang, (float)v[1] * ang, (float)v[2] * ang };
-        return qo_quat_from_rotvec_f32(rv, q);
+        return qo_rotvec_to_quat_f32(rv, q);
     }
     case REP_AXISANGLE: {
         qo_vec3_f32 ax = { (float)v[0], (float)v[1], (float)v[2] };
-        return qo_quat_from_axis_angle_f32(ax, (float)v[3] * ang, q);
+        return qo_axis_angle_to_quat_f32(ax, (float)v[3] * ang, q);
     }
     case REP_EULER: {
         qo_euler_f32 e;
         e.a1 = (float)v[0] * ang; e.a2 = (float)v[1] * ang; e.a3 = (float)v[2] * ang;
-        return qo_quat_from_euler_f32(r->seq, e, q);
+        return qo_euler_to_quat_f32(r->seq, e, q);
     }
     }
     *q = qo_quat_identity_f32();
@@ -101,28 +101,28 @@ static qo_status from_quat_f32(const struct rep_spec *r, qo_quat_f32 q, int degr
     case REP_MATRIX: {
         qo_mat3_f32 m;
         int i;
-        st = qo_quat_to_mat3_f32(q, &m);
+        st = qo_mat3_from_quat_f32(q, &m);
         for (i = 0; i < 9; i++) o[i] = m.m[i / 3][i % 3];
         *n = 9;
         break;
     }
     case REP_ROTVEC: {
         qo_vec3_f32 rv;
-        st = qo_quat_to_rotvec_f32(q, &rv);
+        st = qo_rotvec_from_quat_f32(q, &rv);
         o[0] = rv.x * s; o[1] = rv.y * s; o[2] = rv.z * s; *n = 3;
         break;
     }
     case REP_AXISANGLE: {
         qo_vec3_f32 ax;
         float a;
-        st = qo_quat_to_axis_angle_f32(q, &ax, &a);
+        st = qo_axis_angle_from_quat_f32(q, &ax, &a);
         o[0] = ax.x; o[1] = ax.y; o[2] = ax.z; o[3] = a * s; *n = 4;
         break;
     }
     case REP_EULER: {
         qo_euler_f32 e;
         qo_euler_info_f32 info;
-        st = qo_quat_to_euler_f32(q, r->seq, &e, &info);
+        st = qo_euler_from_quat_f32(q, r->seq, &e, &info);
         o[0] = e.a1 * s; o[1] = e.a2 * s; o[2] = e.a3 * s; o[3] = info.locked ? 1.0 : 0.0;
         *n = 4;
         break;
@@ -326,7 +326,7 @@ static const char *slerp_one(const double *v, void *vctx)
         qo_quat_f32 a = { (float)v[0], (float)v[1], (float)v[2], (float)v[3] };
         qo_quat_f32 b = { (float)v[4], (float)v[5], (float)v[6], (float)v[7] };
         qo_quat_f32 q;
-        st = qo_quat_slerp_f32(a, b, (float)v[8], &q);
+        st = qo_interp_slerp_f32(a, b, (float)v[8], &q);
         o[0] = q.w; o[1] = q.x; o[2] = q.y; o[3] = q.z;
     }
     if (st != QO_OK) return qo_status_str(st);

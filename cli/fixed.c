@@ -81,14 +81,14 @@ static qo_status quat_in(const struct rep_spec *r, const double *v, int degrees,
             st = to_fx(v[i], Q30, &m.m[i / 3][i % 3]);
             if (st != QO_OK) return st;
         }
-        return qo_quat_from_mat3_q30(&m, q);
+        return qo_mat3_to_quat_q30(&m, q);
     }
     case REP_ROTVEC: {
         qo_vec3_q28 rv;
         if ((st = angle_to_q28(v[0], degrees, &rv.x)) != QO_OK) return st;
         if ((st = angle_to_q28(v[1], degrees, &rv.y)) != QO_OK) return st;
         if ((st = angle_to_q28(v[2], degrees, &rv.z)) != QO_OK) return st;
-        return qo_quat_from_rotvec_q30(rv, q);
+        return qo_rotvec_to_quat_q30(rv, q);
     }
     case REP_AXISANGLE: {
         int32_t c[3];
@@ -97,14 +97,14 @@ static qo_status quat_in(const struct rep_spec *r, const double *v, int degrees,
         if ((st = dir_to_q30(v, 3, c)) != QO_OK) return st;
         if ((st = angle_to_q28(v[3], degrees, &a)) != QO_OK) return st;
         ax.x = c[0]; ax.y = c[1]; ax.z = c[2];
-        return qo_quat_from_axis_angle_q30(ax, a, q);
+        return qo_axis_angle_to_quat_q30(ax, a, q);
     }
     case REP_EULER: {
         qo_euler_q28 e;
         if ((st = angle_to_q28(v[0], degrees, &e.a1)) != QO_OK) return st;
         if ((st = angle_to_q28(v[1], degrees, &e.a2)) != QO_OK) return st;
         if ((st = angle_to_q28(v[2], degrees, &e.a3)) != QO_OK) return st;
-        return qo_quat_from_euler_q30(r->seq, e, q);
+        return qo_euler_to_quat_q30(r->seq, e, q);
     }
     }
     return QO_E_ARG;
@@ -127,14 +127,14 @@ qo_status qo_cli_convert_fixed(const struct rep_spec *from, const struct rep_spe
     case REP_MATRIX: {
         qo_mat3_q30 m;
         int i;
-        st = qo_quat_to_mat3_q30(q, &m);
+        st = qo_mat3_from_quat_q30(q, &m);
         for (i = 0; i < 9; i++) o[i] = m.m[i / 3][i % 3] / Q30;
         *n = 9;
         return st;
     }
     case REP_ROTVEC: {
         qo_vec3_q28 rv;
-        st = qo_quat_to_rotvec_q30(q, &rv);
+        st = qo_rotvec_from_quat_q30(q, &rv);
         o[0] = rv.x / Q28 * s; o[1] = rv.y / Q28 * s; o[2] = rv.z / Q28 * s;
         *n = 3;
         return st;
@@ -142,7 +142,7 @@ qo_status qo_cli_convert_fixed(const struct rep_spec *from, const struct rep_spe
     case REP_AXISANGLE: {
         qo_vec3_q30 ax;
         qo_q28 a;
-        st = qo_quat_to_axis_angle_q30(q, &ax, &a);
+        st = qo_axis_angle_from_quat_q30(q, &ax, &a);
         o[0] = ax.x / Q30; o[1] = ax.y / Q30; o[2] = ax.z / Q30; o[3] = a / Q28 * s;
         *n = 4;
         return st;
@@ -150,7 +150,7 @@ qo_status qo_cli_convert_fixed(const struct rep_spec *from, const struct rep_spe
     case REP_EULER: {
         qo_euler_q28 e;
         qo_euler_info_q28 info;
-        st = qo_quat_to_euler_q30(q, to->seq, &e, &info);
+        st = qo_euler_from_quat_q30(q, to->seq, &e, &info);
         o[0] = e.a1 / Q28 * s; o[1] = e.a2 / Q28 * s; o[2] = e.a3 / Q28 * s;
         o[3] = info.locked ? 1.0 : 0.0;
         *n = 4;
@@ -174,7 +174,7 @@ qo_status qo_cli_slerp_fixed(const double *v, double *o)
     if ((st = to_fx(v[8], Q30, &t)) != QO_OK) return st;
     qa.w = a[0]; qa.x = a[1]; qa.y = a[2]; qa.z = a[3];
     qb.w = b[0]; qb.x = b[1]; qb.y = b[2]; qb.z = b[3];
-    st = qo_quat_slerp_q30(qa, qb, t, &q);
+    st = qo_interp_slerp_q30(qa, qb, t, &q);
     if (st != QO_OK) return st;
     o[0] = q.w / Q30; o[1] = q.x / Q30; o[2] = q.y / Q30; o[3] = q.z / Q30;
     return QO_OK;

@@ -85,7 +85,7 @@ int qo_cli_gimbal(int argc, char **argv)
     };
     const double deg = 3.14159265358979323846 / 180.0;
     qo_gimbal_settings_f32 gs = qo_gimbal_settings_default;
-    qo_path_interp interp = QO_PATH_SLERP;
+    qo_gimbal_path_interp interp = QO_GIMBAL_PATH_SLERP;
     double rate = 100.0, band_deg = 1.0, vmax = INFINITY, amax = 0.0, jmax = INFINITY, v;
     double max_samples = QO_CLI_MAX_SAMPLES_DEFAULT;
     int degrees = 0, ch, rc = 1, unsettled = 0;
@@ -98,7 +98,7 @@ int qo_cli_gimbal(int argc, char **argv)
     qo_traj_ns t0n = 0;
     char *line = NULL;
     unsigned long lineno = 0;
-    qo_orient_path_f32 path;
+    qo_gimbal_path_f32 path;
     qo_gimbal_f32 g;
     qo_gimbal_track_settings_f32 ts = qo_gimbal_track_settings_default;
     qo_gimbal_track_f32 tr;
@@ -119,8 +119,8 @@ int qo_cli_gimbal(int argc, char **argv)
             if (qo_cli_count("gimbal", "--max-samples", optarg, 1.0, QO_CLI_MAX_SAMPLES_LIMIT, &max_samples)) return 2;
             break;
         case 'i':
-            if (strcmp(optarg, "slerp") == 0) interp = QO_PATH_SLERP;
-            else if (strcmp(optarg, "spline") == 0) interp = QO_PATH_SPLINE;
+            if (strcmp(optarg, "slerp") == 0) interp = QO_GIMBAL_PATH_SLERP;
+            else if (strcmp(optarg, "spline") == 0) interp = QO_GIMBAL_PATH_SPLINE;
             else {
                 fprintf(stderr, "qorient gimbal: --interp: '%s' is not slerp or spline\n", optarg);
                 return 2;
@@ -255,7 +255,7 @@ int qo_cli_gimbal(int argc, char **argv)
     a = malloc(n * sizeof *a);
     b = malloc(n * sizeof *b);
     if (ks == NULL || a == NULL || b == NULL) goto oom;
-    st = qo_orient_path_init_f32(&path, t, keys, n, interp, ks, a, b);
+    st = qo_gimbal_path_init_f32(&path, t, keys, n, interp, ks, a, b);
     if (st == QO_OK) st = qo_gimbal_init_f32(&g, &gs);
     if (st != QO_OK) {
         fprintf(stderr, "qorient gimbal: %s\n", qo_status_str(st));
@@ -300,7 +300,7 @@ int qo_cli_gimbal(int argc, char **argv)
             for (k = 0; k <= kmax + (unsigned long)extra || ((o.clipped || !to.settled) && k <= kcatch); k++) {
                 double tt = k <= kmax ? t0 + (double)k / rate : k == kmax + 1 && extra ? t1 : t0 + (double)(k - (unsigned long)extra) / rate;
                 qo_quat_f32 q;
-                st = qo_orient_path_sample_f32(&path, (float)tt, &q);
+                st = qo_gimbal_path_sample_f32(&path, (float)tt, &q);
                 if (st == QO_OK) st = qo_gimbal_step_f32(&g, (float)tt, q, &o);
                 if (st == QO_OK && amax > 0.0) {
                     st = qo_gimbal_track_step_f32(&tr, (float)tt, o.angles, &to);

@@ -57,7 +57,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     if (mode & 1u) {
         qo_mat3_f32 base;
         float scale = (mode & 2u) ? 1e-3f : 1e-6f;
-        if (qo_quat_to_mat3_f32(q, &base) != QO_OK) base = qo_mat3_identity_f32();
+        if (qo_mat3_from_quat_f32(q, &base) != QO_OK) base = qo_mat3_identity_f32();
         for (i = 0; i < 3; i++)
             for (j = 0; j < 3; j++) {
                 float d = qo_fz_f32(&f);
@@ -68,14 +68,14 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     }
 
     /* axis-angle -> quaternion */
-    st = qo_quat_from_axis_angle_f32(axis, angle, &o);
+    st = qo_axis_angle_to_quat_f32(axis, angle, &o);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_DEGENERATE, "from_axis_angle status %d", (int)st);
     QO_FUZZ_CHECK((st == QO_E_NONFINITE) == !fin_axis, "from_axis_angle status %d for finiteness %d", (int)st, fin_axis);
     if (st == QO_OK) QO_FUZZ_CHECK(qo_fz_unit_quat(o, QO_FZ_UNIT_TOL), "from_axis_angle -> " QO_FZ_QFMT, QO_FZ_QARG(o));
     else QO_FUZZ_CHECK(qo_fz_is_identity(o), "from_axis_angle error output");
 
     /* quaternion -> axis-angle */
-    st = qo_quat_to_axis_angle_f32(q, &ax, &an);
+    st = qo_axis_angle_from_quat_f32(q, &ax, &an);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_DEGENERATE, "to_axis_angle status %d", (int)st);
     if (st == QO_OK) {
         double la = sqrt((double)ax.x * ax.x + (double)ax.y * ax.y + (double)ax.z * ax.z);
@@ -87,14 +87,14 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     }
 
     /* rotation vector -> quaternion */
-    st = qo_quat_from_rotvec_f32(axis, &o);
+    st = qo_rotvec_to_quat_f32(axis, &o);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_RANGE, "from_rotvec status %d", (int)st);
     if (st == QO_OK) QO_FUZZ_CHECK(qo_fz_unit_quat(o, QO_FZ_UNIT_TOL), "from_rotvec (%g %g %g) -> " QO_FZ_QFMT,
                                    (double)axis.x, (double)axis.y, (double)axis.z, QO_FZ_QARG(o));
     else QO_FUZZ_CHECK(qo_fz_is_identity(o), "from_rotvec error output");
 
     /* quaternion -> rotation vector, |rv| <= pi */
-    st = qo_quat_to_rotvec_f32(q, &ax);
+    st = qo_rotvec_from_quat_f32(q, &ax);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_DEGENERATE, "to_rotvec status %d", (int)st);
     if (st == QO_OK) {
         double l = sqrt((double)ax.x * ax.x + (double)ax.y * ax.y + (double)ax.z * ax.z);
@@ -104,20 +104,20 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     }
 
     /* quaternion -> matrix */
-    st = qo_quat_to_mat3_f32(q, &r);
+    st = qo_mat3_from_quat_f32(q, &r);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_DEGENERATE, "to_mat3 status %d", (int)st);
     if (st == QO_OK) fuzz_convert_check_rotation(&r, "to_mat3");
     else QO_FUZZ_CHECK(qo_fz_is_identity_mat3(&r), "to_mat3 error output");
 
     /* matrix -> quaternion, strict: accepted only near a rotation, result reproduces m */
-    st = qo_quat_from_mat3_f32(&m, &o);
+    st = qo_mat3_to_quat_f32(&m, &o);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_NOT_ROTATION, "from_mat3 status %d", (int)st);
     QO_FUZZ_CHECK((st == QO_E_NONFINITE) == !qo_fz_finite_mat3(&m), "from_mat3 status %d", (int)st);
     if (st == QO_OK) {
         double det, e = fuzz_convert_ortho_err(&m, &det), d = 0.0;
         QO_FUZZ_CHECK(qo_fz_unit_quat(o, QO_FZ_UNIT_TOL) && o.w >= 0.0f, "from_mat3 -> " QO_FZ_QFMT, QO_FZ_QARG(o));
         QO_FUZZ_CHECK(e <= 1.01e-4 + 1e-6 && det > 0.0, "from_mat3 accepted |MtM-I| %g det %g", e, det);
-        if (qo_quat_to_mat3_f32(o, &r) == QO_OK)
+        if (qo_mat3_from_quat_f32(o, &r) == QO_OK)
             for (i = 0; i < 3; i++)
                 for (j = 0; j < 3; j++)
                     if (fabs((double)r.m[i][j] - m.m[i][j]) > d) d = fabs((double)r.m[i][j] - m.m[i][j]);
@@ -132,11 +132,11 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     if (st == QO_OK) fuzz_convert_check_rotation(&r, "orthonormalize");
     else QO_FUZZ_CHECK(qo_fz_is_identity_mat3(&r), "orthonormalize error output");
 
-    st = qo_quat_from_mat3_ortho_f32(&m, &o);
+    st = qo_mat3_to_quat_ortho_f32(&m, &o);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_NOT_ROTATION, "from_mat3_ortho status %d", (int)st);
     if (st == QO_OK) QO_FUZZ_CHECK(qo_fz_unit_quat(o, QO_FZ_UNIT_TOL) && o.w >= 0.0f, "from_mat3_ortho -> " QO_FZ_QFMT, QO_FZ_QARG(o));
     else QO_FUZZ_CHECK(qo_fz_is_identity(o), "from_mat3_ortho error output");
 
-    QO_FUZZ_CHECK(qo_quat_from_mat3_f32(NULL, &o) == QO_E_NULL && qo_fz_is_identity(o), "from_mat3 NULL");
+    QO_FUZZ_CHECK(qo_mat3_to_quat_f32(NULL, &o) == QO_E_NULL && qo_fz_is_identity(o), "from_mat3 NULL");
     return 0;
 }

@@ -23,7 +23,7 @@ static double fuzz_euler_recompose_err(qo_quat_f32 q, qo_euler_seq seq, qo_euler
 {
     qo_quat_f32 c;
     double m = fabs((double)q.w), w, x, y, z, n, rw, rx, ry, rz;
-    if (qo_quat_from_euler_f32(seq, e, &c) != QO_OK) return 1e9;
+    if (qo_euler_to_quat_f32(seq, e, &c) != QO_OK) return 1e9;
     if (fabs((double)q.x) > m) m = fabs((double)q.x);
     if (fabs((double)q.y) > m) m = fabs((double)q.y);
     if (fabs((double)q.z) > m) m = fabs((double)q.z);
@@ -101,14 +101,14 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     band = qo_fz_f32(&f);
 
     /* angles -> quaternion */
-    st = qo_quat_from_euler_f32(seq, e, &o);
+    st = qo_euler_to_quat_f32(seq, e, &o);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_ARG || st == QO_E_NONFINITE, "from_euler status %d", (int)st);
     QO_FUZZ_CHECK((st == QO_E_ARG) == !seq_ok, "from_euler seq %d status %d", (int)seq, (int)st);
     if (st == QO_OK) QO_FUZZ_CHECK(qo_fz_unit_quat(o, QO_FZ_UNIT_TOL), "from_euler -> " QO_FZ_QFMT, QO_FZ_QARG(o));
     else QO_FUZZ_CHECK(qo_fz_is_identity(o), "from_euler error output");
 
     /* quaternion -> angles, default band */
-    st = qo_quat_to_euler_f32(q, seq, &e, &info);
+    st = qo_euler_from_quat_f32(q, seq, &e, &info);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_ARG || st == QO_E_NONFINITE || st == QO_E_DEGENERATE,
                   "to_euler status %d", (int)st);
     if (st == QO_OK) {
@@ -121,7 +121,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
         QO_FUZZ_CHECK(st == QO_OK, "to_euler refused finite non-zero " QO_FZ_QFMT ": %d", QO_FZ_QARG(q), (int)st);
 
     /* caller's band */
-    st = qo_quat_to_euler_band_f32(q, seq, band, &e, &info);
+    st = qo_euler_from_quat_band_f32(q, seq, band, &e, &info);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_ARG || st == QO_E_NONFINITE || st == QO_E_DEGENERATE || st == QO_E_RANGE,
                   "to_euler_band status %d", (int)st);
     if (st == QO_OK) {
@@ -133,7 +133,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     }
 
     /* nearest previous joint angles */
-    st = qo_quat_to_euler_near_f32(q, seq, prev, band, &e, &info);
+    st = qo_euler_from_quat_near_f32(q, seq, prev, band, &e, &info);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_ARG || st == QO_E_NONFINITE || st == QO_E_DEGENERATE || st == QO_E_RANGE,
                   "to_euler_near status %d", (int)st);
     if (st == QO_OK) {
@@ -146,7 +146,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
             QO_FUZZ_CHECK(e.a1 == 0.0f && e.a2 == 0.0f && e.a3 == 0.0f, "to_euler_near error output not zero");
         QO_FUZZ_CHECK(info.locked == 0 && info.margin == 0.0f, "to_euler_near error info");
     }
-    QO_FUZZ_CHECK(qo_quat_to_euler_f32(q, seq, NULL, &info) == QO_E_NULL, "to_euler NULL");
+    QO_FUZZ_CHECK(qo_euler_from_quat_f32(q, seq, NULL, &info) == QO_E_NULL, "to_euler NULL");
     QO_FUZZ_CHECK(qo_euler_seq_parse(NULL, &ps) == QO_E_NULL, "seq_parse NULL");
     return 0;
 }

@@ -94,7 +94,7 @@ static void fuzz_fxo_euler_ok(qo_quat_q30 q, qo_euler_seq seq, qo_euler_q28 e, q
         else
             QO_FUZZ_CHECK(e.a2 >= -QO_Q28_HALF_PI && e.a2 <= QO_Q28_HALF_PI, "%s: a2 %d out of [-pi/2, pi/2]", what, e.a2);
     }
-    QO_FUZZ_CHECK(qo_quat_from_euler_q30(seq, e, &c) == QO_OK, "%s: from_euler failed", what);
+    QO_FUZZ_CHECK(qo_euler_to_quat_q30(seq, e, &c) == QO_OK, "%s: from_euler failed", what);
     /* Quaternions a few LSB long carry only a few bits of direction. */
     tol = 1e-6 + 64.0 / (fuzz_fxo_norm(q) * FUZZ_FXO_ONE);
     if (info.locked) tol += 2.0 * info.margin / FUZZ_FXO_Q28 * 1.01;
@@ -140,7 +140,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     }
 
     /* Hamilton product: each component the exact sum rounded once, or saturated with a status */
-    st = qo_quat_mul_q30_checked(a, b, &o);
+    st = qo_quat_mul_checked_q30(a, b, &o);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_OVERFLOW, "mul_checked status %d", (int)st);
     {
         /* exact: round(sum / 2^30), ties toward +inf, from a split of each product */
@@ -186,10 +186,10 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     else { QO_FUZZ_CHECK(st == QO_OK, "integrate status %d", (int)st); fuzz_fxo_unit(o, 6.0, "integrate"); }
 
     /* conversions */
-    st = qo_quat_from_axis_angle_q30(v, band, &o);
+    st = qo_axis_angle_to_quat_q30(v, band, &o);
     if (v.x == 0 && v.y == 0 && v.z == 0) QO_FUZZ_CHECK(st == QO_E_DEGENERATE && fuzz_fxo_is_identity(o), "from_axis_angle zero");
     else { QO_FUZZ_CHECK(st == QO_OK, "from_axis_angle status %d", (int)st); fuzz_fxo_unit(o, 6.0, "from_axis_angle"); }
-    st = qo_quat_to_axis_angle_q30(a, &ax, &ang);
+    st = qo_axis_angle_from_quat_q30(a, &ax, &ang);
     if (fuzz_fxo_is_zero(a)) {
         QO_FUZZ_CHECK(st == QO_E_DEGENERATE && ax.x == QO_Q30_ONE && ax.y == 0 && ax.z == 0 && ang == 0, "to_axis_angle zero");
     } else {
@@ -198,17 +198,17 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
                       "to_axis_angle (%d %d %d %d): status %d angle %d |axis| 1%+.3g LSB", a.w, a.x, a.y, a.z, (int)st,
                       ang, (la - 1.0) * FUZZ_FXO_ONE);
     }
-    st = qo_quat_from_rotvec_q30(rv, &o);
+    st = qo_rotvec_to_quat_q30(rv, &o);
     QO_FUZZ_CHECK(st == QO_OK, "from_rotvec status %d", (int)st);
     fuzz_fxo_unit(o, 6.0, "from_rotvec");
-    st = qo_quat_to_rotvec_q30(a, &lv);
+    st = qo_rotvec_from_quat_q30(a, &lv);
     if (fuzz_fxo_is_zero(a)) {
         QO_FUZZ_CHECK(st == QO_E_DEGENERATE && lv.x == 0 && lv.y == 0 && lv.z == 0, "to_rotvec zero");
     } else {
         double l = sqrt((double)lv.x * lv.x + (double)lv.y * lv.y + (double)lv.z * lv.z);
         QO_FUZZ_CHECK(st == QO_OK && l <= QO_Q28_PI + 6.0, "to_rotvec status %d |rv| %.1f", (int)st, l);
     }
-    st = qo_quat_to_mat3_q30(a, &m);
+    st = qo_mat3_from_quat_q30(a, &m);
     if (fuzz_fxo_is_zero(a)) {
         QO_FUZZ_CHECK(st == QO_E_DEGENERATE && m.m[0][0] == QO_Q30_ONE && m.m[0][1] == 0 && m.m[1][1] == QO_Q30_ONE,
                       "to_mat3 zero");
@@ -221,7 +221,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
                 s = s / (FUZZ_FXO_ONE * FUZZ_FXO_ONE) - (i == j ? 1.0 : 0.0);
                 QO_FUZZ_CHECK(fabs(s) <= 2e-8, "to_mat3 (%d %d %d %d): (M^T M - I)[%d][%d] = %g", a.w, a.x, a.y, a.z, i, j, s);
             }
-        st = qo_quat_from_mat3_q30(&m, &o);
+        st = qo_mat3_to_quat_q30(&m, &o);
         QO_FUZZ_CHECK(st == QO_OK && o.w >= 0, "from_mat3(to_mat3(q)) status %d", (int)st);
         fuzz_fxo_unit(o, 6.0, "from_mat3");
         QO_FUZZ_CHECK(fuzz_fxo_angle(a, o) <= 1e-7 + 64.0 / (fuzz_fxo_norm(a) * FUZZ_FXO_ONE),
@@ -230,18 +230,18 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     /* a raw matrix: refused or a unit canonical quaternion */
     for (i = 0; i < 3; i++)
         for (j = 0; j < 3; j++) m.m[i][j] = (mode & 4u) ? m.m[i][j] + (qo_fz_i32(&f) >> 16) : qo_fz_i32(&f);
-    st = qo_quat_from_mat3_q30(&m, &o);
+    st = qo_mat3_to_quat_q30(&m, &o);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NOT_ROTATION, "from_mat3 status %d", (int)st);
     if (st == QO_OK) { QO_FUZZ_CHECK(o.w >= 0, "from_mat3 w %d", o.w); fuzz_fxo_unit(o, 6.0, "from_mat3 raw"); }
     else QO_FUZZ_CHECK(fuzz_fxo_is_identity(o), "from_mat3 error output");
 
     /* Euler */
     e.a1 = rv.x; e.a2 = rv.y; e.a3 = rv.z;
-    st = qo_quat_from_euler_q30(seq, e, &o);
+    st = qo_euler_to_quat_q30(seq, e, &o);
     if ((int)seq >= (int)QO_EULER_SEQ_COUNT_) QO_FUZZ_CHECK(st == QO_E_ARG && fuzz_fxo_is_identity(o), "from_euler bad seq");
     else { QO_FUZZ_CHECK(st == QO_OK, "from_euler status %d", (int)st); fuzz_fxo_unit(o, 8.0, "from_euler"); }
 
-    st = qo_quat_to_euler_q30(a, seq, &e, &info);
+    st = qo_euler_from_quat_q30(a, seq, &e, &info);
     if ((int)seq >= (int)QO_EULER_SEQ_COUNT_ || fuzz_fxo_is_zero(a)) {
         QO_FUZZ_CHECK((st == QO_E_ARG || st == QO_E_DEGENERATE) && e.a1 == 0 && e.a2 == 0 && e.a3 == 0 && info.locked == 0
                       && info.margin == 0, "to_euler error %d output", (int)st);
@@ -249,7 +249,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
         QO_FUZZ_CHECK(st == QO_OK, "to_euler status %d", (int)st);
         fuzz_fxo_euler_ok(a, seq, e, info, QO_EULER_LOCK_BAND_Q28, 1, "to_euler");
     }
-    st = qo_quat_to_euler_band_q30(a, seq, band, &e, &info);
+    st = qo_euler_from_quat_band_q30(a, seq, band, &e, &info);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_ARG || st == QO_E_DEGENERATE || st == QO_E_RANGE, "to_euler_band status %d", (int)st);
     if (st == QO_OK) {
         QO_FUZZ_CHECK(band >= 0 && band <= QO_Q28_HALF_PI, "to_euler_band accepted band %d", band);
@@ -257,7 +257,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     } else {
         QO_FUZZ_CHECK(e.a1 == 0 && e.a2 == 0 && e.a3 == 0 && info.locked == 0 && info.margin == 0, "to_euler_band error output");
     }
-    st = qo_quat_to_euler_near_q30(a, seq, prev, band, &e, &info);
+    st = qo_euler_from_quat_near_q30(a, seq, prev, band, &e, &info);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_ARG || st == QO_E_DEGENERATE || st == QO_E_RANGE || st == QO_E_OVERFLOW,
                   "to_euler_near status %d", (int)st);
     if (st == QO_OK || st == QO_E_OVERFLOW) {

@@ -27,10 +27,10 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     qo_fz f = qo_fz_init(data, size);
     uint8_t hdr = qo_fz_u8(&f);
     size_t n = (size_t)(hdr % (FUZZ_GIMBAL_MAXK + 1u)), i;
-    qo_path_interp interp = (qo_path_interp)((hdr >> 4) % 3u);
+    qo_gimbal_path_interp interp = (qo_gimbal_path_interp)((hdr >> 4) % 3u);
     float t[FUZZ_GIMBAL_MAXK];
     qo_quat_f32 kin[FUZZ_GIMBAL_MAXK], ks[FUZZ_GIMBAL_MAXK], ca[FUZZ_GIMBAL_MAXK], cb[FUZZ_GIMBAL_MAXK], q;
-    qo_orient_path_f32 path;
+    qo_gimbal_path_f32 path;
     qo_gimbal_settings_f32 gs;
     qo_gimbal_f32 g, before;
     qo_gimbal_sample_f32 o;
@@ -46,7 +46,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
         t[i] = i == 0 ? d : t[i - 1] + d;
         kin[i] = qo_fz_quat(&f);
     }
-    sp = qo_orient_path_init_f32(&path, t, kin, n, interp, ks, ca, cb);
+    sp = qo_gimbal_path_init_f32(&path, t, kin, n, interp, ks, ca, cb);
     QO_FUZZ_CHECK(sp == QO_OK || sp == QO_E_TOO_FEW || sp == QO_E_NONFINITE || sp == QO_E_ORDER
                   || sp == QO_E_DEGENERATE || sp == QO_E_ARG, "path_init status %d", (int)sp);
     if (sp != QO_OK) QO_FUZZ_CHECK(path.n == 0, "path_init error left n = %zu", path.n);
@@ -87,7 +87,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
             continue;
         }
         if (sp == QO_OK && (op & 1u)) {
-            st = qo_orient_path_sample_f32(&path, ts, &q);
+            st = qo_gimbal_path_sample_f32(&path, ts, &q);
             QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE, "path_sample status %d", (int)st);
             QO_FUZZ_CHECK((st == QO_OK) == (isfinite(ts) != 0), "path_sample t %.9g status %d", (double)ts, (int)st);
             if (st == QO_OK)

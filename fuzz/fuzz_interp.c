@@ -41,7 +41,7 @@ static void fuzz_interp_two(qo_quat_f32 a, qo_quat_f32 b, float t)
     qo_status st;
     int tin = t >= 0.0f && t <= 1.0f;
 
-    st = qo_quat_lerp_f32(a, b, t, &o);
+    st = qo_interp_lerp_f32(a, b, t, &o);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_RANGE, "lerp status %d", (int)st);
     if (st == QO_OK) {
         QO_FUZZ_CHECK(tin, "lerp accepted t %.9g", (double)t);
@@ -53,13 +53,13 @@ static void fuzz_interp_two(qo_quat_f32 a, qo_quat_f32 b, float t)
         QO_FUZZ_CHECK(qo_fz_same_quat(o, a), "lerp t error output not a");
     }
 
-    st = qo_quat_nlerp_f32(a, b, t, &o);
+    st = qo_interp_nlerp_f32(a, b, t, &o);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_RANGE || st == QO_E_DEGENERATE,
                   "nlerp status %d", (int)st);
     if (st == QO_OK) QO_FUZZ_CHECK(tin && qo_fz_unit_quat(o, QO_FZ_UNIT_TOL), "nlerp -> " QO_FZ_QFMT, QO_FZ_QARG(o));
     else fuzz_interp_check_err2(st, a, b, t, o, "nlerp");
 
-    st = qo_quat_slerp_f32(a, b, t, &o);
+    st = qo_interp_slerp_f32(a, b, t, &o);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_RANGE || st == QO_E_DEGENERATE,
                   "slerp status %d", (int)st);
     if (st == QO_OK) {
@@ -73,13 +73,13 @@ static void fuzz_interp_two(qo_quat_f32 a, qo_quat_f32 b, float t)
         fuzz_interp_check_err2(st, a, b, t, o, "slerp");
     }
 
-    st = qo_quat_slerp_long_f32(a, b, t, &o);
+    st = qo_interp_slerp_long_f32(a, b, t, &o);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_RANGE || st == QO_E_DEGENERATE,
                   "slerp_long status %d", (int)st);
     if (st == QO_OK) QO_FUZZ_CHECK(tin && qo_fz_unit_quat(o, QO_FZ_UNIT_TOL), "slerp_long -> " QO_FZ_QFMT, QO_FZ_QARG(o));
     else if (st != QO_E_DEGENERATE || !qo_fz_finite_quat(a)) fuzz_interp_check_err2(st, a, b, t, o, "slerp_long");
 
-    st = qo_quat_slerp_rate_f32(a, b, t, &w);
+    st = qo_interp_slerp_rate_f32(a, b, t, &w);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_RANGE || st == QO_E_DEGENERATE,
                   "slerp_rate status %d", (int)st);
     if (st == QO_OK) {
@@ -115,7 +115,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     }
     fuzz_interp_two(k[0], k[1], t);
 
-    sk = qo_quat_align_keys_f32(k, n, al);
+    sk = qo_interp_align_keys_f32(k, n, al);
     QO_FUZZ_CHECK(sk == QO_OK || sk == QO_E_TOO_FEW || sk == QO_E_NONFINITE || sk == QO_E_DEGENERATE,
                   "align_keys status %d", (int)sk);
     for (i = 0; i < n; i++) {
@@ -130,22 +130,22 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     QO_FUZZ_CHECK(n == 0 || (sk == QO_OK) == keys_ok, "align_keys status %d with keys_ok %d", (int)sk, keys_ok);
 
     /* Bezier on n control points (n > 8 exceeds its capacity) */
-    st = qo_quat_bezier_f32(k, n, t, &o);
+    st = qo_interp_bezier_f32(k, n, t, &o);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_TOO_FEW || st == QO_E_CAPACITY || st == QO_E_NONFINITE
                   || st == QO_E_DEGENERATE || st == QO_E_RANGE, "bezier status %d", (int)st);
     if (st == QO_OK) {
-        QO_FUZZ_CHECK(n >= 2 && n <= QO_BEZIER_MAX_POINTS && keys_ok && t >= 0.0f && t <= 1.0f,
+        QO_FUZZ_CHECK(n >= 2 && n <= QO_INTERP_BEZIER_MAX_POINTS && keys_ok && t >= 0.0f && t <= 1.0f,
                       "bezier accepted n %zu t %.9g", n, (double)t);
         QO_FUZZ_CHECK(qo_fz_unit_quat(o, QO_FZ_UNIT_TOL), "bezier n %zu t %.9g -> " QO_FZ_QFMT, n, (double)t, QO_FZ_QARG(o));
         if (t == 0.0f) QO_FUZZ_CHECK(qo_fz_same_quat(o, al[0]), "bezier t=0 not unit ctrl[0]");
-    } else if (st == QO_E_RANGE || (st == QO_E_NONFINITE && keys_ok && n >= 2 && n <= QO_BEZIER_MAX_POINTS)) {
+    } else if (st == QO_E_RANGE || (st == QO_E_NONFINITE && keys_ok && n >= 2 && n <= QO_INTERP_BEZIER_MAX_POINTS)) {
         QO_FUZZ_CHECK(qo_fz_same_quat(o, al[0]), "bezier t error output not unit ctrl[0]");
     } else {
         QO_FUZZ_CHECK(qo_fz_is_identity(o), "bezier error output not identity (status %d)", (int)st);
     }
 
     /* Shoemake spline */
-    st = qo_quat_spline_controls_f32(k, n, ca, cb);
+    st = qo_interp_spline_controls_f32(k, n, ca, cb);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_TOO_FEW || st == QO_E_NONFINITE || st == QO_E_DEGENERATE,
                   "spline_controls status %d", (int)st);
     for (i = 0; i < n; i++) {
@@ -157,7 +157,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     }
     if (st == QO_OK) {
         s = isfinite(t) ? t * (float)(n - 1) : t;
-        st = qo_quat_spline_eval_f32(k, ca, cb, n, s, &o);
+        st = qo_interp_spline_eval_f32(k, ca, cb, n, s, &o);
         QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_RANGE, "spline_eval status %d", (int)st);
         if (st == QO_OK) {
             QO_FUZZ_CHECK(s >= 0.0f && s <= (float)(n - 1), "spline_eval accepted s %.9g", (double)s);
@@ -170,7 +170,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     }
 
     /* Squad */
-    st = qo_quat_squad_controls_f32(k, n, ca);
+    st = qo_interp_squad_controls_f32(k, n, ca);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_TOO_FEW || st == QO_E_NONFINITE || st == QO_E_DEGENERATE,
                   "squad_controls status %d", (int)st);
     for (i = 0; i < n; i++) {
@@ -180,12 +180,12 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
             QO_FUZZ_CHECK(qo_fz_is_identity(ca[i]), "squad_controls error output");
     }
     if (st == QO_OK) {
-        st = qo_quat_squad_f32(k[0], ca[0], ca[1], k[1], t, &o);
+        st = qo_interp_squad_f32(k[0], ca[0], ca[1], k[1], t, &o);
         QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_RANGE, "squad status %d", (int)st);
         if (st == QO_OK) QO_FUZZ_CHECK(qo_fz_unit_quat(o, QO_FZ_UNIT_TOL), "squad -> " QO_FZ_QFMT, QO_FZ_QARG(o));
         else QO_FUZZ_CHECK(qo_fz_same_quat(o, al[0]), "squad t error output not unit q0");
     }
-    st = qo_quat_squad_f32(k[0], k[1], k[2], k[3], t, &o);
+    st = qo_interp_squad_f32(k[0], k[1], k[2], k[3], t, &o);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_NONFINITE || st == QO_E_RANGE || st == QO_E_DEGENERATE,
                   "squad(raw) status %d", (int)st);
     if (st == QO_OK) QO_FUZZ_CHECK(qo_fz_unit_quat(o, QO_FZ_UNIT_TOL), "squad(raw) -> " QO_FZ_QFMT, QO_FZ_QARG(o));

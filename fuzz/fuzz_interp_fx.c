@@ -41,7 +41,7 @@ static void fuzz_ifx_unit(qo_quat_q30 q, const char *what)
 static qo_quat_q30 fuzz_ifx_unit_of(qo_quat_q30 a)
 {
     qo_quat_q30 u;
-    (void)qo_quat_align_keys_q30(&a, 1, &u);
+    (void)qo_interp_align_keys_q30(&a, 1, &u);
     return u;
 }
 
@@ -76,7 +76,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     ua = fuzz_ifx_unit_of(k[0]);
 
     /* lerp */
-    st = qo_quat_lerp_q30(k[0], k[1], t, &o);
+    st = qo_interp_lerp_q30(k[0], k[1], t, &o);
     QO_FUZZ_CHECK(st == (tin ? QO_OK : QO_E_RANGE), "lerp t %d status %d", t, (int)st);
     if (st == QO_OK) {
         QO_FUZZ_CHECK(fuzz_ifx_between(o.w, k[0].w, k[1].w) && fuzz_ifx_between(o.x, k[0].x, k[1].x)
@@ -89,11 +89,11 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     }
 
     /* nlerp, slerp */
-    st = qo_quat_nlerp_q30(k[0], k[1], t, &o);
+    st = qo_interp_nlerp_q30(k[0], k[1], t, &o);
     if (fuzz_ifx_zero(k[0]) || fuzz_ifx_zero(k[1])) QO_FUZZ_CHECK(st == QO_E_DEGENERATE && fuzz_ifx_ident(o), "nlerp zero");
     else if (!tin) QO_FUZZ_CHECK(st == QO_E_RANGE && fuzz_ifx_same(o, ua), "nlerp range");
     else { QO_FUZZ_CHECK(st == QO_OK, "nlerp status %d", (int)st); fuzz_ifx_unit(o, "nlerp"); }
-    st = qo_quat_slerp_q30(k[0], k[1], t, &o);
+    st = qo_interp_slerp_q30(k[0], k[1], t, &o);
     if (fuzz_ifx_zero(k[0]) || fuzz_ifx_zero(k[1])) {
         QO_FUZZ_CHECK(st == QO_E_DEGENERATE && fuzz_ifx_ident(o), "slerp zero");
     } else if (!tin) {
@@ -106,7 +106,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     }
 
     /* keys */
-    sk = qo_quat_align_keys_q30(k, n, al);
+    sk = qo_interp_align_keys_q30(k, n, al);
     if (n == 0) QO_FUZZ_CHECK(sk == QO_E_TOO_FEW, "align_keys n 0 status %d", (int)sk);
     else if (any_zero) QO_FUZZ_CHECK(sk == QO_E_DEGENERATE, "align_keys zero key status %d", (int)sk);
     else QO_FUZZ_CHECK(sk == QO_OK, "align_keys status %d", (int)sk);
@@ -115,11 +115,11 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
         else QO_FUZZ_CHECK(fuzz_ifx_ident(al[i]), "align_keys error output");
     }
 
-    st = qo_quat_bezier_q30(k, n, t, &o);
+    st = qo_interp_bezier_q30(k, n, t, &o);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_TOO_FEW || st == QO_E_CAPACITY || st == QO_E_DEGENERATE || st == QO_E_RANGE,
                   "bezier status %d", (int)st);
     if (st == QO_OK) {
-        QO_FUZZ_CHECK(n >= 2 && n <= QO_BEZIER_MAX_POINTS && !any_zero && tin, "bezier accepted n %zu t %d", n, t);
+        QO_FUZZ_CHECK(n >= 2 && n <= QO_INTERP_BEZIER_MAX_POINTS && !any_zero && tin, "bezier accepted n %zu t %d", n, t);
         fuzz_ifx_unit(o, "bezier");
         if (t == 0) QO_FUZZ_CHECK(fuzz_ifx_same(o, al[0]), "bezier t=0");
         if (t == QO_Q30_ONE) QO_FUZZ_CHECK(fuzz_ifx_same(o, al[n - 1]), "bezier t=1 not the last aligned point");
@@ -129,7 +129,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
         QO_FUZZ_CHECK(fuzz_ifx_ident(o), "bezier error %d output", (int)st);
     }
 
-    st = qo_quat_spline_controls_q30(k, n, ca, cb);
+    st = qo_interp_spline_controls_q30(k, n, ca, cb);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_TOO_FEW || st == QO_E_DEGENERATE, "spline_controls status %d", (int)st);
     for (i = 0; i < n; i++) {
         if (st == QO_OK) { fuzz_ifx_unit(ca[i], "spline_controls a"); fuzz_ifx_unit(cb[i], "spline_controls b"); }
@@ -137,7 +137,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     }
     if (st == QO_OK) {
         if (hdr & 0x20u) s = (qo_q16)((uint32_t)s % (uint32_t)((n - 1) * 65536u + 1u));
-        st = qo_quat_spline_eval_q30(k, ca, cb, n, s, &o);
+        st = qo_interp_spline_eval_q30(k, ca, cb, n, s, &o);
         if (s < 0 || (int64_t)s > (int64_t)(n - 1) * 65536) {
             QO_FUZZ_CHECK(st == QO_E_RANGE, "spline_eval s %d status %d", s, (int)st);
             QO_FUZZ_CHECK(fuzz_ifx_same(o, fuzz_ifx_unit_of(s < 0 ? k[0] : k[n - 1])), "spline_eval range output");
@@ -148,7 +148,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
         }
     }
 
-    st = qo_quat_squad_q30(k[0], k[1], k[2], k[3], t, &o);
+    st = qo_interp_squad_q30(k[0], k[1], k[2], k[3], t, &o);
     if (fuzz_ifx_zero(k[0]) || fuzz_ifx_zero(k[1]) || fuzz_ifx_zero(k[2]) || fuzz_ifx_zero(k[3]))
         QO_FUZZ_CHECK(st == QO_E_DEGENERATE && fuzz_ifx_ident(o), "squad zero");
     else if (!tin) QO_FUZZ_CHECK(st == QO_E_RANGE && fuzz_ifx_same(o, ua), "squad range");

@@ -149,26 +149,26 @@ int main(void)
 #elif OP == 14
         qo_vec3_f32 r = qo_quat_rotate_f32(qf[j], vf[j]); sink_f = r.x + r.y + r.z;
 #elif OP == 15
-        qo_quat_q30 r; (void)qo_quat_from_rotvec_q30(ri[j], &r); sink_i = r.w + r.x + r.y + r.z;
+        qo_quat_q30 r; (void)qo_rotvec_to_quat_q30(ri[j], &r); sink_i = r.w + r.x + r.y + r.z;
 #elif OP == 16
-        qo_mat3_q30 m; (void)qo_quat_to_mat3_q30(qi[j], &m); sink_i = m.m[0][0] + m.m[1][2];
+        qo_mat3_q30 m; (void)qo_mat3_from_quat_q30(qi[j], &m); sink_i = m.m[0][0] + m.m[1][2];
 #elif OP == 17
-        qo_quat_q30 r; qo_mat3_q30 m; (void)qo_quat_to_mat3_q30(qi[j], &m);
-        (void)qo_quat_from_mat3_q30(&m, &r); sink_i = r.w;
+        qo_quat_q30 r; qo_mat3_q30 m; (void)qo_mat3_from_quat_q30(qi[j], &m);
+        (void)qo_mat3_to_quat_q30(&m, &r); sink_i = r.w;
 #elif OP == 18
-        qo_euler_q28 e; (void)qo_quat_to_euler_q30(qi[j], seqs[j], &e, NULL); sink_i = e.a1 + e.a2 + e.a3;
+        qo_euler_q28 e; (void)qo_euler_from_quat_q30(qi[j], seqs[j], &e, NULL); sink_i = e.a1 + e.a2 + e.a3;
 #elif OP == 19
-        qo_euler_f32 e; (void)qo_quat_to_euler_f32(qf[j], seqs[j], &e, NULL); sink_f = e.a1 + e.a2 + e.a3;
+        qo_euler_f32 e; (void)qo_euler_from_quat_f32(qf[j], seqs[j], &e, NULL); sink_f = e.a1 + e.a2 + e.a3;
 #elif OP == 20 && HAVE_INTERP_FX
-        qo_quat_q30 r; (void)qo_quat_slerp_q30(qi[j], qi[(j + 1) & 7], ti[j], &r); sink_i = r.w + r.x + r.y + r.z;
+        qo_quat_q30 r; (void)qo_interp_slerp_q30(qi[j], qi[(j + 1) & 7], ti[j], &r); sink_i = r.w + r.x + r.y + r.z;
 #elif OP == 21
-        qo_quat_f32 r; (void)qo_quat_slerp_f32(qf[j], qf[(j + 1) & 7], tf[j], &r); sink_f = r.w + r.x + r.y + r.z;
+        qo_quat_f32 r; (void)qo_interp_slerp_f32(qf[j], qf[(j + 1) & 7], tf[j], &r); sink_f = r.w + r.x + r.y + r.z;
 #elif OP == 22
         qo_quat_q30 r; (void)qo_quat_normalize_fast_q30(qi[j], &r); sink_i = r.w + r.x + r.y + r.z;
 #elif OP == 23 && HAVE_INTERP_FX
-        qo_quat_q30 r; (void)qo_quat_slerp_fast_q30(qi[j], qi[(j + 1) & 7], ti[j], &r); sink_i = r.w + r.x + r.y + r.z;
+        qo_quat_q30 r; (void)qo_interp_slerp_fast_q30(qi[j], qi[(j + 1) & 7], ti[j], &r); sink_i = r.w + r.x + r.y + r.z;
 #elif OP == 24
-        qo_euler_q28 e; (void)qo_quat_to_euler_fast_q30(qi[j], seqs[j], QO_EULER_LOCK_BAND_Q28, &e, NULL); sink_i = e.a1 + e.a2 + e.a3;
+        qo_euler_q28 e; (void)qo_euler_from_quat_fast_q30(qi[j], seqs[j], QO_EULER_LOCK_BAND_Q28, &e, NULL); sink_i = e.a1 + e.a2 + e.a3;
 #endif
     }
     return 0;
@@ -203,12 +203,12 @@ for spec in "0:loop body alone" \
             "9:qo_quat_mul_q30" "10:qo_quat_mul_f32 (soft float)" \
             "11:qo_quat_normalize_q30" "12:qo_quat_normalize_f32 (soft)" \
             "13:qo_quat_rotate_q30" "14:qo_quat_rotate_f32 (soft)" \
-            "15:qo_quat_from_rotvec_q30" "16:qo_quat_to_mat3_q30" \
+            "15:qo_rotvec_to_quat_q30" "16:qo_mat3_from_quat_q30" \
             "17:to_mat3 + from_mat3 _q30" \
-            "18:qo_quat_to_euler_q30" "19:qo_quat_to_euler_f32 (soft)" \
-            "20:qo_quat_slerp_q30" "21:qo_quat_slerp_f32 (soft)" \
-            "22:qo_quat_normalize_fast_q30" "23:qo_quat_slerp_fast_q30" \
-            "24:qo_quat_to_euler_fast_q30"; do
+            "18:qo_euler_from_quat_q30" "19:qo_euler_from_quat_f32 (soft)" \
+            "20:qo_interp_slerp_q30" "21:qo_interp_slerp_f32 (soft)" \
+            "22:qo_quat_normalize_fast_q30" "23:qo_interp_slerp_fast_q30" \
+            "24:qo_euler_from_quat_fast_q30"; do
     op=${spec%%:*}; name=${spec#*:}
     case " ${OPS:-$op} " in *" $op "*) ;; *) continue ;; esac
     if { [ "$op" = 20 ] || [ "$op" = 23 ]; } && [ "$HAVE_INTERP_FX" = 0 ]; then

@@ -158,7 +158,7 @@ void bk_qofx_fx_to_euler_ZYX(void)
 {
     int i;
     const qo_quat_q30 *a = g_qa[g_set];
-    for (i = 0; i < BK_N; i++) (void)qo_quat_to_euler_q30(a[i], QO_EULER_ZYX, &g_e[i], NULL);
+    for (i = 0; i < BK_N; i++) (void)qo_euler_from_quat_q30(a[i], QO_EULER_ZYX, &g_e[i], NULL);
 }
 
 void bk_qofx_fx_slerp(void);
@@ -166,7 +166,7 @@ void bk_qofx_fx_slerp(void)
 {
     int i;
     const qo_quat_q30 *a = g_qa[g_set], *b = g_qb[g_set];
-    for (i = 0; i < BK_N; i++) (void)qo_quat_slerp_q30(a[i], b[i], g_t[i], &g_q[i]);
+    for (i = 0; i < BK_N; i++) (void)qo_interp_slerp_q30(a[i], b[i], g_t[i], &g_q[i]);
 }
 
 const bk_kernel bk_qofx_kernels[] = {

@@ -51,27 +51,27 @@ void bk_qorient_to_mat3(void);
 void bk_qorient_to_mat3(void)
 {
     int i;
-    for (i = 0; i < BK_N; i++) (void)qo_quat_to_mat3_f32(g_in->qa[i], &g_m[i]);
+    for (i = 0; i < BK_N; i++) (void)qo_mat3_from_quat_f32(g_in->qa[i], &g_m[i]);
 }
 
 void bk_qorient_from_mat3(void);
 void bk_qorient_from_mat3(void)
 {
     int i;
-    for (i = 0; i < BK_N; i++) (void)qo_quat_from_mat3_f32(&g_in->m[i], &g_q[i]);
+    for (i = 0; i < BK_N; i++) (void)qo_mat3_to_quat_f32(&g_in->m[i], &g_q[i]);
 }
 
 void bk_qorient_from_mat3_trusted(void);
 void bk_qorient_from_mat3_trusted(void)
 {
     int i;
-    for (i = 0; i < BK_N; i++) (void)qo_quat_from_mat3_trusted_f32(&g_in->m[i], &g_q[i]);
+    for (i = 0; i < BK_N; i++) (void)qo_mat3_to_quat_trusted_f32(&g_in->m[i], &g_q[i]);
 }
 
 static void euler(qo_euler_seq seq)
 {
     int i;
-    for (i = 0; i < BK_N; i++) (void)qo_quat_to_euler_f32(g_in->qa[i], seq, &g_e[i], NULL);
+    for (i = 0; i < BK_N; i++) (void)qo_euler_from_quat_f32(g_in->qa[i], seq, &g_e[i], NULL);
 }
 
 void bk_qorient_to_euler_XYZ(void);
@@ -85,7 +85,7 @@ void bk_qorient_slerp(void);
 void bk_qorient_slerp(void)
 {
     int i;
-    for (i = 0; i < BK_N; i++) (void)qo_quat_slerp_f32(g_in->qa[i], g_in->qb[i], g_in->t[i], &g_q[i]);
+    for (i = 0; i < BK_N; i++) (void)qo_interp_slerp_f32(g_in->qa[i], g_in->qb[i], g_in->t[i], &g_q[i]);
 }
 
 const bk_kernel bk_qorient_kernels[] = {

@@ -66,17 +66,17 @@ static void op_f_normalize(int i) { qo_quat_f32 q; (void)qo_quat_normalize_f32(g
 static void op_f_to_mat3(int i)
 {
     qo_mat3_f32 m;
-    (void)qo_quat_to_mat3_f32(k_qa[i], &m);
+    (void)qo_mat3_from_quat_f32(k_qa[i], &m);
     g_sink_f = m.m[0][0]; g_sink_f = m.m[1][1]; g_sink_f = m.m[2][2];
 }
-static void op_f_from_mat3(int i) { qo_quat_f32 q; (void)qo_quat_from_mat3_f32(&g_m[i], &q); sink_q(q); }
+static void op_f_from_mat3(int i) { qo_quat_f32 q; (void)qo_mat3_to_quat_f32(&g_m[i], &q); sink_q(q); }
 static void op_f_to_euler_ZYX(int i)
 {
     qo_euler_f32 e;
-    (void)qo_quat_to_euler_f32(k_qa[i], QO_EULER_ZYX, &e, NULL);
+    (void)qo_euler_from_quat_f32(k_qa[i], QO_EULER_ZYX, &e, NULL);
     g_sink_f = e.a1; g_sink_f = e.a2; g_sink_f = e.a3;
 }
-static void op_f_slerp(int i) { qo_quat_f32 q; (void)qo_quat_slerp_f32(k_qa[i], k_qb[i], k_t[i], &q); sink_q(q); }
+static void op_f_slerp(int i) { qo_quat_f32 q; (void)qo_interp_slerp_f32(k_qa[i], k_qb[i], k_t[i], &q); sink_q(q); }
 static void op_f_sqrt(int i) { g_sink_f = sqrtf(k_s[i]); }
 static void op_f_sin(int i) { g_sink_f = sinf(k_ang[i]); }
 static void op_f_atan2(int i) { g_sink_f = atan2f(k_v[i].y, k_v[i].x); }
@@ -95,17 +95,17 @@ static void op_x_normalize(int i) { qo_quat_q30 q; (void)qo_quat_normalize_q30(g
 static void op_x_to_mat3(int i)
 {
     qo_mat3_q30 m;
-    (void)qo_quat_to_mat3_q30(g_xa[i], &m);
+    (void)qo_mat3_from_quat_q30(g_xa[i], &m);
     g_sink_i = m.m[0][0]; g_sink_i = m.m[1][1]; g_sink_i = m.m[2][2];
 }
 static void op_x_to_euler_ZYX(int i)
 {
     qo_euler_q28 e;
-    (void)qo_quat_to_euler_q30(g_xa[i], QO_EULER_ZYX, &e, NULL);
+    (void)qo_euler_from_quat_q30(g_xa[i], QO_EULER_ZYX, &e, NULL);
     g_sink_i = e.a1; g_sink_i = e.a2; g_sink_i = e.a3;
 }
-static void op_x_slerp(int i) { qo_quat_q30 q; (void)qo_quat_slerp_q30(g_xa[i], g_xb[i], g_xt[i], &q); sink_x(q); }
-static void op_x_from_mat3(int i) { qo_quat_q30 q; (void)qo_quat_from_mat3_q30(&g_xm[i], &q); sink_x(q); }
+static void op_x_slerp(int i) { qo_quat_q30 q; (void)qo_interp_slerp_q30(g_xa[i], g_xb[i], g_xt[i], &q); sink_x(q); }
+static void op_x_from_mat3(int i) { qo_quat_q30 q; (void)qo_mat3_to_quat_q30(&g_xm[i], &q); sink_x(q); }
 
 typedef struct op { const char *name; void (*fn)(int); } op;
 static const op k_ops[] = {
@@ -130,19 +130,19 @@ int main(int argc, char **argv)
         qo_quat_f32 q = k_qa[i];
         q.w *= 1.7f; q.x *= 1.7f; q.y *= 1.7f; q.z *= 1.7f;   /* non-unit normalise input */
         g_qn[i] = q;
-        (void)qo_quat_to_mat3_f32(k_qa[i], &g_m[i]);
+        (void)qo_mat3_from_quat_f32(k_qa[i], &g_m[i]);
         g_s30[i] = qo_q30_from_f32(k_s[i]);
         g_y30[i] = qo_q30_from_f32(k_v[i].y);
         g_x30[i] = qo_q30_from_f32(k_v[i].x);
         g_a28[i] = qo_q28_from_f32(k_ang[i]);
-        g_xa[i] = qo_quat_q30_from_f32(k_qa[i]);
+        g_xa[i] = qo_q30_quat_from_f32(k_qa[i]);
         (void)qo_quat_normalize_q30(g_xa[i], &g_xa[i]);
-        g_xb[i] = qo_quat_q30_from_f32(k_qb[i]);
+        g_xb[i] = qo_q30_quat_from_f32(k_qb[i]);
         (void)qo_quat_normalize_q30(g_xb[i], &g_xb[i]);
-        g_xn[i] = qo_quat_q30_from_f32(k_qa[i]);
+        g_xn[i] = qo_q30_quat_from_f32(k_qa[i]);
         g_xn[i].w /= 2; g_xn[i].x /= 2; g_xn[i].y /= 2; g_xn[i].z /= 2;   /* non-unit */
-        g_xv[i] = qo_vec3_q30_from_f32(k_v[i]);
-        g_xm[i] = qo_mat3_q30_from_f32(&g_m[i]);
+        g_xv[i] = qo_q30_vec3_from_f32(k_v[i]);
+        g_xm[i] = qo_q30_mat3_from_f32(&g_m[i]);
         g_xt[i] = qo_q30_from_f32(k_t[i]);
     }
     for (o = k_ops; o->name != NULL; o++)

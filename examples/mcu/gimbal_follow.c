@@ -4,7 +4,7 @@
  *
  * What it shows
  *   - Setpoints arrive as quaternions in Q1.30 (from a host link, a joystick, a sensor fusion).
- *     qo_quat_to_euler_near_q30 (euler_fx.h) turns each one into the gimbal's joint angles -
+ *     qo_euler_from_quat_near_q30 (euler_fx.h) turns each one into the gimbal's joint angles -
  *     yaw, pitch, roll: intrinsic ZYX, outer to inner axis - choosing the solution nearest the
  *     previous setpoint's angles (so no joint turns further than it must; a joint with end stops
  *     goes round the other way when the short way is beyond its stop, see into_range), and
@@ -268,7 +268,7 @@ int main(void)
         prev.a1 = qo_q28_from_f32(joints[0].goal);
         prev.a2 = qo_q28_from_f32(joints[1].goal);
         prev.a3 = qo_q28_from_f32(joints[2].goal);
-        st = qo_quat_to_euler_near_q30(sp, QO_EULER_ZYX, prev, QO_EX_LOCK_BAND_Q28, &e, &info);
+        st = qo_euler_from_quat_near_q30(sp, QO_EULER_ZYX, prev, QO_EX_LOCK_BAND_Q28, &e, &info);
         /* QO_E_OVERFLOW: an angle was taken a turn back to fit Q3.28 (still the right pose);
          * QO_E_DEGENERATE: a zero quaternion - a corrupt frame; ignore it. */
         if (st != QO_OK && st != QO_E_OVERFLOW) continue;

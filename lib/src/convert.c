@@ -25,7 +25,7 @@
  * s < ~5e-4: a factor of 7 of margin. */
 #define CONV_COND_MAX 3e3f
 
-/* On the rare paths of qo_quat_from_mat3_f32: kept out of line, so that the common case makes
+/* On the rare paths of qo_mat3_to_quat_f32: kept out of line, so that the common case makes
  * no call and needs no stack frame (gcc and clang; elsewhere a plain static function). */
 #if defined(__GNUC__)
 #define CONV_COLD __attribute__((noinline, cold))
@@ -33,13 +33,13 @@
 #define CONV_COLD
 #endif
 /* quat_from_pivot is rare only where quat_from_pivot_sse2 answers first */
-#if QO_SIMD_SSE2
+#if QO_QUAT_SIMD_SSE2
 #define CONV_COLD_SSE2 CONV_COLD
 #else
 #define CONV_COLD_SSE2
 #endif
 
-/* Largest max|M^T M - I| that qo_quat_from_mat3_f32 converts without projecting onto the
+/* Largest max|M^T M - I| that qo_mat3_to_quat_f32 converts without projecting onto the
  * nearest rotation first: ~4 float32 ulps of 1, above the ~2e-7 of a rounded rotation. */
 #define CONV_SHEPPERD_DIRECT_TOL 5e-7f
 
@@ -171,7 +171,7 @@ static float mat3_orthogonality_error(const qo_mat3_f32 *m)
     return worst;
 }
 
-qo_status qo_quat_from_axis_angle_f32(qo_vec3_f32 axis, float angle, qo_quat_f32 *out)
+qo_status qo_axis_angle_to_quat_f32(qo_vec3_f32 axis, float angle, qo_quat_f32 *out)
 {
     qo_quat_f32 u;
     qo_status st;
@@ -194,7 +194,7 @@ qo_status qo_quat_from_axis_angle_f32(qo_vec3_f32 axis, float angle, qo_quat_f32
     return QO_OK;
 }
 
-qo_status qo_quat_to_axis_angle_f32(qo_quat_f32 q, qo_vec3_f32 *axis, float *angle)
+qo_status qo_axis_angle_from_quat_f32(qo_quat_f32 q, qo_vec3_f32 *axis, float *angle)
 {
     qo_quat_f32 n, v;
     qo_status st;
@@ -215,7 +215,7 @@ qo_status qo_quat_to_axis_angle_f32(qo_quat_f32 q, qo_vec3_f32 *axis, float *ang
     return QO_OK;
 }
 
-qo_status qo_quat_from_rotvec_f32(qo_vec3_f32 rv, qo_quat_f32 *out)
+qo_status qo_rotvec_to_quat_f32(qo_vec3_f32 rv, qo_quat_f32 *out)
 {
     float theta, h, k;
     if (out == NULL) return QO_E_NULL;
@@ -239,7 +239,7 @@ qo_status qo_quat_from_rotvec_f32(qo_vec3_f32 rv, qo_quat_f32 *out)
     return QO_OK;
 }
 
-qo_status qo_quat_to_rotvec_f32(qo_quat_f32 q, qo_vec3_f32 *out)
+qo_status qo_rotvec_from_quat_f32(qo_quat_f32 q, qo_vec3_f32 *out)
 {
     qo_quat_f32 n, v;
     qo_status st;
@@ -264,7 +264,7 @@ qo_status qo_quat_to_rotvec_f32(qo_quat_f32 q, qo_vec3_f32 *out)
     return QO_OK;
 }
 
-qo_status qo_quat_to_mat3_full_f32(qo_quat_f32 q, qo_mat3_f32 *out)
+qo_status qo_mat3_from_quat_full_f32(qo_quat_f32 q, qo_mat3_f32 *out)
 {
     qo_quat_f32 n;
     qo_status st;
@@ -273,7 +273,7 @@ qo_status qo_quat_to_mat3_full_f32(qo_quat_f32 q, qo_mat3_f32 *out)
     st = qo_quat_normalize_f32(q, &n);
     if (st != QO_OK) return st;
     /* |n| is 1 to a few ulp: the inline path takes it */
-    return qo_quat_to_mat3_f32(n, out);
+    return qo_mat3_from_quat_f32(n, out);
 }
 
 /* fmaxf(v, FLT_MIN) without the libm call (NaN gives FLT_MIN as there). */
@@ -328,12 +328,12 @@ static inline int mat3_pivot_vector(const qo_mat3_f32 *m, qo_quat_f32 *out)
  * that the formula overflows, is reported by the normaliser). The pivot component p of a
  * rotation's result is positive (>= 1/2), so qo_quat_canonical_f32's choice of sign only
  * looks at the components before it: none for the trace pivot (w). */
-#if QO_SIMD_SSE2
+#if QO_QUAT_SIMD_SSE2
 /* quat_from_pivot's common case in registers, the same operations: the pivot vector,
  * qo_quat_normalize_f32's SSE2 fast path, the sign flip when w < 0 off the trace pivot, -0.0
  * made +0.0. Returns 0 with *out unwritten for the rest (w == 0 off the trace pivot, NaN, a
  * vector outside the fast range), which quat_from_pivot's general code decides. Inline in
- * qo_quat_from_mat3_f32's direct path, so the common case makes no call. */
+ * qo_mat3_to_quat_f32's direct path, so the common case makes no call. */
 static inline int quat_from_pivot_sse2(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     qo_quat_f32 v;
@@ -343,7 +343,7 @@ static inline int quat_from_pivot_sse2(const qo_mat3_f32 *m, qo_quat_f32 *out)
     const __m128 inv = _mm_div_ss(_mm_set_ss(1.0f), r);
     __m128 q4;
     if (!qo_quat_internal_fast_range_ss(r, inv)) return 0;
-    q4 = _mm_mul_ps(v4, QO_SIMD_SHUFFLE_PS(inv, 0x00));
+    q4 = _mm_mul_ps(v4, QO_QUAT_SIMD_SHUFFLE_PS(inv, 0x00));
     if (p > 0 && !_mm_comigt_ss(q4, _mm_setzero_ps())) {
         if (!_mm_comilt_ss(q4, _mm_setzero_ps())) return 0;
         q4 = _mm_sub_ps(_mm_setzero_ps(), q4);   /* -q4, a zero as +0.0 as below */
@@ -358,7 +358,7 @@ static CONV_COLD_SSE2 qo_status quat_from_pivot(const qo_mat3_f32 *m, qo_quat_f3
     qo_quat_f32 v;
     int p, flip;
     qo_status st;
-#if QO_SIMD_SSE2
+#if QO_QUAT_SIMD_SSE2
     if (quat_from_pivot_sse2(m, out)) return QO_OK;
 #endif
     p = mat3_pivot_vector(m, &v);
@@ -373,7 +373,7 @@ static CONV_COLD_SSE2 qo_status quat_from_pivot(const qo_mat3_f32 *m, qo_quat_f3
     return QO_OK;
 }
 
-/* The full check of qo_quat_from_mat3_f32, for the matrices the fast test below does not pass. */
+/* The full check of qo_mat3_to_quat_f32, for the matrices the fast test below does not pass. */
 static CONV_COLD qo_status quat_from_mat3_checked(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     qo_mat3_f32 r;
@@ -402,23 +402,23 @@ static CONV_COLD qo_status quat_from_mat3_checked(const qo_mat3_f32 *m, qo_quat_
  * dot products and determinant in the same rounding order, so both paths give the same bits. */
 static int mat3_is_rotation_direct(const qo_mat3_f32 *m)
 {
-#if QO_SIMD_SSE2
+#if QO_QUAT_SIMD_SSE2
     /* Rows as lanes (x, y, z, unused): lane j of sum_i r_i * r_i is column j's squared norm,
      * of sum_i r_i * r_i.yzx the dot of columns j and j+1 (mod 3), each summed over the rows
      * in the scalar order. Row 2 is loaded from m[1][2] on, so no read passes the matrix. */
     const __m128 r0 = _mm_loadu_ps(&m->m[0][0]), r1 = _mm_loadu_ps(&m->m[1][0]);
-    const __m128 r2 = QO_SIMD_SHUFFLE_PS(_mm_loadu_ps(&m->m[1][2]), _MM_SHUFFLE(3, 3, 2, 1));
-    const __m128 r1yzx = QO_SIMD_SHUFFLE_PS(r1, _MM_SHUFFLE(3, 0, 2, 1));
-    const __m128 r1zxy = QO_SIMD_SHUFFLE_PS(r1, _MM_SHUFFLE(3, 1, 0, 2));
+    const __m128 r2 = QO_QUAT_SIMD_SHUFFLE_PS(_mm_loadu_ps(&m->m[1][2]), _MM_SHUFFLE(3, 3, 2, 1));
+    const __m128 r1yzx = QO_QUAT_SIMD_SHUFFLE_PS(r1, _MM_SHUFFLE(3, 0, 2, 1));
+    const __m128 r1zxy = QO_QUAT_SIMD_SHUFFLE_PS(r1, _MM_SHUFFLE(3, 1, 0, 2));
     /* lane 3 of the constants is unused: a constant that is not four equal lanes is read from
      * memory by the instruction that uses it, where gcc 12 builds a uniform one in two */
     const __m128 tol = _mm_setr_ps(CONV_SHEPPERD_DIRECT_TOL, CONV_SHEPPERD_DIRECT_TOL,
                                    CONV_SHEPPERD_DIRECT_TOL, 0.0f);
     const __m128 abs = _mm_castsi128_ps(_mm_setr_epi32(0x7fffffff, 0x7fffffff, 0x7fffffff, 0));
     __m128 d = _mm_add_ps(_mm_add_ps(_mm_mul_ps(r0, r0), _mm_mul_ps(r1, r1)), _mm_mul_ps(r2, r2));
-    __m128 o = _mm_add_ps(_mm_add_ps(_mm_mul_ps(r0, QO_SIMD_SHUFFLE_PS(r0, _MM_SHUFFLE(3, 0, 2, 1))),
+    __m128 o = _mm_add_ps(_mm_add_ps(_mm_mul_ps(r0, QO_QUAT_SIMD_SHUFFLE_PS(r0, _MM_SHUFFLE(3, 0, 2, 1))),
                                      _mm_mul_ps(r1, r1yzx)),
-                          _mm_mul_ps(r2, QO_SIMD_SHUFFLE_PS(r2, _MM_SHUFFLE(3, 0, 2, 1))));
+                          _mm_mul_ps(r2, QO_QUAT_SIMD_SHUFFLE_PS(r2, _MM_SHUFFLE(3, 0, 2, 1))));
     __m128 c;
     d = _mm_and_ps(_mm_sub_ps(d, _mm_setr_ps(1.0f, 1.0f, 1.0f, 0.0f)), abs);
     o = _mm_and_ps(o, abs);
@@ -428,14 +428,14 @@ static int mat3_is_rotation_direct(const qo_mat3_f32 *m)
     if (_mm_movemask_ps(_mm_cmpnle_ps(_mm_max_ps(d, o), tol)) & 7) return 0;
     /* det = r0 . (r1 x r2), summed ((p0 + p1) + p2) as qo_mat3_det_f32 */
     c = _mm_mul_ps(r0, qo_quat_internal_cross_ps(r1yzx, r1zxy, r2));
-    c = _mm_add_ss(_mm_add_ss(c, QO_SIMD_SHUFFLE_PS(c, 0x55)), QO_SIMD_SHUFFLE_PS(c, 0xaa));
+    c = _mm_add_ss(_mm_add_ss(c, QO_QUAT_SIMD_SHUFFLE_PS(c, 0x55)), QO_QUAT_SIMD_SHUFFLE_PS(c, 0xaa));
     return _mm_comigt_ss(c, _mm_setzero_ps());
 #else
     return mat3_orthogonality_error(m) <= CONV_SHEPPERD_DIRECT_TOL && qo_mat3_det_f32(m) > 0.0f;
 #endif
 }
 
-qo_status qo_quat_from_mat3_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
+qo_status qo_mat3_to_quat_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     if (out == NULL) return QO_E_NULL;
     if (m == NULL) {
@@ -445,7 +445,7 @@ qo_status qo_quat_from_mat3_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
     /* A float32-rounded rotation (max |M^T M - I| ~ 2e-7) takes the direct test and the pivot
      * formula; everything else the full check (tolerance, projection, error triage). */
     if (mat3_is_rotation_direct(m)) {
-#if QO_SIMD_SSE2
+#if QO_QUAT_SIMD_SSE2
         if (quat_from_pivot_sse2(m, out)) return QO_OK;
 #endif
         if (quat_from_pivot(m, out) == QO_OK) return QO_OK;
@@ -502,7 +502,7 @@ static int quat_from_rotation_fast(const qo_mat3_f32 *m, qo_quat_f32 *out)
     /* The four products finite: c is one of the terms, so a NaN/Inf c (k NaN or 0) and a
      * NaN/Inf v both give a NaN/Inf product, and with |k| <= 1/2 a finite v cannot overflow. */
     {
-#if QO_SIMD_SSE2
+#if QO_QUAT_SIMD_SSE2
         const __m128 q4 = _mm_mul_ps(_mm_setr_ps(w, x, y, z), _mm_set1_ps(k));
         const __m128 d = _mm_sub_ps(q4, q4);                  /* NaN exactly where q4 is not finite */
         if (_mm_movemask_ps(_mm_cmpunord_ps(d, d))) return 0;
@@ -517,7 +517,7 @@ static int quat_from_rotation_fast(const qo_mat3_f32 *m, qo_quat_f32 *out)
     return 1;
 }
 
-qo_status qo_quat_from_mat3_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
+qo_status qo_mat3_to_quat_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     if (out == NULL) return QO_E_NULL;
     if (m == NULL) {
@@ -605,7 +605,7 @@ qo_status qo_mat3_orthonormalize_f32(const qo_mat3_f32 *m, qo_mat3_f32 *out)
     return QO_OK;
 }
 
-qo_status qo_quat_from_mat3_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
+qo_status qo_mat3_to_quat_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     qo_mat3_f32 r;
     qo_status st;
@@ -613,5 +613,5 @@ qo_status qo_quat_from_mat3_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
     *out = qo_quat_identity_f32();
     st = qo_mat3_orthonormalize_f32(m, &r);
     if (st != QO_OK) return st;
-    return qo_quat_from_mat3_f32(&r, out);
+    return qo_mat3_to_quat_f32(&r, out);
 }

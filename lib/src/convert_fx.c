@@ -32,7 +32,7 @@ static uint64_t scale_vec3(int64_t c[3])
     return qo_fx_sqrt_u64(qo_fx_abs_u64(c[0]) * qo_fx_abs_u64(c[0]) + qo_fx_abs_u64(c[1]) * qo_fx_abs_u64(c[1]) + qo_fx_abs_u64(c[2]) * qo_fx_abs_u64(c[2]));
 }
 
-qo_status qo_quat_from_axis_angle_q30(qo_vec3_q30 axis, qo_q28 angle, qo_quat_q30 *out)
+qo_status qo_axis_angle_to_quat_q30(qo_vec3_q30 axis, qo_q28 angle, qo_quat_q30 *out)
 {
     int64_t c[3];
     uint64_t n;
@@ -51,7 +51,7 @@ qo_status qo_quat_from_axis_angle_q30(qo_vec3_q30 axis, qo_q28 angle, qo_quat_q3
     return QO_OK;
 }
 
-qo_status qo_quat_to_axis_angle_q30(qo_quat_q30 q, qo_vec3_q30 *axis, qo_q28 *angle)
+qo_status qo_axis_angle_from_quat_q30(qo_quat_q30 q, qo_vec3_q30 *axis, qo_q28 *angle)
 {
     qo_quat_q30 u;
     int64_t c[3];
@@ -74,12 +74,12 @@ qo_status qo_quat_to_axis_angle_q30(qo_quat_q30 q, qo_vec3_q30 *axis, qo_q28 *an
     return QO_OK;
 }
 
-qo_status qo_quat_from_rotvec_q30(qo_vec3_q28 rv, qo_quat_q30 *out)
+qo_status qo_rotvec_to_quat_q30(qo_vec3_q28 rv, qo_quat_q30 *out)
 {
     return qo_fx_quat_from_rotvec(rv, out);
 }
 
-qo_status qo_quat_to_rotvec_q30(qo_quat_q30 q, qo_vec3_q28 *out)
+qo_status qo_rotvec_from_quat_q30(qo_quat_q30 q, qo_vec3_q28 *out)
 {
     qo_vec3_q28 h;
     qo_status st;
@@ -129,7 +129,7 @@ static int unit_q31(qo_quat_q30 q, int64_t u[4])
     return 1;
 }
 
-qo_status qo_quat_to_mat3_q30(qo_quat_q30 q, qo_mat3_q30 *out)
+qo_status qo_mat3_from_quat_q30(qo_quat_q30 q, qo_mat3_q30 *out)
 {
     int64_t u[4], t[5];
     int64_t xx, yy, zz, xy, xz, yz, wx, wy, wz;
@@ -225,7 +225,7 @@ static int shepperd(const qo_mat3_q30 *m, qo_quat_q30 *out)
     return 1;
 }
 
-qo_status qo_quat_from_mat3_q30(const qo_mat3_q30 *m, qo_quat_q30 *out)
+qo_status qo_mat3_to_quat_q30(const qo_mat3_q30 *m, qo_quat_q30 *out)
 {
     int i, j;
     if (out == NULL) return QO_E_NULL;
@@ -328,7 +328,7 @@ qo_q30 qo_mat3_det_q30(const qo_mat3_q30 *m)
     return qo_fx_sat_i32(qo_fx_sum_round_i64(t, 3, 60u - sh));
 }
 
-qo_status qo_quat_from_mat3_trusted_q30(const qo_mat3_q30 *m, qo_quat_q30 *out)
+qo_status qo_mat3_to_quat_trusted_q30(const qo_mat3_q30 *m, qo_quat_q30 *out)
 {
     if (out == NULL) return QO_E_NULL;
     *out = qo_quat_identity_q30();
@@ -412,12 +412,12 @@ qo_status qo_mat3_orthonormalize_q30(const qo_mat3_q30 *m, qo_mat3_q30 *out)
     return QO_OK;
 }
 
-qo_status qo_quat_from_mat3_ortho_q30(const qo_mat3_q30 *m, qo_quat_q30 *out)
+qo_status qo_mat3_to_quat_ortho_q30(const qo_mat3_q30 *m, qo_quat_q30 *out)
 {
     qo_mat3_q30 r;
     qo_status st = qo_mat3_orthonormalize_q30(m, &r);
     if (out == NULL) return QO_E_NULL;
-    if (st == QO_OK) return qo_quat_from_mat3_q30(&r, out);
+    if (st == QO_OK) return qo_mat3_to_quat_q30(&r, out);
     *out = qo_quat_identity_q30();
     return st;
 }

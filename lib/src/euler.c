@@ -47,7 +47,7 @@ static float quat_comp(qo_quat_f32 q, int axis)
     return axis == 0 ? q.x : (axis == 1 ? q.y : q.z);
 }
 
-qo_status qo_quat_from_euler_f32(qo_euler_seq seq, qo_euler_f32 e, qo_quat_f32 *out)
+qo_status qo_euler_to_quat_f32(qo_euler_seq seq, qo_euler_f32 e, qo_quat_f32 *out)
 {
     const unsigned char *ax;
     qo_quat_f32 q1, q2, q3;
@@ -241,7 +241,7 @@ static inline void to_euler_checked(qo_quat_f32 qn, qo_euler_seq seq, float band
     if (info != NULL) { info->locked = r.margin <= band_rad; info->margin = r.margin; }
 }
 
-qo_status qo_quat_to_euler_band_f32(qo_quat_f32 q, qo_euler_seq seq, float band_rad,
+qo_status qo_euler_from_quat_band_f32(qo_quat_f32 q, qo_euler_seq seq, float band_rad,
                                     qo_euler_f32 *out, qo_euler_info_f32 *info)
 {
     qo_quat_f32 qn;
@@ -262,7 +262,7 @@ static uint32_t abs_bits(float v)
     return u & 0x7fffffffu;
 }
 
-qo_status qo_quat_to_euler_f32(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f32 *out,
+qo_status qo_euler_from_quat_f32(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f32 *out,
                                qo_euler_info_f32 *info)
 {
     /* The common case without check_args' separate tests: the largest |component| in
@@ -277,12 +277,12 @@ qo_status qo_quat_to_euler_f32(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f32 *ou
         to_euler_checked(q, seq, QO_EULER_LOCK_BAND_F32, out, info);
         return QO_OK;
     }
-    return qo_quat_to_euler_band_f32(q, seq, QO_EULER_LOCK_BAND_F32, out, info);
+    return qo_euler_from_quat_band_f32(q, seq, QO_EULER_LOCK_BAND_F32, out, info);
 }
 
 static float sq(float v) { return v * v; }
 
-qo_status qo_quat_to_euler_near_f32(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f32 prev,
+qo_status qo_euler_from_quat_near_f32(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f32 prev,
                                     float band, qo_euler_f32 *out, qo_euler_info_f32 *info)
 {
     qo_quat_f32 qn;

@@ -109,7 +109,7 @@ static qo_quat_q30 identity_q30(void)
     return q;
 }
 
-qo_status qo_quat_from_euler_q30(qo_euler_seq seq, qo_euler_q28 e, qo_quat_q30 *out)
+qo_status qo_euler_to_quat_q30(qo_euler_seq seq, qo_euler_q28 e, qo_quat_q30 *out)
 {
     const unsigned char *ax;
     q64 q1, q2, q3, p;
@@ -264,7 +264,7 @@ static qo_status check_args(qo_quat_q30 q, qo_euler_seq seq, qo_q28 band, q64 *q
     return QO_OK;
 }
 
-qo_status qo_quat_to_euler_band_q30(qo_quat_q30 q, qo_euler_seq seq, qo_q28 band_rad,
+qo_status qo_euler_from_quat_band_q30(qo_quat_q30 q, qo_euler_seq seq, qo_q28 band_rad,
                                     qo_euler_q28 *out, qo_euler_info_q28 *info)
 {
     q64 qs;
@@ -285,10 +285,10 @@ qo_status qo_quat_to_euler_band_q30(qo_quat_q30 q, qo_euler_seq seq, qo_q28 band
     return QO_OK;
 }
 
-qo_status qo_quat_to_euler_q30(qo_quat_q30 q, qo_euler_seq seq, qo_euler_q28 *out,
+qo_status qo_euler_from_quat_q30(qo_quat_q30 q, qo_euler_seq seq, qo_euler_q28 *out,
                                qo_euler_info_q28 *info)
 {
-    return qo_quat_to_euler_band_q30(q, seq, QO_EULER_LOCK_BAND_Q28, out, info);
+    return qo_euler_from_quat_band_q30(q, seq, QO_EULER_LOCK_BAND_Q28, out, info);
 }
 
 /* ---- nearest solution: angles held in Q8.56 (int64) until the one final rounding ---- */
@@ -318,7 +318,7 @@ static qo_q28 to_q28(int64_t a, int *ovf)
     return (qo_q28)r;
 }
 
-qo_status qo_quat_to_euler_near_q30(qo_quat_q30 q, qo_euler_seq seq, qo_euler_q28 prev,
+qo_status qo_euler_from_quat_near_q30(qo_quat_q30 q, qo_euler_seq seq, qo_euler_q28 prev,
                                     qo_q28 band, qo_euler_q28 *out, qo_euler_info_q28 *info)
 {
     q64 qs;
@@ -405,7 +405,7 @@ static uint32_t mant_even(uint64_t v, unsigned *e)
     return s == 0 ? (uint32_t)v : s < 32u ? (uint32_t)(v >> s) : (uint32_t)(v >> 32) >> (s - 32u);
 }
 
-qo_status qo_quat_to_euler_fast_q30(qo_quat_q30 q, qo_euler_seq seq, qo_q28 band_rad,
+qo_status qo_euler_from_quat_fast_q30(qo_quat_q30 q, qo_euler_seq seq, qo_q28 band_rad,
                                     qo_euler_q28 *out, qo_euler_info_q28 *info)
 {
     const unsigned char *ax;

@@ -176,8 +176,8 @@ uint32_t qo_fx_rsqrt32_q30(uint32_t x);
 void qo_fx_sincos_2y_q30(uint32_t y, qo_q30 *s, qo_q30 *c);
 
 /* The unit quaternion of a rotation vector rv (Q3.28 radians, |rv| < 16): the kernel of
- * qo_quat_exp_q30 (quat_fx.c) and of qo_quat_from_rotvec_q30 (convert_fx.c), which calls it, so
- * the quaternion kernel depends on nothing above it. Contract: qo_quat_from_rotvec_q30. */
+ * qo_quat_exp_q30 (quat_fx.c) and of qo_rotvec_to_quat_q30 (convert_fx.c), which calls it, so
+ * the quaternion kernel depends on nothing above it. Contract: qo_rotvec_to_quat_q30. */
 qo_status qo_fx_quat_from_rotvec(qo_vec3_q28 rv, qo_quat_q30 *out);
 
 #endif /* QORIENT_FX_INTERNAL_H */

@@ -10,14 +10,14 @@ const qo_gimbal_settings_f32 qo_gimbal_settings_default = {
     QO_EULER_ZYX,
     0.017453292f, /* 1 degree: wide enough that a path through the singularity never sees the
                      free angle swing, narrow enough that the held split is still within
-                     2 * 1 degree of the requested orientation (qo_quat_to_euler_near_f32) */
+                     2 * 1 degree of the requested orientation (qo_euler_from_quat_near_f32) */
     INFINITY,
     { -INFINITY, -INFINITY, -INFINITY },
     { INFINITY, INFINITY, INFINITY },
 };
 
-qo_status qo_orient_path_init_f32(qo_orient_path_f32 *path, const float *t,
-                                  const qo_quat_f32 *keys_in, size_t n, qo_path_interp interp,
+qo_status qo_gimbal_path_init_f32(qo_gimbal_path_f32 *path, const float *t,
+                                  const qo_quat_f32 *keys_in, size_t n, qo_gimbal_path_interp interp,
                                   qo_quat_f32 *keys, qo_quat_f32 *a, qo_quat_f32 *b)
 {
     size_t i;
@@ -27,24 +27,24 @@ qo_status qo_orient_path_init_f32(qo_orient_path_f32 *path, const float *t,
     path->n = 0;
     path->interp = interp;
     if (t == NULL || keys_in == NULL || keys == NULL) return QO_E_NULL;
-    if (interp != QO_PATH_SLERP && interp != QO_PATH_SPLINE) return QO_E_ARG;
-    if (interp == QO_PATH_SPLINE && (a == NULL || b == NULL)) return QO_E_NULL;
+    if (interp != QO_GIMBAL_PATH_SLERP && interp != QO_GIMBAL_PATH_SPLINE) return QO_E_ARG;
+    if (interp == QO_GIMBAL_PATH_SPLINE && (a == NULL || b == NULL)) return QO_E_NULL;
     if (n < 2) return QO_E_TOO_FEW;
     for (i = 0; i < n; i++) {
         if (!isfinite(t[i]) || !qo_quat_is_finite_f32(keys_in[i])) return QO_E_NONFINITE;
         if (i > 0 && !(t[i] > t[i - 1])) return QO_E_ORDER;
     }
-    st = qo_quat_align_keys_f32(keys_in, n, keys);
+    st = qo_interp_align_keys_f32(keys_in, n, keys);
     if (st != QO_OK) return st;
-    if (interp == QO_PATH_SPLINE) {
-        st = qo_quat_spline_controls_f32(keys, n, a, b);
+    if (interp == QO_GIMBAL_PATH_SPLINE) {
+        st = qo_interp_spline_controls_f32(keys, n, a, b);
         if (st != QO_OK) return st;
     }
     path->n = n;
     return QO_OK;
 }
 
-qo_status qo_orient_path_sample_f32(const qo_orient_path_f32 *path, float t, qo_quat_f32 *out)
+qo_status qo_gimbal_path_sample_f32(const qo_gimbal_path_f32 *path, float t, qo_quat_f32 *out)
 {
     size_t lo, hi;
     float u;
@@ -66,9 +66,9 @@ qo_status qo_orient_path_sample_f32(const qo_orient_path_f32 *path, float t, qo_
     u = (t - path->t[lo]) / (path->t[lo + 1] - path->t[lo]);
     if (u > 1.0f) u = 1.0f; /* rounding of the division, never more than 1 ulp */
     if (u < 0.0f) u = 0.0f;
-    if (path->interp == QO_PATH_SPLINE)
-        return qo_quat_spline_eval_f32(path->keys, path->a, path->b, path->n, (float)lo + u, out);
-    return qo_quat_slerp_f32(path->keys[lo], path->keys[lo + 1], u, out);
+    if (path->interp == QO_GIMBAL_PATH_SPLINE)
+        return qo_interp_spline_eval_f32(path->keys, path->a, path->b, path->n, (float)lo + u, out);
+    return qo_interp_slerp_f32(path->keys[lo], path->keys[lo + 1], u, out);
 }
 
 static qo_status check_settings(const qo_gimbal_settings_f32 *s)
@@ -163,9 +163,9 @@ qo_status qo_gimbal_step_f32(qo_gimbal_f32 *g, float t, qo_quat_f32 q, qo_gimbal
             pred.a1 = g->prev.a1 + r * (g->prev.a1 - g->prev2.a1);
             pred.a2 = g->prev.a2 + r * (g->prev.a2 - g->prev2.a2);
         }
-        st = qo_quat_to_euler_near_f32(q, g->s.seq, pred, g->s.band, &e, &info);
+        st = qo_euler_from_quat_near_f32(q, g->s.seq, pred, g->s.band, &e, &info);
     } else
-        st = qo_quat_to_euler_band_f32(q, g->s.seq, g->s.band, &e, &info);
+        st = qo_euler_from_quat_band_f32(q, g->s.seq, g->s.band, &e, &info);
     if (st != QO_OK) {
         if (g->started) out->angles = g->prev;
         return st;

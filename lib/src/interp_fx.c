@@ -206,7 +206,7 @@ static qo_quat_q30 slerp_weights(qo_quat_q30 a, qo_quat_q30 b, qo_q28 th, int64_
 static int slerp_raw(qo_quat_q30 a, qo_quat_q30 b, int64_t u, qo_quat_q30 *out)
 {
     qo_q28 th = angle4(a, b);
-    if (QO_Q28_PI - th < QO_SLERP_NEAR_PI_Q28) {
+    if (QO_Q28_PI - th < QO_INTERP_SLERP_NEAR_PI_Q28) {
         *out = a;
         return 0;
     }
@@ -219,7 +219,7 @@ static qo_status check_t(qo_q30 t)
     return (t < 0 || t > QO_Q30_ONE) ? QO_E_RANGE : QO_OK;
 }
 
-qo_status qo_quat_lerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out)
+qo_status qo_interp_lerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out)
 {
     if (out == NULL) return QO_E_NULL;
     *out = a;
@@ -233,7 +233,7 @@ qo_status qo_quat_lerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *
     return QO_OK;
 }
 
-qo_status qo_quat_nlerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out)
+qo_status qo_interp_nlerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out)
 {
     qo_quat_q30 ua, ub;
     qo_status st;
@@ -284,8 +284,8 @@ static qo_status slerp_common(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, int longwa
     if (longway ? dot60(ua, ub) > 0 : dot60(ua, ub) < 0) ub = neg_q(ub);
     th = angle4(ua, ub);
     /* Long way between the same rotation (phi below 2e-3 rad): a full turn about an axis the
-     * inputs no longer define (the rule and limit of qo_quat_slerp_long_f32). */
-    if (longway && QO_Q28_PI - th < QO_SLERP_NEAR_PI_Q28) return QO_E_DEGENERATE;
+     * inputs no longer define (the rule and limit of qo_interp_slerp_long_f32). */
+    if (longway && QO_Q28_PI - th < QO_INTERP_SLERP_NEAR_PI_Q28) return QO_E_DEGENERATE;
     if (t == 0) return QO_OK;
     if (t == QO_Q30_ONE) {
         *out = ub;
@@ -296,7 +296,7 @@ static qo_status slerp_common(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, int longwa
     return QO_OK;
 }
 
-qo_status qo_quat_slerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out)
+qo_status qo_interp_slerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out)
 {
     return slerp_common(a, b, t, 0, out);
 }
@@ -304,7 +304,7 @@ qo_status qo_quat_slerp_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 
 /* round(p / 2^30) of an exact product sum (ties up). */
 static int32_t rnd30_i32(int64_t p) { return (int32_t)qo_fx_rshift_round_up(p, 30); }
 
-qo_status qo_quat_slerp_fast_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out)
+qo_status qo_interp_slerp_fast_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out)
 {
     qo_quat_q30 ua, ub, v, e;
     qo_status sa, sb;
@@ -389,7 +389,7 @@ static qo_quat_q30 next_key(qo_quat_q30 k, qo_quat_q30 prev)
     return align_to(u, prev);
 }
 
-qo_status qo_quat_align_keys_q30(const qo_quat_q30 *keys, size_t n, qo_quat_q30 *out)
+qo_status qo_interp_align_keys_q30(const qo_quat_q30 *keys, size_t n, qo_quat_q30 *out)
 {
     size_t i;
     qo_status st;
@@ -430,16 +430,16 @@ static qo_quat_q30 casteljau(qo_quat_q30 *p, size_t n, qo_q30 t)
     return p[0];
 }
 
-qo_status qo_quat_bezier_q30(const qo_quat_q30 *ctrl, size_t n, qo_q30 t, qo_quat_q30 *out)
+qo_status qo_interp_bezier_q30(const qo_quat_q30 *ctrl, size_t n, qo_q30 t, qo_quat_q30 *out)
 {
-    qo_quat_q30 p[QO_BEZIER_MAX_POINTS];
+    qo_quat_q30 p[QO_INTERP_BEZIER_MAX_POINTS];
     size_t i;
     qo_status st;
     if (out == NULL) return QO_E_NULL;
     *out = identity_q();
     if (ctrl == NULL) return QO_E_NULL;
     if (n < 2) return QO_E_TOO_FEW;
-    if (n > QO_BEZIER_MAX_POINTS) return QO_E_CAPACITY;
+    if (n > QO_INTERP_BEZIER_MAX_POINTS) return QO_E_CAPACITY;
     st = check_keys(ctrl, n);
     if (st != QO_OK) return st;
     (void)unit_in(ctrl[0], &p[0]);
@@ -450,12 +450,12 @@ qo_status qo_quat_bezier_q30(const qo_quat_q30 *ctrl, size_t n, qo_q30 t, qo_qua
     return QO_OK;
 }
 
-qo_status qo_quat_bezier3_q30(qo_quat_q30 q0, qo_quat_q30 q1, qo_quat_q30 q2, qo_quat_q30 q3,
+qo_status qo_interp_bezier3_q30(qo_quat_q30 q0, qo_quat_q30 q1, qo_quat_q30 q2, qo_quat_q30 q3,
                               qo_q30 t, qo_quat_q30 *out)
 {
     qo_quat_q30 c[4];
     c[0] = q0; c[1] = q1; c[2] = q2; c[3] = q3;
-    return qo_quat_bezier_q30(c, 4, t, out);
+    return qo_interp_bezier_q30(c, 4, t, out);
 }
 
 /* Slerp(q_i, Bisect(Double(q_{i-1}, q_i), q_{i+1}), u) for u = +-1/3: returns a_i and b_i. */
@@ -482,7 +482,7 @@ static qo_quat_q30 end_control(qo_quat_q30 q_end, qo_quat_q30 q_near, qo_quat_q3
     return r;
 }
 
-qo_status qo_quat_spline_controls_q30(const qo_quat_q30 *keys, size_t n,
+qo_status qo_interp_spline_controls_q30(const qo_quat_q30 *keys, size_t n,
                                       qo_quat_q30 *a, qo_quat_q30 *b)
 {
     qo_quat_q30 qm, qc, qn;
@@ -522,7 +522,7 @@ qo_status qo_quat_spline_controls_q30(const qo_quat_q30 *keys, size_t n,
     return QO_OK;
 }
 
-qo_status qo_quat_spline_eval_q30(const qo_quat_q30 *keys, const qo_quat_q30 *a,
+qo_status qo_interp_spline_eval_q30(const qo_quat_q30 *keys, const qo_quat_q30 *a,
                                   const qo_quat_q30 *b, size_t n, qo_q16 s, qo_quat_q30 *out)
 {
     qo_quat_q30 p[4];
@@ -557,7 +557,7 @@ qo_status qo_quat_spline_eval_q30(const qo_quat_q30 *keys, const qo_quat_q30 *a,
     return QO_OK;
 }
 
-qo_status qo_quat_squad_q30(qo_quat_q30 q0, qo_quat_q30 s0, qo_quat_q30 s1, qo_quat_q30 q1,
+qo_status qo_interp_squad_q30(qo_quat_q30 q0, qo_quat_q30 s0, qo_quat_q30 s1, qo_quat_q30 q1,
                             qo_q30 t, qo_quat_q30 *out)
 {
     qo_quat_q30 p[4], x, y;
@@ -602,7 +602,7 @@ static qo_q28 quarter_neg_sum(qo_q28 a, qo_q28 b)
     return (qo_q28)qo_fx_rshift_round_up(-((int64_t)a + b), 2);
 }
 
-qo_status qo_quat_squad_controls_q30(const qo_quat_q30 *keys, size_t n, qo_quat_q30 *s)
+qo_status qo_interp_squad_controls_q30(const qo_quat_q30 *keys, size_t n, qo_quat_q30 *s)
 {
     qo_quat_q30 qm, qc, qn, qci, e;
     qo_vec3_q28 l1, l2, arg;
@@ -637,12 +637,12 @@ qo_status qo_quat_squad_controls_q30(const qo_quat_q30 *keys, size_t n, qo_quat_
 
 /* ---- the remaining twins of interp.h (issue 16) ---- */
 
-qo_status qo_quat_slerp_long_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out)
+qo_status qo_interp_slerp_long_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_quat_q30 *out)
 {
     return slerp_common(a, b, t, 1, out);
 }
 
-qo_status qo_quat_slerp_rate_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q16 duration,
+qo_status qo_interp_slerp_rate_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q16 duration,
                                  qo_vec3_q16 *omega)
 {
     qo_quat_q30 ua, ub;

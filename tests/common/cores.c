@@ -81,7 +81,7 @@
     static qo_status P##_from_axis_angle(ref_vec3 axis, double ang, dq *out)                  \
     {                                                                                         \
         QT o;                                                                                 \
-        qo_status st = qo_quat_from_axis_angle_##SFX(P##_v(axis), P##_a(ang), &o);            \
+        qo_status st = qo_axis_angle_to_quat_##SFX(P##_v(axis), P##_a(ang), &o);            \
         *out = P##_qb(o);                                                                     \
         return st;                                                                            \
     }                                                                                         \
@@ -89,7 +89,7 @@
     {                                                                                         \
         VT ax;                                                                                \
         AT an;                                                                                \
-        qo_status st = qo_quat_to_axis_angle_##SFX(P##_q(q), &ax, &an);                       \
+        qo_status st = qo_axis_angle_from_quat_##SFX(P##_q(q), &ax, &an);                       \
         *axis = P##_vb(ax);                                                                   \
         *ang = P##_ab(an);                                                                    \
         return st;                                                                            \
@@ -97,21 +97,21 @@
     static qo_status P##_from_rotvec(ref_vec3 rv, dq *out)                                    \
     {                                                                                         \
         QT o;                                                                                 \
-        qo_status st = qo_quat_from_rotvec_##SFX(P##_av(rv), &o);                             \
+        qo_status st = qo_rotvec_to_quat_##SFX(P##_av(rv), &o);                             \
         *out = P##_qb(o);                                                                     \
         return st;                                                                            \
     }                                                                                         \
     static qo_status P##_to_rotvec(dq q, ref_vec3 *out)                                       \
     {                                                                                         \
         AVT o;                                                                                \
-        qo_status st = qo_quat_to_rotvec_##SFX(P##_q(q), &o);                                 \
+        qo_status st = qo_rotvec_from_quat_##SFX(P##_q(q), &o);                                 \
         *out = P##_avb(o);                                                                    \
         return st;                                                                            \
     }                                                                                         \
     static qo_status P##_to_mat3(dq q, ref_mat3 *out)                                         \
     {                                                                                         \
         MT o;                                                                                 \
-        qo_status st = qo_quat_to_mat3_##SFX(P##_q(q), &o);                                   \
+        qo_status st = qo_mat3_from_quat_##SFX(P##_q(q), &o);                                   \
         *out = P##_mb(&o);                                                                    \
         return st;                                                                            \
     }                                                                                         \
@@ -125,15 +125,15 @@
     }                                                                                         \
     static qo_status P##_from_mat3(const ref_mat3 *m, dq *out)                                \
     {                                                                                         \
-        return P##_from_m(qo_quat_from_mat3_##SFX, m, out);                                   \
+        return P##_from_m(qo_mat3_to_quat_##SFX, m, out);                                   \
     }                                                                                         \
     static qo_status P##_from_mat3_trusted(const ref_mat3 *m, dq *out)                        \
     {                                                                                         \
-        return P##_from_m(qo_quat_from_mat3_trusted_##SFX, m, out);                           \
+        return P##_from_m(qo_mat3_to_quat_trusted_##SFX, m, out);                           \
     }                                                                                         \
     static qo_status P##_from_mat3_ortho(const ref_mat3 *m, dq *out)                          \
     {                                                                                         \
-        return P##_from_m(qo_quat_from_mat3_ortho_##SFX, m, out);                             \
+        return P##_from_m(qo_mat3_to_quat_ortho_##SFX, m, out);                             \
     }                                                                                         \
     static qo_status P##_orthonormalize(const ref_mat3 *m, ref_mat3 *out)                     \
     {                                                                                         \

@@ -18,7 +18,7 @@ typedef ref_quat dq;
 
 static inline qo_quat_f32 f_from(dq q) { return ref_quat_to_f32(q); }
 /* q as the fixed core receives a double rotation: rounded to float32, then qorient/fxconv.h. */
-static inline qo_quat_q30 fx_from(dq q) { return qo_quat_q30_from_f32(ref_quat_to_f32(q)); }
+static inline qo_quat_q30 fx_from(dq q) { return qo_q30_quat_from_f32(ref_quat_to_f32(q)); }
 static inline double dq_dot(dq a, dq b) { return a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z; }
 static inline double dq_norm(dq a) { return sqrt(dq_dot(a, a)); }
 static inline dq dq_scale(dq a, double k) { dq r = { a.w * k, a.x * k, a.y * k, a.z * k }; return r; }

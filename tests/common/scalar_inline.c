@@ -18,5 +18,5 @@ qo_status scalar_quat_normalize_f32(qo_quat_f32 q, qo_quat_f32 *out)
 
 qo_status scalar_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out)
 {
-    return qo_quat_to_mat3_f32(q, out);
+    return qo_mat3_from_quat_f32(q, out);
 }

@@ -675,20 +675,20 @@ static void test_f32_quat_to_mat3_errors(void **state)
     qo_mat3_f32 m;
     (void)state;
     m = mf(5, 5, 5, 5, 5, 5, 5, 5, 5);
-    assert_int_equal(qo_quat_to_mat3_f32(qf(0, 0, 0, 0), &m), QO_E_DEGENERATE);
+    assert_int_equal(qo_mat3_from_quat_f32(qf(0, 0, 0, 0), &m), QO_E_DEGENERATE);
     assert_true(is_identity_m(&m));
     m = mf(5, 5, 5, 5, 5, 5, 5, 5, 5);
-    assert_int_equal(qo_quat_to_mat3_f32(qf(NAN, 0, 0, 0), &m), QO_E_NONFINITE);
+    assert_int_equal(qo_mat3_from_quat_f32(qf(NAN, 0, 0, 0), &m), QO_E_NONFINITE);
     assert_true(is_identity_m(&m));
     m = mf(5, 5, 5, 5, 5, 5, 5, 5, 5);
-    assert_int_equal(qo_quat_to_mat3_f32(qf(1, 0, -INFINITY, 0), &m), QO_E_NONFINITE);
+    assert_int_equal(qo_mat3_from_quat_f32(qf(1, 0, -INFINITY, 0), &m), QO_E_NONFINITE);
     assert_true(is_identity_m(&m));
-    assert_int_equal(qo_quat_to_mat3_f32(qf(1, 0, 0, 0), NULL), QO_E_NULL);
+    assert_int_equal(qo_mat3_from_quat_f32(qf(1, 0, 0, 0), NULL), QO_E_NULL);
     /* Huge and subnormal components normalise fine. */
-    assert_int_equal(qo_quat_to_mat3_f32(qf(0, FLT_MAX, 0, 0), &m), QO_OK);
+    assert_int_equal(qo_mat3_from_quat_f32(qf(0, FLT_MAX, 0, 0), &m), QO_OK);
     assert_true(fabsf(m.m[0][0] - 1.0f) < 1e-6f && fabsf(m.m[1][1] + 1.0f) < 1e-6f &&
                 fabsf(m.m[2][2] + 1.0f) < 1e-6f);
-    assert_int_equal(qo_quat_to_mat3_f32(qf(0, 0, 0, 1e-42f), &m), QO_OK);
+    assert_int_equal(qo_mat3_from_quat_f32(qf(0, 0, 0, 1e-42f), &m), QO_OK);
     assert_true(fabsf(m.m[2][2] - 1.0f) < 1e-6f && fabsf(m.m[0][0] + 1.0f) < 1e-6f);
 }
 
@@ -697,7 +697,7 @@ static void test_f32_quat_to_mat3_errors(void **state)
 static void check_from_mat3(const char *name, int n, const qo_mat3_f32 *m, ref_quat expect)
 {
     qo_quat_f32 q;
-    qo_status st = qo_quat_from_mat3_f32(m, &q);
+    qo_status st = qo_mat3_to_quat_f32(m, &q);
     double err;
     if (st != QO_OK) {
         print_mf("m", m);
@@ -735,7 +735,7 @@ static void test_f32_quat_from_mat3_trusted(void **state)
             r = ref_quat_to_mat3(rq);
             m = ref_mat3_to_f32(&r);
         }
-        assert_int_equal(qo_quat_from_mat3_trusted_f32(&m, &q), QO_OK);
+        assert_int_equal(qo_mat3_to_quat_trusted_f32(&m, &q), QO_OK);
         err = ref_quat_angle_between(ref_quat_from_f32(q), rq);
         if (err > TOL_RAD || q.w < 0.0f || fabs(ref_quat_norm(ref_quat_from_f32(q)) - 1.0) > 1e-6) {
             print_mf("m", &m);
@@ -749,16 +749,16 @@ static void test_f32_quat_from_mat3_trusted(void **state)
             m = qo_mat3_identity_f32();
             m.m[k / 3][k % 3] = bad[i];
             q.w = 7.0f;
-            if (qo_quat_from_mat3_trusted_f32(&m, &q) != QO_E_NONFINITE || !is_identity_q(q))
+            if (qo_mat3_to_quat_trusted_f32(&m, &q) != QO_E_NONFINITE || !is_identity_q(q))
                 fail_msg("trusted: entry %d = %g not refused", (int)k, (double)bad[i]);
         }
     }
-    assert_int_equal(qo_quat_from_mat3_trusted_f32(NULL, &q), QO_E_NULL);
+    assert_int_equal(qo_mat3_to_quat_trusted_f32(NULL, &q), QO_E_NULL);
     assert_true(is_identity_q(q));
-    assert_int_equal(qo_quat_from_mat3_trusted_f32(&m, NULL), QO_E_NULL);
+    assert_int_equal(qo_mat3_to_quat_trusted_f32(&m, NULL), QO_E_NULL);
     memset(&m, 0, sizeof m);
     m.m[0][0] = 2.0f; m.m[1][2] = -3.0f; /* not a rotation: some finite quaternion, w >= 0 */
-    assert_int_equal(qo_quat_from_mat3_trusted_f32(&m, &q), QO_OK);
+    assert_int_equal(qo_mat3_to_quat_trusted_f32(&m, &q), QO_OK);
     assert_true(qo_quat_is_finite_f32(q) && q.w >= 0.0f);
 }
 
@@ -783,7 +783,7 @@ static void test_f32_quat_from_mat3_trusted_domain(void **state)
             for (j = 0; j < 3; j++) m.m[i][j] += (float)ref_rng_range(&rng, -1e-5, 1e-5);
         md = ref_mat3_from_f32(&m);
         near = ref_mat3_nearest_rotation(&md);
-        assert_int_equal(qo_quat_from_mat3_trusted_f32(&m, &q), QO_OK);
+        assert_int_equal(qo_mat3_to_quat_trusted_f32(&m, &q), QO_OK);
         err = ref_quat_angle_between(ref_quat_from_f32(q), ref_mat3_to_quat(&near));
         dn = fabs(ref_quat_norm(ref_quat_from_f32(q)) - 1.0);
         if (err > worst) worst = err;
@@ -809,7 +809,7 @@ static void test_f32_quat_from_mat3_trusted_domain(void **state)
             }
         }
         q.w = NAN;
-        st = qo_quat_from_mat3_trusted_f32(&m, &q);
+        st = qo_mat3_to_quat_trusted_f32(&m, &q);
         if (st == QO_E_NONFINITE && is_identity_q(q)) {
             overflow++;
             continue;
@@ -849,20 +849,20 @@ static void test_f32_quat_from_mat3_edges(void **state)
     {
         qo_mat3_f32 m = mf(1, 0, 0, 0, -1, 0, 0, 0, -1);
         qo_quat_f32 q;
-        assert_int_equal(qo_quat_from_mat3_f32(&m, &q), QO_OK);
+        assert_int_equal(qo_mat3_to_quat_f32(&m, &q), QO_OK);
         if (!(q.w == 0.0f && q.x == 1.0f && q.y == 0.0f && q.z == 0.0f)) {
             print_q("q", q);
             fail_msg("180 about x exact: expected (0,1,0,0)%s", "");
         }
         m = mf(-1, 0, 0, 0, -1, 0, 0, 0, 1);
-        assert_int_equal(qo_quat_from_mat3_f32(&m, &q), QO_OK);
+        assert_int_equal(qo_mat3_to_quat_f32(&m, &q), QO_OK);
         if (!(q.w == 0.0f && q.x == 0.0f && q.y == 0.0f && q.z == 1.0f)) {
             print_q("q", q);
             fail_msg("180 about z exact: expected (0,0,0,1)%s", "");
         }
         /* 180 about (1,-1,0)/sqrt2: M = 2nn^T - I. */
         m = mf(0, -1, 0, -1, 0, 0, 0, 0, -1);
-        assert_int_equal(qo_quat_from_mat3_f32(&m, &q), QO_OK);
+        assert_int_equal(qo_mat3_to_quat_f32(&m, &q), QO_OK);
         if (!(q.w == 0.0f && q.x > 0.0f && fabsf(q.x + q.y) < 1e-7f && q.z == 0.0f)) {
             print_q("q", q);
             fail_msg("180 about (1,-1,0) exact: expected (0, .707, -.707, 0)%s", "");
@@ -928,7 +928,7 @@ static void test_f32_quat_from_mat3_non_rotations(void **state)
     n++;
     for (k = 0; k < n; k++) {
         qo_quat_f32 q = qf(9, 9, 9, 9);
-        qo_status st = qo_quat_from_mat3_f32(&cases[k].m, &q);
+        qo_status st = qo_mat3_to_quat_f32(&cases[k].m, &q);
         if (st != cases[k].st || (st != QO_OK && !is_identity_q(q))) {
             print_mf("m", &cases[k].m);
             print_q("out", q);
@@ -938,9 +938,9 @@ static void test_f32_quat_from_mat3_non_rotations(void **state)
     }
     {
         qo_quat_f32 q = qf(9, 9, 9, 9);
-        assert_int_equal(qo_quat_from_mat3_f32(NULL, &q), QO_E_NULL);
+        assert_int_equal(qo_mat3_to_quat_f32(NULL, &q), QO_E_NULL);
         assert_true(is_identity_q(q));
-        assert_int_equal(qo_quat_from_mat3_f32(&r, NULL), QO_E_NULL);
+        assert_int_equal(qo_mat3_to_quat_f32(&r, NULL), QO_E_NULL);
     }
 }
 
@@ -984,17 +984,17 @@ static void test_f32_edges_all_conversions(void **state)
             ref_mat3 rm = ref_quat_to_mat3(qd), mm;
             double e_m, e_aa, e_rv, e_back, th;
             ref_quat b_aa, b_rv = { 1.0, 0.0, 0.0, 0.0 };
-            EXPECT_OK(qo_quat_to_mat3_f32(q, &m), k);
+            EXPECT_OK(qo_mat3_from_quat_f32(q, &m), k);
             mm = ref_mat3_from_f32(&m);
             e_m = ref_mat3_rotation_distance(&rm, &mm);
-            EXPECT_OK(qo_quat_to_axis_angle_f32(q, &ax, &ang), k);
+            EXPECT_OK(qo_axis_angle_from_quat_f32(q, &ax, &ang), k);
             b_aa = ref_quat_from_axis_angle(ref_vec3_from_f32(ax), ang);
             e_aa = ref_quat_angle_between(b_aa, qd);
-            EXPECT_OK(qo_quat_to_rotvec_f32(q, &rv), k);
+            EXPECT_OK(qo_rotvec_from_quat_f32(q, &rv), k);
             th = sqrt((double)rv.x * rv.x + (double)rv.y * rv.y + (double)rv.z * rv.z);
             if (th > 0.0) b_rv = ref_quat_from_axis_angle(ref_vec3_from_f32(rv), th);
             e_rv = ref_quat_angle_between(b_rv, qd);
-            EXPECT_OK(qo_quat_from_rotvec_f32(rv, &q2), k);
+            EXPECT_OK(qo_rotvec_to_quat_f32(rv, &q2), k);
             e_back = ref_quat_angle_between(ref_quat_from_f32(q2), qd);
             if (e_m > TOL_RAD || e_aa > TOL_RAD || e_rv > TOL_RAD || e_back > TOL_RAD ||
                 !(ang >= 0.0f && ang <= 3.14159274f) || th > REF_PI + 1e-6) {
@@ -1030,7 +1030,7 @@ static void check_ortho_tol(const char *name, int n, const qo_mat3_f32 *m, doubl
                  name, n, err, max_orth_error(&r));
     }
     /* The "caller asks for it" path lands on the same rotation. */
-    st = qo_quat_from_mat3_ortho_f32(m, &q);
+    st = qo_mat3_to_quat_ortho_f32(m, &q);
     qerr = ref_quat_angle_between(ref_quat_from_f32(q), ref_mat3_to_quat(&ref));
     if (st != QO_OK || qerr > tol || q.w < 0.0f)
         fail_msg("quat_from_mat3_ortho %s (case %d): status %d, error %.3g rad", name, n, (int)st,
@@ -1105,7 +1105,7 @@ static void test_f32_orthonormalize_rejects(void **state)
         qo_mat3_f32 out = mf(9, 9, 9, 9, 9, 9, 9, 9, 9);
         qo_quat_f32 q = qf(9, 9, 9, 9);
         qo_status st = qo_mat3_orthonormalize_f32(&cases[k].m, &out);
-        qo_status st2 = qo_quat_from_mat3_ortho_f32(&cases[k].m, &q);
+        qo_status st2 = qo_mat3_to_quat_ortho_f32(&cases[k].m, &q);
         if (st != cases[k].st || !is_identity_m(&out) || st2 != cases[k].st || !is_identity_q(q)) {
             print_mf("m", &cases[k].m);
             fail_msg("orthonormalize %s: status %d / %d, expected %d, outputs must be identity",
@@ -1118,9 +1118,9 @@ static void test_f32_orthonormalize_rejects(void **state)
         assert_int_equal(qo_mat3_orthonormalize_f32(NULL, &out), QO_E_NULL);
         assert_true(is_identity_m(&out));
         assert_int_equal(qo_mat3_orthonormalize_f32(&r, NULL), QO_E_NULL);
-        assert_int_equal(qo_quat_from_mat3_ortho_f32(NULL, &q), QO_E_NULL);
+        assert_int_equal(qo_mat3_to_quat_ortho_f32(NULL, &q), QO_E_NULL);
         assert_true(is_identity_q(q));
-        assert_int_equal(qo_quat_from_mat3_ortho_f32(&r, NULL), QO_E_NULL);
+        assert_int_equal(qo_mat3_to_quat_ortho_f32(&r, NULL), QO_E_NULL);
     }
 }
 
@@ -1131,29 +1131,29 @@ static void test_f32_axis_angle_from_edges(void **state)
     qo_quat_f32 q;
     (void)state;
     q = qf(9, 9, 9, 9);
-    assert_int_equal(qo_quat_from_axis_angle_f32(vf(0, 0, 0), 1.0f, &q), QO_E_DEGENERATE);
+    assert_int_equal(qo_axis_angle_to_quat_f32(vf(0, 0, 0), 1.0f, &q), QO_E_DEGENERATE);
     assert_true(is_identity_q(q));
     q = qf(9, 9, 9, 9);
-    assert_int_equal(qo_quat_from_axis_angle_f32(vf(0, 0, 0), 0.0f, &q), QO_E_DEGENERATE);
+    assert_int_equal(qo_axis_angle_to_quat_f32(vf(0, 0, 0), 0.0f, &q), QO_E_DEGENERATE);
     assert_true(is_identity_q(q));
     q = qf(9, 9, 9, 9);
-    assert_int_equal(qo_quat_from_axis_angle_f32(vf(NAN, 0, 1), 1.0f, &q), QO_E_NONFINITE);
+    assert_int_equal(qo_axis_angle_to_quat_f32(vf(NAN, 0, 1), 1.0f, &q), QO_E_NONFINITE);
     assert_true(is_identity_q(q));
     q = qf(9, 9, 9, 9);
-    assert_int_equal(qo_quat_from_axis_angle_f32(vf(0, 0, 1), INFINITY, &q), QO_E_NONFINITE);
+    assert_int_equal(qo_axis_angle_to_quat_f32(vf(0, 0, 1), INFINITY, &q), QO_E_NONFINITE);
     assert_true(is_identity_q(q));
     q = qf(9, 9, 9, 9);
-    assert_int_equal(qo_quat_from_axis_angle_f32(vf(0, 0, 1), NAN, &q), QO_E_NONFINITE);
+    assert_int_equal(qo_axis_angle_to_quat_f32(vf(0, 0, 1), NAN, &q), QO_E_NONFINITE);
     assert_true(is_identity_q(q));
-    assert_int_equal(qo_quat_from_axis_angle_f32(vf(0, 0, 1), 1.0f, NULL), QO_E_NULL);
+    assert_int_equal(qo_axis_angle_to_quat_f32(vf(0, 0, 1), 1.0f, NULL), QO_E_NULL);
     /* Components at FLT_MAX and subnormal: the axis length must not overflow / underflow. */
-    assert_int_equal(qo_quat_from_axis_angle_f32(vf(FLT_MAX, FLT_MAX, 0), 2.0f, &q), QO_OK);
+    assert_int_equal(qo_axis_angle_to_quat_f32(vf(FLT_MAX, FLT_MAX, 0), 2.0f, &q), QO_OK);
     assert_true(fabsf(q.x - 0.70710678f * sinf(1.0f)) < 1e-6f && fabsf(q.x - q.y) < 1e-7f &&
                 q.z == 0.0f && fabsf(q.w - cosf(1.0f)) < 1e-6f);
-    assert_int_equal(qo_quat_from_axis_angle_f32(vf(0, 0, -1e-44f), 1.0f, &q), QO_OK);
+    assert_int_equal(qo_axis_angle_to_quat_f32(vf(0, 0, -1e-44f), 1.0f, &q), QO_OK);
     assert_true(fabsf(q.z + sinf(0.5f)) < 1e-6f && q.x == 0.0f && q.y == 0.0f);
     /* Angle 0 about a valid axis is the identity rotation (w = 1, vector 0). */
-    assert_int_equal(qo_quat_from_axis_angle_f32(vf(1, 2, 3), 0.0f, &q), QO_OK);
+    assert_int_equal(qo_axis_angle_to_quat_f32(vf(1, 2, 3), 0.0f, &q), QO_OK);
     assert_true(q.w == 1.0f && q.x == 0.0f && q.y == 0.0f && q.z == 0.0f);
 }
 
@@ -1162,32 +1162,32 @@ static void test_f32_axis_angle_to_edges(void **state)
     qo_vec3_f32 ax;
     float ang;
     (void)state;
-    assert_int_equal(qo_quat_to_axis_angle_f32(qf(1, 0, 0, 0), &ax, &ang), QO_OK);
+    assert_int_equal(qo_axis_angle_from_quat_f32(qf(1, 0, 0, 0), &ax, &ang), QO_OK);
     assert_true(ax.x == 1.0f && ax.y == 0.0f && ax.z == 0.0f && ang == 0.0f);
-    assert_int_equal(qo_quat_to_axis_angle_f32(qf(-2, 0, 0, 0), &ax, &ang), QO_OK);
+    assert_int_equal(qo_axis_angle_from_quat_f32(qf(-2, 0, 0, 0), &ax, &ang), QO_OK);
     assert_true(ax.x == 1.0f && ax.y == 0.0f && ax.z == 0.0f && ang == 0.0f);
     /* Exactly pi: q and -q both give the canonical axis. */
-    assert_int_equal(qo_quat_to_axis_angle_f32(qf(0, 0, -1, 0), &ax, &ang), QO_OK);
+    assert_int_equal(qo_axis_angle_from_quat_f32(qf(0, 0, -1, 0), &ax, &ang), QO_OK);
     assert_true(ax.x == 0.0f && ax.y == 1.0f && ax.z == 0.0f);
     assert_true(fabs(ang - REF_PI) < 1e-6);
-    assert_int_equal(qo_quat_to_axis_angle_f32(qf(-1e-8f, 0.6f, 0, -0.8f), &ax, &ang), QO_OK);
+    assert_int_equal(qo_axis_angle_from_quat_f32(qf(-1e-8f, 0.6f, 0, -0.8f), &ax, &ang), QO_OK);
     assert_true(fabsf(ax.x + 0.6f) < 1e-6f && fabsf(ax.z - 0.8f) < 1e-6f);
     assert_true(fabs(ang - REF_PI) < 1e-6 && ang <= 3.14159274f);
     /* Tiny angle: full relative precision (no acos). */
-    assert_int_equal(qo_quat_to_axis_angle_f32(qf(1, 0, 0, 1e-20f), &ax, &ang), QO_OK);
+    assert_int_equal(qo_axis_angle_from_quat_f32(qf(1, 0, 0, 1e-20f), &ax, &ang), QO_OK);
     assert_true(fabsf(ang - 2e-20f) < 1e-26f && ax.z == 1.0f);
     /* Errors: documented outputs. */
     ax = vf(9, 9, 9); ang = 9;
-    assert_int_equal(qo_quat_to_axis_angle_f32(qf(0, 0, 0, 0), &ax, &ang), QO_E_DEGENERATE);
+    assert_int_equal(qo_axis_angle_from_quat_f32(qf(0, 0, 0, 0), &ax, &ang), QO_E_DEGENERATE);
     assert_true(ax.x == 1.0f && ax.y == 0.0f && ax.z == 0.0f && ang == 0.0f);
     ax = vf(9, 9, 9); ang = 9;
-    assert_int_equal(qo_quat_to_axis_angle_f32(qf(1, NAN, 0, 0), &ax, &ang), QO_E_NONFINITE);
+    assert_int_equal(qo_axis_angle_from_quat_f32(qf(1, NAN, 0, 0), &ax, &ang), QO_E_NONFINITE);
     assert_true(ax.x == 1.0f && ax.y == 0.0f && ax.z == 0.0f && ang == 0.0f);
     ang = 9;
-    assert_int_equal(qo_quat_to_axis_angle_f32(qf(1, 0, 0, 0), NULL, &ang), QO_E_NULL);
+    assert_int_equal(qo_axis_angle_from_quat_f32(qf(1, 0, 0, 0), NULL, &ang), QO_E_NULL);
     assert_true(ang == 0.0f);
     ax = vf(9, 9, 9);
-    assert_int_equal(qo_quat_to_axis_angle_f32(qf(1, 0, 0, 0), &ax, NULL), QO_E_NULL);
+    assert_int_equal(qo_axis_angle_from_quat_f32(qf(1, 0, 0, 0), &ax, NULL), QO_E_NULL);
     assert_true(ax.x == 1.0f && ax.y == 0.0f && ax.z == 0.0f);
 }
 
@@ -1199,11 +1199,11 @@ static void test_f32_rotvec_edges(void **state)
     qo_vec3_f32 v;
     (void)state;
     /* Zero -> identity, OK. Tiny vectors are exact: (1, rv/2). */
-    assert_int_equal(qo_quat_from_rotvec_f32(vf(0, 0, 0), &q), QO_OK);
+    assert_int_equal(qo_rotvec_to_quat_f32(vf(0, 0, 0), &q), QO_OK);
     assert_true(is_identity_q(q));
-    assert_int_equal(qo_quat_from_rotvec_f32(vf(1e-20f, -3e-20f, 2e-38f), &q), QO_OK);
+    assert_int_equal(qo_rotvec_to_quat_f32(vf(1e-20f, -3e-20f, 2e-38f), &q), QO_OK);
     assert_true(q.w == 1.0f && q.x == 0.5e-20f && q.y == -1.5e-20f && q.z == 1e-38f);
-    assert_int_equal(qo_quat_from_rotvec_f32(vf(0, 0x1p-147f, 0), &q), QO_OK);
+    assert_int_equal(qo_rotvec_to_quat_f32(vf(0, 0x1p-147f, 0), &q), QO_OK);
     assert_true(q.w == 1.0f && q.y == 0x1p-148f);
     /* Around the Taylor switch (|rv| = 0.02): both sides agree with the closed form. */
     {
@@ -1213,7 +1213,7 @@ static void test_f32_rotvec_edges(void **state)
             qo_vec3_f32 rv = vf(0.6f * th[k], 0, 0.8f * th[k]);
             ref_vec3 a = ref_vec3_from_f32(rv);
             ref_quat e = ref_quat_from_axis_angle(a, sqrt(a.x * a.x + a.z * a.z));
-            assert_int_equal(qo_quat_from_rotvec_f32(rv, &q), QO_OK);
+            assert_int_equal(qo_rotvec_to_quat_f32(rv, &q), QO_OK);
             if (fabs(q.w - e.w) > 6e-8 || fabs(q.x - e.x) > 3e-8 || fabs(q.z - e.z) > 3e-8 ||
                 q.y != 0.0f)
                 fail_msg("from_rotvec |rv| = %.9g: (%.9g %.9g %.9g) vs (%.9g %.9g %.9g)", th[k],
@@ -1221,26 +1221,26 @@ static void test_f32_rotvec_edges(void **state)
         }
     }
     q = qf(9, 9, 9, 9);
-    assert_int_equal(qo_quat_from_rotvec_f32(vf(NAN, 0, 0), &q), QO_E_NONFINITE);
+    assert_int_equal(qo_rotvec_to_quat_f32(vf(NAN, 0, 0), &q), QO_E_NONFINITE);
     assert_true(is_identity_q(q));
     q = qf(9, 9, 9, 9);
-    assert_int_equal(qo_quat_from_rotvec_f32(vf(0, INFINITY, 0), &q), QO_E_NONFINITE);
+    assert_int_equal(qo_rotvec_to_quat_f32(vf(0, INFINITY, 0), &q), QO_E_NONFINITE);
     assert_true(is_identity_q(q));
     q = qf(9, 9, 9, 9);
-    assert_int_equal(qo_quat_from_rotvec_f32(vf(FLT_MAX, FLT_MAX, 0), &q), QO_E_RANGE);
+    assert_int_equal(qo_rotvec_to_quat_f32(vf(FLT_MAX, FLT_MAX, 0), &q), QO_E_RANGE);
     assert_true(is_identity_q(q));
-    assert_int_equal(qo_quat_from_rotvec_f32(vf(1, 0, 0), NULL), QO_E_NULL);
+    assert_int_equal(qo_rotvec_to_quat_f32(vf(1, 0, 0), NULL), QO_E_NULL);
 
     /* to_rotvec: identity, tiny (and subnormal) with full relative precision, pi both signs. */
-    assert_int_equal(qo_quat_to_rotvec_f32(qf(1, 0, 0, 0), &v), QO_OK);
+    assert_int_equal(qo_rotvec_from_quat_f32(qf(1, 0, 0, 0), &v), QO_OK);
     assert_true(v.x == 0.0f && v.y == 0.0f && v.z == 0.0f);
-    assert_int_equal(qo_quat_to_rotvec_f32(qf(1, 1e-30f, 0, -2e-30f), &v), QO_OK);
+    assert_int_equal(qo_rotvec_from_quat_f32(qf(1, 1e-30f, 0, -2e-30f), &v), QO_OK);
     assert_true(fabsf(v.x - 2e-30f) <= 2e-37f && fabsf(v.z + 4e-30f) <= 4e-37f && v.y == 0.0f);
-    assert_int_equal(qo_quat_to_rotvec_f32(qf(-1, 0, 0x1p-133f, 0), &v), QO_OK);
+    assert_int_equal(qo_rotvec_from_quat_f32(qf(-1, 0, 0x1p-133f, 0), &v), QO_OK);
     assert_true(v.y == -0x1p-132f && v.x == 0.0f && v.z == 0.0f);
-    assert_int_equal(qo_quat_to_rotvec_f32(qf(0, 0, 0, -1), &v), QO_OK);
+    assert_int_equal(qo_rotvec_from_quat_f32(qf(0, 0, 0, -1), &v), QO_OK);
     assert_true(v.x == 0.0f && v.y == 0.0f && fabs(v.z - REF_PI) < 1e-6);
-    assert_int_equal(qo_quat_to_rotvec_f32(qf(-1e-7f, 0, 1, 0), &v), QO_OK);
+    assert_int_equal(qo_rotvec_from_quat_f32(qf(-1e-7f, 0, 1, 0), &v), QO_OK);
     assert_true(v.y < 0.0f && fabs(-v.y - (REF_PI - 2e-7)) < 1e-6);
     /* Around the series switch (|v| = 1e-3): relative precision on both sides. */
     {
@@ -1253,19 +1253,19 @@ static void test_f32_rotvec_edges(void **state)
             qo_quat_f32 qq = qf(sqrtf(1.0f - t[k].vn * t[k].vn), 0.6f * t[k].vn, 0, -0.8f * t[k].vn);
             ref_vec3 e = ref_rotvec(ref_quat_from_f32(qq));
             double en = sqrt(e.x * e.x + e.z * e.z);
-            assert_int_equal(qo_quat_to_rotvec_f32(qq, &v), QO_OK);
+            assert_int_equal(qo_rotvec_from_quat_f32(qq, &v), QO_OK);
             if (fabs(v.x - e.x) > t[k].rel * en || fabs(v.z - e.z) > t[k].rel * en || v.y != 0.0f)
                 fail_msg("to_rotvec |v| = %g: (%.9g %.9g) vs (%.9g %.9g)", t[k].vn, v.x, v.z, e.x,
                          e.z);
         }
     }
     v = vf(9, 9, 9);
-    assert_int_equal(qo_quat_to_rotvec_f32(qf(0, 0, 0, 0), &v), QO_E_DEGENERATE);
+    assert_int_equal(qo_rotvec_from_quat_f32(qf(0, 0, 0, 0), &v), QO_E_DEGENERATE);
     assert_true(v.x == 0.0f && v.y == 0.0f && v.z == 0.0f);
     v = vf(9, 9, 9);
-    assert_int_equal(qo_quat_to_rotvec_f32(qf(1, 0, NAN, 0), &v), QO_E_NONFINITE);
+    assert_int_equal(qo_rotvec_from_quat_f32(qf(1, 0, NAN, 0), &v), QO_E_NONFINITE);
     assert_true(v.x == 0.0f && v.y == 0.0f && v.z == 0.0f);
-    assert_int_equal(qo_quat_to_rotvec_f32(qf(1, 0, 0, 0), NULL), QO_E_NULL);
+    assert_int_equal(qo_rotvec_from_quat_f32(qf(1, 0, 0, 0), NULL), QO_E_NULL);
 }
 
 /* ==== Q1.30 only: qorient/convert_fx.h ===================================== */
@@ -1284,23 +1284,23 @@ static void test_q30_axis_angle_edges(void **state)
     qo_q28 an;
     (void)state;
     /* Edges: zero axis, NULLs, identity, zero vector part, zero quaternion, exactly pi. */
-    assert_int_equal(qo_quat_from_axis_angle_q30((qo_vec3_q30){ 0, 0, 0 }, QO_Q28_ONE, &r), QO_E_DEGENERATE);
+    assert_int_equal(qo_axis_angle_to_quat_q30((qo_vec3_q30){ 0, 0, 0 }, QO_Q28_ONE, &r), QO_E_DEGENERATE);
     assert_int_equal(r.w, QO_Q30_ONE); assert_int_equal(r.x, 0);
-    assert_int_equal(qo_quat_from_axis_angle_q30((qo_vec3_q30){ 1, 0, 0 }, 0, NULL), QO_E_NULL);
-    assert_int_equal(qo_quat_to_axis_angle_q30(qo_quat_identity_q30(), &ax, &an), QO_OK);
+    assert_int_equal(qo_axis_angle_to_quat_q30((qo_vec3_q30){ 1, 0, 0 }, 0, NULL), QO_E_NULL);
+    assert_int_equal(qo_axis_angle_from_quat_q30(qo_quat_identity_q30(), &ax, &an), QO_OK);
     assert_int_equal(ax.x, QO_Q30_ONE); assert_int_equal(ax.y, 0); assert_int_equal(ax.z, 0); assert_int_equal(an, 0);
-    assert_int_equal(qo_quat_to_axis_angle_q30((qo_quat_q30){ -77, 0, 0, 0 }, &ax, &an), QO_OK);
+    assert_int_equal(qo_axis_angle_from_quat_q30((qo_quat_q30){ -77, 0, 0, 0 }, &ax, &an), QO_OK);
     assert_int_equal(ax.x, QO_Q30_ONE); assert_int_equal(an, 0);
-    assert_int_equal(qo_quat_to_axis_angle_q30((qo_quat_q30){ 0, 0, 0, 0 }, &ax, &an), QO_E_DEGENERATE);
+    assert_int_equal(qo_axis_angle_from_quat_q30((qo_quat_q30){ 0, 0, 0, 0 }, &ax, &an), QO_E_DEGENERATE);
     assert_int_equal(ax.x, QO_Q30_ONE); assert_int_equal(an, 0);
     an = 99;
-    assert_int_equal(qo_quat_to_axis_angle_q30(qo_quat_identity_q30(), NULL, &an), QO_E_NULL);
+    assert_int_equal(qo_axis_angle_from_quat_q30(qo_quat_identity_q30(), NULL, &an), QO_E_NULL);
     assert_int_equal(an, 0);
-    assert_int_equal(qo_quat_to_axis_angle_q30((qo_quat_q30){ 0, 0, -QO_Q30_ONE, 0 }, &ax, &an), QO_OK);
+    assert_int_equal(qo_axis_angle_from_quat_q30((qo_quat_q30){ 0, 0, -QO_Q30_ONE, 0 }, &ax, &an), QO_OK);
     assert_int_equal(ax.y, QO_Q30_ONE);   /* canonical sign at pi */
     assert_true(an >= QO_Q28_PI - 2 && an <= QO_Q28_PI);
     /* A 1-LSB axis keeps its direction. */
-    assert_int_equal(qo_quat_from_axis_angle_q30((qo_vec3_q30){ 0, -1, 0 }, QO_Q28_PI, &r), QO_OK);
+    assert_int_equal(qo_axis_angle_to_quat_q30((qo_vec3_q30){ 0, -1, 0 }, QO_Q28_PI, &r), QO_OK);
     assert_true(r.y <= -QO_Q30_ONE + 1 && r.x == 0 && r.z == 0 && r.w >= -1 && r.w <= 1);
 }
 
@@ -1311,21 +1311,21 @@ static void test_q30_rotvec_edges(void **state)
     qo_quat_q30 r;
     qo_vec3_q28 v;
     (void)state;
-    assert_int_equal(qo_quat_from_rotvec_q30((qo_vec3_q28){ 0, 0, 0 }, &r), QO_OK);
+    assert_int_equal(qo_rotvec_to_quat_q30((qo_vec3_q28){ 0, 0, 0 }, &r), QO_OK);
     assert_int_equal(r.w, QO_Q30_ONE); assert_int_equal(r.x, 0); assert_int_equal(r.y, 0); assert_int_equal(r.z, 0);
-    assert_int_equal(qo_quat_from_rotvec_q30((qo_vec3_q28){ 0, 0, 0 }, NULL), QO_E_NULL);
+    assert_int_equal(qo_rotvec_to_quat_q30((qo_vec3_q28){ 0, 0, 0 }, NULL), QO_E_NULL);
     /* Tiny: (1, rv/2) to the LSB. rv = 4 LSB of Q3.28 = 16 LSB of Q1.30 -> 8. */
-    assert_int_equal(qo_quat_from_rotvec_q30((qo_vec3_q28){ 0, 0, 4 }, &r), QO_OK);
+    assert_int_equal(qo_rotvec_to_quat_q30((qo_vec3_q28){ 0, 0, 4 }, &r), QO_OK);
     assert_int_equal(r.w, QO_Q30_ONE); assert_int_equal(r.z, 8);
     /* The largest rotation vector the format holds does not overflow anything. */
-    assert_int_equal(qo_quat_from_rotvec_q30((qo_vec3_q28){ INT32_MIN, INT32_MIN, INT32_MIN }, &r), QO_OK);
-    assert_int_equal(qo_quat_to_rotvec_q30((qo_quat_q30){ 0, 0, 0, 0 }, &v), QO_E_DEGENERATE);
+    assert_int_equal(qo_rotvec_to_quat_q30((qo_vec3_q28){ INT32_MIN, INT32_MIN, INT32_MIN }, &r), QO_OK);
+    assert_int_equal(qo_rotvec_from_quat_q30((qo_quat_q30){ 0, 0, 0, 0 }, &v), QO_E_DEGENERATE);
     assert_int_equal(v.x, 0); assert_int_equal(v.y, 0); assert_int_equal(v.z, 0);
-    assert_int_equal(qo_quat_to_rotvec_q30(qo_quat_identity_q30(), NULL), QO_E_NULL);
-    assert_int_equal(qo_quat_to_rotvec_q30((qo_quat_q30){ -QO_Q30_ONE, 0, 0, 0 }, &v), QO_OK);
+    assert_int_equal(qo_rotvec_from_quat_q30(qo_quat_identity_q30(), NULL), QO_E_NULL);
+    assert_int_equal(qo_rotvec_from_quat_q30((qo_quat_q30){ -QO_Q30_ONE, 0, 0, 0 }, &v), QO_OK);
     assert_int_equal(v.x, 0);
     /* Exactly pi about -z: canonical sign makes it +z. */
-    assert_int_equal(qo_quat_to_rotvec_q30((qo_quat_q30){ 0, 0, 0, -QO_Q30_ONE }, &v), QO_OK);
+    assert_int_equal(qo_rotvec_from_quat_q30((qo_quat_q30){ 0, 0, 0, -QO_Q30_ONE }, &v), QO_OK);
     assert_true(v.z >= QO_Q28_PI - 2 && v.z <= QO_Q28_PI && v.x == 0 && v.y == 0);
 }
 
@@ -1337,9 +1337,9 @@ static void test_q30_to_mat3_edges(void **state)
     qo_vec3_q30 r;
     int i, j;
     (void)state;
-    assert_int_equal(qo_quat_to_mat3_q30((qo_quat_q30){ 0, 0, 0, 0 }, &m), QO_E_DEGENERATE);
+    assert_int_equal(qo_mat3_from_quat_q30((qo_quat_q30){ 0, 0, 0, 0 }, &m), QO_E_DEGENERATE);
     for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) assert_int_equal(m.m[i][j], i == j ? QO_Q30_ONE : 0);
-    assert_int_equal(qo_quat_to_mat3_q30(qo_quat_identity_q30(), NULL), QO_E_NULL);
+    assert_int_equal(qo_mat3_from_quat_q30(qo_quat_identity_q30(), NULL), QO_E_NULL);
     r = qo_mat3_mul_vec3_q30(NULL, (qo_vec3_q30){ 1, 2, 3 });
     assert_int_equal(r.x, 0); assert_int_equal(r.y, 0); assert_int_equal(r.z, 0);
     /* Saturation of M v: (2, 2, 2) . (2, 2, 2) = 12. */
@@ -1354,7 +1354,7 @@ static void x_check_from_mat3(const qo_mat3_q30 *m, const char *what)
     int i, j;
     qo_quat_q30 r;
     dq want;
-    qo_status st = qo_quat_from_mat3_q30(m, &r);
+    qo_status st = qo_mat3_to_quat_q30(m, &r);
     for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) d[i][j] = m->m[i][j] / TWO30;
     want = dq_from_mat(d);
     if (st != QO_OK) fail_msg("from_mat3 %s: status %d", what, st);
@@ -1383,15 +1383,15 @@ static void test_q30_from_mat3_edges(void **state)
     size_t c;
     int i, j;
     (void)state;
-    assert_int_equal(qo_quat_from_mat3_q30(NULL, &r), QO_E_NULL);
+    assert_int_equal(qo_mat3_to_quat_q30(NULL, &r), QO_E_NULL);
     assert_int_equal(r.w, QO_Q30_ONE);
-    assert_int_equal(qo_quat_from_mat3_q30(&m, NULL), QO_E_NULL);
+    assert_int_equal(qo_mat3_to_quat_q30(&m, NULL), QO_E_NULL);
     for (c = 0; c < sizeof half_turns / sizeof half_turns[0]; c++) {
         dq q = ref_quat_normalize((dq){ half_turns[c][0], half_turns[c][1], half_turns[c][2], half_turns[c][3] });
         qo_mat3_f32 f;
         dq_to_mat(q, d);
         for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) f.m[i][j] = (float)d[i][j];
-        m = qo_mat3_q30_from_f32(&f);
+        m = qo_q30_mat3_from_f32(&f);
         x_check_from_mat3(&m, "edge");
     }
     /* Rejections: reflection, scale, shear, singular, and a just-inside / just-outside pair. */
@@ -1399,24 +1399,24 @@ static void test_q30_from_mat3_edges(void **state)
     for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) m.m[i][j] = qo_q30_from_f32((float)d[i][j]);
     bad = m;
     for (j = 0; j < 3; j++) bad.m[0][j] = -bad.m[0][j];
-    assert_int_equal(qo_quat_from_mat3_q30(&bad, &r), QO_E_NOT_ROTATION);
+    assert_int_equal(qo_mat3_to_quat_q30(&bad, &r), QO_E_NOT_ROTATION);
     assert_int_equal(r.w, QO_Q30_ONE); assert_int_equal(r.x, 0);
     bad = m;
     for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) bad.m[i][j] = qo_fx_mul_q30(bad.m[i][j], QO_Q30_ONE + QO_Q30_ONE / 1000);
-    assert_int_equal(qo_quat_from_mat3_q30(&bad, &r), QO_E_NOT_ROTATION);
+    assert_int_equal(qo_mat3_to_quat_q30(&bad, &r), QO_E_NOT_ROTATION);
     bad = m; bad.m[0][1] += QO_Q30_ONE / 100;
-    assert_int_equal(qo_quat_from_mat3_q30(&bad, &r), QO_E_NOT_ROTATION);
+    assert_int_equal(qo_mat3_to_quat_q30(&bad, &r), QO_E_NOT_ROTATION);
     for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) bad.m[i][j] = 0;
-    assert_int_equal(qo_quat_from_mat3_q30(&bad, &r), QO_E_NOT_ROTATION);
+    assert_int_equal(qo_mat3_to_quat_q30(&bad, &r), QO_E_NOT_ROTATION);
     for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) bad.m[i][j] = INT32_MIN;
-    assert_int_equal(qo_quat_from_mat3_q30(&bad, &r), QO_E_NOT_ROTATION);
+    assert_int_equal(qo_mat3_to_quat_q30(&bad, &r), QO_E_NOT_ROTATION);
     /* Identity scaled so the diagonal of M^T M is 1 + 0.9 tol (accepted) or 1 + 1.1 tol. */
     for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) bad.m[i][j] = 0;
     for (i = 0; i < 3; i++) bad.m[i][i] = QO_Q30_ONE + (QO_MAT3_ROTATION_TOL_Q30 * 9) / 20;
-    assert_int_equal(qo_quat_from_mat3_q30(&bad, &r), QO_OK);
+    assert_int_equal(qo_mat3_to_quat_q30(&bad, &r), QO_OK);
     assert_int_equal(r.w, QO_Q30_ONE);
     for (i = 0; i < 3; i++) bad.m[i][i] = QO_Q30_ONE + (QO_MAT3_ROTATION_TOL_Q30 * 11) / 20;
-    assert_int_equal(qo_quat_from_mat3_q30(&bad, &r), QO_E_NOT_ROTATION);
+    assert_int_equal(qo_mat3_to_quat_q30(&bad, &r), QO_E_NOT_ROTATION);
 }
 
 int main(void)

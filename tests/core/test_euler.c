@@ -5,7 +5,7 @@
  *
  * One body per behaviour both cores have (docs/TESTING.md, "One body for both cores"): each
  * body takes a `core` through cmocka's prestate - float32, fixed point, and for the
- * quaternion-to-angles bodies the fixed fast tier (qo_quat_to_euler_fast_q30) - whose adapters
+ * quaternion-to-angles bodies the fixed fast tier (qo_euler_from_quat_fast_q30) - whose adapters
  * take doubles, round them to what that core holds (float32, or Q1.30 / Q3.28 rounded to
  * nearest and saturated) and give the results back as doubles. The reference is computed from
  * the value the core was given, and each core is judged with the tolerances of its table row.
@@ -114,7 +114,7 @@ static int32_t x_in(double v, double scale) { return ref_to_fixed(v, scale); }
         QT q;                                                                                   \
         qo_status st;                                                                           \
         q.w = q.x = q.y = q.z = 7;                                                              \
-        st = qo_quat_from_euler_##SFX((qo_euler_seq)seq, P##_angles(a), out ? &q : NULL);       \
+        st = qo_euler_to_quat_##SFX((qo_euler_seq)seq, P##_angles(a), out ? &q : NULL);       \
         if (out) {                                                                              \
             out->w = q.w / P##_QS; out->x = q.x / P##_QS;                                       \
             out->y = q.y / P##_QS; out->z = q.z / P##_QS;                                       \
@@ -127,9 +127,9 @@ static int32_t x_in(double v, double scale) { return ref_to_fixed(v, scale); }
         ET e = { 9, 9, 9 };                                                                     \
         IT i = { 7, 9 };                                                                        \
         qo_status st = use_default                                                              \
-            ? qo_quat_to_euler_##SFX(P##_quat(q), (qo_euler_seq)seq, out ? &e : NULL,           \
+            ? qo_euler_from_quat_##SFX(P##_quat(q), (qo_euler_seq)seq, out ? &e : NULL,           \
                                      info ? &i : NULL)                                          \
-            : qo_quat_to_euler_band_##SFX(P##_quat(q), (qo_euler_seq)seq, P##_in(band, P##_AS), \
+            : qo_euler_from_quat_band_##SFX(P##_quat(q), (qo_euler_seq)seq, P##_in(band, P##_AS), \
                                           out ? &e : NULL, info ? &i : NULL);                   \
         P##_back(e, i, out, info);                                                              \
         return st;                                                                              \
@@ -139,7 +139,7 @@ static int32_t x_in(double v, double scale) { return ref_to_fixed(v, scale); }
     {                                                                                           \
         ET e = { 9, 9, 9 };                                                                     \
         IT i = { 7, 9 };                                                                        \
-        qo_status st = qo_quat_to_euler_near_##SFX(P##_quat(q), (qo_euler_seq)seq,              \
+        qo_status st = qo_euler_from_quat_near_##SFX(P##_quat(q), (qo_euler_seq)seq,              \
                                                    P##_angles(prev), P##_in(band, P##_AS),      \
                                                    out ? &e : NULL, info ? &i : NULL);          \
         P##_back(e, i, out, info);                                                              \
@@ -164,13 +164,13 @@ static double x_nudge(double v, int u)
     return (double)r / Q30;
 }
 
-/* The fast tier (qo_quat_to_euler_fast_q30) as to_euler: the band form, given the default
+/* The fast tier (qo_euler_from_quat_fast_q30) as to_euler: the band form, given the default
  * band for use_default; from_euler and near are the exact core's (it has neither). */
 static qo_status xf_to(dq q, int seq, int use_default, double band, double out[3], einfo *info)
 {
     qo_euler_q28 e = { 9, 9, 9 };
     qo_euler_info_q28 i = { 7, 9 };
-    qo_status st = qo_quat_to_euler_fast_q30(x_quat(q), (qo_euler_seq)seq,
+    qo_status st = qo_euler_from_quat_fast_q30(x_quat(q), (qo_euler_seq)seq,
                                              use_default ? QO_EULER_LOCK_BAND_Q28 : x_in(band, Q28),
                                              out ? &e : NULL, info ? &i : NULL);
     x_back(e, i, out, info);
@@ -1064,7 +1064,7 @@ static void test_fx_from_euler_extreme_angles(void **state)
                 dq r;
                 double err;
                 e.a1 = v[i]; e.a2 = v[j]; e.a3 = v[(i + j) % (sizeof v / sizeof v[0])];
-                assert_int_equal(qo_quat_from_euler_q30((qo_euler_seq)seq, e, &q), QO_OK);
+                assert_int_equal(qo_euler_to_quat_q30((qo_euler_seq)seq, e, &q), QO_OK);
                 r = ref_quat_from_euler(ref_euler_names[seq], e.a1 / Q28, e.a2 / Q28, e.a3 / Q28);
                 err = fmax(fmax(fabs(q.w / Q30 - r.w), fabs(q.x / Q30 - r.x)),
                            fmax(fabs(q.y / Q30 - r.y), fabs(q.z / Q30 - r.z)));
@@ -1102,8 +1102,8 @@ static void test_fx_random_raw_inputs(void **state)
             r.w = q.w; r.x = q.x; r.y = q.y; r.z = q.z;
             /* the exact function and the fast tier (which rescales the same way), one bound */
             for (k = 1; k <= 2; k++) {
-                st = k == 1 ? qo_quat_to_euler_q30(q, (qo_euler_seq)seq, &e, &info)
-                            : qo_quat_to_euler_fast_q30(q, (qo_euler_seq)seq, QO_EULER_LOCK_BAND_Q28,
+                st = k == 1 ? qo_euler_from_quat_q30(q, (qo_euler_seq)seq, &e, &info)
+                            : qo_euler_from_quat_fast_q30(q, (qo_euler_seq)seq, QO_EULER_LOCK_BAND_Q28,
                                                         &e, &info);
                 ee[0] = e.a1 / Q28; ee[1] = e.a2 / Q28; ee[2] = e.a3 / Q28;
                 /* a few-LSB quaternion is still exact input; components >= 1.0 lose 1 bit */
@@ -1116,7 +1116,7 @@ static void test_fx_random_raw_inputs(void **state)
             }
             prev.a1 = (int32_t)(uint32_t)ref_rng_next(&rng); prev.a2 = (int32_t)(uint32_t)ref_rng_next(&rng);
             prev.a3 = (int32_t)(uint32_t)ref_rng_next(&rng);
-            st = qo_quat_to_euler_near_q30(q, (qo_euler_seq)seq, prev,
+            st = qo_euler_from_quat_near_q30(q, (qo_euler_seq)seq, prev,
                                            (qo_q28)(ref_rng_next(&rng) % 1000), &o, &info);
             oo[0] = o.a1 / Q28; oo[1] = o.a2 / Q28; oo[2] = o.a3 / Q28;
             tol = info.locked ? 2.0 * info.margin / Q28 + 5e-8 : 5e-8;
@@ -1146,10 +1146,10 @@ static void test_fx_band_limits(void **state)
     qo_euler_q28 prev = { 3, 0, 0 }, e = { 9, 9, 9 };
     qo_euler_info_q28 info;
     (void)state;
-    assert_int_equal(qo_quat_to_euler_band_q30(q, QO_EULER_XYZ, QO_Q28_HALF_PI + 1, &e, &info),
+    assert_int_equal(qo_euler_from_quat_band_q30(q, QO_EULER_XYZ, QO_Q28_HALF_PI + 1, &e, &info),
                      QO_E_RANGE);
     assert_true(e.a1 == 0 && e.a2 == 0 && e.a3 == 0 && info.locked == 0 && info.margin == 0);
-    assert_int_equal(qo_quat_to_euler_near_q30(q, QO_EULER_XYZ, prev, INT32_MIN, &e, &info),
+    assert_int_equal(qo_euler_from_quat_near_q30(q, QO_EULER_XYZ, prev, INT32_MIN, &e, &info),
                      QO_E_RANGE);
     assert_true(e.a1 == 3 && e.a2 == 0 && e.a3 == 0);
 }

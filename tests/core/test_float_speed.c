@@ -1,11 +1,11 @@
 /*
  * The fast paths of the float32 core (issue 14) against the paths they shortcut:
- *  - qo_quat_from_mat3_f32's direct test (max |M^T M - I| <= 5e-7 and det > 0, 4-wide on SSE2)
+ *  - qo_mat3_to_quat_f32's direct test (max |M^T M - I| <= 5e-7 and det > 0, 4-wide on SSE2)
  *    on matrices drifted to either side of that threshold: the result is the rotation nearest
  *    M (double reference) whichever path was taken, and on the direct side so is the trusted
  *    conversion's (no longer the same bits: the trusted variant scales its pivot vector by
  *    1/(2 sqrt c), not by 1/|v|, and takes the trace at t >= 0);
- *  - qo_quat_to_euler_f32's one range test on the largest |component| ([2^-20, 2^20]): q scaled
+ *  - qo_euler_from_quat_f32's one range test on the largest |component| ([2^-20, 2^20]): q scaled
  *    by 2^k on both sides of the range gives the same bits as q (the checked path scales by
  *    powers of two, the decomposition is scale-free), in all 24 conventions, and the errors
  *    (NaN, Inf, zero, 1e39 rounded to float, bad convention, NULL) keep their statuses.
@@ -67,7 +67,7 @@ static void test_from_mat3_direct_threshold(void **state)
         orth = orth_error(&md);
         near = ref_mat3_nearest_rotation(&md);
         q.w = 7.0f;
-        st = qo_quat_from_mat3_f32(&m, &q);
+        st = qo_mat3_to_quat_f32(&m, &q);
         err = ref_quat_angle_between(ref_quat_from_f32(q), ref_mat3_to_quat(&near));
         if (st != QO_OK || err > 1e-6 || q.w < 0.0f ||
             fabs(ref_quat_norm(ref_quat_from_f32(q)) - 1.0) > 1e-6)
@@ -77,7 +77,7 @@ static void test_from_mat3_direct_threshold(void **state)
         /* clearly on the direct side (the float test rounds the products: stay 20 % clear) */
         if (orth < 4e-7) {
             below++;
-            if (qo_quat_from_mat3_trusted_f32(&m, &qt) != QO_OK || qt.w < 0.0f ||
+            if (qo_mat3_to_quat_trusted_f32(&m, &qt) != QO_OK || qt.w < 0.0f ||
                 ref_quat_angle_between(ref_quat_from_f32(qt), ref_mat3_to_quat(&near)) > 1e-6)
                 fail_msg("from_mat3 case %d (|M^T M - I| %.3g): the trusted result is not the "
                          "nearest rotation", n, orth);
@@ -103,7 +103,7 @@ static void test_from_mat3_fast_path_errors(void **state)
         /* a reflection passes the orthogonality test: the determinant must refuse it */
         for (k = 0; k < 9; k++) bad.m[k / 3][k % 3] = -m.m[k / 3][k % 3];
         q.w = 7.0f;
-        if (qo_quat_from_mat3_f32(&bad, &q) != QO_E_NOT_ROTATION || !same_quat_bits(q, qo_quat_identity_f32()))
+        if (qo_mat3_to_quat_f32(&bad, &q) != QO_E_NOT_ROTATION || !same_quat_bits(q, qo_quat_identity_f32()))
             fail_msg("from_mat3 case %d: reflection -R not refused with the identity", n);
         for (k = 0; k < 9; k++) {
             const float v[3] = { NAN, INFINITY, 1e30f };
@@ -113,7 +113,7 @@ static void test_from_mat3_fast_path_errors(void **state)
                 bad = m;
                 bad.m[k / 3][k % 3] = v[c];
                 q.w = 7.0f;
-                if (qo_quat_from_mat3_f32(&bad, &q) != want[c] ||
+                if (qo_mat3_to_quat_f32(&bad, &q) != want[c] ||
                     !same_quat_bits(q, qo_quat_identity_f32()))
                     fail_msg("from_mat3 case %d: entry %d = %g not refused as %d", n, k,
                              (double)v[c], (int)want[c]);
@@ -134,13 +134,13 @@ static void test_to_euler_fast_range(void **state)
         for (s = 0; s < (int)QO_EULER_SEQ_COUNT_; s++) {
             qo_euler_f32 e0, e;
             qo_euler_info_f32 i0, i;
-            qo_status st0 = qo_quat_to_euler_f32(q, (qo_euler_seq)s, &e0, &i0);
+            qo_status st0 = qo_euler_from_quat_f32(q, (qo_euler_seq)s, &e0, &i0);
             if (st0 != QO_OK) fail_msg("to_euler case %d seq %d: status %d", n, s, (int)st0);
             for (k = 0; k < sizeof ks / sizeof ks[0]; k++) {
                 float f = ldexpf(1.0f, ks[k]);
                 qo_quat_f32 qs;
                 qs.w = q.w * f; qs.x = q.x * f; qs.y = q.y * f; qs.z = q.z * f;
-                if (qo_quat_to_euler_f32(qs, (qo_euler_seq)s, &e, &i) != QO_OK ||
+                if (qo_euler_from_quat_f32(qs, (qo_euler_seq)s, &e, &i) != QO_OK ||
                     memcmp(&e, &e0, sizeof e) != 0 || i.locked != i0.locked ||
                     memcmp(&i.margin, &i0.margin, sizeof i.margin) != 0)
                     fail_msg("to_euler case %d seq %d: q * 2^%d gives (%.9g, %.9g, %.9g), "
@@ -148,7 +148,7 @@ static void test_to_euler_fast_range(void **state)
                              (double)e.a2, (double)e.a3, (double)e0.a1, (double)e0.a2,
                              (double)e0.a3);
                 /* without info: the same angles (the margin shortcut only skips work) */
-                if (qo_quat_to_euler_f32(qs, (qo_euler_seq)s, &e, NULL) != QO_OK ||
+                if (qo_euler_from_quat_f32(qs, (qo_euler_seq)s, &e, NULL) != QO_OK ||
                     memcmp(&e, &e0, sizeof e) != 0)
                     fail_msg("to_euler case %d seq %d: q * 2^%d without info differs", n, s, ks[k]);
             }
@@ -173,17 +173,17 @@ static void test_to_euler_fast_range_errors(void **state)
             qo_status st;
             *p = bad[c];
             e.a1 = e.a2 = e.a3 = 7.0f;
-            st = qo_quat_to_euler_f32(b, QO_EULER_ZYX, &e, &info);
+            st = qo_euler_from_quat_f32(b, QO_EULER_ZYX, &e, &info);
             if (st != want[c] || (st != QO_OK && (e.a1 != 0.0f || e.a2 != 0.0f || e.a3 != 0.0f)))
                 fail_msg("to_euler: component %d = %g gives status %d, want %d", k, (double)bad[c],
                          (int)st, (int)want[c]);
         }
     }
-    assert_int_equal(qo_quat_to_euler_f32(z, QO_EULER_XYZ, &e, &info), QO_E_DEGENERATE);
+    assert_int_equal(qo_euler_from_quat_f32(z, QO_EULER_XYZ, &e, &info), QO_E_DEGENERATE);
     assert_true(e.a1 == 0.0f && e.a2 == 0.0f && e.a3 == 0.0f && info.locked == 0);
-    assert_int_equal(qo_quat_to_euler_f32(q, QO_EULER_SEQ_COUNT_, &e, NULL), QO_E_ARG);
-    assert_int_equal(qo_quat_to_euler_f32(q, (qo_euler_seq)-1, &e, NULL), QO_E_ARG);
-    assert_int_equal(qo_quat_to_euler_f32(q, QO_EULER_XYZ, NULL, &info), QO_E_NULL);
+    assert_int_equal(qo_euler_from_quat_f32(q, QO_EULER_SEQ_COUNT_, &e, NULL), QO_E_ARG);
+    assert_int_equal(qo_euler_from_quat_f32(q, (qo_euler_seq)-1, &e, NULL), QO_E_ARG);
+    assert_int_equal(qo_euler_from_quat_f32(q, QO_EULER_XYZ, NULL, &info), QO_E_NULL);
 }
 
 int main(void)

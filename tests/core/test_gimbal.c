@@ -33,23 +33,23 @@ static void test_path_init_errors(void **state)
     float t[3] = { 0.0f, 1.0f, 2.0f };
     qo_quat_f32 k[3] = { { 1, 0, 0, 0 }, { 0, 1, 0, 0 }, { 0, 0, 1, 0 } };
     qo_quat_f32 ks[3], a[3], b[3];
-    qo_orient_path_f32 p;
+    qo_gimbal_path_f32 p;
     qo_quat_f32 q;
     (void)state;
-    assert_int_equal(qo_orient_path_init_f32(NULL, t, k, 3, QO_PATH_SLERP, ks, NULL, NULL), QO_E_NULL);
-    assert_int_equal(qo_orient_path_init_f32(&p, NULL, k, 3, QO_PATH_SLERP, ks, NULL, NULL), QO_E_NULL);
-    assert_int_equal(qo_orient_path_init_f32(&p, t, k, 3, QO_PATH_SPLINE, ks, NULL, b), QO_E_NULL);
-    assert_int_equal(qo_orient_path_init_f32(&p, t, k, 1, QO_PATH_SLERP, ks, NULL, NULL), QO_E_TOO_FEW);
-    assert_int_equal(qo_orient_path_init_f32(&p, t, k, 3, (qo_path_interp)7, ks, a, b), QO_E_ARG);
+    assert_int_equal(qo_gimbal_path_init_f32(NULL, t, k, 3, QO_GIMBAL_PATH_SLERP, ks, NULL, NULL), QO_E_NULL);
+    assert_int_equal(qo_gimbal_path_init_f32(&p, NULL, k, 3, QO_GIMBAL_PATH_SLERP, ks, NULL, NULL), QO_E_NULL);
+    assert_int_equal(qo_gimbal_path_init_f32(&p, t, k, 3, QO_GIMBAL_PATH_SPLINE, ks, NULL, b), QO_E_NULL);
+    assert_int_equal(qo_gimbal_path_init_f32(&p, t, k, 1, QO_GIMBAL_PATH_SLERP, ks, NULL, NULL), QO_E_TOO_FEW);
+    assert_int_equal(qo_gimbal_path_init_f32(&p, t, k, 3, (qo_gimbal_path_interp)7, ks, a, b), QO_E_ARG);
     t[1] = 0.0f;
-    assert_int_equal(qo_orient_path_init_f32(&p, t, k, 3, QO_PATH_SLERP, ks, NULL, NULL), QO_E_ORDER);
+    assert_int_equal(qo_gimbal_path_init_f32(&p, t, k, 3, QO_GIMBAL_PATH_SLERP, ks, NULL, NULL), QO_E_ORDER);
     t[1] = NAN;
-    assert_int_equal(qo_orient_path_init_f32(&p, t, k, 3, QO_PATH_SLERP, ks, NULL, NULL), QO_E_NONFINITE);
+    assert_int_equal(qo_gimbal_path_init_f32(&p, t, k, 3, QO_GIMBAL_PATH_SLERP, ks, NULL, NULL), QO_E_NONFINITE);
     t[1] = 1.0f;
     k[2].w = 0.0f; k[2].x = 0.0f; k[2].y = 0.0f; k[2].z = 0.0f;
-    assert_int_equal(qo_orient_path_init_f32(&p, t, k, 3, QO_PATH_SLERP, ks, NULL, NULL), QO_E_DEGENERATE);
+    assert_int_equal(qo_gimbal_path_init_f32(&p, t, k, 3, QO_GIMBAL_PATH_SLERP, ks, NULL, NULL), QO_E_DEGENERATE);
     /* a failed init leaves a path that sampling rejects */
-    assert_int_equal(qo_orient_path_sample_f32(&p, 0.5f, &q), QO_E_STATE);
+    assert_int_equal(qo_gimbal_path_sample_f32(&p, 0.5f, &q), QO_E_STATE);
     assert_true(q.w == 1.0f && q.x == 0.0f && q.y == 0.0f && q.z == 0.0f);
 }
 
@@ -62,7 +62,7 @@ static void test_path_keys_and_between(void **state)
     qo_quat_f32 k[N], ks[N], a[N], b[N];
     ref_quat rk[N];
     ref_rng rng = { 0x6172BA11ULL };
-    qo_orient_path_f32 p;
+    qo_gimbal_path_f32 p;
     int interp, i, j;
     (void)state;
     for (i = 0; i < N; i++) {
@@ -73,22 +73,22 @@ static void test_path_keys_and_between(void **state)
     }
     for (interp = 0; interp < 2; interp++) {
         qo_quat_f32 q;
-        assert_int_equal(qo_orient_path_init_f32(&p, t, k, N, (qo_path_interp)interp, ks, a, b), QO_OK);
+        assert_int_equal(qo_gimbal_path_init_f32(&p, t, k, N, (qo_gimbal_path_interp)interp, ks, a, b), QO_OK);
         for (i = 0; i < N; i++) {
             double e;
-            assert_int_equal(qo_orient_path_sample_f32(&p, t[i], &q), QO_OK);
+            assert_int_equal(qo_gimbal_path_sample_f32(&p, t[i], &q), QO_OK);
             e = ref_quat_angle_between(ref_quat_from_f32(q), rk[i]);
             if (e > 1e-6) print_error("interp %d key %d: error %g rad\n", interp, i, e);
             assert_true(e <= 1e-6);
         }
-        assert_int_equal(qo_orient_path_sample_f32(&p, t[0] - 5.0f, &q), QO_OK);
+        assert_int_equal(qo_gimbal_path_sample_f32(&p, t[0] - 5.0f, &q), QO_OK);
         assert_true(ref_quat_angle_between(ref_quat_from_f32(q), rk[0]) <= 1e-6);
-        assert_int_equal(qo_orient_path_sample_f32(&p, t[N - 1] + 5.0f, &q), QO_OK);
+        assert_int_equal(qo_gimbal_path_sample_f32(&p, t[N - 1] + 5.0f, &q), QO_OK);
         assert_true(ref_quat_angle_between(ref_quat_from_f32(q), rk[N - 1]) <= 1e-6);
-        assert_int_equal(qo_orient_path_sample_f32(&p, NAN, &q), QO_E_NONFINITE);
+        assert_int_equal(qo_gimbal_path_sample_f32(&p, NAN, &q), QO_E_NONFINITE);
     }
     /* slerp between keys vs double: rotation from key i by fraction u of the short angle */
-    assert_int_equal(qo_orient_path_init_f32(&p, t, k, N, QO_PATH_SLERP, ks, NULL, NULL), QO_OK);
+    assert_int_equal(qo_gimbal_path_init_f32(&p, t, k, N, QO_GIMBAL_PATH_SLERP, ks, NULL, NULL), QO_OK);
     for (i = 0; i + 1 < N; i++) {
         for (j = 1; j < 8; j++) {
             double u = j / 8.0;
@@ -102,7 +102,7 @@ static void test_path_keys_and_between(void **state)
             s0 = sin((1 - uu) * th) / sin(th); s1 = sin(uu * th) / sin(th);
             want.w = s0 * q0.w + s1 * q1.w; want.x = s0 * q0.x + s1 * q1.x;
             want.y = s0 * q0.y + s1 * q1.y; want.z = s0 * q0.z + s1 * q1.z;
-            assert_int_equal(qo_orient_path_sample_f32(&p, tt, &q), QO_OK);
+            assert_int_equal(qo_gimbal_path_sample_f32(&p, tt, &q), QO_OK);
             e = ref_quat_angle_between(ref_quat_from_f32(q), want);
             if (e > 1e-6) print_error("segment %d u %g: error %g rad\n", i, uu, e);
             assert_true(e <= 1e-6);
@@ -164,7 +164,7 @@ static void test_gimbal_through_singularity(void **state)
     assert_true(worst_free == 0.0);
     if (worst_unlocked > 2e-6) print_error("unlocked recomposition %g rad\n", worst_unlocked);
     assert_true(worst_unlocked <= 2e-6);
-    /* held split: within 2 * band of the request (qo_quat_to_euler_near_f32's bound) */
+    /* held split: within 2 * band of the request (qo_euler_from_quat_near_f32's bound) */
     assert_true(worst_locked <= 2.0 * s.band);
     /* pitch continued past 90 degrees on the same branch: the last sample has pitch ~120 */
     assert_true(fabs(o.angles.a2 - 120 * DEG) < 1e-4);
@@ -297,7 +297,7 @@ static void track_random_paths(uint64_t nudge)
         enum { K = 7 };
         float kt[K];
         qo_quat_f32 keys[K], ks[K], ca[K], cb[K];
-        qo_orient_path_f32 pa;
+        qo_gimbal_path_f32 pa;
         qo_gimbal_settings_f32 gs = qo_gimbal_settings_default;
         qo_gimbal_track_settings_f32 ts = qo_gimbal_track_settings_default;
         qo_gimbal_f32 g;
@@ -328,14 +328,14 @@ static void track_random_paths(uint64_t nudge)
                 keys[k].z = nextafterf(keys[k].z, ref_rng_unit(&nr) < 0.5 ? 2.0f : -2.0f);
             }
         }
-        assert_int_equal(qo_orient_path_init_f32(&pa, kt, keys, K, (qo_path_interp)interp, ks, ca, cb), QO_OK);
+        assert_int_equal(qo_gimbal_path_init_f32(&pa, kt, keys, K, (qo_gimbal_path_interp)interp, ks, ca, cb), QO_OK);
         assert_int_equal(qo_gimbal_init_f32(&g, &gs), QO_OK);
         assert_int_equal(qo_gimbal_track_init_f32(&tr, &ts), QO_OK);
         /* the path (3 s), then until settled, at most TRACK_MAXS samples */
         for (i = 0; i < TRACK_MAXS; i++) {
             float t = (float)(i * dt);
             qo_quat_f32 q;
-            assert_int_equal(qo_orient_path_sample_f32(&pa, t, &q), QO_OK);
+            assert_int_equal(qo_gimbal_path_sample_f32(&pa, t, &q), QO_OK);
             assert_int_equal(qo_gimbal_step_f32(&g, t, q, &o), QO_OK);
             assert_int_equal(qo_gimbal_track_step_f32(&tr, t, o.angles, &to), QO_OK);
             tt[i] = t;

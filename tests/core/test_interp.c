@@ -140,10 +140,10 @@ typedef struct core {
         return st;                                                                            \
     }
 #define DEFINE_ADAPTERS(P, SFX, QT, RVT)                                                      \
-    ADAPT_2(P, lerp, qo_quat_lerp_##SFX, QT)                                                  \
-    ADAPT_2(P, slerp, qo_quat_slerp_##SFX, QT)                                                \
-    ADAPT_2(P, slerp_long, qo_quat_slerp_long_##SFX, QT)                                      \
-    ADAPT_2(P, nlerp, qo_quat_nlerp_##SFX, QT)                                                \
+    ADAPT_2(P, lerp, qo_interp_lerp_##SFX, QT)                                                  \
+    ADAPT_2(P, slerp, qo_interp_slerp_##SFX, QT)                                                \
+    ADAPT_2(P, slerp_long, qo_interp_slerp_long_##SFX, QT)                                      \
+    ADAPT_2(P, nlerp, qo_interp_nlerp_##SFX, QT)                                                \
     static qo_status P##_unit(dq q, dq *out)                                                  \
     {                                                                                         \
         QT o;                                                                                 \
@@ -154,23 +154,23 @@ typedef struct core {
     static qo_status P##_slerp_rate(dq a, dq b, double dur, ref_vec3 *w)                      \
     {                                                                                         \
         RVT o;                                                                                \
-        qo_status st = qo_quat_slerp_rate_##SFX(P##_q(a), P##_q(b), P##_s(dur),               \
+        qo_status st = qo_interp_slerp_rate_##SFX(P##_q(a), P##_q(b), P##_s(dur),               \
                                                  w ? &o : NULL);                              \
         if (w) *w = P##_rb(o);                                                                \
         return st;                                                                            \
     }                                                                                         \
-    ADAPT_KEYS(P, align_keys, qo_quat_align_keys_##SFX, QT)                                   \
-    ADAPT_KEYS(P, squad_controls, qo_quat_squad_controls_##SFX, QT)                           \
+    ADAPT_KEYS(P, align_keys, qo_interp_align_keys_##SFX, QT)                                   \
+    ADAPT_KEYS(P, squad_controls, qo_interp_squad_controls_##SFX, QT)                           \
     static qo_status P##_bezier(const dq *c, size_t n, double t, dq *out)                     \
     {                                                                                         \
         QT pc[MAXK], o;                                                                       \
         qo_status st;                                                                         \
         TO_CORE(P, pc, c, n);                                                                 \
-        st = qo_quat_bezier_##SFX(c ? pc : NULL, n, P##_t(t), out ? &o : NULL);               \
+        st = qo_interp_bezier_##SFX(c ? pc : NULL, n, P##_t(t), out ? &o : NULL);               \
         if (out) *out = P##_qb(o);                                                            \
         return st;                                                                            \
     }                                                                                         \
-    ADAPT_4(P, bezier3, qo_quat_bezier3_##SFX, QT)                                            \
+    ADAPT_4(P, bezier3, qo_interp_bezier3_##SFX, QT)                                            \
     static qo_status P##_spline_controls(const dq *k, size_t n, dq *a, dq *b)                 \
     {                                                                                         \
         QT pk[MAXK], pa[MAXK], pb[MAXK];                                                      \
@@ -178,7 +178,7 @@ typedef struct core {
         TO_CORE(P, pk, k, n);                                                                 \
         memset(pa, 0, sizeof pa);                                                             \
         memset(pb, 0, sizeof pb);                                                             \
-        st = qo_quat_spline_controls_##SFX(k ? pk : NULL, n, a ? pa : NULL, b ? pb : NULL);   \
+        st = qo_interp_spline_controls_##SFX(k ? pk : NULL, n, a ? pa : NULL, b ? pb : NULL);   \
         FROM_CORE(P, a, pa, n);                                                               \
         FROM_CORE(P, b, pb, n);                                                               \
         return st;                                                                            \
@@ -191,12 +191,12 @@ typedef struct core {
         TO_CORE(P, pk, k, n);                                                                 \
         TO_CORE(P, pa, a, n);                                                                 \
         TO_CORE(P, pb, b, n);                                                                 \
-        st = qo_quat_spline_eval_##SFX(k ? pk : NULL, a ? pa : NULL, b ? pb : NULL, n,        \
+        st = qo_interp_spline_eval_##SFX(k ? pk : NULL, a ? pa : NULL, b ? pb : NULL, n,        \
                                        P##_s(s), out ? &o : NULL);                            \
         if (out) *out = P##_qb(o);                                                            \
         return st;                                                                            \
     }                                                                                         \
-    ADAPT_4(P, squad, qo_quat_squad_##SFX, QT)
+    ADAPT_4(P, squad, qo_interp_squad_##SFX, QT)
 
 /* The table entries after the header fields, in the order of `core`. */
 #define CORE_FUNCS(P)                                                                         \
@@ -236,7 +236,7 @@ static qo_status x_unit_fast(dq q, dq *out)
     *out = dq_from_x(o);
     return st;
 }
-ADAPT_2(x, slerp_fast, qo_quat_slerp_fast_q30, qo_quat_q30)
+ADAPT_2(x, slerp_fast, qo_interp_slerp_fast_q30, qo_quat_q30)
 
 /* Tolerances: float32 as measured by bench/accuracy_interp.c with a margin; fixed point
  * measured by bench/accuracy_interp_fx.c at 5e-9 rad (slerp) and 1e-9 (norm), checked here
@@ -823,13 +823,13 @@ static dq d_bezier(const dq *c, size_t n, double t)
 static void test_bezier(void **state)
 {
     const core *c = *state;
-    dq cp[QO_BEZIER_MAX_POINTS + 1], out, o2, u0, un;
+    dq cp[QO_INTERP_BEZIER_MAX_POINTS + 1], out, o2, u0, un;
     int i, k;
     size_t n;
     rng_seed(0xBE21E4ull);
     for (i = 0; i < 400; i++) {
         dq p = rand_unit();
-        n = 2 + (size_t)(i % (QO_BEZIER_MAX_POINTS - 1));
+        n = 2 + (size_t)(i % (QO_INTERP_BEZIER_MAX_POINTS - 1));
         for (k = 0; k < (int)n; k++) {
             p = dq_mul(p, rand_axis_rot(rng_range(0, 1.5)));
             cp[k] = c->q_in(dq_scale(rng_u() < 0.3 ? dq_neg(p) : p, rng_range(0.5, 1.9)));
@@ -864,10 +864,10 @@ static void test_bezier(void **state)
         }
     }
     /* errors */
-    for (k = 0; k <= QO_BEZIER_MAX_POINTS; k++) cp[k] = c->q_in(rand_unit());
-    assert_int_equal(c->bezier(cp, QO_BEZIER_MAX_POINTS + 1, 0.5, &out), QO_E_CAPACITY);
+    for (k = 0; k <= QO_INTERP_BEZIER_MAX_POINTS; k++) cp[k] = c->q_in(rand_unit());
+    assert_int_equal(c->bezier(cp, QO_INTERP_BEZIER_MAX_POINTS + 1, 0.5, &out), QO_E_CAPACITY);
     assert_true(dq_equal(out, ID));
-    assert_int_equal(c->bezier(cp, QO_BEZIER_MAX_POINTS, 0.5, &out), QO_OK);
+    assert_int_equal(c->bezier(cp, QO_INTERP_BEZIER_MAX_POINTS, 0.5, &out), QO_OK);
     assert_int_equal(c->bezier(cp, 1, 0.5, &out), QO_E_TOO_FEW);
     assert_int_equal(c->bezier(cp, 0, 0.5, &out), QO_E_TOO_FEW);
     assert_true(dq_equal(out, ID));
@@ -1267,7 +1267,7 @@ static qo_quat_q30 x_neg(qo_quat_q30 q)
 static qo_quat_q30 xu(qo_quat_q30 q)
 {
     qo_quat_q30 u;
-    assert_int_equal(qo_quat_align_keys_q30(&q, 1, &u), QO_OK);
+    assert_int_equal(qo_interp_align_keys_q30(&q, 1, &u), QO_OK);
     return u;
 }
 static int64_t x_dot(qo_quat_q30 a, qo_quat_q30 b)
@@ -1350,21 +1350,21 @@ static void test_fx_slerp_extremes(void **state)
             }
             for (k = 0; k < sizeof bad_t / sizeof bad_t[0]; k++) {
                 qo_quat_q30 out;
-                assert_int_equal(qo_quat_slerp_q30(ex[i], ex[j], bad_t[k], &out), QO_E_RANGE);
+                assert_int_equal(qo_interp_slerp_q30(ex[i], ex[j], bad_t[k], &out), QO_E_RANGE);
                 CHECK(x_equal(out, xu(ex[i])), "slerp t=%d: out must be unit a",
                       (int)bad_t[k]);
-                assert_int_equal(qo_quat_nlerp_q30(ex[i], ex[j], bad_t[k], &out), QO_E_RANGE);
-                assert_int_equal(qo_quat_lerp_q30(ex[i], ex[j], bad_t[k], &out), QO_E_RANGE);
+                assert_int_equal(qo_interp_nlerp_q30(ex[i], ex[j], bad_t[k], &out), QO_E_RANGE);
+                assert_int_equal(qo_interp_lerp_q30(ex[i], ex[j], bad_t[k], &out), QO_E_RANGE);
                 CHECK(x_equal(out, ex[i]), "lerp t=%d: out must be a", (int)bad_t[k]);
             }
         }
     }
     {
         qo_quat_q30 out;
-        assert_int_equal(qo_quat_slerp_q30(ex[0], ex[1], 0, NULL), QO_E_NULL);
-        assert_int_equal(qo_quat_nlerp_q30(ex[0], ex[1], 0, NULL), QO_E_NULL);
-        assert_int_equal(qo_quat_lerp_q30(ex[0], ex[1], 0, NULL), QO_E_NULL);
-        assert_int_equal(qo_quat_slerp_q30(ZERO_X, ZERO_X, -1, &out), QO_E_DEGENERATE);
+        assert_int_equal(qo_interp_slerp_q30(ex[0], ex[1], 0, NULL), QO_E_NULL);
+        assert_int_equal(qo_interp_nlerp_q30(ex[0], ex[1], 0, NULL), QO_E_NULL);
+        assert_int_equal(qo_interp_lerp_q30(ex[0], ex[1], 0, NULL), QO_E_NULL);
+        assert_int_equal(qo_interp_slerp_q30(ZERO_X, ZERO_X, -1, &out), QO_E_DEGENERATE);
         assert_true(x_equal(out, ID_X));
     }
 }
@@ -1380,13 +1380,13 @@ static void test_fx_exact_endpoints(void **state)
         qo_quat_q30 b = x_from(dq_scale(rand_unit(), rng_range(0.01, 1.99)));
         qo_quat_q30 ua = xu(a), ub = xu(b), o;
         if (x_dot(ua, ub) < 0) ub = x_neg(ub);
-        assert_int_equal(qo_quat_slerp_q30(a, b, 0, &o), QO_OK);
+        assert_int_equal(qo_interp_slerp_q30(a, b, 0, &o), QO_OK);
         CHECK(x_equal(o, ua), "slerp t=0 a=" XFMT, XF(a));
-        assert_int_equal(qo_quat_slerp_q30(a, b, QO_Q30_ONE, &o), QO_OK);
+        assert_int_equal(qo_interp_slerp_q30(a, b, QO_Q30_ONE, &o), QO_OK);
         CHECK(x_equal(o, ub), "slerp t=1 a=" XFMT " b=" XFMT, XF(a), XF(b));
-        assert_int_equal(qo_quat_nlerp_q30(a, b, 0, &o), QO_OK);
+        assert_int_equal(qo_interp_nlerp_q30(a, b, 0, &o), QO_OK);
         CHECK(x_equal(o, ua), "nlerp t=0 a=" XFMT, XF(a));
-        assert_int_equal(qo_quat_nlerp_q30(a, b, QO_Q30_ONE, &o), QO_OK);
+        assert_int_equal(qo_interp_nlerp_q30(a, b, QO_Q30_ONE, &o), QO_OK);
         CHECK(x_equal(o, ub), "nlerp t=1 a=" XFMT " b=" XFMT, XF(a), XF(b));
     }
 }
@@ -1412,7 +1412,7 @@ static void test_fx_lerp(void **state)
             a.w = ext[i % 7];
             b.w = ext[i / 7];
         }
-        assert_int_equal(qo_quat_lerp_q30(a, b, t, &out), QO_OK);
+        assert_int_equal(qo_interp_lerp_q30(a, b, t, &out), QO_OK);
         for (k = 0; k < 4; k++) {
             const int32_t *ca = (k == 0) ? &a.w : (k == 1) ? &a.x : (k == 2) ? &a.y : &a.z;
             const int32_t *cb = (k == 0) ? &b.w : (k == 1) ? &b.x : (k == 2) ? &b.y : &b.z;
@@ -1425,17 +1425,17 @@ static void test_fx_lerp(void **state)
                   "lerp comp %u a=%d b=%d t=%d: %d want %.3Lf", (unsigned)k, (int)*ca, (int)*cb,
                   (int)t, (int)*co, ref);
         }
-        assert_int_equal(qo_quat_lerp_q30(a, b, 0, &out), QO_OK);
+        assert_int_equal(qo_interp_lerp_q30(a, b, 0, &out), QO_OK);
         CHECK(x_equal(out, a), "lerp t=0 a=" XFMT, XF(a));
-        assert_int_equal(qo_quat_lerp_q30(a, b, QO_Q30_ONE, &out), QO_OK);
+        assert_int_equal(qo_interp_lerp_q30(a, b, QO_Q30_ONE, &out), QO_OK);
         CHECK(x_equal(out, b), "lerp t=1 b=" XFMT, XF(b));
     }
     /* q and -q: no flip, the midpoint is zero; zero inputs are plain arithmetic */
     {
         qo_quat_q30 q = x_from(rand_unit());
-        assert_int_equal(qo_quat_lerp_q30(q, x_neg(q), QO_Q30_ONE / 2, &out), QO_OK);
+        assert_int_equal(qo_interp_lerp_q30(q, x_neg(q), QO_Q30_ONE / 2, &out), QO_OK);
         assert_true(x_equal(out, ZERO_X));
-        assert_int_equal(qo_quat_lerp_q30(ZERO_X, q, QO_Q30_ONE / 2, &out), QO_OK);
+        assert_int_equal(qo_interp_lerp_q30(ZERO_X, q, QO_Q30_ONE / 2, &out), QO_OK);
         for (j = 0; j < 4; j++) {
             int32_t c = (j == 0) ? out.w : (j == 1) ? out.x : (j == 2) ? out.y : out.z;
             int32_t h = (j == 0) ? q.w : (j == 1) ? q.x : (j == 2) ? q.y : q.z;
@@ -1459,12 +1459,12 @@ static void test_fx_vs_f32(void **state)
         fb = f_from(dq_scale(i % 2 ? rand_unit() : dq_mul(dq_from_f(fa),
                                                            rand_axis_rot(rng_range(0, 1e-3))),
                              rng_range(0.3, 1.9)));
-        xa = qo_quat_q30_from_f32(fa);
-        xb = qo_quat_q30_from_f32(fb);
-        assert_int_equal(qo_quat_slerp_f32(fa, fb, t, &fo), QO_OK);
-        assert_int_equal(qo_quat_slerp_q30(xa, xb, qo_q30_from_f32(t), &xo), QO_OK);
-        assert_int_equal(qo_quat_nlerp_f32(fa, fb, t, &fn), QO_OK);
-        assert_int_equal(qo_quat_nlerp_q30(xa, xb, qo_q30_from_f32(t), &xn), QO_OK);
+        xa = qo_q30_quat_from_f32(fa);
+        xb = qo_q30_quat_from_f32(fb);
+        assert_int_equal(qo_interp_slerp_f32(fa, fb, t, &fo), QO_OK);
+        assert_int_equal(qo_interp_slerp_q30(xa, xb, qo_q30_from_f32(t), &xo), QO_OK);
+        assert_int_equal(qo_interp_nlerp_f32(fa, fb, t, &fn), QO_OK);
+        assert_int_equal(qo_interp_nlerp_q30(xa, xb, qo_q30_from_f32(t), &xn), QO_OK);
         if (fabs(dq_dot(dq_from_f(fa), dq_from_f(fb))) < 1e-5) continue; /* ambiguous 180 */
         e = dist4(dq_from_f(fo), dq_from_x(xo));
         CHECK(e <= 1e-6, "fixed vs float32 slerp %.3g a=" QFMT " b=" QFMT " t=%g", e,
@@ -1481,14 +1481,14 @@ static void test_fx_vs_f32(void **state)
         for (j = 0; j < n; j++) {
             if (j) p = dq_mul(p, rand_axis_rot(rng_range(0.05, 2.0)));
             fk[j] = f_from(dq_scale(rng_u() < 0.4 ? dq_neg(p) : p, rng_range(0.5, 1.9)));
-            xk[j] = qo_quat_q30_from_f32(fk[j]);
+            xk[j] = qo_q30_quat_from_f32(fk[j]);
         }
-        assert_int_equal(qo_quat_spline_controls_f32(fk, n, fa, fb), QO_OK);
-        assert_int_equal(qo_quat_spline_controls_q30(xk, n, xa, xb), QO_OK);
+        assert_int_equal(qo_interp_spline_controls_f32(fk, n, fa, fb), QO_OK);
+        assert_int_equal(qo_interp_spline_controls_q30(xk, n, xa, xb), QO_OK);
         for (j = 0; j <= 4 * (n - 1); j++) { /* s = j/4: exact in float and Q16.16 */
             double e;
-            assert_int_equal(qo_quat_spline_eval_f32(fk, fa, fb, n, (float)j / 4.0f, &fo), QO_OK);
-            assert_int_equal(qo_quat_spline_eval_q30(xk, xa, xb, n, (qo_q16)(j << 14), &xo),
+            assert_int_equal(qo_interp_spline_eval_f32(fk, fa, fb, n, (float)j / 4.0f, &fo), QO_OK);
+            assert_int_equal(qo_interp_spline_eval_q30(xk, xa, xb, n, (qo_q16)(j << 14), &xo),
                              QO_OK);
             e = dist4(dq_from_f(fo), dq_from_x(xo));
             CHECK(e <= 3e-6, "fixed vs float32 spline n=%u s=%g: %.3g", (unsigned)n,
@@ -1508,47 +1508,47 @@ static void test_fx_spline_bezier_edges(void **state)
     rng_seed(0x5B16ull);
     rand_keys(&CORE_FX, dk, 5, 2.5);
     for (i = 0; i < 5; i++) k[i] = x_from(dk[i]);
-    assert_int_equal(qo_quat_align_keys_q30(k, 5, al), QO_OK);
-    assert_int_equal(qo_quat_spline_controls_q30(k, 5, a, b), QO_OK);
+    assert_int_equal(qo_interp_align_keys_q30(k, 5, al), QO_OK);
+    assert_int_equal(qo_interp_spline_controls_q30(k, 5, a, b), QO_OK);
     assert_true(x_equal(b[0], al[0]) && x_equal(a[4], al[4]));
     for (i = 0; i < 5; i++) {
-        assert_int_equal(qo_quat_spline_eval_q30(k, a, b, 5, (qo_q16)(i << 16), &out), QO_OK);
+        assert_int_equal(qo_interp_spline_eval_q30(k, a, b, 5, (qo_q16)(i << 16), &out), QO_OK);
         CHECK(x_equal(out, al[i]), "spline at key %u must be the aligned key exactly",
               (unsigned)i);
     }
-    assert_int_equal(qo_quat_spline_eval_q30(k, a, b, 5, -1, &out), QO_E_RANGE);
+    assert_int_equal(qo_interp_spline_eval_q30(k, a, b, 5, -1, &out), QO_E_RANGE);
     assert_true(x_equal(out, xu(k[0])));
-    assert_int_equal(qo_quat_spline_eval_q30(k, a, b, 5, (4 << 16) + 1, &out), QO_E_RANGE);
+    assert_int_equal(qo_interp_spline_eval_q30(k, a, b, 5, (4 << 16) + 1, &out), QO_E_RANGE);
     assert_true(x_equal(out, xu(k[4])));
-    assert_int_equal(qo_quat_spline_eval_q30(k, a, b, 5, INT32_MIN, &out), QO_E_RANGE);
-    assert_int_equal(qo_quat_spline_eval_q30(k, a, b, 5, INT32_MAX, &out), QO_E_RANGE);
-    assert_int_equal(qo_quat_spline_eval_q30(k, a, b, 1, 0, &out), QO_E_TOO_FEW);
+    assert_int_equal(qo_interp_spline_eval_q30(k, a, b, 5, INT32_MIN, &out), QO_E_RANGE);
+    assert_int_equal(qo_interp_spline_eval_q30(k, a, b, 5, INT32_MAX, &out), QO_E_RANGE);
+    assert_int_equal(qo_interp_spline_eval_q30(k, a, b, 1, 0, &out), QO_E_TOO_FEW);
     assert_true(x_equal(out, ID_X));
-    assert_int_equal(qo_quat_spline_eval_q30(k, NULL, b, 5, 0, &out), QO_E_NULL);
+    assert_int_equal(qo_interp_spline_eval_q30(k, NULL, b, 5, 0, &out), QO_E_NULL);
     assert_true(x_equal(out, ID_X));
-    assert_int_equal(qo_quat_spline_eval_q30(k, a, b, 5, 0, NULL), QO_E_NULL);
-    assert_int_equal(qo_quat_spline_controls_q30(k, 1, a, b), QO_E_TOO_FEW);
+    assert_int_equal(qo_interp_spline_eval_q30(k, a, b, 5, 0, NULL), QO_E_NULL);
+    assert_int_equal(qo_interp_spline_controls_q30(k, 1, a, b), QO_E_TOO_FEW);
     assert_true(x_equal(a[0], ID_X) && x_equal(b[0], ID_X));
-    assert_int_equal(qo_quat_spline_controls_q30(NULL, 5, a, b), QO_E_NULL);
+    assert_int_equal(qo_interp_spline_controls_q30(NULL, 5, a, b), QO_E_NULL);
     for (i = 0; i < 5; i++) assert_true(x_equal(a[i], ID_X) && x_equal(b[i], ID_X));
-    assert_int_equal(qo_quat_spline_controls_q30(k, 5, a, b), QO_OK);
+    assert_int_equal(qo_interp_spline_controls_q30(k, 5, a, b), QO_OK);
     k[1] = ZERO_X;
-    assert_int_equal(qo_quat_spline_eval_q30(k, a, b, 5, 1 << 15, &out), QO_E_DEGENERATE);
+    assert_int_equal(qo_interp_spline_eval_q30(k, a, b, 5, 1 << 15, &out), QO_E_DEGENERATE);
     assert_true(x_equal(out, ID_X));
-    assert_int_equal(qo_quat_spline_eval_q30(k, a, b, 5, 3 << 16, &out), QO_OK);
-    assert_int_equal(qo_quat_spline_controls_q30(k, 5, a, b), QO_E_DEGENERATE);
+    assert_int_equal(qo_interp_spline_eval_q30(k, a, b, 5, 3 << 16, &out), QO_OK);
+    assert_int_equal(qo_interp_spline_controls_q30(k, 5, a, b), QO_E_DEGENERATE);
     for (i = 0; i < 5; i++) assert_true(x_equal(a[i], ID_X) && x_equal(b[i], ID_X));
     /* Bezier */
     k[1] = x_from(rand_unit());
-    assert_int_equal(qo_quat_bezier3_q30(k[0], k[1], k[2], k[3], QO_Q30_ONE / 3, &out), QO_OK);
-    assert_int_equal(qo_quat_bezier_q30(k, 4, QO_Q30_ONE / 3, &o2), QO_OK);
+    assert_int_equal(qo_interp_bezier3_q30(k[0], k[1], k[2], k[3], QO_Q30_ONE / 3, &out), QO_OK);
+    assert_int_equal(qo_interp_bezier_q30(k, 4, QO_Q30_ONE / 3, &o2), QO_OK);
     assert_true(x_equal(out, o2));
-    assert_int_equal(qo_quat_bezier_q30(NULL, 3, 0, &out), QO_E_NULL);
+    assert_int_equal(qo_interp_bezier_q30(NULL, 3, 0, &out), QO_E_NULL);
     assert_true(x_equal(out, ID_X));
-    assert_int_equal(qo_quat_bezier_q30(k, 3, 0, NULL), QO_E_NULL);
-    assert_int_equal(qo_quat_bezier_q30(k, 3, QO_Q30_ONE + 1, &out), QO_E_RANGE);
+    assert_int_equal(qo_interp_bezier_q30(k, 3, 0, NULL), QO_E_NULL);
+    assert_int_equal(qo_interp_bezier_q30(k, 3, QO_Q30_ONE + 1, &out), QO_E_RANGE);
     assert_true(x_equal(out, xu(k[0])));
-    assert_int_equal(qo_quat_bezier_q30(k, 0, 0, &out), QO_E_TOO_FEW);
+    assert_int_equal(qo_interp_bezier_q30(k, 0, 0, &out), QO_E_TOO_FEW);
     assert_true(x_equal(out, ID_X));
 }
 
@@ -1571,20 +1571,20 @@ static void test_fx_squad(void **state)
         if (dq_dot_exact(u0, u1) < 0) u1 = dq_neg(u1);
         if (dq_dot_exact(v0, u0) < 0) v0 = dq_neg(v0);
         if (dq_dot_exact(v1, u1) < 0) v1 = dq_neg(v1);
-        assert_int_equal(qo_quat_squad_q30(x0, xs0, xs1, x1, 0, &out), QO_OK);
+        assert_int_equal(qo_interp_squad_q30(x0, xs0, xs1, x1, 0, &out), QO_OK);
         assert_true(x_equal(out, xu(x0)));
-        assert_int_equal(qo_quat_squad_q30(x0, xs0, xs1, x1, QO_Q30_ONE, &out), QO_OK);
+        assert_int_equal(qo_interp_squad_q30(x0, xs0, xs1, x1, QO_Q30_ONE, &out), QO_OK);
         CHECK(dist4(dq_from_x(out), u1) <= 1e-9, "squad t=1 it=%d", it);
         for (j = 1; j < 10; j++) {
             qo_q30 t = (qo_q30)(QO_Q30_ONE / 10 * j);
             double tt = t / Q30;
             dq x = dq_unit(d_slerp_raw(u0, u1, tt)), y = dq_unit(d_slerp_raw(v0, v1, tt));
             dq ref = dq_unit(d_slerp_raw(x, y, 2 * tt * (1 - tt)));
-            assert_int_equal(qo_quat_squad_q30(x0, xs0, xs1, x1, t, &out), QO_OK);
+            assert_int_equal(qo_interp_squad_q30(x0, xs0, xs1, x1, t, &out), QO_OK);
             CHECK(dist4(ref, dq_from_x(out)) <= 2 * CORE_FX.tol_rot &&
                   norm_dev(dq_from_x(out)) <= CORE_FX.tol_norm, "squad it=%d t=%g: %.3g", it,
                   tt, dist4(ref, dq_from_x(out)));
-            assert_int_equal(qo_quat_squad_q30(x_neg(x0), x_neg(xs0), xs1, x_neg(x1), t, &o2),
+            assert_int_equal(qo_interp_squad_q30(x_neg(x0), x_neg(xs0), xs1, x_neg(x1), t, &o2),
                              QO_OK);
             CHECK(rot_err(dq_from_x(o2), dq_from_x(out)) <= CORE_FX.tol_rot,
                   "squad signs it=%d t=%g", it, tt);
@@ -1592,12 +1592,12 @@ static void test_fx_squad(void **state)
     }
     {
         qo_quat_q30 q = x_from(rand_unit());
-        assert_int_equal(qo_quat_squad_q30(q, q, q, q, QO_Q30_ONE + 1, &out), QO_E_RANGE);
+        assert_int_equal(qo_interp_squad_q30(q, q, q, q, QO_Q30_ONE + 1, &out), QO_E_RANGE);
         assert_true(x_equal(out, xu(q)));
-        assert_int_equal(qo_quat_squad_q30(q, ZERO_X, q, q, QO_Q30_ONE / 2, &out),
+        assert_int_equal(qo_interp_squad_q30(q, ZERO_X, q, q, QO_Q30_ONE / 2, &out),
                          QO_E_DEGENERATE);
         assert_true(x_equal(out, ID_X));
-        assert_int_equal(qo_quat_squad_q30(q, q, q, q, 0, NULL), QO_E_NULL);
+        assert_int_equal(qo_interp_squad_q30(q, q, q, q, 0, NULL), QO_E_NULL);
     }
 }
 
@@ -1625,7 +1625,7 @@ static void test_f32_nan(void **state)
     (void)state;
     for (which = 0; which < 2; which++) {
         qo_status (*f)(qo_quat_f32, qo_quat_f32, float, qo_quat_f32 *) =
-            which ? qo_quat_slerp_long_f32 : qo_quat_slerp_f32;
+            which ? qo_interp_slerp_long_f32 : qo_interp_slerp_f32;
         CHECK(f(a, b, NAN, &out) == QO_E_NONFINITE && f_bits_equal(out, ua), "t=NaN %d", which);
         CHECK(f(nanq, b, 0.5f, &out) == QO_E_NONFINITE && f_bits_equal(out, id), "a=NaN %d",
               which);
@@ -1638,37 +1638,37 @@ static void test_f32_nan(void **state)
         CHECK(f(nanq, b, 3.0f, &out) == QO_E_NONFINITE && f_bits_equal(out, id),
               "a=NaN t=3 %d", which);
     }
-    assert_int_equal(qo_quat_nlerp_f32(a, b, NAN, &out), QO_E_NONFINITE);
+    assert_int_equal(qo_interp_nlerp_f32(a, b, NAN, &out), QO_E_NONFINITE);
     assert_true(f_bits_equal(out, ua));
-    assert_int_equal(qo_quat_nlerp_f32(nanq, b, 0.5f, &out), QO_E_NONFINITE);
+    assert_int_equal(qo_interp_nlerp_f32(nanq, b, 0.5f, &out), QO_E_NONFINITE);
     assert_true(f_bits_equal(out, id));
-    assert_int_equal(qo_quat_lerp_f32(a, b, NAN, &out), QO_E_NONFINITE);
+    assert_int_equal(qo_interp_lerp_f32(a, b, NAN, &out), QO_E_NONFINITE);
     assert_true(f_bits_equal(out, a));
-    assert_int_equal(qo_quat_lerp_f32(nanq, b, 0.5f, &out), QO_E_NONFINITE);
+    assert_int_equal(qo_interp_lerp_f32(nanq, b, 0.5f, &out), QO_E_NONFINITE);
     assert_true(f_bits_equal(out, id));
-    assert_int_equal(qo_quat_slerp_rate_f32(a, a, NAN, &w), QO_E_NONFINITE);
+    assert_int_equal(qo_interp_slerp_rate_f32(a, a, NAN, &w), QO_E_NONFINITE);
     assert_true(w.x == 0.0f && w.y == 0.0f && w.z == 0.0f);
-    assert_int_equal(qo_quat_slerp_rate_f32(nanq, a, 1.0f, &w), QO_E_NONFINITE);
+    assert_int_equal(qo_interp_slerp_rate_f32(nanq, a, 1.0f, &w), QO_E_NONFINITE);
     /* keyframes */
     rng_seed(0xE44ull);
     for (i = 0; i < 4; i++) k[i] = f_from(dq_mul(rand_unit(), rand_axis_rot(0.1 * i)));
-    assert_int_equal(qo_quat_bezier_f32(k, 3, NAN, &out), QO_E_NONFINITE);
+    assert_int_equal(qo_interp_bezier_f32(k, 3, NAN, &out), QO_E_NONFINITE);
     assert_true(f_bits_equal(out, f_unit_of(k[0])));
-    assert_int_equal(qo_quat_spline_controls_f32(k, 4, ka, kb), QO_OK);
-    assert_int_equal(qo_quat_spline_eval_f32(k, ka, kb, 4, NAN, &out), QO_E_NONFINITE);
+    assert_int_equal(qo_interp_spline_controls_f32(k, 4, ka, kb), QO_OK);
+    assert_int_equal(qo_interp_spline_eval_f32(k, ka, kb, 4, NAN, &out), QO_E_NONFINITE);
     assert_true(f_bits_equal(out, f_unit_of(k[0])));
-    assert_int_equal(qo_quat_squad_f32(k[0], k[1], k[2], k[3], NAN, &out), QO_E_NONFINITE);
+    assert_int_equal(qo_interp_squad_f32(k[0], k[1], k[2], k[3], NAN, &out), QO_E_NONFINITE);
     k[2].y = NAN;
-    assert_int_equal(qo_quat_align_keys_f32(k, 4, ka), QO_E_NONFINITE);
+    assert_int_equal(qo_interp_align_keys_f32(k, 4, ka), QO_E_NONFINITE);
     kb[0] = k[0];
     kb[1] = zero; /* NaN wins over a zero key */
     kb[2] = k[2];
-    assert_int_equal(qo_quat_align_keys_f32(kb, 3, ka), QO_E_NONFINITE);
+    assert_int_equal(qo_interp_align_keys_f32(kb, 3, ka), QO_E_NONFINITE);
     for (i = 0; i < 4; i++) assert_true(f_bits_equal(ka[i], id));
-    assert_int_equal(qo_quat_bezier_f32(k, 3, 0.5f, &out), QO_E_NONFINITE);
+    assert_int_equal(qo_interp_bezier_f32(k, 3, 0.5f, &out), QO_E_NONFINITE);
     assert_true(f_bits_equal(out, id));
-    assert_int_equal(qo_quat_spline_controls_f32(k, 4, ka, kb), QO_E_NONFINITE);
-    assert_int_equal(qo_quat_squad_controls_f32(k, 4, ka), QO_E_NONFINITE);
+    assert_int_equal(qo_interp_spline_controls_f32(k, 4, ka, kb), QO_E_NONFINITE);
+    assert_int_equal(qo_interp_squad_controls_f32(k, 4, ka), QO_E_NONFINITE);
 }
 
 /* BOTH, FAST: common/cores.h, one cmocka line per core */

@@ -111,11 +111,11 @@ static void run_gimbal(int c, const qo_quat_f32 *keys_in)
     qo_gimbal_sample_f32 o;
     qo_gimbal_track_f32 tr;
     qo_gimbal_track_sample_f32 to;
-    qo_orient_path_f32 path;
+    qo_gimbal_path_f32 path;
     int k;
     *h = 2166136261u;
-    mix_u32(h, (uint32_t)qo_orient_path_init_f32(&path, kt, keys_in, 4,
-                                                  (c & 2) ? QO_PATH_SPLINE : QO_PATH_SLERP, keys, ka, kb));
+    mix_u32(h, (uint32_t)qo_gimbal_path_init_f32(&path, kt, keys_in, 4,
+                                                  (c & 2) ? QO_GIMBAL_PATH_SPLINE : QO_GIMBAL_PATH_SLERP, keys, ka, kb));
     gs.seq = (c == 3) ? QO_EULER_ZYX : (qo_euler_seq)(c % (int)QO_EULER_SEQ_COUNT_);
     if (c & 1) gs.vmax = 2.0f;
     if (c % 3 == 0) { gs.min[1] = -1.0f; gs.max[1] = 1.0f; }
@@ -125,7 +125,7 @@ static void run_gimbal(int c, const qo_quat_f32 *keys_in)
     mix_u32(h, (uint32_t)qo_gimbal_track_init_f32(&tr, &ts));
     for (k = 0; k <= 24; k++) {
         float t = (float)k * 0.1f - 0.2f;
-        mix_u32(h, (uint32_t)qo_orient_path_sample_f32(&path, t, &q)); mix_q(h, q);
+        mix_u32(h, (uint32_t)qo_gimbal_path_sample_f32(&path, t, &q)); mix_q(h, q);
         mix_u32(h, (uint32_t)qo_gimbal_step_f32(&g, t, q, &o));
         mix_f(h, o.angles.a1); mix_f(h, o.angles.a2); mix_f(h, o.angles.a3); mix_f(h, o.margin);
         mix_u32(h, (uint32_t)o.locked); mix_u32(h, o.clipped);
@@ -300,39 +300,39 @@ static void run_case(int c)
 
     h = &digest[F_CONVERT][c];
     *h = 2166136261u;
-    mix_u32(h, (uint32_t)qo_quat_to_mat3_f32(a, &m));
+    mix_u32(h, (uint32_t)qo_mat3_from_quat_f32(a, &m));
     for (k = 0; k < 9; k++) mix_f(h, m.m[k / 3][k % 3]);
-    mix_u32(h, (uint32_t)qo_quat_from_mat3_f32(&m, &q1)); mix_q(h, q1);
-    mix_u32(h, (uint32_t)qo_quat_from_mat3_ortho_f32(&m, &q1)); mix_q(h, q1);
-    mix_u32(h, (uint32_t)qo_quat_to_axis_angle_f32(a, &ax, &ang));
+    mix_u32(h, (uint32_t)qo_mat3_to_quat_f32(&m, &q1)); mix_q(h, q1);
+    mix_u32(h, (uint32_t)qo_mat3_to_quat_ortho_f32(&m, &q1)); mix_q(h, q1);
+    mix_u32(h, (uint32_t)qo_axis_angle_from_quat_f32(a, &ax, &ang));
     mix_f(h, ax.x); mix_f(h, ax.y); mix_f(h, ax.z); mix_f(h, ang);
-    mix_u32(h, (uint32_t)qo_quat_from_axis_angle_f32(v, x, &q1)); mix_q(h, q1);
-    mix_u32(h, (uint32_t)qo_quat_to_rotvec_f32(a, &ax)); mix_f(h, ax.x); mix_f(h, ax.y); mix_f(h, ax.z);
-    mix_u32(h, (uint32_t)qo_quat_from_rotvec_f32(v, &q1)); mix_q(h, q1);
+    mix_u32(h, (uint32_t)qo_axis_angle_to_quat_f32(v, x, &q1)); mix_q(h, q1);
+    mix_u32(h, (uint32_t)qo_rotvec_from_quat_f32(a, &ax)); mix_f(h, ax.x); mix_f(h, ax.y); mix_f(h, ax.z);
+    mix_u32(h, (uint32_t)qo_rotvec_to_quat_f32(v, &q1)); mix_q(h, q1);
 
     h = &digest[F_EULER][c];
     *h = 2166136261u;
     for (seq = 0; seq < (int)QO_EULER_SEQ_COUNT_; seq++) {
-        mix_u32(h, (uint32_t)qo_quat_to_euler_f32(a, (qo_euler_seq)seq, &e, &info));
+        mix_u32(h, (uint32_t)qo_euler_from_quat_f32(a, (qo_euler_seq)seq, &e, &info));
         mix_f(h, e.a1); mix_f(h, e.a2); mix_f(h, e.a3); mix_u32(h, (uint32_t)info.locked);
         mix_f(h, info.margin);
         e.a1 = x; e.a2 = 0.25f * y; e.a3 = v.z;
-        mix_u32(h, (uint32_t)qo_quat_from_euler_f32((qo_euler_seq)seq, e, &q1)); mix_q(h, q1);
+        mix_u32(h, (uint32_t)qo_euler_to_quat_f32((qo_euler_seq)seq, e, &q1)); mix_q(h, q1);
     }
 
     h = &digest[F_INTERP][c];
     *h = 2166136261u;
     for (k = 0; k <= 8; k++) {
         float t = (float)k * 0.125f;
-        mix_u32(h, (uint32_t)qo_quat_slerp_f32(a, b, t, &q1)); mix_q(h, q1);
-        mix_u32(h, (uint32_t)qo_quat_nlerp_f32(a, b, t, &q1)); mix_q(h, q1);
+        mix_u32(h, (uint32_t)qo_interp_slerp_f32(a, b, t, &q1)); mix_q(h, q1);
+        mix_u32(h, (uint32_t)qo_interp_nlerp_f32(a, b, t, &q1)); mix_q(h, q1);
     }
     q2 = rand_q(&s); q3 = rand_q(&s);
     keys[0] = a; keys[1] = b; keys[2] = q2; keys[3] = q3;
-    mix_u32(h, (uint32_t)qo_quat_squad_controls_f32(keys, 4, ctl));
+    mix_u32(h, (uint32_t)qo_interp_squad_controls_f32(keys, 4, ctl));
     for (k = 0; k < 4; k++) mix_q(h, ctl[k]);
-    mix_u32(h, (uint32_t)qo_quat_squad_f32(b, ctl[1], ctl[2], q2, 0.375f, &q1)); mix_q(h, q1);
-    mix_u32(h, (uint32_t)qo_quat_bezier3_f32(a, b, q2, q3, 0.625f, &q1)); mix_q(h, q1);
+    mix_u32(h, (uint32_t)qo_interp_squad_f32(b, ctl[1], ctl[2], q2, 0.375f, &q1)); mix_q(h, q1);
+    mix_u32(h, (uint32_t)qo_interp_bezier3_f32(a, b, q2, q3, 0.625f, &q1)); mix_q(h, q1);
 
     run_gimbal(c, keys);
     run_spline(c, &s);

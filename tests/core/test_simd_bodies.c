@@ -1,7 +1,7 @@
 /*
  * The SIMD bodies of the float32 core against their portable scalar bodies, bit for bit
  * (issue 14: the same results on every target, and x86-64 is the only one with these bodies):
- *  - qo_quat_slerp_f32's SSE2 body (three dot products, the range test and the half-arc series
+ *  - qo_interp_slerp_f32's SSE2 body (three dot products, the range test and the half-arc series
  *    4-wide) against its scalar body: this file compiles lib/src/interp.c once more with
  *    QO_NO_SIMD under other names (scalar_*), and the library's result must be the same bits
  *    and status on random pairs, both sides of every branch (flip, t <= 1/2, endpoints, the
@@ -11,11 +11,11 @@
  *    once, 4-wide on SSE2) against qo_fm_atan2_f32 lane by lane, on random pairs of every
  *    octant and scale, both sides of each branch of the scalar kernel, and groups holding a
  *    special value (zero, subnormal, Inf, NaN) that take the per-lane path.
- *  - qo_quat_from_mat3_f32's SSE2 paths (the direct rotation test, the pivot vector normalised
+ *  - qo_mat3_to_quat_f32's SSE2 paths (the direct rotation test, the pivot vector normalised
  *    in registers) against lib/src/convert.c compiled once more with QO_NO_SIMD (nosimd_*), bit
  *    for bit with the status, on rotations of every pivot, half turns, drifted, reflected,
  *    scaled and random matrices, signed zeros and bad entries; rotations also against double;
- *    qo_quat_from_mat3_trusted_f32 (its SSE2 finiteness test and store) on the same matrices.
+ *    qo_mat3_to_quat_trusted_f32 (its SSE2 finiteness test and store) on the same matrices.
  * Where SSE2 is not used both sides are the scalar code and only the double check can fail.
  * Linux only (make test, aarch64 and armhf under make test-qemu): it includes private files
  * of lib/src, which keeps it off the Cortex-M list (tests/qemu/run-target.sh is_core).
@@ -39,32 +39,32 @@
 
 /* qorient/interp.h comes in with interp.c below, its names renamed there. */
 /* lib/src/interp.c again, every external name renamed (so it links beside the library). */
-#define qo_quat_lerp_f32 scalar_quat_lerp_f32
-#define qo_quat_nlerp_f32 scalar_quat_nlerp_f32
-#define qo_quat_slerp_f32 scalar_quat_slerp_f32
-#define qo_quat_slerp_long_f32 scalar_quat_slerp_long_f32
-#define qo_quat_slerp_rate_f32 scalar_quat_slerp_rate_f32
-#define qo_quat_align_keys_f32 scalar_quat_align_keys_f32
-#define qo_quat_bezier_f32 scalar_quat_bezier_f32
-#define qo_quat_bezier3_f32 scalar_quat_bezier3_f32
-#define qo_quat_spline_controls_f32 scalar_quat_spline_controls_f32
-#define qo_quat_spline_eval_f32 scalar_quat_spline_eval_f32
-#define qo_quat_squad_f32 scalar_quat_squad_f32
-#define qo_quat_squad_controls_f32 scalar_quat_squad_controls_f32
+#define qo_interp_lerp_f32 scalar_quat_lerp_f32
+#define qo_interp_nlerp_f32 scalar_quat_nlerp_f32
+#define qo_interp_slerp_f32 scalar_quat_slerp_f32
+#define qo_interp_slerp_long_f32 scalar_quat_slerp_long_f32
+#define qo_interp_slerp_rate_f32 scalar_quat_slerp_rate_f32
+#define qo_interp_align_keys_f32 scalar_quat_align_keys_f32
+#define qo_interp_bezier_f32 scalar_quat_bezier_f32
+#define qo_interp_bezier3_f32 scalar_quat_bezier3_f32
+#define qo_interp_spline_controls_f32 scalar_quat_spline_controls_f32
+#define qo_interp_spline_eval_f32 scalar_quat_spline_eval_f32
+#define qo_interp_squad_f32 scalar_quat_squad_f32
+#define qo_interp_squad_controls_f32 scalar_quat_squad_controls_f32
 #include "../lib/src/interp.c"
-#undef qo_quat_lerp_f32
-#undef qo_quat_nlerp_f32
-#undef qo_quat_slerp_f32
-#undef qo_quat_slerp_long_f32
-#undef qo_quat_slerp_rate_f32
-#undef qo_quat_align_keys_f32
-#undef qo_quat_bezier_f32
-#undef qo_quat_bezier3_f32
-#undef qo_quat_spline_controls_f32
-#undef qo_quat_spline_eval_f32
-#undef qo_quat_squad_f32
-#undef qo_quat_squad_controls_f32
-qo_status qo_quat_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out);
+#undef qo_interp_lerp_f32
+#undef qo_interp_nlerp_f32
+#undef qo_interp_slerp_f32
+#undef qo_interp_slerp_long_f32
+#undef qo_interp_slerp_rate_f32
+#undef qo_interp_align_keys_f32
+#undef qo_interp_bezier_f32
+#undef qo_interp_bezier3_f32
+#undef qo_interp_spline_controls_f32
+#undef qo_interp_spline_eval_f32
+#undef qo_interp_squad_f32
+#undef qo_interp_squad_controls_f32
+qo_status qo_interp_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out);
 /* lib/src/convert.c again in the same way (qorient/convert.h comes in with it, its names
  * renamed, so the scalar bodies of its inline functions are external definitions here too,
  * under nosimd_ names: tests/common/scalar_inline.c already has scalar_quat_to_mat3_f32). */
@@ -73,34 +73,34 @@ qo_status qo_quat_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *
 #define qo_mat3_mul_f32 nosimd_mat3_mul_f32
 #define qo_mat3_transpose_f32 nosimd_mat3_transpose_f32
 #define qo_mat3_det_f32 nosimd_mat3_det_f32
-#define qo_quat_from_axis_angle_f32 nosimd_quat_from_axis_angle_f32
-#define qo_quat_to_axis_angle_f32 nosimd_quat_to_axis_angle_f32
-#define qo_quat_from_rotvec_f32 nosimd_quat_from_rotvec_f32
-#define qo_quat_to_rotvec_f32 nosimd_quat_to_rotvec_f32
-#define qo_quat_to_mat3_full_f32 nosimd_quat_to_mat3_full_f32
-#define qo_quat_to_mat3_f32 nosimd_quat_to_mat3_f32
-#define qo_quat_from_mat3_f32 nosimd_quat_from_mat3_f32
-#define qo_quat_from_mat3_trusted_f32 nosimd_quat_from_mat3_trusted_f32
+#define qo_axis_angle_to_quat_f32 nosimd_quat_from_axis_angle_f32
+#define qo_axis_angle_from_quat_f32 nosimd_quat_to_axis_angle_f32
+#define qo_rotvec_to_quat_f32 nosimd_quat_from_rotvec_f32
+#define qo_rotvec_from_quat_f32 nosimd_quat_to_rotvec_f32
+#define qo_mat3_from_quat_full_f32 nosimd_quat_to_mat3_full_f32
+#define qo_mat3_from_quat_f32 nosimd_quat_to_mat3_f32
+#define qo_mat3_to_quat_f32 nosimd_quat_from_mat3_f32
+#define qo_mat3_to_quat_trusted_f32 nosimd_quat_from_mat3_trusted_f32
 #define qo_mat3_orthonormalize_f32 nosimd_mat3_orthonormalize_f32
-#define qo_quat_from_mat3_ortho_f32 nosimd_quat_from_mat3_ortho_f32
+#define qo_mat3_to_quat_ortho_f32 nosimd_quat_from_mat3_ortho_f32
 #include "../lib/src/convert.c"
 #undef qo_mat3_identity_f32
 #undef qo_mat3_mul_vec3_f32
 #undef qo_mat3_mul_f32
 #undef qo_mat3_transpose_f32
 #undef qo_mat3_det_f32
-#undef qo_quat_from_axis_angle_f32
-#undef qo_quat_to_axis_angle_f32
-#undef qo_quat_from_rotvec_f32
-#undef qo_quat_to_rotvec_f32
-#undef qo_quat_to_mat3_full_f32
-#undef qo_quat_to_mat3_f32
-#undef qo_quat_from_mat3_f32
-#undef qo_quat_from_mat3_trusted_f32
+#undef qo_axis_angle_to_quat_f32
+#undef qo_axis_angle_from_quat_f32
+#undef qo_rotvec_to_quat_f32
+#undef qo_rotvec_from_quat_f32
+#undef qo_mat3_from_quat_full_f32
+#undef qo_mat3_from_quat_f32
+#undef qo_mat3_to_quat_f32
+#undef qo_mat3_to_quat_trusted_f32
 #undef qo_mat3_orthonormalize_f32
-#undef qo_quat_from_mat3_ortho_f32
-qo_status qo_quat_from_mat3_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
-qo_status qo_quat_from_mat3_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
+#undef qo_mat3_to_quat_ortho_f32
+qo_status qo_mat3_to_quat_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
+qo_status qo_mat3_to_quat_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 #include "qorient/fmath.h"
 #include "../lib/src/fmath_internal.h"
 
@@ -171,7 +171,7 @@ static void test_slerp_simd_same_bits(void **state)
         b = quat4(b.w * sb, b.x * sb, b.y * sb, b.z * sb);
         memset(&q1, 0x5a, sizeof q1);
         memset(&q2, 0xa5, sizeof q2);
-        s1 = qo_quat_slerp_f32(a, b, t, &q1);
+        s1 = qo_interp_slerp_f32(a, b, t, &q1);
         s2 = scalar_quat_slerp_f32(a, b, t, &q2);
         if (s1 != s2 || !same_quat_bits(q1, q2))
             fail_msg("slerp case %ld (kind %d): SIMD status %d (%a, %a, %a, %a), scalar status %d "
@@ -201,7 +201,7 @@ static void test_slerp_simd_same_bits(void **state)
 
 #define N_M2Q 300000
 
-/* A 3x3 matrix of a random kind around qo_quat_from_mat3_f32's branches: a float-rounded
+/* A 3x3 matrix of a random kind around qo_mat3_to_quat_f32's branches: a float-rounded
  * rotation (every Shepperd pivot), one with every entry moved by up to eps (eps on both sides
  * of the direct test's 5e-7 and of the tolerance 1e-4), a half turn (w == 0, axes with zero
  * components: the sign rule's ties), a reflection, a scaled rotation, random entries, signed
@@ -288,7 +288,7 @@ static qo_status m2q_same_bits(const char *what, long n, int kind, const qo_mat3
     return s1;
 }
 
-/* qo_quat_from_mat3_f32's SSE2 paths (the direct rotation test, the pivot vector normalised
+/* qo_mat3_to_quat_f32's SSE2 paths (the direct rotation test, the pivot vector normalised
  * in registers) against the scalar body (convert.c with QO_NO_SIMD), bit for bit with the
  * status, on every kind of m2q_input; each rotation's result also against the double
  * quaternion it came from. */
@@ -303,10 +303,10 @@ static void test_from_mat3_simd_same_bits(void **state)
         ref_quat rq;
         qo_mat3_f32 m = m2q_input(&rng, kind, &rq);
         qo_quat_f32 q1, q3;
-        const qo_status s1 = m2q_same_bits("from_mat3", n, kind, &m, qo_quat_from_mat3_f32,
+        const qo_status s1 = m2q_same_bits("from_mat3", n, kind, &m, qo_mat3_to_quat_f32,
                                            nosimd_quat_from_mat3_f32, &q1);
         /* the trusted variant: its SSE2 store and finiteness test, on the same matrices */
-        (void)m2q_same_bits("from_mat3_trusted", n, kind, &m, qo_quat_from_mat3_trusted_f32,
+        (void)m2q_same_bits("from_mat3_trusted", n, kind, &m, qo_mat3_to_quat_trusted_f32,
                             nosimd_quat_from_mat3_trusted_f32, &q3);
         if (s1 != QO_OK) {
             refused++;

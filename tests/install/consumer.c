@@ -43,10 +43,10 @@ int main(void)
     check(strcmp(qo_status_str(QO_OK), "ok") == 0, "qo_status_str(QO_OK) is \"ok\"", 0, 0);
 
     /* float32 core: angles -> quaternion against the double product, and back. */
-    check(qo_quat_from_euler_f32(QO_EULER_ZYX, e, &q) == QO_OK, "qo_quat_from_euler_f32", 0, 0);
+    check(qo_euler_to_quat_f32(QO_EULER_ZYX, e, &q) == QO_OK, "qo_euler_to_quat_f32", 0, 0);
     err = fabs(q.w - qw) + fabs(q.x - qx) + fabs(q.y - qy) + fabs(q.z - qz);
     check(err < 1e-6, "quaternion from ZYX (0.3, -0.2, 0.1) vs double", err, 0);
-    check(qo_quat_to_euler_f32(q, QO_EULER_ZYX, &back, NULL) == QO_OK, "to_euler_f32", 0, 0);
+    check(qo_euler_from_quat_f32(q, QO_EULER_ZYX, &back, NULL) == QO_OK, "to_euler_f32", 0, 0);
     check(fabs(back.a1 - y) < 1e-6, "yaw back", back.a1, y);
     check(fabs(back.a2 - p) < 1e-6, "pitch back", back.a2, p);
     check(fabs(back.a3 - r) < 1e-6, "roll back", back.a3, r);
@@ -54,7 +54,7 @@ int main(void)
     /* fixed-point core: the double quaternion in Q1.30 -> Q3.28 angles. */
     qf.w = (qo_q30)lround(qw * 1073741824.0); qf.x = (qo_q30)lround(qx * 1073741824.0);
     qf.y = (qo_q30)lround(qy * 1073741824.0); qf.z = (qo_q30)lround(qz * 1073741824.0);
-    check(qo_quat_to_euler_q30(qf, QO_EULER_ZYX, &ef, &info) == QO_OK, "to_euler_q30", 0, 0);
+    check(qo_euler_from_quat_q30(qf, QO_EULER_ZYX, &ef, &info) == QO_OK, "to_euler_q30", 0, 0);
     check(fabs(ef.a1 / 268435456.0 - y) < 1e-7, "fixed yaw", ef.a1 / 268435456.0, y);
     check(fabs(ef.a2 / 268435456.0 - p) < 1e-7, "fixed pitch", ef.a2 / 268435456.0, p);
     check(fabs(ef.a3 / 268435456.0 - r) < 1e-7, "fixed roll", ef.a3 / 268435456.0, r);

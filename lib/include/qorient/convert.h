@@ -1,13 +1,13 @@
 /* parity float32 (tools/parity.sh writes docs/PARITY.md from these blocks):
- *   convert.from_axis_angle    qo_quat_from_axis_angle_f32
- *   convert.to_axis_angle      qo_quat_to_axis_angle_f32
- *   convert.from_rotvec        qo_quat_from_rotvec_f32
- *   convert.to_rotvec          qo_quat_to_rotvec_f32
- *   convert.to_mat3            qo_quat_to_mat3_f32
- *   convert.to_mat3            qo_quat_to_mat3_full_f32 (its out-of-line path)
- *   convert.from_mat3          qo_quat_from_mat3_f32
- *   convert.from_mat3_trusted  qo_quat_from_mat3_trusted_f32
- *   convert.from_mat3_ortho    qo_quat_from_mat3_ortho_f32
+ *   convert.from_axis_angle    qo_axis_angle_to_quat_f32
+ *   convert.to_axis_angle      qo_axis_angle_from_quat_f32
+ *   convert.from_rotvec        qo_rotvec_to_quat_f32
+ *   convert.to_rotvec          qo_rotvec_from_quat_f32
+ *   convert.to_mat3            qo_mat3_from_quat_f32
+ *   convert.to_mat3            qo_mat3_from_quat_full_f32 (its out-of-line path)
+ *   convert.from_mat3          qo_mat3_to_quat_f32
+ *   convert.from_mat3_trusted  qo_mat3_to_quat_trusted_f32
+ *   convert.from_mat3_ortho    qo_mat3_to_quat_ortho_f32
  *   mat3.identity              qo_mat3_identity_f32
  *   mat3.transpose             qo_mat3_transpose_f32
  *   mat3.mul                   qo_mat3_mul_f32
@@ -21,30 +21,30 @@
  *
  * Conventions: see qorient/types.h (quaternions scalar-first, Hamilton, active rotations,
  * right-handed frames; matrices row-major m[row][col] acting on column vectors v' = M v).
- * For every q, qo_quat_to_mat3_f32(q) rotates a vector exactly as qo_quat_rotate_f32(q, .).
+ * For every q, qo_mat3_from_quat_f32(q) rotates a vector exactly as qo_quat_rotate_f32(q, .).
  * Angles are radians.
  *
  * Index:
  *   QO_MAT3_ROTATION_TOL_F32      tolerance of the "is this a rotation matrix" test
- *   qo_quat_from_axis_angle_f32   axis (any length) + angle -> unit quaternion
- *   qo_quat_to_axis_angle_f32     quaternion -> unit axis + angle in [0, pi]
- *   qo_quat_from_rotvec_f32       rotation vector (axis * angle) -> unit quaternion
- *   qo_quat_to_rotvec_f32         quaternion -> rotation vector, |rv| in [0, pi]
- *   qo_quat_to_mat3_f32           quaternion -> rotation matrix (static inline fast path)
- *   qo_quat_to_mat3_full_f32      its out-of-line complete path
- *   qo_quat_from_mat3_f32         rotation matrix -> canonical unit quaternion (strict check)
+ *   qo_axis_angle_to_quat_f32   axis (any length) + angle -> unit quaternion
+ *   qo_axis_angle_from_quat_f32     quaternion -> unit axis + angle in [0, pi]
+ *   qo_rotvec_to_quat_f32       rotation vector (axis * angle) -> unit quaternion
+ *   qo_rotvec_from_quat_f32         quaternion -> rotation vector, |rv| in [0, pi]
+ *   qo_mat3_from_quat_f32           quaternion -> rotation matrix (static inline fast path)
+ *   qo_mat3_from_quat_full_f32      its out-of-line complete path
+ *   qo_mat3_to_quat_f32         rotation matrix -> canonical unit quaternion (strict check)
  *   qo_mat3_orthonormalize_f32    nearest rotation matrix (orthogonal polar factor)
- *   qo_quat_from_mat3_ortho_f32   orthonormalise, then convert (for drifted matrices)
- *   qo_quat_from_mat3_trusted_f32 no rotation check (for matrices known to be rotations)
+ *   qo_mat3_to_quat_ortho_f32   orthonormalise, then convert (for drifted matrices)
+ *   qo_mat3_to_quat_trusted_f32 no rotation check (for matrices known to be rotations)
  *   qo_mat3_mul_vec3_f32          M v
  *   qo_mat3_mul_f32               A B
  *   qo_mat3_transpose_f32         M^T
  *   qo_mat3_identity_f32          I
  *   qo_mat3_det_f32               det M
  *
- * Sign of returned quaternions: qo_quat_from_mat3_f32 / _ortho_f32 return the canonical sign
- * (w >= 0, ties as qo_quat_canonical_f32). qo_quat_from_axis_angle_f32 and
- * qo_quat_from_rotvec_f32 return (cos(angle/2), sin(angle/2) * unit axis) exactly as the
+ * Sign of returned quaternions: qo_mat3_to_quat_f32 / _ortho_f32 return the canonical sign
+ * (w >= 0, ties as qo_quat_canonical_f32). qo_axis_angle_to_quat_f32 and
+ * qo_rotvec_to_quat_f32 return (cos(angle/2), sin(angle/2) * unit axis) exactly as the
  * formula gives it, so an angle beyond pi gives w < 0 (the same rotation; canonicalise with
  * qo_quat_canonical_f32 if you need the short representative).
  */
@@ -63,13 +63,13 @@ extern "C" {
 #endif
 
 /*
- * A matrix is accepted as a rotation by qo_quat_from_mat3_f32 when every entry of M^T M - I
+ * A matrix is accepted as a rotation by qo_mat3_to_quat_f32 when every entry of M^T M - I
  * is at most this in magnitude and det M > 0. 1e-4 is ~800 float32 ulps of 1: it accepts a
  * rotation matrix that went through a few dozen float32 products (each adds ~1e-7 of
  * non-orthogonality) or was printed with 5-6 significant digits, and still rejects anything
  * visibly scaled or sheared (a 1e-4 error in M^T M is a ~5e-5 scale or shear). Matrices
  * further off must be repaired explicitly with qo_mat3_orthonormalize_f32 /
- * qo_quat_from_mat3_ortho_f32 - we never silently guess.
+ * qo_mat3_to_quat_ortho_f32 - we never silently guess.
  */
 #define QO_MAT3_ROTATION_TOL_F32 1e-4f
 
@@ -83,7 +83,7 @@ extern "C" {
  * NaN/Inf; QO_E_DEGENERATE if axis is (0,0,0) (whatever the angle). *out is the identity on
  * every error.
  */
-qo_status qo_quat_from_axis_angle_f32(qo_vec3_f32 axis, float angle, qo_quat_f32 *out);
+qo_status qo_axis_angle_to_quat_f32(qo_vec3_f32 axis, float angle, qo_quat_f32 *out);
 
 /*
  * Axis and angle of the rotation q (q need not be unit: it is normalised first). The short
@@ -96,7 +96,7 @@ qo_status qo_quat_from_axis_angle_f32(qo_vec3_f32 axis, float angle, qo_quat_f32
  * QO_E_NONFINITE for a NaN/Inf component; QO_E_DEGENERATE for q == 0. On every error
  * *axis = (1, 0, 0) and *angle = 0.
  */
-qo_status qo_quat_to_axis_angle_f32(qo_quat_f32 q, qo_vec3_f32 *axis, float *angle);
+qo_status qo_axis_angle_from_quat_f32(qo_quat_f32 q, qo_vec3_f32 *axis, float *angle);
 
 /*
  * Unit quaternion of the rotation vector rv (axis * angle, radians: |rv| is the angle, its
@@ -107,7 +107,7 @@ qo_status qo_quat_to_axis_angle_f32(qo_quat_f32 q, qo_vec3_f32 *axis, float *ang
  * QO_E_RANGE if |rv| overflows float (components near FLT_MAX; such an angle has no
  * meaningful float32 rotation). *out is the identity on every error.
  */
-qo_status qo_quat_from_rotvec_f32(qo_vec3_f32 rv, qo_quat_f32 *out);
+qo_status qo_rotvec_to_quat_f32(qo_vec3_f32 rv, qo_quat_f32 *out);
 
 /*
  * Rotation vector (unit axis * angle, radians) of q. q is normalised, then the canonical sign
@@ -117,13 +117,13 @@ qo_status qo_quat_from_rotvec_f32(qo_vec3_f32 rv, qo_quat_f32 *out);
  * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_NONFINITE for a NaN/Inf component;
  * QO_E_DEGENERATE for q == 0. *out is (0, 0, 0) on every error.
  */
-qo_status qo_quat_to_rotvec_f32(qo_quat_f32 q, qo_vec3_f32 *out);
+qo_status qo_rotvec_from_quat_f32(qo_quat_f32 q, qo_vec3_f32 *out);
 
 /*
- * qo_quat_to_mat3_f32's complete path, out of line (every input; for |q|^2 outside
- * ~[1e-30, 1e30] it normalises with range scaling first). Same contract as qo_quat_to_mat3_f32.
+ * qo_mat3_from_quat_f32's complete path, out of line (every input; for |q|^2 outside
+ * ~[1e-30, 1e30] it normalises with range scaling first). Same contract as qo_mat3_from_quat_f32.
  */
-qo_status qo_quat_to_mat3_full_f32(qo_quat_f32 q, qo_mat3_f32 *out);
+qo_status qo_mat3_from_quat_full_f32(qo_quat_f32 q, qo_mat3_f32 *out);
 
 /*
  * Canonical unit quaternion (w >= 0) of the rotation matrix *m (row-major, v' = M v).
@@ -140,7 +140,7 @@ qo_status qo_quat_to_mat3_full_f32(qo_quat_f32 q, qo_mat3_f32 *out);
  * QO_E_NOT_ROTATION for a matrix that is scaled, sheared, a reflection (det < 0) or singular.
  * *out is the identity on every error.
  */
-qo_status qo_quat_from_mat3_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
+qo_status qo_mat3_to_quat_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 
 /*
  * The rotation matrix nearest *m in the Frobenius norm: the orthogonal factor R of the polar
@@ -165,18 +165,18 @@ qo_status qo_mat3_orthonormalize_f32(const qo_mat3_f32 *m, qo_mat3_f32 *out);
 
 /*
  * Canonical unit quaternion of the rotation nearest *m: qo_mat3_orthonormalize_f32 followed by
- * qo_quat_from_mat3_f32. Use it when the caller KNOWS the matrix is a drifted or noisy
- * rotation (integrated, filtered, read from a sensor); qo_quat_from_mat3_f32 refuses such
+ * qo_mat3_to_quat_f32. Use it when the caller KNOWS the matrix is a drifted or noisy
+ * rotation (integrated, filtered, read from a sensor); qo_mat3_to_quat_f32 refuses such
  * matrices instead of guessing.
  * Returns QO_OK, QO_E_NULL, QO_E_NONFINITE, QO_E_NOT_ROTATION (as for
  * qo_mat3_orthonormalize_f32). *out is the identity on every error.
  */
-qo_status qo_quat_from_mat3_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
+qo_status qo_mat3_to_quat_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 
 /*
  * Canonical quaternion (w >= 0) of *m for callers whose matrix is KNOWN to be a rotation (built
  * from a quaternion or from rotations, to float rounding), without the rotation check
- * (orthogonality, determinant) of qo_quat_from_mat3_f32. Shepperd's method with one square
+ * (orthogonality, determinant) of qo_mat3_to_quat_f32. Shepperd's method with one square
  * root and one divide: the pivot is the trace when it is >= 0, else the largest diagonal
  * entry, and q = v / (2 sqrt(c)) for that pivot's vector v and c = 4 p^2 (|v| = 2 sqrt(c) for
  * a rotation, so the pivot vector is not normalised by its own length).
@@ -184,13 +184,13 @@ qo_status qo_quat_from_mat3_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
  * float-rounded rotation the result is the same rotation to ~2e-7 rad and |q| = 1 to ~1e-6
  * (bench/accuracy_convert.c); off a rotation by e, |q| is off 1 by about e. For any other
  * finite matrix the quaternion is unspecified (not unit, possibly not near any rotation of
- * it), but finite, never NaN, with w >= 0 - use qo_quat_from_mat3_f32 or _ortho_f32 when
+ * it), but finite, never NaN, with w >= 0 - use qo_mat3_to_quat_f32 or _ortho_f32 when
  * that can happen.
  * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NONFINITE for a NaN/Inf entry (or
  * entries so large that the formula overflows: not a rotation). *out is the identity on every
  * error.
  */
-qo_status qo_quat_from_mat3_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
+qo_status qo_mat3_to_quat_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 
 /* M v (no checks; NaN propagates). */
 qo_vec3_f32 qo_mat3_mul_vec3_f32(const qo_mat3_f32 *m, qo_vec3_f32 v);
@@ -213,7 +213,7 @@ float qo_mat3_det_f32(const qo_mat3_f32 *m);
  * to the library when the caller does not contract a*b+c, see quat.h) -------------------- */
 #if defined(QORIENT_CONVERT_EXTERN_DEFS)
 #define QO_CONVERT_INLINE
-qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out);
+qo_status qo_mat3_from_quat_f32(qo_quat_f32 q, qo_mat3_f32 *out);
 #else
 #define QO_CONVERT_INLINE static inline
 #endif
@@ -228,26 +228,26 @@ qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out);
  * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_NONFINITE for a NaN/Inf component;
  * QO_E_DEGENERATE for q == 0. *out is the identity matrix on every error.
  * Inline: |q| and 1/|q| both >= 1e-15 (|q|^2 in ~[1e-30, 1e30]: q finite, non-zero, no scaling
- * needed) is handled here; the rest by qo_quat_to_mat3_full_f32.
+ * needed) is handled here; the rest by qo_mat3_from_quat_full_f32.
  */
-QO_CONVERT_INLINE qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out)
+QO_CONVERT_INLINE qo_status qo_mat3_from_quat_f32(qo_quat_f32 q, qo_mat3_f32 *out)
 {
-#if QO_SIMD_SSE2
-    /* The scalar body below, lane for lane in the same order (see quat.h's QO_SIMD_SSE2):
+#if QO_QUAT_SIMD_SSE2
+    /* The scalar body below, lane for lane in the same order (see quat.h's QO_QUAT_SIMD_SSE2):
      * d = the diagonal, pl and mi = the s * (a + b) and s * (a - b) off-diagonal terms. */
     const __m128 q4 = _mm_loadu_ps(&q.w);
     const __m128 r = _mm_sqrt_ss(qo_quat_internal_sum4_ss(_mm_mul_ps(q4, q4)));
     const __m128 inv = _mm_div_ss(_mm_set1_ps(1.0f), r);
     __m128 u, uu, s, da, db, d, pr, wr, pl, mi, lo, hi;
     if (out == NULL || !qo_quat_internal_fast_range_ss(r, inv))
-        return qo_quat_to_mat3_full_f32(qo_quat_internal_from_ps(q4), out);
-    u = _mm_mul_ps(QO_SIMD_SHUFFLE_PS(inv, 0x00), q4);                          /* w x y z */
+        return qo_mat3_from_quat_full_f32(qo_quat_internal_from_ps(q4), out);
+    u = _mm_mul_ps(QO_QUAT_SIMD_SHUFFLE_PS(inv, 0x00), q4);                          /* w x y z */
     uu = _mm_mul_ps(u, u);
     /* ((ww + xx) + yy) + zz as in qo_quat_internal_sum4_ss, with the xx and yy lanes taken
      * from the two shuffles the diagonal needs anyway (lane 0: m22's xx + yy) */
-    da = QO_SIMD_SHUFFLE_PS(uu, _MM_SHUFFLE(2, 0, 1, 1));                     /* xx xx . yy */
-    db = QO_SIMD_SHUFFLE_PS(uu, _MM_SHUFFLE(3, 0, 3, 2));                     /* yy zz . zz */
-    s = _mm_add_ss(_mm_add_ss(_mm_add_ss(uu, da), db), QO_SIMD_SHUFFLE_PS(uu, 0xff));
+    da = QO_QUAT_SIMD_SHUFFLE_PS(uu, _MM_SHUFFLE(2, 0, 1, 1));                     /* xx xx . yy */
+    db = QO_QUAT_SIMD_SHUFFLE_PS(uu, _MM_SHUFFLE(3, 0, 3, 2));                     /* yy zz . zz */
+    s = _mm_add_ss(_mm_add_ss(_mm_add_ss(uu, da), db), QO_QUAT_SIMD_SHUFFLE_PS(uu, 0xff));
     s = _mm_div_ss(_mm_set_ss(2.0f), s);
     s = _mm_shuffle_ps(s, s, 0);
     /* 1 - sd as 1 + (-sd), the same rounding; the constants leave the unused lane 2 alone,
@@ -255,9 +255,9 @@ QO_CONVERT_INLINE qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out)
     d = _mm_xor_ps(_mm_mul_ps(_mm_add_ps(da, db), s), _mm_setr_ps(-0.0f, -0.0f, 0.0f, -0.0f));
     d = _mm_add_ps(d, _mm_setr_ps(1.0f, 1.0f, 0.0f, 1.0f));                   /* m22 m11 . m00 */
     /* w times (w x y z) in place, so the products of x, y, z are laid out to match */
-    wr = _mm_mul_ps(QO_SIMD_SHUFFLE_PS(u, 0x00), u);                          /* . wx wy wz */
-    pr = _mm_mul_ps(QO_SIMD_SHUFFLE_PS(u, _MM_SHUFFLE(1, 1, 2, 0)),           /* . yz xz xy */
-                    QO_SIMD_SHUFFLE_PS(u, _MM_SHUFFLE(2, 3, 3, 0)));
+    wr = _mm_mul_ps(QO_QUAT_SIMD_SHUFFLE_PS(u, 0x00), u);                          /* . wx wy wz */
+    pr = _mm_mul_ps(QO_QUAT_SIMD_SHUFFLE_PS(u, _MM_SHUFFLE(1, 1, 2, 0)),           /* . yz xz xy */
+                    QO_QUAT_SIMD_SHUFFLE_PS(u, _MM_SHUFFLE(2, 3, 3, 0)));
     pl = _mm_mul_ps(_mm_add_ps(pr, wr), s);                                   /* . m21 m02 m10 */
     mi = _mm_mul_ps(_mm_sub_ps(pr, wr), s);                                   /* . m12 m20 m01 */
     /* rows are contiguous: m00 m01 m02 m10 | m11 m12 m20 m21 | m22 */
@@ -272,7 +272,7 @@ QO_CONVERT_INLINE qo_status qo_quat_to_mat3_f32(qo_quat_f32 q, qo_mat3_f32 *out)
 #else
     float r = sqrtf(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z), s = 1.0f / r;
     float w, x, y, z, xx, yy, zz, xy, xz, yz, wx, wy, wz;
-    if (out == NULL || !(r >= 1e-15f && s >= 1e-15f)) return qo_quat_to_mat3_full_f32(q, out);
+    if (out == NULL || !(r >= 1e-15f && s >= 1e-15f)) return qo_mat3_from_quat_full_f32(q, out);
     /* Normalising is kept although s = 2/|n|^2 below would absorb any scale: measured, the
      * unnormalised form is up to 1.4x less accurate. */
     w = q.w * s; x = q.x * s; y = q.y * s; z = q.z * s;

@@ -1,12 +1,12 @@
 /* parity fixed (tools/parity.sh writes docs/PARITY.md from these blocks):
- *   convert.from_axis_angle    qo_quat_from_axis_angle_q30
- *   convert.to_axis_angle      qo_quat_to_axis_angle_q30
- *   convert.from_rotvec        qo_quat_from_rotvec_q30
- *   convert.to_rotvec          qo_quat_to_rotvec_q30
- *   convert.to_mat3            qo_quat_to_mat3_q30
- *   convert.from_mat3          qo_quat_from_mat3_q30
- *   convert.from_mat3_trusted  qo_quat_from_mat3_trusted_q30
- *   convert.from_mat3_ortho    qo_quat_from_mat3_ortho_q30
+ *   convert.from_axis_angle    qo_axis_angle_to_quat_q30
+ *   convert.to_axis_angle      qo_axis_angle_from_quat_q30
+ *   convert.from_rotvec        qo_rotvec_to_quat_q30
+ *   convert.to_rotvec          qo_rotvec_from_quat_q30
+ *   convert.to_mat3            qo_mat3_from_quat_q30
+ *   convert.from_mat3          qo_mat3_to_quat_q30
+ *   convert.from_mat3_trusted  qo_mat3_to_quat_trusted_q30
+ *   convert.from_mat3_ortho    qo_mat3_to_quat_ortho_q30
  *   mat3.identity              qo_mat3_identity_q30
  *   mat3.transpose             qo_mat3_transpose_q30
  *   mat3.mul                   qo_mat3_mul_q30
@@ -22,28 +22,28 @@
  * (qo_q30), angles and rotation vectors Q3.28 radians (qo_q28, qo_vec3_q28).
  * Conventions: see qorient/types.h (scalar-first, Hamilton, active rotations, right-handed,
  * matrices row-major m[row][col] acting on column vectors). For every q,
- * qo_quat_to_mat3_q30(q) rotates a vector as qo_quat_rotate_q30(q, .) does.
+ * qo_mat3_from_quat_q30(q) rotates a vector as qo_quat_rotate_q30(q, .) does.
  * No float, no libm: integer arithmetic on the primitives of qorient/fxmath.h.
  *
  * Index:
  *   QO_MAT3_ROTATION_TOL_Q30      tolerance of the "is this a rotation matrix" test
- *   qo_quat_from_axis_angle_q30   axis (any length) + angle -> unit quaternion
- *   qo_quat_to_axis_angle_q30     quaternion -> unit axis + angle in [0, pi]
- *   qo_quat_from_rotvec_q30       rotation vector (axis * angle) -> unit quaternion
- *   qo_quat_to_rotvec_q30         quaternion -> rotation vector, |rv| in [0, pi]
- *   qo_quat_to_mat3_q30           quaternion -> rotation matrix
- *   qo_quat_from_mat3_q30         rotation matrix -> canonical unit quaternion (strict check)
+ *   qo_axis_angle_to_quat_q30   axis (any length) + angle -> unit quaternion
+ *   qo_axis_angle_from_quat_q30     quaternion -> unit axis + angle in [0, pi]
+ *   qo_rotvec_to_quat_q30       rotation vector (axis * angle) -> unit quaternion
+ *   qo_rotvec_from_quat_q30         quaternion -> rotation vector, |rv| in [0, pi]
+ *   qo_mat3_from_quat_q30           quaternion -> rotation matrix
+ *   qo_mat3_to_quat_q30         rotation matrix -> canonical unit quaternion (strict check)
  *   qo_mat3_orthonormalize_q30    nearest rotation matrix (orthogonal polar factor)
- *   qo_quat_from_mat3_ortho_q30   orthonormalise, then convert (for drifted matrices)
- *   qo_quat_from_mat3_trusted_q30 no rotation check (for matrices known to be rotations)
+ *   qo_mat3_to_quat_ortho_q30   orthonormalise, then convert (for drifted matrices)
+ *   qo_mat3_to_quat_trusted_q30 no rotation check (for matrices known to be rotations)
  *   qo_mat3_mul_vec3_q30          M v
  *   qo_mat3_mul_q30               A B
  *   qo_mat3_transpose_q30         M^T
  *   qo_mat3_identity_q30          I
  *   qo_mat3_det_q30               det M (Q1.30, saturating)
  *
- * Signs: qo_quat_from_mat3_q30 returns the canonical sign (w >= 0, ties as
- * qo_quat_canonical_q30); qo_quat_from_axis_angle_q30 and qo_quat_from_rotvec_q30 return
+ * Signs: qo_mat3_to_quat_q30 returns the canonical sign (w >= 0, ties as
+ * qo_quat_canonical_q30); qo_axis_angle_to_quat_q30 and qo_rotvec_to_quat_q30 return
  * (cos(angle/2), sin(angle/2) * unit axis) as the formula gives it (angle beyond pi: w < 0).
  * Accuracy (bench/accuracy_fx.c): every conversion is within a few LSB of Q1.30 / Q3.28 of
  * the exact result for its exact fixed-point input, i.e. ~1e-8 rad of rotation.
@@ -58,7 +58,7 @@
 extern "C" {
 #endif
 
-/* qo_quat_from_mat3_q30 accepts *m as a rotation when every entry of M^T M - I is at most
+/* qo_mat3_to_quat_q30 accepts *m as a rotation when every entry of M^T M - I is at most
  * this in magnitude (Q1.30 raw: 107374 = 1e-4, the float32 tolerance QO_MAT3_ROTATION_TOL_F32)
  * and det M > 0. A Q1.30 rotation matrix rounded from exact values is off by ~1e-9, so 1e-4
  * accepts anything a fixed or float pipeline produced and rejects visible scale or shear. */
@@ -72,7 +72,7 @@ extern "C" {
  * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_DEGENERATE if axis is (0,0,0). *out is the
  * identity on every error.
  */
-qo_status qo_quat_from_axis_angle_q30(qo_vec3_q30 axis, qo_q28 angle, qo_quat_q30 *out);
+qo_status qo_axis_angle_to_quat_q30(qo_vec3_q30 axis, qo_q28 angle, qo_quat_q30 *out);
 
 /*
  * Axis (unit, Q1.30) and angle (Q3.28, in [0, pi]) of q (normalised first; q and -q give the
@@ -82,7 +82,7 @@ qo_status qo_quat_from_axis_angle_q30(qo_vec3_q30 axis, qo_q28 angle, qo_quat_q3
  * Returns QO_OK; QO_E_NULL if axis or angle is NULL (the other is still written if non-NULL);
  * QO_E_DEGENERATE for q == 0. On every error *axis = (1, 0, 0) and *angle = 0.
  */
-qo_status qo_quat_to_axis_angle_q30(qo_quat_q30 q, qo_vec3_q30 *axis, qo_q28 *angle);
+qo_status qo_axis_angle_from_quat_q30(qo_quat_q30 q, qo_vec3_q30 *axis, qo_q28 *angle);
 
 /*
  * Unit quaternion of the rotation vector rv (Q3.28 radians: |rv| is the angle, any length up
@@ -91,7 +91,7 @@ qo_status qo_quat_to_axis_angle_q30(qo_quat_q30 q, qo_vec3_q30 *axis, qo_q28 *an
  * the LSB, rv = 0 gives the identity with QO_OK. |rv| > pi gives w < 0.
  * Returns QO_OK; QO_E_NULL if out is NULL (nothing else can fail).
  */
-qo_status qo_quat_from_rotvec_q30(qo_vec3_q28 rv, qo_quat_q30 *out);
+qo_status qo_rotvec_to_quat_q30(qo_vec3_q28 rv, qo_quat_q30 *out);
 
 /*
  * Rotation vector (Q3.28 radians) of q: canonical sign first (w >= 0), so |*out| is in
@@ -99,7 +99,7 @@ qo_status qo_quat_from_rotvec_q30(qo_vec3_q28 rv, qo_quat_q30 *out);
  * q need not be unit. <= 3 LSB of Q3.28 per component.
  * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_DEGENERATE for q == 0 (*out = (0, 0, 0)).
  */
-qo_status qo_quat_to_rotvec_q30(qo_quat_q30 q, qo_vec3_q28 *out);
+qo_status qo_rotvec_from_quat_q30(qo_quat_q30 q, qo_vec3_q28 *out);
 
 /*
  * Rotation matrix (Q1.30, row-major, v' = M v) of q, normalised first: any non-zero q (and q
@@ -108,7 +108,7 @@ qo_status qo_quat_to_rotvec_q30(qo_quat_q30 q, qo_vec3_q28 *out);
  * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_DEGENERATE for q == 0. *out is the identity
  * matrix on every error.
  */
-qo_status qo_quat_to_mat3_q30(qo_quat_q30 q, qo_mat3_q30 *out);
+qo_status qo_mat3_from_quat_q30(qo_quat_q30 q, qo_mat3_q30 *out);
 
 /*
  * Canonical unit quaternion (w >= 0) of the rotation matrix *m (Q1.30, row-major). The matrix
@@ -118,7 +118,7 @@ qo_status qo_quat_to_mat3_q30(qo_quat_q30 q, qo_mat3_q30 *out);
  * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NOT_ROTATION for a scaled, sheared,
  * reflected (det < 0) or singular matrix. *out is the identity on every error.
  */
-qo_status qo_quat_from_mat3_q30(const qo_mat3_q30 *m, qo_quat_q30 *out);
+qo_status qo_mat3_to_quat_q30(const qo_mat3_q30 *m, qo_quat_q30 *out);
 
 /* M v, each component the exact sum of three products rounded once, saturated.
  * m == NULL gives (0, 0, 0) (there is no status to return; do not pass NULL). */
@@ -143,21 +143,21 @@ qo_status qo_mat3_orthonormalize_q30(const qo_mat3_q30 *m, qo_mat3_q30 *out);
 
 /*
  * Canonical unit quaternion of the rotation nearest *m: qo_mat3_orthonormalize_q30 followed
- * by qo_quat_from_mat3_q30 (for a matrix KNOWN to be a drifted or noisy rotation).
+ * by qo_mat3_to_quat_q30 (for a matrix KNOWN to be a drifted or noisy rotation).
  * Returns QO_OK, QO_E_NULL, QO_E_NOT_ROTATION (as qo_mat3_orthonormalize_q30). *out is the
  * identity on every error.
  */
-qo_status qo_quat_from_mat3_ortho_q30(const qo_mat3_q30 *m, qo_quat_q30 *out);
+qo_status qo_mat3_to_quat_ortho_q30(const qo_mat3_q30 *m, qo_quat_q30 *out);
 
 /*
  * Canonical unit quaternion of *m for a matrix KNOWN to be a rotation: the Shepperd formula
- * of qo_quat_from_mat3_q30 and one normalisation, without its rotation check. A matrix that
+ * of qo_mat3_to_quat_q30 and one normalisation, without its rotation check. A matrix that
  * is not a rotation gives an unspecified unit quaternion.
  * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NOT_ROTATION only when the pivot
  * quaternion is zero (no rotation gives that: e.g. M = -I/3). *out is the identity on every
  * error.
  */
-qo_status qo_quat_from_mat3_trusted_q30(const qo_mat3_q30 *m, qo_quat_q30 *out);
+qo_status qo_mat3_to_quat_trusted_q30(const qo_mat3_q30 *m, qo_quat_q30 *out);
 
 /* A B, each entry the exact sum of three products rounded once (<= 0.5 LSB), saturated to the
  * Q1.30 range (only possible for entries beyond a rotation's). As rotations B first, then A.

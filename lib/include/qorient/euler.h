@@ -1,8 +1,8 @@
 /* parity float32 (tools/parity.sh writes docs/PARITY.md from these blocks):
- *   euler.from_euler     qo_quat_from_euler_f32
- *   euler.to_euler       qo_quat_to_euler_f32
- *   euler.to_euler_near  qo_quat_to_euler_near_f32
- *   euler.to_euler_band  qo_quat_to_euler_band_f32
+ *   euler.from_euler     qo_euler_to_quat_f32
+ *   euler.to_euler       qo_euler_from_quat_f32
+ *   euler.to_euler_near  qo_euler_from_quat_near_f32
+ *   euler.to_euler_band  qo_euler_from_quat_band_f32
  */
 /*
  * qorient/euler.h - Euler angles, float32: all 12 axis sequences, intrinsic and extrinsic
@@ -12,11 +12,11 @@
  *   qo_euler_seq and its helpers  (qorient/euler_seq.h, shared with the fixed core)
  *   qo_euler_f32                 three angles a1, a2, a3 (rad) in the order the sequence names them
  *   qo_euler_info_f32            gimbal-lock report: locked flag and margin (rad) to the singularity
- *   QO_EULER_LOCK_BAND_F32       default lock band (rad) of qo_quat_to_euler_f32
- *   qo_quat_from_euler_f32()     angles -> quaternion
- *   qo_quat_to_euler_f32()       quaternion -> angles, scipy ranges, default lock band
- *   qo_quat_to_euler_band_f32()  the same with a caller-chosen lock band
- *   qo_quat_to_euler_near_f32()  quaternion -> the solution nearest previous angles (joints)
+ *   QO_EULER_LOCK_BAND_F32       default lock band (rad) of qo_euler_from_quat_f32
+ *   qo_euler_to_quat_f32()     angles -> quaternion
+ *   qo_euler_from_quat_f32()       quaternion -> angles, scipy ranges, default lock band
+ *   qo_euler_from_quat_band_f32()  the same with a caller-chosen lock band
+ *   qo_euler_from_quat_near_f32()  quaternion -> the solution nearest previous angles (joints)
  *
  * Conventions (the same as scipy.spatial.transform.Rotation.from_euler / as_euler):
  *   - A sequence names three axes, e.g. "xyz". Lower case = EXTRINSIC: rotate about the fixed
@@ -32,7 +32,7 @@
  *     (gimbal lock) when the middle angle is +-pi/2. Proper Euler sequences (first axis ==
  *     third: xyx, xzx, yxy, yzy, zxz, zyz) are singular when the middle angle is 0 or pi -
  *     including the identity rotation.
- *   - Ranges returned by qo_quat_to_euler_f32 / _band_f32 (scipy's): a1, a3 in [-pi, pi];
+ *   - Ranges returned by qo_euler_from_quat_f32 / _band_f32 (scipy's): a1, a3 in [-pi, pi];
  *     a2 in [-pi/2, pi/2] (Tait-Bryan) or [0, pi] (proper). (pi here is the float nearest pi.)
  *
  * Gimbal lock. margin = the angle (rad, in [0, pi/2]) between the middle angle and its nearest
@@ -48,7 +48,7 @@
  *   - The middle angle and the margin are computed directly from the quaternion (Bernardes &
  *     Viollet 2022: atan2 of two norms, no asin/acos, never NaN), so float32 noise moves the
  *     margin LINEARLY. Measured (bench/accuracy_euler): an exactly singular rotation built by
- *     qo_quat_from_euler_f32 with the float nearest pi/2 (or pi) shows a margin <= 8.7e-8 rad;
+ *     qo_euler_to_quat_f32 with the float nearest pi/2 (or pi) shows a margin <= 8.7e-8 rad;
  *     with every component further moved by up to 2 ulp (upstream float noise), <= 3.8e-7
  *     rad. An asin/acos form would turn 1e-7 of noise into sqrt(2e-7) ~ 4.5e-4 rad, which is
  *     why such code (PX4) needs 1e-3. 2e-6 leaves 5x headroom over the noisy case: every exactly
@@ -60,7 +60,7 @@
  *     1e-7/margin, but their composition is not): measured worst 4.6e-7 rad near lock.
  *   - 2e-6 rad is 1.1e-4 degrees: the flag is never raised anywhere near 2 degrees away.
  *   A gimbal that wants a wider "hold" zone (e.g. 0.5 deg) passes its own band to
- *   qo_quat_to_euler_band_f32 / qo_quat_to_euler_near_f32 and accepts the 2*margin bound.
+ *   qo_euler_from_quat_band_f32 / qo_euler_from_quat_near_f32 and accepts the 2*margin bound.
  *
  * Inputs: any finite non-zero quaternion, unit or not: every quantity used is a ratio of its
  * components, so it is only scaled by an exact power of two (normalising would round each
@@ -94,7 +94,7 @@ typedef struct qo_euler_f32 { float a1, a2, a3; } qo_euler_f32;
  *           the sequence, not of the band: callers may apply their own threshold to it. */
 typedef struct qo_euler_info_f32 { int locked; float margin; } qo_euler_info_f32;
 
-/* Default lock band of qo_quat_to_euler_f32, rad (justified in the file comment above). */
+/* Default lock band of qo_euler_from_quat_f32, rad (justified in the file comment above). */
 #define QO_EULER_LOCK_BAND_F32 2e-6f
 
 /*
@@ -105,7 +105,7 @@ typedef struct qo_euler_info_f32 { int locked; float margin; } qo_euler_info_f32
  * Returns QO_OK; QO_E_NULL (out NULL); QO_E_ARG (seq not one of the 24); QO_E_NONFINITE (an
  * angle is NaN or Inf). On error *out is the identity.
  */
-qo_status qo_quat_from_euler_f32(qo_euler_seq seq, qo_euler_f32 e, qo_quat_f32 *out);
+qo_status qo_euler_to_quat_f32(qo_euler_seq seq, qo_euler_f32 e, qo_quat_f32 *out);
 
 /*
  * Euler angles of the rotation q in convention seq, scipy's ranges (file comment), lock band
@@ -119,17 +119,17 @@ qo_status qo_quat_from_euler_f32(qo_euler_seq seq, qo_euler_f32 e, qo_quat_f32 *
  * subnormal quaternions are fine). Checked in that order. On error *out = (0, 0, 0) and
  * *info = { 0, 0 }.
  */
-qo_status qo_quat_to_euler_f32(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f32 *out,
+qo_status qo_euler_from_quat_f32(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f32 *out,
                                qo_euler_info_f32 *info);
 
 /*
- * As qo_quat_to_euler_f32 with the lock band band_rad (rad, in [0, pi/2]; 0 flags only an
+ * As qo_euler_from_quat_f32 with the lock band band_rad (rad, in [0, pi/2]; 0 flags only an
  * exactly computed margin of 0, pi/2 flags everything). The composed result is within
  * 2*margin (<= 2*band_rad) of q when locked.
- * Returns as qo_quat_to_euler_f32, plus QO_E_NONFINITE for a NaN/Inf band and QO_E_RANGE for
+ * Returns as qo_euler_from_quat_f32, plus QO_E_NONFINITE for a NaN/Inf band and QO_E_RANGE for
  * a finite band outside [0, pi/2]. On error *out = (0, 0, 0) and *info = { 0, 0 }.
  */
-qo_status qo_quat_to_euler_band_f32(qo_quat_f32 q, qo_euler_seq seq, float band_rad,
+qo_status qo_euler_from_quat_band_f32(qo_quat_f32 q, qo_euler_seq seq, float band_rad,
                                     qo_euler_f32 *out, qo_euler_info_f32 *info);
 
 /*
@@ -149,7 +149,7 @@ qo_status qo_quat_to_euler_band_f32(qo_quat_f32 q, qo_euler_seq seq, float band_
  * [0, pi/2]). On error *out = prev if prev is finite (hold the joint), else (0, 0, 0), and
  * *info = { 0, 0 }.
  */
-qo_status qo_quat_to_euler_near_f32(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f32 prev,
+qo_status qo_euler_from_quat_near_f32(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f32 prev,
                                     float band, qo_euler_f32 *out, qo_euler_info_f32 *info);
 
 #ifdef __cplusplus

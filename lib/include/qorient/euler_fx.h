@@ -1,9 +1,9 @@
 /* parity fixed (tools/parity.sh writes docs/PARITY.md from these blocks):
- *   euler.from_euler     qo_quat_from_euler_q30
- *   euler.to_euler       qo_quat_to_euler_q30
- *   euler.to_euler       qo_quat_to_euler_fast_q30 (the fast tier: 6e-9 rad, under half the Cortex-M0 instructions)
- *   euler.to_euler_near  qo_quat_to_euler_near_q30
- *   euler.to_euler_band  qo_quat_to_euler_band_q30
+ *   euler.from_euler     qo_euler_to_quat_q30
+ *   euler.to_euler       qo_euler_from_quat_q30
+ *   euler.to_euler       qo_euler_from_quat_fast_q30 (the fast tier: 6e-9 rad, under half the Cortex-M0 instructions)
+ *   euler.to_euler_near  qo_euler_from_quat_near_q30
+ *   euler.to_euler_band  qo_euler_from_quat_band_q30
  */
 /*
  * qorient/euler_fx.h - Euler angles, fixed point: Q1.30 quaternions <-> Q3.28 radians, all 12
@@ -14,12 +14,12 @@
  * Index:
  *   qo_euler_q28                 three angles a1, a2, a3 (Q3.28 rad) in the order the sequence names them
  *   qo_euler_info_q28            gimbal-lock report: locked flag and margin (Q3.28 rad)
- *   QO_EULER_LOCK_BAND_Q28       default lock band (Q3.28 rad) of qo_quat_to_euler_q30
- *   qo_quat_from_euler_q30()     angles -> quaternion
- *   qo_quat_to_euler_q30()       quaternion -> angles, scipy ranges, default lock band
- *   qo_quat_to_euler_band_q30()  the same with a caller-chosen lock band
- *   qo_quat_to_euler_near_q30()  quaternion -> the solution nearest previous angles (joints)
- *   qo_quat_to_euler_fast_q30()  quaternion -> angles, fast tier (Cortex-M0), a few LSB off
+ *   QO_EULER_LOCK_BAND_Q28       default lock band (Q3.28 rad) of qo_euler_from_quat_q30
+ *   qo_euler_to_quat_q30()     angles -> quaternion
+ *   qo_euler_from_quat_q30()       quaternion -> angles, scipy ranges, default lock band
+ *   qo_euler_from_quat_band_q30()  the same with a caller-chosen lock band
+ *   qo_euler_from_quat_near_q30()  quaternion -> the solution nearest previous angles (joints)
+ *   qo_euler_from_quat_fast_q30()  quaternion -> angles, fast tier (Cortex-M0), a few LSB off
  * The sequence type qo_euler_seq and its helpers (qo_euler_seq_parse, _name, _is_intrinsic,
  * _is_proper) are qorient/euler_seq.h's, shared by both cores (lib/src/euler_seq.c: no float,
  * part of the fixed-only build too).
@@ -28,7 +28,7 @@
  * case intrinsic; a1, a2, a3 belong to the axes in the order written; extrinsic "xyz" is
  * q = q_z(a3) q_y(a2) q_x(a1), intrinsic "XYZ" is q = q_X(a1) q_Y(a2) q_Z(a3); Tait-Bryan
  * singular at a2 = +-pi/2, proper Euler at a2 = 0 and pi, including the identity). Ranges
- * returned by qo_quat_to_euler_q30 / _band_q30: a1, a3 in [-QO_Q28_PI, QO_Q28_PI]; a2 in
+ * returned by qo_euler_from_quat_q30 / _band_q30: a1, a3 in [-QO_Q28_PI, QO_Q28_PI]; a2 in
  * [-QO_Q28_HALF_PI, QO_Q28_HALF_PI] (Tait-Bryan) or [0, QO_Q28_PI] (proper).
  *
  * Gimbal lock, as in euler.h: margin = angle (Q3.28 rad, [0, pi/2]) between the middle angle
@@ -43,7 +43,7 @@
  *     norms, so component noise moves the margin LINEARLY: k LSB of Q1.30 on each component
  *     of an exactly singular unit quaternion give a margin of at most about 4k/2^30 rad, i.e.
  *     k LSB of Q3.28. Measured (bench/accuracy_euler_fx): an exactly singular rotation rounded
- *     from double to Q1.30 shows a margin of 0; built by qo_quat_from_euler_q30 with the Q3.28
+ *     from double to Q1.30 shows a margin of 0; built by qo_euler_to_quat_q30 with the Q3.28
  *     nearest pi/2 (or pi), <= 3.7e-9 rad (1 LSB); with every component then moved by up to
  *     2 LSB (upstream fixed-point noise), <= 7.5e-9 rad (2 LSB). 27 LSB leaves 13x headroom
  *     over that: every singular Q1.30 input whose components are off by up to ~25 LSB (a
@@ -103,19 +103,19 @@ typedef struct qo_euler_q28 { qo_q28 a1, a2, a3; } qo_euler_q28;
  *           the sequence, not of the band: callers may apply their own threshold to it. */
 typedef struct qo_euler_info_q28 { int locked; qo_q28 margin; } qo_euler_info_q28;
 
-/* Default lock band of qo_quat_to_euler_q30: 27 LSB of Q3.28 = 1.006e-7 rad (justified in
+/* Default lock band of qo_euler_from_quat_q30: 27 LSB of Q3.28 = 1.006e-7 rad (justified in
  * the file comment above). */
 #define QO_EULER_LOCK_BAND_Q28 ((qo_q28)27)
 
 /*
  * Quaternion (Q1.30) of the rotation given by Euler angles e (Q3.28 rad, any value) in
  * convention seq: the product of the three elementary half-angle quaternions in composition
- * order, the product's sign (not canonicalised; the same as qo_quat_from_euler_f32 and
+ * order, the product's sign (not canonicalised; the same as qo_euler_to_quat_f32 and
  * scipy). Each component within a few LSB of the exact value; never saturates.
  * Returns QO_OK; QO_E_NULL (out NULL); QO_E_ARG (seq not one of the 24). On error *out is
  * the identity (QO_Q30_ONE, 0, 0, 0).
  */
-qo_status qo_quat_from_euler_q30(qo_euler_seq seq, qo_euler_q28 e, qo_quat_q30 *out);
+qo_status qo_euler_to_quat_q30(qo_euler_seq seq, qo_euler_q28 e, qo_quat_q30 *out);
 
 /*
  * Euler angles (Q3.28) of the rotation q in convention seq, scipy's ranges (file comment),
@@ -125,23 +125,23 @@ qo_status qo_quat_from_euler_q30(qo_euler_seq seq, qo_euler_q28 e, qo_quat_q30 *
  * (all four components are zero; any other input is fine). Checked in that order. On error
  * *out = (0, 0, 0) and *info = { 0, 0 }.
  */
-qo_status qo_quat_to_euler_q30(qo_quat_q30 q, qo_euler_seq seq, qo_euler_q28 *out,
+qo_status qo_euler_from_quat_q30(qo_quat_q30 q, qo_euler_seq seq, qo_euler_q28 *out,
                                qo_euler_info_q28 *info);
 
 /*
- * As qo_quat_to_euler_q30 with the lock band band_rad (Q3.28 rad, in [0, QO_Q28_HALF_PI]; 0
+ * As qo_euler_from_quat_q30 with the lock band band_rad (Q3.28 rad, in [0, QO_Q28_HALF_PI]; 0
  * flags only a computed margin of exactly 0, which every quaternion with a zero norm pair
  * has; QO_Q28_HALF_PI flags everything). The composed result is within 2*margin of q when
- * locked. Returns as qo_quat_to_euler_q30, plus QO_E_RANGE for a band outside
+ * locked. Returns as qo_euler_from_quat_q30, plus QO_E_RANGE for a band outside
  * [0, QO_Q28_HALF_PI] (checked after QO_E_DEGENERATE). On error *out = (0, 0, 0) and
  * *info = { 0, 0 }.
  */
-qo_status qo_quat_to_euler_band_q30(qo_quat_q30 q, qo_euler_seq seq, qo_q28 band_rad,
+qo_status qo_euler_from_quat_band_q30(qo_quat_q30 q, qo_euler_seq seq, qo_q28 band_rad,
                                     qo_euler_q28 *out, qo_euler_info_q28 *info);
 
 /*
  * Euler angles of q nearest the previous joint angles prev (Q3.28), for joints that must not
- * jump: the rule of qo_quat_to_euler_near_f32. Of the two solutions (a1, a2, a3) and
+ * jump: the rule of qo_euler_from_quat_near_f32. Of the two solutions (a1, a2, a3) and
  * (a1 + pi, pi - a2, a3 + pi) (Tait-Bryan) or (a1 + pi, -a2, a3 + pi) (proper), each angle
  * moved by the multiple of 2pi nearest the same angle of prev, the one with the smaller sum of
  * squared differences to prev (the first on a tie). Sums with pi and 2pi are exact at 2^-56
@@ -157,11 +157,11 @@ qo_status qo_quat_to_euler_band_q30(qo_quat_q30 q, qo_euler_seq seq, qo_q28 band
  * one turn back as above; *out and *info are the valid decomposition just described). On the
  * other errors *out = prev (hold the joint) and *info = { 0, 0 }.
  */
-qo_status qo_quat_to_euler_near_q30(qo_quat_q30 q, qo_euler_seq seq, qo_euler_q28 prev,
+qo_status qo_euler_from_quat_near_q30(qo_quat_q30 q, qo_euler_seq seq, qo_euler_q28 prev,
                                     qo_q28 band, qo_euler_q28 *out, qo_euler_info_q28 *info);
 
 /*
- * The fast tier of qo_quat_to_euler_band_q30, for cores without a 64-bit multiply
+ * The fast tier of qo_euler_from_quat_band_q30, for cores without a 64-bit multiply
  * (Cortex-M0/M0+): the same conventions, ranges, lock band rule, lock choice (a3 = 0) and
  * statuses, from 32-bit arithmetic: three atan2 and one square root, no quaternion product
  * (lib/src/euler_fx.c). Not bit-identical to the exact function: each angle within a few LSB
@@ -176,7 +176,7 @@ qo_status qo_quat_to_euler_near_q30(qo_quat_q30 q, qo_euler_seq seq, qo_euler_q2
  * QO_E_RANGE (band outside [0, QO_Q28_HALF_PI]), checked in that order. On error
  * *out = (0, 0, 0) and *info = { 0, 0 }. info may be NULL.
  */
-qo_status qo_quat_to_euler_fast_q30(qo_quat_q30 q, qo_euler_seq seq, qo_q28 band_rad,
+qo_status qo_euler_from_quat_fast_q30(qo_quat_q30 q, qo_euler_seq seq, qo_q28 band_rad,
                                     qo_euler_q28 *out, qo_euler_info_q28 *info);
 
 #ifdef __cplusplus

@@ -9,10 +9,10 @@
  *   qo_q30_from_f32, qo_q28_from_f32, qo_q16_from_f32        float -> fixed, saturating
  *   qo_q30_from_f32_checked, ..._q28_..., ..._q16_...         same, with a status
  *   qo_q30_to_f32, qo_q28_to_f32, qo_q16_to_f32               fixed -> float (nearest float)
- *   qo_quat_q30_from_f32, qo_quat_q30_to_f32                  quaternion, component-wise
- *   qo_vec3_q30_from_f32, qo_vec3_q30_to_f32                  Q1.30 vector
- *   qo_vec3_q28_from_f32, qo_vec3_q28_to_f32                  Q3.28 vector (rotation vector)
- *   qo_mat3_q30_from_f32, qo_mat3_q30_to_f32                  Q1.30 matrix
+ *   qo_q30_quat_from_f32, qo_q30_quat_to_f32                  quaternion, component-wise
+ *   qo_q30_vec3_from_f32, qo_q30_vec3_to_f32                  Q1.30 vector
+ *   qo_q28_vec3_from_f32, qo_q28_vec3_to_f32                  Q3.28 vector (rotation vector)
+ *   qo_q30_mat3_from_f32, qo_q30_mat3_to_f32                  Q1.30 matrix
  *
  * float -> fixed: value * 2^F rounded to the nearest integer, ties away from zero (exact: the
  * scaling by a power of two is exact and the rounding uses the exact fractional part, so e.g.
@@ -36,7 +36,7 @@ extern "C" {
 #endif
 
 /* scale = 2^F as a float. Returns the status and writes the saturated rounded raw value. */
-static inline qo_status qo_fx_from_f32_scaled(float v, float scale, int32_t *out)
+static inline qo_status qo_fxconv_from_f32_scaled(float v, float scale, int32_t *out)
 {
     float s, frac;
     int32_t t;
@@ -64,17 +64,17 @@ static inline qo_status qo_fx_from_f32_scaled(float v, float scale, int32_t *out
 static inline qo_status qo_q30_from_f32_checked(float v, qo_q30 *out)
 {
     if (out == NULL) return QO_E_NULL;
-    return qo_fx_from_f32_scaled(v, 1073741824.0f, out);
+    return qo_fxconv_from_f32_scaled(v, 1073741824.0f, out);
 }
 static inline qo_status qo_q28_from_f32_checked(float v, qo_q28 *out)
 {
     if (out == NULL) return QO_E_NULL;
-    return qo_fx_from_f32_scaled(v, 268435456.0f, out);
+    return qo_fxconv_from_f32_scaled(v, 268435456.0f, out);
 }
 static inline qo_status qo_q16_from_f32_checked(float v, qo_q16 *out)
 {
     if (out == NULL) return QO_E_NULL;
-    return qo_fx_from_f32_scaled(v, 65536.0f, out);
+    return qo_fxconv_from_f32_scaled(v, 65536.0f, out);
 }
 
 static inline qo_q30 qo_q30_from_f32(float v) { qo_q30 r; (void)qo_q30_from_f32_checked(v, &r); return r; }
@@ -85,45 +85,45 @@ static inline float qo_q30_to_f32(qo_q30 v) { return (float)v * (1.0f / 10737418
 static inline float qo_q28_to_f32(qo_q28 v) { return (float)v * (1.0f / 268435456.0f); }
 static inline float qo_q16_to_f32(qo_q16 v) { return (float)v * (1.0f / 65536.0f); }
 
-static inline qo_quat_q30 qo_quat_q30_from_f32(qo_quat_f32 q)
+static inline qo_quat_q30 qo_q30_quat_from_f32(qo_quat_f32 q)
 {
     qo_quat_q30 r;
     r.w = qo_q30_from_f32(q.w); r.x = qo_q30_from_f32(q.x);
     r.y = qo_q30_from_f32(q.y); r.z = qo_q30_from_f32(q.z);
     return r;
 }
-static inline qo_quat_f32 qo_quat_q30_to_f32(qo_quat_q30 q)
+static inline qo_quat_f32 qo_q30_quat_to_f32(qo_quat_q30 q)
 {
     qo_quat_f32 r;
     r.w = qo_q30_to_f32(q.w); r.x = qo_q30_to_f32(q.x);
     r.y = qo_q30_to_f32(q.y); r.z = qo_q30_to_f32(q.z);
     return r;
 }
-static inline qo_vec3_q30 qo_vec3_q30_from_f32(qo_vec3_f32 v)
+static inline qo_vec3_q30 qo_q30_vec3_from_f32(qo_vec3_f32 v)
 {
     qo_vec3_q30 r;
     r.x = qo_q30_from_f32(v.x); r.y = qo_q30_from_f32(v.y); r.z = qo_q30_from_f32(v.z);
     return r;
 }
-static inline qo_vec3_f32 qo_vec3_q30_to_f32(qo_vec3_q30 v)
+static inline qo_vec3_f32 qo_q30_vec3_to_f32(qo_vec3_q30 v)
 {
     qo_vec3_f32 r;
     r.x = qo_q30_to_f32(v.x); r.y = qo_q30_to_f32(v.y); r.z = qo_q30_to_f32(v.z);
     return r;
 }
-static inline qo_vec3_q28 qo_vec3_q28_from_f32(qo_vec3_f32 v)
+static inline qo_vec3_q28 qo_q28_vec3_from_f32(qo_vec3_f32 v)
 {
     qo_vec3_q28 r;
     r.x = qo_q28_from_f32(v.x); r.y = qo_q28_from_f32(v.y); r.z = qo_q28_from_f32(v.z);
     return r;
 }
-static inline qo_vec3_f32 qo_vec3_q28_to_f32(qo_vec3_q28 v)
+static inline qo_vec3_f32 qo_q28_vec3_to_f32(qo_vec3_q28 v)
 {
     qo_vec3_f32 r;
     r.x = qo_q28_to_f32(v.x); r.y = qo_q28_to_f32(v.y); r.z = qo_q28_to_f32(v.z);
     return r;
 }
-static inline qo_mat3_q30 qo_mat3_q30_from_f32(const qo_mat3_f32 *m)
+static inline qo_mat3_q30 qo_q30_mat3_from_f32(const qo_mat3_f32 *m)
 {
     qo_mat3_q30 r;
     int i, j;
@@ -131,7 +131,7 @@ static inline qo_mat3_q30 qo_mat3_q30_from_f32(const qo_mat3_f32 *m)
         for (j = 0; j < 3; j++) r.m[i][j] = qo_q30_from_f32(m->m[i][j]);
     return r;
 }
-static inline qo_mat3_f32 qo_mat3_q30_to_f32(const qo_mat3_q30 *m)
+static inline qo_mat3_f32 qo_q30_mat3_to_f32(const qo_mat3_q30 *m)
 {
     qo_mat3_f32 r;
     int i, j;

@@ -4,8 +4,8 @@
  *   gimbal.track   qo_gimbal_step_f32
  *   gimbal.filter  qo_gimbal_track_init_f32
  *   gimbal.filter  qo_gimbal_track_step_f32
- *   gimbal.path    qo_orient_path_init_f32
- *   gimbal.path    qo_orient_path_sample_f32
+ *   gimbal.path    qo_gimbal_path_init_f32
+ *   gimbal.path    qo_gimbal_path_sample_f32
  */
 /* parity fixed:
  *   gimbal.track   - float32 only: a gimbal controller runs where the IMU fusion runs, in float
@@ -27,10 +27,10 @@
  * clipped.
  *
  * Index:
- *   qo_path_interp                        QO_PATH_SLERP | QO_PATH_SPLINE
- *   qo_orient_path_f32                    caller-allocated path over caller arrays
- *   qo_orient_path_init_f32               validate keys/times, align signs, spline controls
- *   qo_orient_path_sample_f32             unit quaternion at time t
+ *   qo_gimbal_path_interp                        QO_GIMBAL_PATH_SLERP | QO_GIMBAL_PATH_SPLINE
+ *   qo_gimbal_path_f32                    caller-allocated path over caller arrays
+ *   qo_gimbal_path_init_f32               validate keys/times, align signs, spline controls
+ *   qo_gimbal_path_sample_f32             unit quaternion at time t
  *   qo_gimbal_settings_f32 / _default_f32 sequence, hold band, rate and position limits
  *   qo_gimbal_f32                         the per-mechanism state (previous sample)
  *   qo_gimbal_init_f32                    validate settings, start without a previous sample
@@ -56,38 +56,38 @@
 extern "C" {
 #endif
 
-typedef enum qo_path_interp {
-    QO_PATH_SLERP = 0,   /* piecewise slerp: constant rate per segment, C0 at the keys */
-    QO_PATH_SPLINE = 1   /* Shoemake spline through the keys (C1 in the segment parameter) */
-} qo_path_interp;
+typedef enum qo_gimbal_path_interp {
+    QO_GIMBAL_PATH_SLERP = 0,   /* piecewise slerp: constant rate per segment, C0 at the keys */
+    QO_GIMBAL_PATH_SPLINE = 1   /* Shoemake spline through the keys (C1 in the segment parameter) */
+} qo_gimbal_path_interp;
 
 /* An orientation path. All pointers are caller storage that must outlive the path; fill it
- * with qo_orient_path_init_f32, do not write the members yourself. */
-typedef struct qo_orient_path_f32 {
+ * with qo_gimbal_path_init_f32, do not write the members yourself. */
+typedef struct qo_gimbal_path_f32 {
     const float *t;      /* n key times, s, strictly increasing */
     qo_quat_f32 *keys;   /* n keys: normalised and sign-aligned copies of the caller's keys */
-    qo_quat_f32 *a, *b;  /* n spline control points each (QO_PATH_SPLINE only) */
+    qo_quat_f32 *a, *b;  /* n spline control points each (QO_GIMBAL_PATH_SPLINE only) */
     size_t n;
-    qo_path_interp interp;
-} qo_orient_path_f32;
+    qo_gimbal_path_interp interp;
+} qo_gimbal_path_f32;
 
 /*
  * Builds a path through n keyframes (keys_in[i] reached at t[i]).
  *   keys:  caller storage for n quaternions; receives normalised keys with each one's sign
  *          flipped to the hemisphere of the previous one, so the path takes the short way
  *          between neighbours (may be the same array as keys_in).
- *   a, b:  caller storage for n quaternions each when interp is QO_PATH_SPLINE (the spline's
- *          control points); ignored (may be NULL) for QO_PATH_SLERP.
+ *   a, b:  caller storage for n quaternions each when interp is QO_GIMBAL_PATH_SPLINE (the spline's
+ *          control points); ignored (may be NULL) for QO_GIMBAL_PATH_SLERP.
  * The spline is Shoemake's over the segment index, so with unequal key spacing the angular
  * rate jumps at the keys by the ratio of the neighbouring durations (C1 in the parameter, not
  * in time); use evenly spaced keys where rate continuity matters.
  * Returns QO_OK; QO_E_NULL (path, t, keys_in, keys, or a/b for the spline); QO_E_TOO_FEW
  * (n < 2); QO_E_NONFINITE (a NaN/Inf time or key component); QO_E_ORDER (times not strictly
  * increasing); QO_E_DEGENERATE (a zero key); QO_E_ARG (unknown interp). On error the path
- * is left with n = 0, which qo_orient_path_sample_f32 rejects.
+ * is left with n = 0, which qo_gimbal_path_sample_f32 rejects.
  */
-qo_status qo_orient_path_init_f32(qo_orient_path_f32 *path, const float *t,
-                                  const qo_quat_f32 *keys_in, size_t n, qo_path_interp interp,
+qo_status qo_gimbal_path_init_f32(qo_gimbal_path_f32 *path, const float *t,
+                                  const qo_quat_f32 *keys_in, size_t n, qo_gimbal_path_interp interp,
                                   qo_quat_f32 *keys, qo_quat_f32 *a, qo_quat_f32 *b);
 
 /*
@@ -96,13 +96,13 @@ qo_status qo_orient_path_init_f32(qo_orient_path_f32 *path, const float *t,
  * Returns QO_OK; QO_E_NULL; QO_E_STATE (path not initialised); QO_E_NONFINITE (t NaN/Inf).
  * On error *out is the identity.
  */
-qo_status qo_orient_path_sample_f32(const qo_orient_path_f32 *path, float t, qo_quat_f32 *out);
+qo_status qo_gimbal_path_sample_f32(const qo_gimbal_path_f32 *path, float t, qo_quat_f32 *out);
 
 /* Gimbal settings. */
 typedef struct qo_gimbal_settings_f32 {
     qo_euler_seq seq;   /* the mechanism's axes, outer to inner (scipy naming) */
     float band;         /* rad, [0, pi/2]: inside this margin from the singular configuration
-                           the free angle is held where it was (see qo_quat_to_euler_near_f32) */
+                           the free angle is held where it was (see qo_euler_from_quat_near_f32) */
     float vmax;         /* rad/s, > 0: per-joint rate limit; +INFINITY for none */
     float min[3];       /* rad: joint position limits (may be -INFINITY, not +INFINITY) */
     float max[3];       /* rad: (may be +INFINITY, not -INFINITY); min[i] <= max[i] */
