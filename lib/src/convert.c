@@ -8,6 +8,7 @@
 #include <math.h>
 
 #include "qorient/fmath.h"
+#include "fmath_internal.h"
 
 /* Newton polar iteration: at most this many steps (scaled Newton needs < 10 for any matrix we
  * accept; the cap only stops a pathological input from looping). */
@@ -23,6 +24,20 @@
  * float cofactors of a matrix that close to rank 1 have no correct digits). 3e3 rejects
  * s < ~5e-4: a factor of 7 of margin. */
 #define CONV_COND_MAX 3e3f
+
+/* On the rare paths of qo_mat3_to_quat_f32: kept out of line, so that the common case makes
+ * no call and needs no stack frame (gcc and clang; elsewhere a plain static function). */
+#if defined(__GNUC__)
+#define CONV_COLD __attribute__((noinline, cold))
+#else
+#define CONV_COLD
+#endif
+/* quat_from_pivot is rare only where quat_from_pivot_sse2 answers first */
+#if QO_QUAT_SIMD_SSE2
+#define CONV_COLD_SSE2 CONV_COLD
+#else
+#define CONV_COLD_SSE2
+#endif
 
 /* Largest max|M^T M - I| that qo_mat3_to_quat_f32 converts without projecting onto the
  * nearest rotation first: ~4 float32 ulps of 1, above the ~2e-7 of a rounded rotation. */
@@ -275,7 +290,7 @@ static float clamp_min(float v)
  * Normalising that vector in one step replaces sqrt(pivot) and the divide by it of the
  * textbook form, and rounds less. The pivot is clamped at FLT_MIN, so a non-rotation cannot
  * give the zero vector (whose direction does not exist). */
-static int mat3_pivot_vector(const qo_mat3_f32 *m, qo_quat_f32 *out)
+static inline int mat3_pivot_vector(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     const float (*a)[3] = m->m;
     float t = a[0][0] + a[1][1] + a[2][2];
@@ -313,11 +328,41 @@ static int mat3_pivot_vector(const qo_mat3_f32 *m, qo_quat_f32 *out)
  * that the formula overflows, is reported by the normaliser). The pivot component p of a
  * rotation's result is positive (>= 1/2), so qo_quat_canonical_f32's choice of sign only
  * looks at the components before it: none for the trace pivot (w). */
-static qo_status quat_from_pivot(const qo_mat3_f32 *m, qo_quat_f32 *out)
+#if QO_QUAT_SIMD_SSE2
+/* quat_from_pivot's common case in registers, the same operations: the pivot vector,
+ * qo_quat_normalize_f32's SSE2 fast path, the sign flip when w < 0 off the trace pivot, -0.0
+ * made +0.0. Returns 0 with *out unwritten for the rest (w == 0 off the trace pivot, NaN, a
+ * vector outside the fast range), which quat_from_pivot's general code decides. Inline in
+ * qo_mat3_to_quat_f32's direct path, so the common case makes no call. */
+static inline int quat_from_pivot_sse2(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     qo_quat_f32 v;
-    int p = mat3_pivot_vector(m, &v), flip;
-    qo_status st = qo_quat_normalize_f32(v, out);
+    const int p = mat3_pivot_vector(m, &v);
+    const __m128 v4 = _mm_setr_ps(v.w, v.x, v.y, v.z);
+    const __m128 r = _mm_sqrt_ss(qo_quat_internal_sum4_ss(_mm_mul_ps(v4, v4)));
+    const __m128 inv = _mm_div_ss(_mm_set_ss(1.0f), r);
+    __m128 q4;
+    if (!qo_quat_internal_fast_range_ss(r, inv)) return 0;
+    q4 = _mm_mul_ps(v4, QO_QUAT_SIMD_SHUFFLE_PS(inv, 0x00));
+    if (p > 0 && !_mm_comigt_ss(q4, _mm_setzero_ps())) {
+        if (!_mm_comilt_ss(q4, _mm_setzero_ps())) return 0;
+        q4 = _mm_sub_ps(_mm_setzero_ps(), q4);   /* -q4, a zero as +0.0 as below */
+    }
+    _mm_storeu_ps(&out->w, _mm_add_ps(q4, _mm_setzero_ps()));
+    return 1;
+}
+#endif
+
+static CONV_COLD_SSE2 qo_status quat_from_pivot(const qo_mat3_f32 *m, qo_quat_f32 *out)
+{
+    qo_quat_f32 v;
+    int p, flip;
+    qo_status st;
+#if QO_QUAT_SIMD_SSE2
+    if (quat_from_pivot_sse2(m, out)) return QO_OK;
+#endif
+    p = mat3_pivot_vector(m, &v);
+    st = qo_quat_normalize_f32(v, out);
     if (st != QO_OK) return st;
     v = *out;
     flip = p > 0 && (v.w < 0.0f || (v.w == 0.0f && p > 1 &&
@@ -329,7 +374,7 @@ static qo_status quat_from_pivot(const qo_mat3_f32 *m, qo_quat_f32 *out)
 }
 
 /* The full check of qo_mat3_to_quat_f32, for the matrices the fast test below does not pass. */
-static qo_status quat_from_mat3_checked(const qo_mat3_f32 *m, qo_quat_f32 *out)
+static CONV_COLD qo_status quat_from_mat3_checked(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     qo_mat3_f32 r;
     float orth;
@@ -365,16 +410,22 @@ static int mat3_is_rotation_direct(const qo_mat3_f32 *m)
     const __m128 r2 = QO_QUAT_SIMD_SHUFFLE_PS(_mm_loadu_ps(&m->m[1][2]), _MM_SHUFFLE(3, 3, 2, 1));
     const __m128 r1yzx = QO_QUAT_SIMD_SHUFFLE_PS(r1, _MM_SHUFFLE(3, 0, 2, 1));
     const __m128 r1zxy = QO_QUAT_SIMD_SHUFFLE_PS(r1, _MM_SHUFFLE(3, 1, 0, 2));
-    const __m128 tol = _mm_set1_ps(CONV_SHEPPERD_DIRECT_TOL), abs = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+    /* lane 3 of the constants is unused: a constant that is not four equal lanes is read from
+     * memory by the instruction that uses it, where gcc 12 builds a uniform one in two */
+    const __m128 tol = _mm_setr_ps(CONV_SHEPPERD_DIRECT_TOL, CONV_SHEPPERD_DIRECT_TOL,
+                                   CONV_SHEPPERD_DIRECT_TOL, 0.0f);
+    const __m128 abs = _mm_castsi128_ps(_mm_setr_epi32(0x7fffffff, 0x7fffffff, 0x7fffffff, 0));
     __m128 d = _mm_add_ps(_mm_add_ps(_mm_mul_ps(r0, r0), _mm_mul_ps(r1, r1)), _mm_mul_ps(r2, r2));
     __m128 o = _mm_add_ps(_mm_add_ps(_mm_mul_ps(r0, QO_QUAT_SIMD_SHUFFLE_PS(r0, _MM_SHUFFLE(3, 0, 2, 1))),
                                      _mm_mul_ps(r1, r1yzx)),
                           _mm_mul_ps(r2, QO_QUAT_SIMD_SHUFFLE_PS(r2, _MM_SHUFFLE(3, 0, 2, 1))));
-    __m128 ok, c;
-    d = _mm_and_ps(_mm_sub_ps(d, _mm_set1_ps(1.0f)), abs);
+    __m128 c;
+    d = _mm_and_ps(_mm_sub_ps(d, _mm_setr_ps(1.0f, 1.0f, 1.0f, 0.0f)), abs);
     o = _mm_and_ps(o, abs);
-    ok = _mm_and_ps(_mm_cmple_ps(d, tol), _mm_cmple_ps(o, tol));
-    if ((_mm_movemask_ps(ok) & 7) != 7) return 0;
+    /* a lane fails when the larger of the two is above tol or NaN. max returns its second
+     * operand when either is NaN, and o is NaN wherever d is (a NaN entry of column j is in
+     * both d_j and o_j), so no NaN is lost. */
+    if (_mm_movemask_ps(_mm_cmpnle_ps(_mm_max_ps(d, o), tol)) & 7) return 0;
     /* det = r0 . (r1 x r2), summed ((p0 + p1) + p2) as qo_mat3_det_f32 */
     c = _mm_mul_ps(r0, qo_quat_internal_cross_ps(r1yzx, r1zxy, r2));
     c = _mm_add_ss(_mm_add_ss(c, QO_QUAT_SIMD_SHUFFLE_PS(c, 0x55)), QO_QUAT_SIMD_SHUFFLE_PS(c, 0xaa));
@@ -393,9 +444,77 @@ qo_status qo_mat3_to_quat_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
     }
     /* A float32-rounded rotation (max |M^T M - I| ~ 2e-7) takes the direct test and the pivot
      * formula; everything else the full check (tolerance, projection, error triage). */
-    if (mat3_is_rotation_direct(m) && quat_from_pivot(m, out) == QO_OK)
-        return QO_OK;
+    if (mat3_is_rotation_direct(m)) {
+#if QO_QUAT_SIMD_SSE2
+        if (quat_from_pivot_sse2(m, out)) return QO_OK;
+#endif
+        if (quat_from_pivot(m, out) == QO_OK) return QO_OK;
+    }
     return quat_from_mat3_checked(m, out);
+}
+
+/* The trusted conversion's formula: Shepperd's method with one square root and one divide. The
+ * trace is the pivot when t >= 0 (then 4w^2 = 1 + t >= 1), else the largest diagonal entry
+ * (then 4p^2 = 1 + 2 m_pp - t >= 1 as well, p that component); v is the pivot vector of
+ * mat3_pivot_vector and q = v / (2 sqrt(c)) with c = 4p^2, since |v| = 2 sqrt(c) for a rotation.
+ * The sign of the scale makes w >= 0. Returns 0, *out unwritten, where it cannot answer: a
+ * non-finite result (NaN/Inf entries, or entries so large that the formula overflows), or
+ * w == 0 off the trace pivot (a half turn, where the sign rule looks further). */
+static int quat_from_rotation_fast(const qo_mat3_f32 *m, qo_quat_f32 *out)
+{
+    const float (*a)[3] = m->m;
+    const float t = a[0][0] + a[1][1] + a[2][2];
+    float c, k, w, x, y, z;
+    if (t >= 0.0f) {
+        c = 1.0f + t;
+        w = c;
+        x = a[2][1] - a[1][2];
+        y = a[0][2] - a[2][0];
+        z = a[1][0] - a[0][1];
+        k = 0.5f / qo_fm_sqrt_nonneg(c);
+    } else {
+        if (a[0][0] >= a[1][1] && a[0][0] >= a[2][2]) {
+            c = 1.0f + a[0][0] - a[1][1] - a[2][2];
+            w = a[2][1] - a[1][2];
+            x = c;
+            y = a[0][1] + a[1][0];
+            z = a[0][2] + a[2][0];
+        } else if (a[1][1] >= a[2][2]) {
+            c = 1.0f - a[0][0] + a[1][1] - a[2][2];
+            w = a[0][2] - a[2][0];
+            x = a[0][1] + a[1][0];
+            y = c;
+            z = a[1][2] + a[2][1];
+        } else {
+            c = 1.0f - a[0][0] - a[1][1] + a[2][2];
+            w = a[1][0] - a[0][1];
+            x = a[0][2] + a[2][0];
+            y = a[1][2] + a[2][1];
+            z = c;
+        }
+        /* c > 1 exactly for any matrix that takes this pivot (rounding may take it a hair
+         * lower): clamping at 1 keeps |k| <= 1/2, so no finite v overflows below; NaN gives 1
+         * (and a NaN c fails the test at the end) */
+        k = 0.5f / qo_fm_sqrt_nonneg(c > 1.0f ? c : 1.0f);
+        if (w < 0.0f) k = -k;
+        else if (!(w > 0.0f)) return 0;
+    }
+    /* The four products finite: c is one of the terms, so a NaN/Inf c (k NaN or 0) and a
+     * NaN/Inf v both give a NaN/Inf product, and with |k| <= 1/2 a finite v cannot overflow. */
+    {
+#if QO_QUAT_SIMD_SSE2
+        const __m128 q4 = _mm_mul_ps(_mm_setr_ps(w, x, y, z), _mm_set1_ps(k));
+        const __m128 d = _mm_sub_ps(q4, q4);                  /* NaN exactly where q4 is not finite */
+        if (_mm_movemask_ps(_mm_cmpunord_ps(d, d))) return 0;
+        _mm_storeu_ps(&out->w, _mm_add_ps(q4, _mm_setzero_ps()));   /* -0.0 -> +0.0 */
+#else
+        w *= k; x *= k; y *= k; z *= k;
+        if (!(isfinite(w) && isfinite(x) && isfinite(y) && isfinite(z))) return 0;
+        /* + 0.0f: -0.0 -> +0.0 as qo_quat_canonical_f32 */
+        out->w = w + 0.0f; out->x = x + 0.0f; out->y = y + 0.0f; out->z = z + 0.0f;
+#endif
+    }
+    return 1;
 }
 
 qo_status qo_mat3_to_quat_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
@@ -405,6 +524,7 @@ qo_status qo_mat3_to_quat_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
         *out = qo_quat_identity_f32();
         return QO_E_NULL;
     }
+    if (quat_from_rotation_fast(m, out)) return QO_OK;
     /* Each pivot branch combines all six off-diagonal entries, so a NaN/Inf there reaches q
      * (and normalising reports it); the diagonal enters through the clamped pivot, which
      * would hide a NaN: the trace catches any non-finite diagonal entry. */

@@ -20,10 +20,15 @@
 #endif
 
 /* sqrtf(x) for x >= 0 (or NaN): sqrtss itself on SSE2, where sqrtf adds libm's errno branch for
- * x < 0 (the same correctly rounded result). */
+ * x < 0 (the same correctly rounded result). With gcc and clang one sqrtss on the register
+ * (the intrinsics first build a vector: a broadcast or a move through a general register). */
 static inline float qo_fm_sqrt_nonneg(float x)
 {
-#if QO_FM_ATAN2X4_WIDE
+#if QO_FM_ATAN2X4_WIDE && defined(__GNUC__)
+    float r;
+    __asm__("sqrtss %1, %0" : "=x"(r) : "x"(x));
+    return r;
+#elif QO_FM_ATAN2X4_WIDE
     return _mm_cvtss_f32(_mm_sqrt_ss(_mm_set1_ps(x)));
 #else
     return sqrtf(x);

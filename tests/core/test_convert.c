@@ -757,9 +757,73 @@ static void test_f32_quat_from_mat3_trusted(void **state)
     assert_true(is_identity_q(q));
     assert_int_equal(qo_mat3_to_quat_trusted_f32(&m, NULL), QO_E_NULL);
     memset(&m, 0, sizeof m);
-    m.m[0][0] = 2.0f; m.m[1][2] = -3.0f; /* not a rotation: some unit quaternion */
+    m.m[0][0] = 2.0f; m.m[1][2] = -3.0f; /* not a rotation: some finite quaternion, w >= 0 */
     assert_int_equal(qo_mat3_to_quat_trusted_f32(&m, &q), QO_OK);
-    assert_true(fabs(ref_quat_norm(ref_quat_from_f32(q)) - 1.0) < 1e-6);
+    assert_true(qo_quat_is_finite_f32(q) && q.w >= 0.0f);
+}
+
+/* The trusted variant off its domain and at its edge: rotations drifted by up to 1e-5 per entry
+ * (max |M^T M - I| up to ~4e-5, within QO_MAT3_ROTATION_TOL_F32) stay near the nearest rotation
+ * with |q| near 1 (the documented "off by e, |q| off 1 by about e"); any finite matrix, entries
+ * of every magnitude up to FLT_MAX and both signs of zero, gives QO_OK with a finite q, w >= 0
+ * (never NaN), or QO_E_NONFINITE with the identity (entries so large the formula overflows). */
+static void test_f32_quat_from_mat3_trusted_domain(void **state)
+{
+    ref_rng rng = { 41 };
+    int n, i, j, overflow = 0;
+    double worst = 0.0, worst_norm = 0.0;
+    (void)state;
+    for (n = 0; n < N_F32; n++) {
+        ref_quat rq;
+        qo_mat3_f32 m = rand_rot_f32(&rng, &rq);
+        ref_mat3 md, near;
+        qo_quat_f32 q;
+        double err, dn;
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 3; j++) m.m[i][j] += (float)ref_rng_range(&rng, -1e-5, 1e-5);
+        md = ref_mat3_from_f32(&m);
+        near = ref_mat3_nearest_rotation(&md);
+        assert_int_equal(qo_mat3_to_quat_trusted_f32(&m, &q), QO_OK);
+        err = ref_quat_angle_between(ref_quat_from_f32(q), ref_mat3_to_quat(&near));
+        dn = fabs(ref_quat_norm(ref_quat_from_f32(q)) - 1.0);
+        if (err > worst) worst = err;
+        if (dn > worst_norm) worst_norm = dn;
+        if (err > 1e-4 || dn > 1e-4 || q.w < 0.0f) {
+            print_mf("m", &m);
+            print_q("got", q);
+            fail_msg("trusted drift case %d: %.3g rad from the nearest rotation, |q| off 1 by %.3g",
+                     n, err, dn);
+        }
+    }
+    for (n = 0; n < 20 * N_F32; n++) {
+        qo_mat3_f32 m;
+        qo_quat_f32 q;
+        qo_status st;
+        for (i = 0; i < 3; i++) {
+            for (j = 0; j < 3; j++) {
+                uint64_t k = ref_rng_next(&rng);
+                double mag = pow(10.0, ref_rng_range(&rng, -45.0, 38.5));
+                m.m[i][j] = (k & 7u) == 0 ? ((k & 8u) ? -0.0f : 0.0f)
+                                          : (float)((k & 16u) ? -mag : mag);
+                if (!isfinite(m.m[i][j])) m.m[i][j] = (k & 16u) ? -FLT_MAX : FLT_MAX;
+            }
+        }
+        q.w = NAN;
+        st = qo_mat3_to_quat_trusted_f32(&m, &q);
+        if (st == QO_E_NONFINITE && is_identity_q(q)) {
+            overflow++;
+            continue;
+        }
+        if (st != QO_OK || !qo_quat_is_finite_f32(q) || !(q.w >= 0.0f)) {
+            print_mf("m", &m);
+            print_q("got", q);
+            fail_msg("trusted finite case %d: status %d", n, (int)st);
+        }
+    }
+    /* both outcomes were reached */
+    assert_true(overflow > 0 && overflow < 20 * N_F32);
+    print_message("trusted: drift 1e-5 worst %.3g rad, |q| off 1 by %.3g; %d of %d random finite "
+                  "matrices overflow\n", worst, worst_norm, overflow, 20 * N_F32);
 }
 
 static void test_f32_quat_from_mat3_edges(void **state)
@@ -1367,6 +1431,7 @@ int main(void)
         cmocka_unit_test(test_f32_quat_to_mat3_errors),
         cmocka_unit_test(test_f32_quat_from_mat3_edges),
         cmocka_unit_test(test_f32_quat_from_mat3_trusted),
+        cmocka_unit_test(test_f32_quat_from_mat3_trusted_domain),
         cmocka_unit_test(test_f32_quat_from_mat3_non_rotations),
         cmocka_unit_test(test_f32_quat_from_mat3_drifted),
         cmocka_unit_test(test_f32_edges_all_conversions),

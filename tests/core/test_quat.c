@@ -753,7 +753,10 @@ static float rand_component(ref_rng *rng, int mode, float unit)
     static const uint32_t edge[] = {
         0x00000000u, 0x80000000u, 0x3f800000u, 0xbf800000u, 0x7f800000u, 0xff800000u,
         0x7fc00000u, 0xffc00000u, 0x7f800001u, 0x00000001u, 0x80000001u, 0x007fffffu,
-        0x00800000u, 0x7f7fffffu, 0xff7fffffu, 0x3f000000u, 0x0da24260u, 0x7149f2cau
+        0x00800000u, 0x7f7fffffu, 0xff7fffffu, 0x3f000000u, 0x0da24260u, 0x7149f2cau,
+        /* 1e-15f and 1e15f, and their neighbours: |q| at the ends of the inline fast range
+         * of normalize and to_mat3 (sqrt|q|^2 and its reciprocal >= 1e-15f) */
+        0x26901d7cu, 0x26901d7du, 0x26901d7eu, 0x58635fa8u, 0x58635fa9u, 0x58635faau
     };
     uint64_t r = ref_rng_next(rng);
     switch (mode) {
@@ -807,6 +810,13 @@ static void test_f32_simd_same_bits_as_scalar(void **state)
                           same_f(rq.z, sq.z))) {
             print_q("q", a); print_q("simd", rq); print_q("scalar", sq);
             fail_msg("case %ld: normalize differs (status %d, scalar %d)", i, (int)rs, (int)ss);
+        }
+        /* the out-of-line path: the same result for every input (quat.h) */
+        ss = qo_quat_normalize_full_f32(a, &sq);
+        if (rs != ss || !(same_f(rq.w, sq.w) && same_f(rq.x, sq.x) && same_f(rq.y, sq.y) &&
+                          same_f(rq.z, sq.z))) {
+            print_q("q", a); print_q("inline", rq); print_q("full", sq);
+            fail_msg("case %ld: normalize_full differs (status %d, inline %d)", i, (int)ss, (int)rs);
         }
         rs = qo_mat3_from_quat_f32(a, &rm);
         ss = scalar_quat_to_mat3_f32(a, &sm);

@@ -11,6 +11,11 @@
  *    once, 4-wide on SSE2) against qo_fm_atan2_f32 lane by lane, on random pairs of every
  *    octant and scale, both sides of each branch of the scalar kernel, and groups holding a
  *    special value (zero, subnormal, Inf, NaN) that take the per-lane path.
+ *  - qo_mat3_to_quat_f32's SSE2 paths (the direct rotation test, the pivot vector normalised
+ *    in registers) against lib/src/convert.c compiled once more with QO_NO_SIMD (nosimd_*), bit
+ *    for bit with the status, on rotations of every pivot, half turns, drifted, reflected,
+ *    scaled and random matrices, signed zeros and bad entries; rotations also against double;
+ *    qo_mat3_to_quat_trusted_f32 (its SSE2 finiteness test and store) on the same matrices.
  * Where SSE2 is not used both sides are the scalar code and only the double check can fail.
  * Linux only (make test, aarch64 and armhf under make test-qemu): it includes private files
  * of lib/src, which keeps it off the Cortex-M list (tests/qemu/run-target.sh is_core).
@@ -60,6 +65,42 @@
 #undef qo_interp_squad_f32
 #undef qo_interp_squad_controls_f32
 qo_status qo_interp_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out);
+/* lib/src/convert.c again in the same way (qorient/convert.h comes in with it, its names
+ * renamed, so the scalar bodies of its inline functions are external definitions here too,
+ * under nosimd_ names: tests/common/scalar_inline.c already has scalar_quat_to_mat3_f32). */
+#define qo_mat3_identity_f32 nosimd_mat3_identity_f32
+#define qo_mat3_mul_vec3_f32 nosimd_mat3_mul_vec3_f32
+#define qo_mat3_mul_f32 nosimd_mat3_mul_f32
+#define qo_mat3_transpose_f32 nosimd_mat3_transpose_f32
+#define qo_mat3_det_f32 nosimd_mat3_det_f32
+#define qo_axis_angle_to_quat_f32 nosimd_quat_from_axis_angle_f32
+#define qo_axis_angle_from_quat_f32 nosimd_quat_to_axis_angle_f32
+#define qo_rotvec_to_quat_f32 nosimd_quat_from_rotvec_f32
+#define qo_rotvec_from_quat_f32 nosimd_quat_to_rotvec_f32
+#define qo_mat3_from_quat_full_f32 nosimd_quat_to_mat3_full_f32
+#define qo_mat3_from_quat_f32 nosimd_quat_to_mat3_f32
+#define qo_mat3_to_quat_f32 nosimd_quat_from_mat3_f32
+#define qo_mat3_to_quat_trusted_f32 nosimd_quat_from_mat3_trusted_f32
+#define qo_mat3_orthonormalize_f32 nosimd_mat3_orthonormalize_f32
+#define qo_mat3_to_quat_ortho_f32 nosimd_quat_from_mat3_ortho_f32
+#include "../lib/src/convert.c"
+#undef qo_mat3_identity_f32
+#undef qo_mat3_mul_vec3_f32
+#undef qo_mat3_mul_f32
+#undef qo_mat3_transpose_f32
+#undef qo_mat3_det_f32
+#undef qo_axis_angle_to_quat_f32
+#undef qo_axis_angle_from_quat_f32
+#undef qo_rotvec_to_quat_f32
+#undef qo_rotvec_from_quat_f32
+#undef qo_mat3_from_quat_full_f32
+#undef qo_mat3_from_quat_f32
+#undef qo_mat3_to_quat_f32
+#undef qo_mat3_to_quat_trusted_f32
+#undef qo_mat3_orthonormalize_f32
+#undef qo_mat3_to_quat_ortho_f32
+qo_status qo_mat3_to_quat_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
+qo_status qo_mat3_to_quat_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 #include "qorient/fmath.h"
 #include "../lib/src/fmath_internal.h"
 
@@ -158,6 +199,134 @@ static void test_slerp_simd_same_bits(void **state)
                   "worst %.3g rad vs double\n", fast, N_SLERP, flipped, worst);
 }
 
+#define N_M2Q 300000
+
+/* A 3x3 matrix of a random kind around qo_mat3_to_quat_f32's branches: a float-rounded
+ * rotation (every Shepperd pivot), one with every entry moved by up to eps (eps on both sides
+ * of the direct test's 5e-7 and of the tolerance 1e-4), a half turn (w == 0, axes with zero
+ * components: the sign rule's ties), a reflection, a scaled rotation, random entries, signed
+ * zeros, huge, NaN and Inf entries. *rot gets the double rotation it came from (identity for
+ * the non-rotations). */
+static qo_mat3_f32 m2q_input(ref_rng *rng, int kind, ref_quat *rot)
+{
+    static const double eps[] = { 1e-7, 3e-7, 5e-7, 7e-7, 1e-6, 1e-5, 4e-5, 1e-4, 2e-4 };
+    static const float bad[] = { NAN, INFINITY, -INFINITY, 3e38f, -3e38f, 1e20f, 0x1p-149f };
+    ref_quat q = ref_rng_quat(rng);
+    ref_mat3 r;
+    qo_mat3_f32 m;
+    int i, j;
+    if (kind == 9) {                                      /* about an axis: exact zeros */
+        ref_vec3 v;
+        uint64_t k = ref_rng_next(rng) % 3u;
+        v.x = k == 0; v.y = k == 1; v.z = k == 2;
+        q = ref_quat_from_axis_angle(v, ref_rng_range(rng, -2 * REF_PI, 2 * REF_PI));
+    }
+    if (kind == 1 || kind == 2) {                         /* half turns: w = 0 */
+        static const double ax[][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 1, 1, 0 },
+                                        { 0, 1, -1 }, { -1, 0, 1 }, { 1, -1, 1 } };
+        const double *a = ax[ref_rng_next(rng) % (sizeof ax / sizeof ax[0])];
+        ref_vec3 v;
+        v.x = a[0]; v.y = a[1]; v.z = a[2];
+        if (kind == 2) { v.x = ref_rng_range(rng, -1, 1); v.y = ref_rng_range(rng, -1, 1); v.z = 0; }
+        q = ref_quat_from_axis_angle(v, REF_PI);
+    }
+    *rot = q;
+    r = ref_quat_to_mat3(q);
+    m = ref_mat3_to_f32(&r);
+    switch (kind) {
+    case 3: case 4: case 5: {                             /* drifted rotation */
+        double e = eps[ref_rng_next(rng) % (sizeof eps / sizeof eps[0])];
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 3; j++) m.m[i][j] = (float)(r.m[i][j] + ref_rng_range(rng, -e, e));
+        break;
+    }
+    case 6:                                                 /* reflection */
+        for (j = 0; j < 3; j++) m.m[1][j] = -m.m[1][j];
+        break;
+    case 7:                                                 /* scaled */
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 3; j++) m.m[i][j] *= 1.001f;
+        break;
+    case 8:                                                 /* random entries */
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 3; j++) m.m[i][j] = (float)ref_rng_range(rng, -2, 2);
+        break;
+    case 9:                                                 /* signed zeros */
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 3; j++)
+                if (m.m[i][j] == 0.0f) m.m[i][j] = (ref_rng_next(rng) & 1u) ? -0.0f : 0.0f;
+        break;
+    case 10:                                                /* a bad entry */
+        m.m[ref_rng_next(rng) % 3u][ref_rng_next(rng) % 3u] =
+            bad[ref_rng_next(rng) % (sizeof bad / sizeof bad[0])];
+        break;
+    default: break;
+    }
+    return m;
+}
+
+typedef qo_status (*m2q_fn)(const qo_mat3_f32 *m, qo_quat_f32 *out);
+
+/* simd(m) and scalar(m) from different garbage in the outputs: the same status and bits, or
+ * the test fails naming the case, both results and m. Returns the status, *q the result. */
+static qo_status m2q_same_bits(const char *what, long n, int kind, const qo_mat3_f32 *m,
+                               m2q_fn simd, m2q_fn scalar, qo_quat_f32 *q)
+{
+    qo_quat_f32 q2;
+    qo_status s1, s2;
+    memset(q, 0x5a, sizeof *q);
+    memset(&q2, 0xa5, sizeof q2);
+    s1 = simd(m, q);
+    s2 = scalar(m, &q2);
+    if (s1 != s2 || !same_quat_bits(*q, q2))
+        fail_msg("%s case %ld (kind %d): SIMD status %d (%a, %a, %a, %a), scalar status %d (%a, "
+                 "%a, %a, %a); m %a %a %a / %a %a %a / %a %a %a", what, n, kind, (int)s1,
+                 (double)q->w, (double)q->x, (double)q->y, (double)q->z, (int)s2, (double)q2.w,
+                 (double)q2.x, (double)q2.y, (double)q2.z, (double)m->m[0][0],
+                 (double)m->m[0][1], (double)m->m[0][2], (double)m->m[1][0], (double)m->m[1][1],
+                 (double)m->m[1][2], (double)m->m[2][0], (double)m->m[2][1], (double)m->m[2][2]);
+    return s1;
+}
+
+/* qo_mat3_to_quat_f32's SSE2 paths (the direct rotation test, the pivot vector normalised
+ * in registers) against the scalar body (convert.c with QO_NO_SIMD), bit for bit with the
+ * status, on every kind of m2q_input; each rotation's result also against the double
+ * quaternion it came from. */
+static void test_from_mat3_simd_same_bits(void **state)
+{
+    ref_rng rng = { 0x3A7F0E11 };
+    long n, ok = 0, refused = 0;
+    double worst = 0.0;
+    (void)state;
+    for (n = 0; n < N_M2Q; n++) {
+        const int kind = (int)(ref_rng_next(&rng) % 16u);
+        ref_quat rq;
+        qo_mat3_f32 m = m2q_input(&rng, kind, &rq);
+        qo_quat_f32 q1, q3;
+        const qo_status s1 = m2q_same_bits("from_mat3", n, kind, &m, qo_mat3_to_quat_f32,
+                                           nosimd_quat_from_mat3_f32, &q1);
+        /* the trusted variant: its SSE2 store and finiteness test, on the same matrices */
+        (void)m2q_same_bits("from_mat3_trusted", n, kind, &m, qo_mat3_to_quat_trusted_f32,
+                            nosimd_quat_from_mat3_trusted_f32, &q3);
+        if (s1 != QO_OK) {
+            refused++;
+            continue;
+        }
+        ok++;
+        if (kind <= 2 || kind == 9 || kind > 10) {          /* rotations to float rounding */
+            double err = ref_quat_angle_between(ref_quat_from_f32(q1), rq);
+            if (err > worst) worst = err;
+            if (err > 1e-6 || q1.w < 0.0f)
+                fail_msg("from_mat3 case %ld (kind %d): %.3g rad from the double rotation, w %a", n,
+                         kind, err, (double)q1.w);
+        }
+    }
+    /* both outcomes are reached (the reflections and bad entries are refused) */
+    assert_true(ok > N_M2Q / 2 && refused > N_M2Q / 16);
+    print_message("from_mat3: %ld of %d accepted, SIMD == scalar bits, worst %.3g rad vs double\n",
+                  ok, N_M2Q, worst);
+}
+
 #define N_ATAN 400000
 
 /* A float of a random kind: a unit-scale value, one scaled to the edges of the kernel's
@@ -216,6 +385,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_slerp_simd_same_bits),
         cmocka_unit_test(test_atan2x4_same_bits),
+        cmocka_unit_test(test_from_mat3_simd_same_bits),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

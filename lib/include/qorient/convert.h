@@ -121,7 +121,7 @@ qo_status qo_rotvec_from_quat_f32(qo_quat_f32 q, qo_vec3_f32 *out);
 
 /*
  * qo_mat3_from_quat_f32's complete path, out of line (every input; for |q|^2 outside
- * [1e-30, 1e30] it normalises with range scaling first). Same contract as qo_mat3_from_quat_f32.
+ * ~[1e-30, 1e30] it normalises with range scaling first). Same contract as qo_mat3_from_quat_f32.
  */
 qo_status qo_mat3_from_quat_full_f32(qo_quat_f32 q, qo_mat3_f32 *out);
 
@@ -174,14 +174,18 @@ qo_status qo_mat3_orthonormalize_f32(const qo_mat3_f32 *m, qo_mat3_f32 *out);
 qo_status qo_mat3_to_quat_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 
 /*
- * Canonical unit quaternion of *m for callers whose matrix is KNOWN to be a rotation (built
- * from a quaternion or from rotations, to float rounding): the pivoting formula of
- * qo_mat3_to_quat_f32 (Shepperd: largest of trace, m00, m11, m22, normalised in one step),
- * without the rotation check (orthogonality, determinant) that costs most of
- * qo_mat3_to_quat_f32. For a float-rounded rotation the result is the same rotation to
- * ~2e-7 rad (bench/accuracy_convert.c). A matrix that is not a rotation gives an unspecified
- * unit quaternion (never NaN from finite input) - use qo_mat3_to_quat_f32 or _ortho_f32
- * when that can happen.
+ * Canonical quaternion (w >= 0) of *m for callers whose matrix is KNOWN to be a rotation (built
+ * from a quaternion or from rotations, to float rounding), without the rotation check
+ * (orthogonality, determinant) of qo_mat3_to_quat_f32. Shepperd's method with one square
+ * root and one divide: the pivot is the trace when it is >= 0, else the largest diagonal
+ * entry, and q = v / (2 sqrt(c)) for that pivot's vector v and c = 4 p^2 (|v| = 2 sqrt(c) for
+ * a rotation, so the pivot vector is not normalised by its own length).
+ * Defined for rotation matrices within QO_MAT3_ROTATION_TOL_F32 (max |M^T M - I|): for a
+ * float-rounded rotation the result is the same rotation to ~2e-7 rad and |q| = 1 to ~1e-6
+ * (bench/accuracy_convert.c); off a rotation by e, |q| is off 1 by about e. For any other
+ * finite matrix the quaternion is unspecified (not unit, possibly not near any rotation of
+ * it), but finite, never NaN, with w >= 0 - use qo_mat3_to_quat_f32 or _ortho_f32 when
+ * that can happen.
  * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NONFINITE for a NaN/Inf entry (or
  * entries so large that the formula overflows: not a rotation). *out is the identity on every
  * error.
@@ -223,8 +227,8 @@ qo_status qo_mat3_from_quat_f32(qo_quat_f32 q, qo_mat3_f32 *out);
  * q is normalised first, so any non-zero finite q (and q or -q) gives a proper rotation.
  * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_NONFINITE for a NaN/Inf component;
  * QO_E_DEGENERATE for q == 0. *out is the identity matrix on every error.
- * Inline: |q|^2 in [1e-30, 1e30] (q finite, non-zero, no scaling needed) is handled here;
- * the rest by qo_mat3_from_quat_full_f32.
+ * Inline: |q| and 1/|q| both >= 1e-15 (|q|^2 in ~[1e-30, 1e30]: q finite, non-zero, no scaling
+ * needed) is handled here; the rest by qo_mat3_from_quat_full_f32.
  */
 QO_CONVERT_INLINE qo_status qo_mat3_from_quat_f32(qo_quat_f32 q, qo_mat3_f32 *out)
 {
@@ -232,45 +236,45 @@ QO_CONVERT_INLINE qo_status qo_mat3_from_quat_f32(qo_quat_f32 q, qo_mat3_f32 *ou
     /* The scalar body below, lane for lane in the same order (see quat.h's QO_QUAT_SIMD_SSE2):
      * d = the diagonal, pl and mi = the s * (a + b) and s * (a - b) off-diagonal terms. */
     const __m128 q4 = _mm_loadu_ps(&q.w);
-    __m128 n4 = qo_quat_internal_sum4_ss(_mm_mul_ps(q4, q4));
-    const float n = _mm_cvtss_f32(n4);
-    __m128 u, uu, s, da, db, d, pr, wr, pl, mi, lo;
-    if (out == NULL || !(n >= 1e-30f && !(n > 1e30f))) return qo_mat3_from_quat_full_f32(q, out);
-    n4 = _mm_div_ss(_mm_set_ss(1.0f), _mm_sqrt_ss(n4));
-    u = _mm_mul_ps(q4, _mm_shuffle_ps(n4, n4, 0));                          /* w x y z */
+    const __m128 r = _mm_sqrt_ss(qo_quat_internal_sum4_ss(_mm_mul_ps(q4, q4)));
+    const __m128 inv = _mm_div_ss(_mm_set1_ps(1.0f), r);
+    __m128 u, uu, s, da, db, d, pr, wr, pl, mi, lo, hi;
+    if (out == NULL || !qo_quat_internal_fast_range_ss(r, inv))
+        return qo_mat3_from_quat_full_f32(qo_quat_internal_from_ps(q4), out);
+    u = _mm_mul_ps(QO_QUAT_SIMD_SHUFFLE_PS(inv, 0x00), q4);                          /* w x y z */
     uu = _mm_mul_ps(u, u);
-    /* ((ww + xx) + yy) + zz as in qo_quat_internal_sum4_ss, with the yy and zz lanes taken
-     * from the two shuffles the diagonal needs anyway */
-    da = QO_QUAT_SIMD_SHUFFLE_PS(uu, _MM_SHUFFLE(0, 1, 1, 2));                     /* yy xx xx */
-    db = QO_QUAT_SIMD_SHUFFLE_PS(uu, _MM_SHUFFLE(0, 2, 3, 3));                     /* zz zz yy */
-    s = _mm_add_ss(_mm_add_ss(_mm_add_ss(QO_QUAT_SIMD_SHUFFLE_PS(uu, 0x55), uu), da), db);
+    /* ((ww + xx) + yy) + zz as in qo_quat_internal_sum4_ss, with the xx and yy lanes taken
+     * from the two shuffles the diagonal needs anyway (lane 0: m22's xx + yy) */
+    da = QO_QUAT_SIMD_SHUFFLE_PS(uu, _MM_SHUFFLE(2, 0, 1, 1));                     /* xx xx . yy */
+    db = QO_QUAT_SIMD_SHUFFLE_PS(uu, _MM_SHUFFLE(3, 0, 3, 2));                     /* yy zz . zz */
+    s = _mm_add_ss(_mm_add_ss(_mm_add_ss(uu, da), db), QO_QUAT_SIMD_SHUFFLE_PS(uu, 0xff));
     s = _mm_div_ss(_mm_set_ss(2.0f), s);
     s = _mm_shuffle_ps(s, s, 0);
-    d = _mm_add_ps(da, db);
-    /* 1 - sd as 1 + (-sd): the same rounding, without a register copy of 1 */
-    d = _mm_xor_ps(_mm_mul_ps(d, s), _mm_set1_ps(-0.0f));
-    d = _mm_add_ps(d, _mm_set1_ps(1.0f));                                     /* m00 m11 m22 */
-    pr = _mm_mul_ps(QO_QUAT_SIMD_SHUFFLE_PS(u, _MM_SHUFFLE(0, 2, 1, 1)),           /* xy xz yz */
-                    QO_QUAT_SIMD_SHUFFLE_PS(u, _MM_SHUFFLE(0, 3, 3, 2)));
-    wr = _mm_mul_ps(QO_QUAT_SIMD_SHUFFLE_PS(u, 0x00), QO_QUAT_SIMD_SHUFFLE_PS(u, 0x1b)); /* wz wy wx */
-    pl = _mm_mul_ps(_mm_add_ps(pr, wr), s);                                   /* m10 m02 m21 */
-    mi = _mm_mul_ps(_mm_sub_ps(pr, wr), s);                                   /* m01 m20 m12 */
+    /* 1 - sd as 1 + (-sd), the same rounding; the constants leave the unused lane 2 alone,
+     * which makes gcc read them from memory instead of building a register copy */
+    d = _mm_xor_ps(_mm_mul_ps(_mm_add_ps(da, db), s), _mm_setr_ps(-0.0f, -0.0f, 0.0f, -0.0f));
+    d = _mm_add_ps(d, _mm_setr_ps(1.0f, 1.0f, 0.0f, 1.0f));                   /* m22 m11 . m00 */
+    /* w times (w x y z) in place, so the products of x, y, z are laid out to match */
+    wr = _mm_mul_ps(QO_QUAT_SIMD_SHUFFLE_PS(u, 0x00), u);                          /* . wx wy wz */
+    pr = _mm_mul_ps(QO_QUAT_SIMD_SHUFFLE_PS(u, _MM_SHUFFLE(1, 1, 2, 0)),           /* . yz xz xy */
+                    QO_QUAT_SIMD_SHUFFLE_PS(u, _MM_SHUFFLE(2, 3, 3, 0)));
+    pl = _mm_mul_ps(_mm_add_ps(pr, wr), s);                                   /* . m21 m02 m10 */
+    mi = _mm_mul_ps(_mm_sub_ps(pr, wr), s);                                   /* . m12 m20 m01 */
     /* rows are contiguous: m00 m01 m02 m10 | m11 m12 m20 m21 | m22 */
-    _mm_store_ss(&out->m[2][2], QO_QUAT_SIMD_SHUFFLE_PS(d, 0xaa));
-    lo = _mm_unpacklo_ps(d, mi);                                              /* m00 m01 m11 m20 */
-    _mm_storeu_ps(&out->m[0][0], _mm_shuffle_ps(lo, pl, _MM_SHUFFLE(0, 1, 1, 0)));
+    _mm_store_ss(&out->m[2][2], d);
+    hi = _mm_unpackhi_ps(d, mi);                                              /* . m20 m00 m01 */
+    lo = _mm_unpacklo_ps(d, mi);                                              /* m22 . m11 m12 */
+    _mm_storeu_ps(&out->m[0][0], _mm_shuffle_ps(hi, pl, _MM_SHUFFLE(3, 2, 3, 2)));
     _mm_storeu_ps(&out->m[0][0] + 4,
-                  _mm_shuffle_ps(_mm_shuffle_ps(d, mi, _MM_SHUFFLE(2, 0, 0, 1)),  /* m11 . . m12 */
-                                 _mm_shuffle_ps(mi, pl, _MM_SHUFFLE(2, 0, 0, 1)), /* m20 . . m21 */
-                                 _MM_SHUFFLE(3, 0, 3, 0)));
+                  _mm_shuffle_ps(lo, _mm_shuffle_ps(mi, pl, _MM_SHUFFLE(0, 1, 0, 2)), /* m20 . m21 . */
+                                 _MM_SHUFFLE(2, 0, 3, 2)));
     return QO_OK;
 #else
-    float s = q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z;
+    float r = sqrtf(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z), s = 1.0f / r;
     float w, x, y, z, xx, yy, zz, xy, xz, yz, wx, wy, wz;
-    if (out == NULL || !(s >= 1e-30f && s <= 1e30f)) return qo_mat3_from_quat_full_f32(q, out);
+    if (out == NULL || !(r >= 1e-15f && s >= 1e-15f)) return qo_mat3_from_quat_full_f32(q, out);
     /* Normalising is kept although s = 2/|n|^2 below would absorb any scale: measured, the
      * unnormalised form is up to 1.4x less accurate. */
-    s = 1.0f / sqrtf(s);
     w = q.w * s; x = q.x * s; y = q.y * s; z = q.z * s;
     /* s = 2/|n|^2 rather than 2: I + s(...) is orthogonal for ANY non-zero n, so the few-ulp
      * norm error left by normalising does not leak into the matrix as non-orthogonality. */

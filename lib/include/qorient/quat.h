@@ -171,6 +171,31 @@ static inline __m128 qo_quat_internal_cross_ps(__m128 uyzx, __m128 uzxy, __m128 
 }
 #endif
 
+#if QO_QUAT_SIMD_SSE2
+/* The inline fast range of normalize and to_mat3, from r = sqrt(n) and inv = 1/r in lane 0
+ * (n = |q|^2): 1 when both are >= 1e-15, i.e. n in ~[1e-30, 1e30] - q finite, non-zero and
+ * needing no range scaling. One minss and one comparison; a NaN n gives a NaN min, which
+ * fails. The scalar bodies test r >= 1e-15f && inv >= 1e-15f: the same predicate.
+ * Internal, not API (see above). */
+static inline int qo_quat_internal_fast_range_ss(__m128 r, __m128 inv)
+{
+    return _mm_comige_ss(_mm_min_ss(r, inv), _mm_set_ss(1e-15f));
+}
+
+/* The quaternion in the lanes (w, x, y, z) of v, lane by lane, for the out-of-line call of a
+ * fast path's other branch: passing the caller's q instead makes gcc store q to the stack
+ * on the fast path too. Internal, not API (see above). */
+static inline qo_quat_f32 qo_quat_internal_from_ps(__m128 v)
+{
+    qo_quat_f32 q;
+    q.w = _mm_cvtss_f32(v);
+    q.x = _mm_cvtss_f32(QO_QUAT_SIMD_SHUFFLE_PS(v, 0x55));
+    q.y = _mm_cvtss_f32(QO_QUAT_SIMD_SHUFFLE_PS(v, 0xaa));
+    q.z = _mm_cvtss_f32(QO_QUAT_SIMD_SHUFFLE_PS(v, 0xff));
+    return q;
+}
+#endif
+
 /* The identity rotation (1, 0, 0, 0). */
 QO_QUAT_INLINE qo_quat_f32 qo_quat_identity_f32(void)
 {
@@ -269,31 +294,32 @@ QO_QUAT_INLINE qo_vec3_f32 qo_quat_rotate_f32(qo_quat_f32 q, qo_vec3_f32 v)
  * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_NONFINITE if a component is NaN or Inf;
  * QO_E_DEGENERATE if |q| == 0 (also for subnormal-only inputs whose norm underflows).
  * On any error *out is the identity. The sign of q is kept.
- * Inline fast path: a sum of squares in [1e-30, 1e30] means every component is finite and no
- * range scaling is needed, so q * (1/sqrt(sum)) is the whole answer (bit for bit what the
- * full path computes); anything else goes to qo_quat_normalize_full_f32. */
+ * Inline fast path: r = sqrt(sum of squares) and 1/r both >= 1e-15 (the sum in ~[1e-30, 1e30])
+ * means every component is finite and no range scaling is needed, so q * (1/r) is the whole
+ * answer (bit for bit what the full path computes); anything else goes to
+ * qo_quat_normalize_full_f32. */
 QO_QUAT_INLINE qo_status qo_quat_normalize_f32(qo_quat_f32 q, qo_quat_f32 *out)
 {
 #if QO_QUAT_SIMD_SSE2
     /* The same operations lane for lane: squares 4-wide, the sum in lane 0 in the scalar order,
-     * sqrtss (correctly rounded like sqrtf, and without libm's errno branch: n > 0 here). */
+     * sqrtss (correctly rounded like sqrtf, and without libm's errno branch), the range test
+     * on r and 1/r as the scalar body's. */
     const __m128 q4 = _mm_loadu_ps(&q.w);
-    const __m128 n4 = qo_quat_internal_sum4_ss(_mm_mul_ps(q4, q4));
-    const float n = _mm_cvtss_f32(n4);
-    if (out != NULL && n >= 1e-30f && !(n > 1e30f)) {   /* NaN fails the first test */
-        __m128 inv = _mm_div_ss(_mm_set_ss(1.0f), _mm_sqrt_ss(n4));
+    const __m128 r = _mm_sqrt_ss(qo_quat_internal_sum4_ss(_mm_mul_ps(q4, q4)));
+    const __m128 inv = _mm_div_ss(_mm_set_ss(1.0f), r);
+    if (out != NULL && qo_quat_internal_fast_range_ss(r, inv)) {
         _mm_storeu_ps(&out->w, _mm_mul_ps(q4, _mm_shuffle_ps(inv, inv, 0)));
         return QO_OK;
     }
+    return qo_quat_normalize_full_f32(qo_quat_internal_from_ps(q4), out);
 #else
-    float n = q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z;
-    if (out != NULL && n >= 1e-30f && n <= 1e30f) {
-        float inv = 1.0f / sqrtf(n);
+    float r = sqrtf(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z), inv = 1.0f / r;
+    if (out != NULL && r >= 1e-15f && inv >= 1e-15f) {
         out->w = q.w * inv; out->x = q.x * inv; out->y = q.y * inv; out->z = q.z * inv;
         return QO_OK;
     }
-#endif
     return qo_quat_normalize_full_f32(q, out);
+#endif
 }
 
 /* The representative of the same rotation with w >= 0; when w == 0 the first non-zero of
