@@ -1,19 +1,19 @@
 /* parity float32 (tools/parity.sh writes docs/PARITY.md from these blocks):
- *   convert.from_axis_angle    qo_axis_angle_to_quat_f32
- *   convert.to_axis_angle      qo_axis_angle_from_quat_f32
- *   convert.from_rotvec        qo_rotvec_to_quat_f32
- *   convert.to_rotvec          qo_rotvec_from_quat_f32
- *   convert.to_mat3            qo_mat3_from_quat_f32
- *   convert.to_mat3            qo_mat3_from_quat_full_f32 (its out-of-line path)
- *   convert.from_mat3          qo_mat3_to_quat_f32
- *   convert.from_mat3_trusted  qo_mat3_to_quat_trusted_f32
- *   convert.from_mat3_ortho    qo_mat3_to_quat_ortho_f32
- *   mat3.identity              qo_mat3_identity_f32
- *   mat3.transpose             qo_mat3_transpose_f32
- *   mat3.mul                   qo_mat3_mul_f32
- *   mat3.mul_vec3              qo_mat3_mul_vec3_f32
- *   mat3.det                   qo_mat3_det_f32
- *   mat3.orthonormalize        qo_mat3_orthonormalize_f32
+ *   convert.axis_angle_to_quat    qo_axis_angle_to_quat_f32
+ *   convert.axis_angle_from_quat  qo_axis_angle_from_quat_f32
+ *   convert.rotvec_to_quat        qo_rotvec_to_quat_f32
+ *   convert.rotvec_from_quat      qo_rotvec_from_quat_f32
+ *   convert.mat3_from_quat        qo_mat3_from_quat_f32
+ *   convert.mat3_from_quat        qo_mat3_from_quat_full_f32 (its out-of-line path)
+ *   convert.mat3_to_quat          qo_mat3_to_quat_f32
+ *   convert.mat3_to_quat_trusted  qo_mat3_to_quat_trusted_f32
+ *   convert.mat3_to_quat_ortho    qo_mat3_to_quat_ortho_f32
+ *   mat3.identity                 qo_mat3_identity_f32
+ *   mat3.transpose                qo_mat3_transpose_f32
+ *   mat3.mul                      qo_mat3_mul_f32
+ *   mat3.mul_vec3                 qo_mat3_mul_vec3_f32
+ *   mat3.det                      qo_mat3_det_f32
+ *   mat3.orthonormalize           qo_mat3_orthonormalize_f32
  */
 /*
  * qorient/convert.h - float32 conversions between rotation representations, and the small

@@ -1,18 +1,18 @@
 /* parity fixed (tools/parity.sh writes docs/PARITY.md from these blocks):
- *   convert.from_axis_angle    qo_axis_angle_to_quat_q30
- *   convert.to_axis_angle      qo_axis_angle_from_quat_q30
- *   convert.from_rotvec        qo_rotvec_to_quat_q30
- *   convert.to_rotvec          qo_rotvec_from_quat_q30
- *   convert.to_mat3            qo_mat3_from_quat_q30
- *   convert.from_mat3          qo_mat3_to_quat_q30
- *   convert.from_mat3_trusted  qo_mat3_to_quat_trusted_q30
- *   convert.from_mat3_ortho    qo_mat3_to_quat_ortho_q30
- *   mat3.identity              qo_mat3_identity_q30
- *   mat3.transpose             qo_mat3_transpose_q30
- *   mat3.mul                   qo_mat3_mul_q30
- *   mat3.mul_vec3              qo_mat3_mul_vec3_q30
- *   mat3.det                   qo_mat3_det_q30 (Q1.30, saturating)
- *   mat3.orthonormalize        qo_mat3_orthonormalize_q30 (Newton-Schulz, no division)
+ *   convert.axis_angle_to_quat    qo_axis_angle_to_quat_q30
+ *   convert.axis_angle_from_quat  qo_axis_angle_from_quat_q30
+ *   convert.rotvec_to_quat        qo_rotvec_to_quat_q30
+ *   convert.rotvec_from_quat      qo_rotvec_from_quat_q30
+ *   convert.mat3_from_quat        qo_mat3_from_quat_q30
+ *   convert.mat3_to_quat          qo_mat3_to_quat_q30
+ *   convert.mat3_to_quat_trusted  qo_mat3_to_quat_trusted_q30
+ *   convert.mat3_to_quat_ortho    qo_mat3_to_quat_ortho_q30
+ *   mat3.identity                 qo_mat3_identity_q30
+ *   mat3.transpose                qo_mat3_transpose_q30
+ *   mat3.mul                      qo_mat3_mul_q30
+ *   mat3.mul_vec3                 qo_mat3_mul_vec3_q30
+ *   mat3.det                      qo_mat3_det_q30 (Q1.30, saturating)
+ *   mat3.orthonormalize           qo_mat3_orthonormalize_q30 (Newton-Schulz, no division)
  */
 /*
  * qorient/convert_fx.h - conversions between rotation representations in fixed point.

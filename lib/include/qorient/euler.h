@@ -1,8 +1,8 @@
 /* parity float32 (tools/parity.sh writes docs/PARITY.md from these blocks):
- *   euler.from_euler     qo_euler_to_quat_f32
- *   euler.to_euler       qo_euler_from_quat_f32
- *   euler.to_euler_near  qo_euler_from_quat_near_f32
- *   euler.to_euler_band  qo_euler_from_quat_band_f32
+ *   euler.to_quat         qo_euler_to_quat_f32
+ *   euler.from_quat       qo_euler_from_quat_f32
+ *   euler.from_quat_near  qo_euler_from_quat_near_f32
+ *   euler.from_quat_band  qo_euler_from_quat_band_f32
  */
 /*
  * qorient/euler.h - Euler angles, float32: all 12 axis sequences, intrinsic and extrinsic

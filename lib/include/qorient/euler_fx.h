@@ -1,9 +1,9 @@
 /* parity fixed (tools/parity.sh writes docs/PARITY.md from these blocks):
- *   euler.from_euler     qo_euler_to_quat_q30
- *   euler.to_euler       qo_euler_from_quat_q30
- *   euler.to_euler       qo_euler_from_quat_fast_q30 (the fast tier: 6e-9 rad, under half the Cortex-M0 instructions)
- *   euler.to_euler_near  qo_euler_from_quat_near_q30
- *   euler.to_euler_band  qo_euler_from_quat_band_q30
+ *   euler.to_quat         qo_euler_to_quat_q30
+ *   euler.from_quat       qo_euler_from_quat_q30
+ *   euler.from_quat       qo_euler_from_quat_fast_q30 (the fast tier: 6e-9 rad, under half the Cortex-M0 instructions)
+ *   euler.from_quat_near  qo_euler_from_quat_near_q30
+ *   euler.from_quat_band  qo_euler_from_quat_band_q30
  */
 /*
  * qorient/euler_fx.h - Euler angles, fixed point: Q1.30 quaternions <-> Q3.28 radians, all 12
