@@ -111,7 +111,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     table = malloc((tl ? tl : 1) * sizeof *table);
     if (table == NULL) abort();
     st = qo_spline_export_q16(&sp, &fx, table, tl);
-    QO_FUZZ_CHECK(st == QO_OK || st == QO_E_OVERFLOW || st == QO_E_ORDER, "spline_to_q16 status %d", (int)st);
+    QO_FUZZ_CHECK(st == QO_OK || st == QO_E_OVERFLOW || st == QO_E_ORDER, "spline_export_q16 status %d", (int)st);
     if (st == QO_OK) {
         qo_q16 pos[FUZZ_SP_MAXN], vel[FUZZ_SP_MAXN], acc[FUZZ_SP_MAXN];
         int8_t cl[FUZZ_SP_MAXN];
@@ -123,7 +123,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
             for (i = 0; i < n; i++) QO_FUZZ_CHECK(cl[i] >= -1 && cl[i] <= 1, "q16 clamped %d", (int)cl[i]);
         }
     } else {
-        QO_FUZZ_CHECK(fx.n_keys == 0, "spline_to_q16 error left a table");
+        QO_FUZZ_CHECK(fx.n_keys == 0, "spline_export_q16 error left a table");
     }
     free(table);
     free(coef);

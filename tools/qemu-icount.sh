@@ -204,7 +204,7 @@ for spec in "0:loop body alone" \
             "11:qo_quat_normalize_q30" "12:qo_quat_normalize_f32 (soft)" \
             "13:qo_quat_rotate_q30" "14:qo_quat_rotate_f32 (soft)" \
             "15:qo_rotvec_to_quat_q30" "16:qo_mat3_from_quat_q30" \
-            "17:to_mat3 + from_mat3 _q30" \
+            "17:mat3_from_quat + mat3_to_quat _q30" \
             "18:qo_euler_from_quat_q30" "19:qo_euler_from_quat_f32 (soft)" \
             "20:qo_interp_slerp_q30" "21:qo_interp_slerp_f32 (soft)" \
             "22:qo_quat_normalize_fast_q30" "23:qo_interp_slerp_fast_q30" \
