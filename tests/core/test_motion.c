@@ -1238,7 +1238,8 @@ static void test_supported_range(void **state)
  * with joints 0 and 4 of that case (TIME_IF_NECESSARY, all three moving targets), against
  * tests/common/motion_ref.c: within 0.1 % of the minimum, every joint given the common
  * duration (or reported unsynced at its own minimum: joint 5, below), at its target state,
- * within its asymmetric limits on dense samples. */
+ * within its asymmetric limits on dense samples. Then the gap's behaviour as motion.h
+ * documents it (below). */
 static void test_issue_case_5781(void **state)
 {
     /* vmax amax jmax vmin amin p0 v0 a0 target vf af */
@@ -1349,6 +1350,50 @@ static void test_issue_case_5781(void **state)
                     fail_msg("%zu joints: joint %zu at t %g: v %g a %g outside its limits", n, i, (double)t, (double)vel[i],
                              (double)acc[i]);
             }
+        }
+    }
+    /* Joint 5 alone in SYNC_TIME, a minimum duration (qo_motion_set_timing_f32) as the common
+     * duration, as motion.h documents the gap: at 0.83 and 0.85 s (in the narrow [0.809, 0.861] s
+     * that motion_gap_lp.py finds feasible but the planner does not search) and at 1.2 and 1.56 s
+     * (no profile at all) it is reported unsynced, at its own minimum (the reference's), at its
+     * target state then, and with a moving target state it does not wait: it moves on past its
+     * target as after the end of any plan (the acceleration ramps to 0 at jmax, then constant
+     * velocity; closed form below). At 2.02 and 2.5 s (past the gap) it takes exactly that
+     * duration, synchronised. */
+    {
+        static const float Ts[] = { 0.83f, 0.85f, 1.2f, 1.56f, 2.02f, 2.5f };
+        size_t q;
+        st.sync = QO_MOTION_SYNC_TIME;
+        for (q = 0; q < sizeof Ts / sizeof Ts[0]; q++) {
+            int gap = Ts[q] < 2.0f;
+            double want = gap ? tr[0] : Ts[q], J = l[0].jmax, js = af[0] > 0.0f ? -J : J, ta = fabs(af[0]) / J;
+            double tau, pe, ve, ae;
+            assert_int_equal(qo_motion_init_f32(&pl, jts, 1, l, p0, 0.0f, &st), QO_OK);
+            assert_int_equal(qo_motion_set_timing_f32(&pl, Ts[q], 0.0f), QO_OK);
+            force_state(&pl, 0, k[0][5], k[0][6], k[0][7]);
+            assert_int_equal(qo_motion_set_target_state_f32(&pl, 0.0f, tg, vf, af, NULL), QO_OK);
+            if ((pl.unsynced & 1u) != (unsigned)gap || fabs((double)jts[0].duration - want) > 1e-3 * want)
+                fail_msg("common %g s: duration %.9g (unsynced %u), want %.9g", (double)Ts[q], (double)jts[0].duration,
+                         (unsigned)pl.unsynced, want);
+            assert_int_equal(qo_motion_sample_f32(&pl, jts[0].duration, pos, vel, acc), QO_OK);
+            if (fabs(pos[0] - tg[0]) > 1e-5 || fabs(vel[0] - vf[0]) > 1e-4 || fabs(acc[0] - af[0]) > 1e-4)
+                fail_msg("common %g s: ends at %g %g %g", (double)Ts[q], (double)pos[0], (double)vel[0], (double)acc[0]);
+            /* at the common duration: moved on from the target state for tau */
+            tau = (double)Ts[q] - jts[0].duration;
+            if (tau <= ta) {
+                pe = tg[0] + tau * (vf[0] + tau * (0.5 * af[0] + tau * js / 6.0));
+                ve = vf[0] + tau * (af[0] + 0.5 * tau * js);
+                ae = af[0] + tau * js;
+            } else {
+                ve = vf[0] + ta * (af[0] + 0.5 * ta * js);
+                pe = tg[0] + ta * (vf[0] + ta * (0.5 * af[0] + ta * js / 6.0)) + ve * (tau - ta);
+                ae = 0.0;
+            }
+            assert_int_equal(qo_motion_sample_f32(&pl, Ts[q], pos, vel, acc), QO_OK);
+            if (fabs(pos[0] - pe) > 1e-5 * (1.0 + fabs(pe)) || fabs(vel[0] - ve) > 1e-5 * l[0].vmax ||
+                fabs(acc[0] - ae) > 1e-5 * l[0].amax || (gap && !(fabs(pos[0] - tg[0]) > 0.05)))
+                fail_msg("common %g s: at it p %.9g v %.9g a %.9g, want %.9g %.9g %.9g", (double)Ts[q], (double)pos[0],
+                         (double)vel[0], (double)acc[0], pe, ve, ae);
         }
     }
 }
