@@ -358,6 +358,7 @@ static void rand_case(ref_rng *g, jcase *c)
 /* Counts of the PHASE groups of one run (printed by run_mode and test_oracle_wide). */
 static struct {
     int plans, used, fell, fell_line, slower;
+    double worst; /* largest T / tmax of a line */
 } g_line;
 
 /* The joint's displacement as the planner takes it (float32 target - p0). */
@@ -500,6 +501,7 @@ static int check_line(const qo_motion_planner_f32 *pl, int cs, const jcase *c, d
         bad++;
     }
     if (T > tmax * (1.0 + RELTIME) + 1e-6) g_line.slower++;
+    if (tmax > 0.0) g_line.worst = fmax(g_line.worst, T / tmax);
     for (s = 0; s <= LINE_SAMPLES; s++) {
         float pos[NJ], vel[NJ], acc[NJ];
         double sp, sv, sa;
@@ -701,10 +703,10 @@ static int env_int(const char *name, int dflt)
 /* The PHASE counts of g_line (see phase_line), and what each PHASE plan was checked with. */
 static void print_line_counts(const char *what)
 {
-    print_message("%sPHASE: %d plans, %d on the straight line (%d of them slower than TIME's minimum), %d fell back "
-                  "to TIME (%d of them line cases); per joint %d dense samples for the limits, %d for continuity, "
-                  "%d on the line\n",
-                  what, g_line.plans, g_line.used, g_line.slower, g_line.fell, g_line.fell_line, 64 + 64 / 4 + 1,
+    print_message("%sPHASE: %d plans, %d on the straight line (%d of them slower than TIME's minimum, at most "
+                  "%.3gx), %d fell back to TIME (%d of them line cases); per joint %d dense samples for the limits, "
+                  "%d for continuity, %d on the line\n",
+                  what, g_line.plans, g_line.used, g_line.slower, g_line.worst, g_line.fell, g_line.fell_line, 64 + 64 / 4 + 1,
                   2 * (CONT_SAMPLES + 1), LINE_SAMPLES + 1);
 }
 
