@@ -135,7 +135,9 @@
  *     introduce, and when the scalar limits min_i(vmax_i/|d_i|)...
  *     lie in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] (a tiny d_i makes them overflow
  *     float32 products), and when the straight line's phase coefficients keep every joint
- *     within its own vmax, amax, jmax (or its start values beyond them) to 1e-6 relative:
+ *     within its own vmax, amax, jmax (or its start values beyond them) to 1e-6 relative (a
+ *     line over them by float32 rounding only, less than 1e-4, is solved again within limits
+ *     shrunk by that excess: make check-motion wide PHASE case 87, 3.1e-6):
  *     from a moving start the shared jerk min_i(jmax_i/|d_i|) may brake a joint's initial
  *     acceleration too late (issue 11: 3.84x vmax); otherwise the plan falls back to TIME and
  *     qo_motion_sync_used() says so. The straight line can take longer than TIME sync, because
