@@ -693,11 +693,20 @@ static void skip_group(ref_rng *g, qo_motion_sync sync)
 }
 
 /* QO_MOTION_ORACLE_FIRST=n QO_MOTION_ORACLE_NUM=m run groups n..n+m-1 of each mode only (the
- * same cases as a full run: e.g. one failure of check-motion by its case number). */
+ * same cases as a full run: e.g. one failure of check-motion by its case number).
+ * QO_MOTION_ORACLE_SYNC=s runs only sync mode s of test_oracle_wide and test_oracle_stress (the
+ * other modes' cases drawn and skipped, so the cases are those of a full run). */
 static int env_int(const char *name, int dflt)
 {
     const char *e = getenv(name);
     return e ? atoi(e) : dflt;
+}
+
+/* 0 if QO_MOTION_ORACLE_SYNC names a mode other than `sync`. */
+static int mode_wanted(qo_motion_sync sync)
+{
+    int s = env_int("QO_MOTION_ORACLE_SYNC", -1);
+    return s < 0 || s == (int)sync;
 }
 
 /* The PHASE counts of g_line (see phase_line), and what each PHASE plan was checked with. */
@@ -765,10 +774,12 @@ static void test_oracle_wide(void **state)
     for (m = 0; m < 4; m++) {
         int b = 0, first = env_int("QO_MOTION_ORACLE_FIRST", 0), end = groups, num = env_int("QO_MOTION_ORACLE_NUM", groups);
         memset(&g_line, 0, sizeof g_line);
+        if (!mode_wanted(modes[m])) first = groups;
         for (cs = 0; cs < first && cs < groups; cs++) skip_group(&g, modes[m]);
         if (num < end - cs) end = cs + num;
         for (; cs < end && b < 20; cs++) b += check_group(&g, cs, modes[m], NULL);
         for (; cs < groups; cs++) skip_group(&g, modes[m]); /* the next mode's cases as in a full run */
+        if (!mode_wanted(modes[m])) continue;
         print_message("wide limits, sync %d: %d groups of %d joints, %d failures\n", (int)modes[m], end - first, NJ, b);
         if (modes[m] == QO_MOTION_SYNC_PHASE) print_line_counts("wide limits, ");
         bad += b;
@@ -791,6 +802,7 @@ static void test_oracle_stress(void **state)
     for (m = 0; m < 3; m++) {
         int b = 0, first = env_int("QO_MOTION_ORACLE_FIRST", 0), end = groups, num = env_int("QO_MOTION_ORACLE_NUM", groups);
         g.s = 1108 + (uint64_t)m;
+        if (!mode_wanted(modes[m])) continue;
         for (cs = 0; cs < first && cs < groups; cs++) skip_group(&g, modes[m]);
         if (num < end - cs) end = cs + num;
         for (; cs < end && b < 20; cs++) b += check_group(&g, cs, modes[m], NULL);
