@@ -375,7 +375,13 @@ static int line_make(const qo_motion_planner_f32 *pl, mline *ln)
 /* The unit profile of the line, of its minimum duration (T = 0) or of exactly T, loaded into
  * `unit`; then checked against every PHASE joint's own limits (or its start values beyond
  * them): from a moving start the shared jerk min(jmax_i / |d_i|) may brake a joint's initial
- * acceleration too late (issue 11: 3.84x vmax). Returns 0 if no such profile is within them. */
+ * acceleration too late (issue 11: 3.84x vmax). Returns 0 if no such profile is within them.
+ * An excess of float32 rounding only (below LINE_ROUNDING) is solved again within limits
+ * shrunk by it: a line whose velocity swings far past a small bound (vmin 1/18 of vmax, the
+ * start near vmax, the cruise at vmin) ends that swing a few ulps of it beyond the bound,
+ * 3.1e-6 relative in make check-motion wide PHASE case 87, and fell back to TIME. */
+#define LINE_ROUNDING 1e-4f
+#define LINE_PASSES 3
 static int line_profile(const qo_motion_planner_f32 *pl, const mline *ln, float T, qo_motion_joint_f32 *unit)
 {
     mprob p;
@@ -383,36 +389,50 @@ static int line_profile(const qo_motion_planner_f32 *pl, const mline *ln, float 
     mseg g[MSEGS];
     mpeaks pk;
     size_t i;
-    int sc = pl->settings.profile == QO_MOTION_SCURVE;
-    p.l = ln->l;
+    int sc = pl->settings.profile == QO_MOTION_SCURVE, pass;
+    const float tol = 1.0f + 1e-6f;
+    float shrink = 1.0f;
     p.v0 = ln->kv;
     p.a0 = ln->ka;
     p.dp = 1.0f;
     p.vf = ln->kvf;
     p.af = ln->kaf;
     p.scurve = sc;
-    qo_motion_solve_min(&p, &s);
-    if (T > s.t) {
-        float vcs = s.fam == 0 ? s.x : fminf(fmaxf(p.v0 + p.a0 * fabsf(p.a0) / (2.0f * p.l.j), -p.l.vn), p.l.vp);
-        if (!qo_motion_solve_time(&p, &s, vcs, T, &s)) return 0;
+    for (pass = 0; pass < LINE_PASSES; pass++) {
+        float w = 0.0f; /* the largest ratio of a PHASE joint's peak to its bound */
+        p.l = ln->l;
+        p.l.vp /= shrink;
+        p.l.vn /= shrink;
+        p.l.ap /= shrink;
+        p.l.an /= shrink;
+        p.l.j /= shrink;
+        qo_motion_solve_min(&p, &s);
+        if (T > s.t) {
+            float vcs = s.fam == 0 ? s.x : fminf(fmaxf(p.v0 + p.a0 * fabsf(p.a0) / (2.0f * p.l.j), -p.l.vn), p.l.vp);
+            if (!qo_motion_solve_time(&p, &s, vcs, T, &s)) return 0;
+        } else if (pass > 0 && T > 0.0f && s.t > T) {
+            return 0; /* shrunk past the duration asked for */
+        }
+        unit->lim = qo_motion_limits_default;
+        load(unit, 0.0f, p.v0, p.a0, g, qo_motion_build(&p, &s, g), 1.0f);
+        pk = peaks(unit);
+        for (i = 0; i < pl->n; i++) {
+            const qo_motion_joint_f32 *jt = &pl->joints[i];
+            mlim m = qo_motion_mlim(&jt->lim);
+            float d = joint_delta(jt), reach = jt->a0 * jt->a0 / (2.0f * m.j);
+            float vhi = fmaxf(m.vp, jt->v0 + reach), vlo = fmaxf(m.vn, -jt->v0 + reach);
+            float ahi = fmaxf(m.ap, jt->a0), alo = fmaxf(m.an, -jt->a0);
+            float pvh = d > 0.0f ? d * pk.vhi : d * pk.vlo, pvl = d > 0.0f ? d * pk.vlo : d * pk.vhi;
+            float pah = d > 0.0f ? d * pk.ahi : d * pk.alo, pal = d > 0.0f ? d * pk.alo : d * pk.ahi;
+            if (joint_sync(pl, jt) != QO_MOTION_SYNC_PHASE || d == 0.0f) continue;
+            w = fmaxf(w, fmaxf(fmaxf(pvh / vhi, -pvl / vlo), fmaxf(pah / ahi, -pal / alo)));
+            if (sc) w = fmaxf(w, fabsf(d) * pk.j / m.j);
+        }
+        if (w <= tol) return 1;
+        if (!(w < 1.0f + LINE_ROUNDING)) return 0;
+        shrink *= w * tol;
     }
-    unit->lim = qo_motion_limits_default;
-    load(unit, 0.0f, p.v0, p.a0, g, qo_motion_build(&p, &s, g), 1.0f);
-    pk = peaks(unit);
-    for (i = 0; i < pl->n; i++) {
-        const qo_motion_joint_f32 *jt = &pl->joints[i];
-        mlim m = qo_motion_mlim(&jt->lim);
-        float d = joint_delta(jt), tol = 1.0f + 1e-6f, reach = jt->a0 * jt->a0 / (2.0f * m.j);
-        float vhi = fmaxf(m.vp, jt->v0 + reach), vlo = fmaxf(m.vn, -jt->v0 + reach);
-        float ahi = fmaxf(m.ap, jt->a0), alo = fmaxf(m.an, -jt->a0);
-        float pvh = d > 0.0f ? d * pk.vhi : d * pk.vlo, pvl = d > 0.0f ? d * pk.vlo : d * pk.vhi;
-        float pah = d > 0.0f ? d * pk.ahi : d * pk.alo, pal = d > 0.0f ? d * pk.alo : d * pk.ahi;
-        if (joint_sync(pl, jt) != QO_MOTION_SYNC_PHASE || d == 0.0f) continue;
-        if (pvh > vhi * tol || -pvl > vlo * tol || pah > ahi * tol || -pal > alo * tol ||
-            (sc && fabsf(d) * pk.j > m.j * tol))
-            return 0;
-    }
-    return 1;
+    return 0;
 }
 
 /* Loads the straight line `unit` into every PHASE joint. */

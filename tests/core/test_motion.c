@@ -1238,7 +1238,8 @@ static void test_supported_range(void **state)
  * with joints 0 and 4 of that case (TIME_IF_NECESSARY, all three moving targets), against
  * tests/common/motion_ref.c: within 0.1 % of the minimum, every joint given the common
  * duration (or reported unsynced at its own minimum: joint 5, below), at its target state,
- * within its asymmetric limits on dense samples. */
+ * within its asymmetric limits on dense samples. Then the gap's behaviour as motion.h
+ * documents it (below). */
 static void test_issue_case_5781(void **state)
 {
     /* vmax amax jmax vmin amin p0 v0 a0 target vf af */
@@ -1349,6 +1350,50 @@ static void test_issue_case_5781(void **state)
                     fail_msg("%zu joints: joint %zu at t %g: v %g a %g outside its limits", n, i, (double)t, (double)vel[i],
                              (double)acc[i]);
             }
+        }
+    }
+    /* Joint 5 alone in SYNC_TIME, a minimum duration (qo_motion_set_timing_f32) as the common
+     * duration, as motion.h documents the gap: at 0.83 and 0.85 s (in the narrow [0.809, 0.861] s
+     * that motion_gap_lp.py finds feasible but the planner does not search) and at 1.2 and 1.56 s
+     * (no profile at all) it is reported unsynced, at its own minimum (the reference's), at its
+     * target state then, and with a moving target state it does not wait: it moves on past its
+     * target as after the end of any plan (the acceleration ramps to 0 at jmax, then constant
+     * velocity; closed form below). At 2.02 and 2.5 s (past the gap) it takes exactly that
+     * duration, synchronised. */
+    {
+        static const float Ts[] = { 0.83f, 0.85f, 1.2f, 1.56f, 2.02f, 2.5f };
+        size_t q;
+        st.sync = QO_MOTION_SYNC_TIME;
+        for (q = 0; q < sizeof Ts / sizeof Ts[0]; q++) {
+            int gap = Ts[q] < 2.0f;
+            double want = gap ? tr[0] : Ts[q], J = l[0].jmax, js = af[0] > 0.0f ? -J : J, ta = fabs(af[0]) / J;
+            double tau, pe, ve, ae;
+            assert_int_equal(qo_motion_init_f32(&pl, jts, 1, l, p0, 0.0f, &st), QO_OK);
+            assert_int_equal(qo_motion_set_timing_f32(&pl, Ts[q], 0.0f), QO_OK);
+            force_state(&pl, 0, k[0][5], k[0][6], k[0][7]);
+            assert_int_equal(qo_motion_set_target_state_f32(&pl, 0.0f, tg, vf, af, NULL), QO_OK);
+            if ((pl.unsynced & 1u) != (unsigned)gap || fabs((double)jts[0].duration - want) > 1e-3 * want)
+                fail_msg("common %g s: duration %.9g (unsynced %u), want %.9g", (double)Ts[q], (double)jts[0].duration,
+                         (unsigned)pl.unsynced, want);
+            assert_int_equal(qo_motion_sample_f32(&pl, jts[0].duration, pos, vel, acc), QO_OK);
+            if (fabs(pos[0] - tg[0]) > 1e-5 || fabs(vel[0] - vf[0]) > 1e-4 || fabs(acc[0] - af[0]) > 1e-4)
+                fail_msg("common %g s: ends at %g %g %g", (double)Ts[q], (double)pos[0], (double)vel[0], (double)acc[0]);
+            /* at the common duration: moved on from the target state for tau */
+            tau = (double)Ts[q] - jts[0].duration;
+            if (tau <= ta) {
+                pe = tg[0] + tau * (vf[0] + tau * (0.5 * af[0] + tau * js / 6.0));
+                ve = vf[0] + tau * (af[0] + 0.5 * tau * js);
+                ae = af[0] + tau * js;
+            } else {
+                ve = vf[0] + ta * (af[0] + 0.5 * ta * js);
+                pe = tg[0] + ta * (vf[0] + ta * (0.5 * af[0] + ta * js / 6.0)) + ve * (tau - ta);
+                ae = 0.0;
+            }
+            assert_int_equal(qo_motion_sample_f32(&pl, Ts[q], pos, vel, acc), QO_OK);
+            if (fabs(pos[0] - pe) > 1e-5 * (1.0 + fabs(pe)) || fabs(vel[0] - ve) > 1e-5 * l[0].vmax ||
+                fabs(acc[0] - ae) > 1e-5 * l[0].amax || (gap && !(fabs(pos[0] - tg[0]) > 0.05)))
+                fail_msg("common %g s: at it p %.9g v %.9g a %.9g, want %.9g %.9g %.9g", (double)Ts[q], (double)pos[0],
+                         (double)vel[0], (double)acc[0], pe, ve, ae);
         }
     }
 }
@@ -1485,6 +1530,142 @@ static void test_phase_step_asym(void **state)
     assert_int_equal(qo_motion_sync_used(&pl), QO_MOTION_SYNC_TIME);
 }
 
+/* make check-motion wide PHASE cases 87 and 4145 (test_motion_oracle.c): 7 joints whose states
+ * are proportional to their displacements, so the straight line exists (the reference finds its
+ * scalar profile s: 0 -> 1 within min_i of the joints' limits / |d_i|), but the planner fell back
+ * to TIME. The line's velocity swings from far beyond a small bound to that bound (case 87:
+ * joint 2, vmin -0.00249 with vmax 0.046, s' from -0.079 to its bound 0.0043 and back to
+ * -0.040), and its float32 integration ended the swing 3.1e-6 (4145: 2.0e-6) relative past the
+ * bound, over the 1e-6 the line is checked with. Now the line is solved again within limits
+ * shrunk by that rounding excess. Checked: PHASE used; every joint on the line (dense samples,
+ * the d_i / d_r-scaled copy of the joint with the largest |d|); the duration the reference's
+ * minimum of the scalar line (0.1 %); each joint within its own limits (1e-5 relative) at the
+ * phase ends and dense samples; the end at the target state. */
+static void test_phase_line_rounding(void **state)
+{
+    /* vmax vmin amax amin jmax p0 v0 a0 target vf af, per joint (float32 values of the cases) */
+    static const float k[2][7][11] = {
+        { { 1237.76404f, -1333.11047f, 838224896.0f, -724725632.0f, 2322.90161f, 0.351014823f, -0.0796144158f,
+            -0.0191848911f, 1.51253796f, -0.0467887409f, 0.0507523641f },
+          { 2743178.75f, 0.0f, 67813.2812f, 0.0f, 0.0448439308f, -0.131762341f, -0.124161907f, -0.0299196132f,
+            1.67967987f, -0.0729689375f, 0.0791503638f },
+          { 0.0459694378f, -0.00248743198f, 0.482763737f, -1.18523252f, 302021888.0f, 1.42575598f, 0.0396614522f,
+            0.00955732167f, 0.847120941f, 0.0233087093f, -0.0252832659f },
+          { 2138.75269f, -3426.30322f, 61261.1055f, -172160.531f, 1804372.25f, -1.91197646f, -0.157286242f,
+            -0.037901666f, 0.382728547f, -0.0924358293f, 0.100266367f },
+          { 36.9066353f, 0.0f, 8012.38574f, -57785.6758f, 32370956.0f, -1.86141777f, -0.181659251f, -0.0437748954f,
+            0.788873672f, -0.106759652f, 0.115803607f },
+          { 4169692.25f, -1471664.38f, 5482012.0f, -563705.5f, 639.866882f, 1.36134779f, 0.00186278659f,
+            0.000448880455f, 1.33417094f, 0.00109474442f, -0.00118748378f },
+          { 10035760.0f, -603970.438f, 272463.531f, 0.0f, 3786.44824f, -0.230428621f, -0.205142111f, -0.0494336188f,
+            2.76246262f, -0.120560341f, 0.130773395f } },
+        { { 9923168.0f, -513589.125f, 57533292.0f, 0.0f, 252498.359f, -0.661175132f, 0.193221748f, 0.00101298594f,
+            -1.76092374f, 0.0f, 0.0f },
+          { 2.20819902f, 0.0f, 6011887.0f, -916205.25f, 1192609.88f, -1.51070368f, 0.287183344f, 0.00150558993f,
+            -3.14524794f, 0.0f, 0.0f },
+          { 11314944.0f, 0.0f, 733857.25f, 0.0f, 902.580078f, 1.16438794f, -0.471175283f, -0.00247018761f, 3.84614801f,
+            0.0f, 0.0f },
+          { 0.398201376f, -0.0279627703f, 43678.8633f, 0.0f, 0.0107049569f, 1.5600549f, 0.316818774f, 0.00166095677f,
+            -0.243163526f, 0.0f, 0.0f },
+          { 961046.0f, -111904.125f, 4.72530365f, -0.525084257f, 0.0173766557f, -0.801169038f, 0.155291528f,
+            0.000814132683f, -1.68503249f, 0.0f, 0.0f },
+          { 2.35211349f, 0.0f, 21.7428226f, -34.8719978f, 55.5675392f, 1.97781157f, -0.191594556f, -0.00100445526f,
+            3.06829882f, 0.0f, 0.0f },
+          { 361040.625f, -446871.312f, 838882.812f, -846709.625f, 4842.99121f, -1.65373886f, -0.00980694592f,
+            -5.14139756e-05f, -1.59792125f, 0.0f, 0.0f } },
+    };
+    int cs, s;
+    (void)state;
+    for (cs = 0; cs < 2; cs++) {
+        qo_motion_settings_f32 st = { QO_MOTION_SCURVE, QO_MOTION_SYNC_PHASE };
+        qo_motion_limits_f32 l[7];
+        qo_motion_joint_f32 jts[7];
+        qo_motion_planner_f32 pl;
+        mref_lim r[7], sl = { -INFINITY, INFINITY, -INFINITY, INFINITY, INFINITY };
+        float p0[7], tg[7], vf[7], af[7], pos[7], vel[7], acc[7];
+        double d[7], T, tl, dr;
+        size_t i, jr = 0;
+        for (i = 0; i < 7; i++) {
+            const float *q = k[cs][i];
+            double ad;
+            l[i] = qo_motion_limits_default;
+            l[i].vmax = q[0];
+            l[i].vmin = q[1];
+            l[i].amax = q[2];
+            l[i].amin = q[3];
+            l[i].jmax = q[4];
+            r[i].vmax = q[0];
+            r[i].vmin = q[1] != 0.0f ? q[1] : -q[0];
+            r[i].amax = q[2];
+            r[i].amin = q[3] != 0.0f ? q[3] : -q[2];
+            r[i].jmax = q[4];
+            p0[i] = q[5];
+            tg[i] = q[8];
+            vf[i] = q[9];
+            af[i] = q[10];
+            d[i] = (double)(tg[i] - p0[i]);
+            ad = fabs(d[i]);
+            if (ad > fabs(d[jr])) jr = i;
+            /* the line's scalar limits: s' d_i within [vmin_i, vmax_i], and so on */
+            sl.vmax = fmin(sl.vmax, (d[i] > 0.0 ? r[i].vmax : -r[i].vmin) / ad);
+            sl.vmin = fmax(sl.vmin, -(d[i] > 0.0 ? -r[i].vmin : r[i].vmax) / ad);
+            sl.amax = fmin(sl.amax, (d[i] > 0.0 ? r[i].amax : -r[i].amin) / ad);
+            sl.amin = fmax(sl.amin, -(d[i] > 0.0 ? -r[i].amin : r[i].amax) / ad);
+            sl.jmax = fmin(sl.jmax, r[i].jmax / ad);
+        }
+        dr = d[jr];
+        assert_int_equal(qo_motion_init_f32(&pl, jts, 7, l, p0, 0.0f, &st), QO_OK);
+        for (i = 0; i < 7; i++) force_state(&pl, i, p0[i], k[cs][i][6], k[cs][i][7]);
+        assert_int_equal(qo_motion_set_target_state_f32(&pl, 0.0f, tg, vf, af, NULL), QO_OK);
+        T = pl.duration;
+        tl = mref_min_time(&sl, 0.0, k[cs][jr][6] / dr, k[cs][jr][7] / dr, 1.0, vf[jr] / dr, af[jr] / dr);
+        if (qo_motion_sync_used(&pl) != QO_MOTION_SYNC_PHASE || !(fabs(T - tl) <= 1e-3 * tl))
+            fail_msg("case %d: sync used %d, duration %.9g, the line's reference %.9g", cs, (int)qo_motion_sync_used(&pl), T,
+                     tl);
+        for (i = 0; i < 7; i++) {
+            unsigned q;
+            for (q = 0; q < jts[i].nph; q++) {
+                const qo_motion_phase_f32 *ph = &jts[i].ph[q];
+                double e = ph->d, a1 = ph->a + e * ph->j, v1 = ph->v + e * (ph->a + 0.5 * e * ph->j);
+                if (fabs(ph->j) > r[i].jmax * (1.0 + 1e-5) || fmax(ph->v, v1) > r[i].vmax * (1.0 + 1e-5) ||
+                    fmin(ph->v, v1) < r[i].vmin * (1.0 + 1e-5) ||
+                    fmax(ph->a, a1) > fmax(r[i].amax, k[cs][i][7]) * (1.0 + 1e-5) ||
+                    fmin(ph->a, a1) < fmin(r[i].amin, k[cs][i][7]) * (1.0 + 1e-5))
+                    fail_msg("case %d joint %zu phase %u: v %.9g..%.9g a %.9g..%.9g j %.9g outside its limits", cs, i, q,
+                             (double)ph->v, v1, (double)ph->a, a1, (double)ph->j);
+            }
+        }
+        for (s = 0; s <= 1000; s++) {
+            double sp, sv, sa;
+            assert_int_equal(qo_motion_sample_f32(&pl, (float)(T * s / 1000.0), pos, vel, acc), QO_OK);
+            sp = (pos[jr] - (double)p0[jr]) / dr;
+            sv = vel[jr] / dr;
+            sa = acc[jr] / dr;
+            for (i = 0; i < 7; i++) {
+                double vs = fmax(fabs(k[cs][i][6]), fmax(fabs(sl.vmin), sl.vmax) * fabs(d[i]));
+                double as = fmax(fabs(k[cs][i][7]), fmax(fabs(sl.amin), sl.amax) * fabs(d[i]));
+                if (vel[i] > r[i].vmax * (1.0 + 1e-5) || vel[i] < r[i].vmin * (1.0 + 1e-5) ||
+                    acc[i] > fmax(r[i].amax, k[cs][i][7]) * (1.0 + 1e-5) ||
+                    acc[i] < fmin(r[i].amin, k[cs][i][7]) * (1.0 + 1e-5))
+                    fail_msg("case %d joint %zu t %g: v %.9g a %.9g outside its limits", cs, i, T * s / 1000.0,
+                             (double)vel[i], (double)acc[i]);
+                if (fabs(pos[i] - (p0[i] + d[i] * sp)) > 1e-5 * (fabs(p0[i]) + fabs(d[i])) ||
+                    fabs(vel[i] - d[i] * sv) > 1e-5 * vs || fabs(acc[i] - d[i] * sa) > 1e-5 * as)
+                    fail_msg("case %d joint %zu t %g: off the line: p %.9g v %.9g a %.9g, line %.9g %.9g %.9g", cs, i,
+                             T * s / 1000.0, (double)pos[i], (double)vel[i], (double)acc[i], p0[i] + d[i] * sp, d[i] * sv,
+                             d[i] * sa);
+            }
+        }
+        for (i = 0; i < 7; i++) {
+            assert_int_equal(qo_motion_sample_f32(&pl, jts[i].duration, pos, vel, acc), QO_OK);
+            if (fabs(pos[i] - tg[i]) > 1e-5 * (1.0 + fabs(tg[i])) || fabs(vel[i] - vf[i]) > 1e-5 + 1e-4 * fabs(vf[i]) ||
+                fabs(acc[i] - af[i]) > 1e-5 + 1e-4 * fabs(af[i]))
+                fail_msg("case %d joint %zu: ends at %.9g %.9g %.9g, target %.9g %.9g %.9g", cs, i, (double)pos[i],
+                         (double)vel[i], (double)acc[i], (double)tg[i], (double)vf[i], (double)af[i]);
+        }
+    }
+}
+
 /* make check-motion test_timing case 645, joint 1 (NONE, period 0.041511 s): braking toward a
  * near target, a0 ramped to zero first. The transfer to the velocity that ramp reaches (vs)
  * was built with a rounding pulse of 4.5e-5 s (v1 - v0 to the ulp of v0), whose residual hid
@@ -1570,6 +1751,7 @@ int main(void)
         cmocka_unit_test(test_issue_case_5781),
         cmocka_unit_test(test_issue_wide_cases),
         cmocka_unit_test(test_phase_step_asym),
+        cmocka_unit_test(test_phase_line_rounding),
         cmocka_unit_test(test_timing_case_645),
     };
     return cmocka_run_group_tests_name("motion", tests, NULL, NULL);

@@ -8,9 +8,12 @@
  * PHASE, TIME_IF_NECESSARY). The oracle runs add asymmetric limits (vmin, amin, each with
  * probability 1/2) and moving target states (probability 1/2, through
  * qo_motion_set_target_state_f32). Each plan is checked for: a joint (NONE; TIME_IF_NECESSARY
- * with a target at rest) or plan (TIME; the moving-target joints of TIME_IF_NECESSARY) more
- * than 0.1 % slower than the reference, or more than 0.1 % faster (the reference would be
- * missing a profile); any limit exceeded by more than 1e-5 relative in the phase coefficients
+ * with a target at rest) or plan (TIME, and PHASE where it fell back to TIME; the moving-target
+ * joints of TIME_IF_NECESSARY) more than 0.1 % slower than the reference, or more than 0.1 %
+ * faster (the reference would be missing a profile); a plan that reports PHASE off the
+ * straight line at a dense sample, or more than 0.1 % from the reference's minimum for the
+ * line's scalar profile, or a feasible line that fell back to TIME (PHASE groups are drawn with
+ * states proportional to the displacements: phase_line); any limit exceeded by more than 1e-5 relative in the phase coefficients
  * (jerk, acceleration at phase ends, velocity at phase ends and interior extrema) and in dense
  * samples, including the motion after the end; the end state equal to the target state;
  * continuity across a re-plan mid-way (to new target states). Two more groups: test_oracle_wide
@@ -121,8 +124,12 @@ typedef struct jcase {
     float p0, v0, a0, target, vf, af; /* vf, af: target velocity and acceleration */
 } jcase;
 
+/* 1 while a test feeds a check plans it must reject (test_line_checks_fail): no printing. */
+static int g_quiet;
+
 static void print_case(const char *what, int cs, size_t i, const jcase *c, double got, double ref)
 {
+    if (g_quiet) return;
     print_error("%s case %d joint %zu: got %.9g ref %.9g | vmax %.9g amax %.9g jmax %.9g vmin %.9g amin %.9g "
                 "p0 %.9g v0 %.9g a0 %.9g target %.9g vf %.9g af %.9g\n",
                 what, cs, i, got, ref, (double)c->lim.vmax, (double)c->lim.amax, (double)c->lim.jmax,
@@ -335,6 +342,187 @@ static void rand_case(ref_rng *g, jcase *c)
     rand_case_mix(g, c, 0);
 }
 
+/* PHASE (test_oracle_phase, the PHASE part of test_oracle_wide). motion.h's straight line
+ * p_i = p0_i + d_i s(t) exists only when every joint's start and target states are proportional
+ * to its displacement d_i, which random moving states never are: drawn as they are, every PHASE
+ * plan would fall back to TIME. So a quarter of the PHASE groups keep their random states (the
+ * fallback, judged as TIME), a quarter go rest to rest, and half start from (v0, a0) =
+ * (kv, ka) d_i, half of those also to the target state (kvf, kaf) d_i, with (kv, ka) and
+ * (kvf, kaf) drawn within the line's own limits (line_lim). A plan that reports PHASE is then
+ * checked for being that line: every joint on it at every dense sample (position, velocity and
+ * acceleration the d_i-scaled copy of one profile), one duration, and that duration the
+ * reference's minimum for the scalar profile s: 0 -> 1 within line_lim (never below the
+ * slowest joint's own minimum). */
+#define LINE_SAMPLES 256
+
+/* Counts of the PHASE groups of one run (printed by run_mode and test_oracle_wide). */
+static struct {
+    int plans, used, fell, fell_line, slower;
+    double worst; /* largest T / tmax of a line */
+} g_line;
+
+/* The joint's displacement as the planner takes it (float32 target - p0). */
+static double case_d(const jcase *c)
+{
+    return (double)(c->target - c->p0);
+}
+
+/* The straight line's scalar limits: s' d_i within [vmin_i, vmax_i] (the bounds swap for a
+ * negative d_i), the same for the acceleration, and the jerk times |d_i| within jmax_i; from
+ * the joints' limits (box 0) or from the part of them random states are drawn from (box 1,
+ * state_box). 0 if no joint moves. */
+static int line_lim(const jcase *c, int box, mref_lim *out)
+{
+    double vp = INFINITY, vn = INFINITY, ap = INFINITY, an = INFINITY, j = INFINITY;
+    int any = 0;
+    size_t i;
+    for (i = 0; i < NJ; i++) {
+        double d = case_d(&c[i]), ad = fabs(d);
+        mref_lim r = box ? state_box(&c[i].lim) : ref_lim_of(&c[i].lim);
+        if (d == 0.0) continue;
+        any = 1;
+        vp = fmin(vp, (d > 0.0 ? r.vmax : -r.vmin) / ad);
+        vn = fmin(vn, (d > 0.0 ? -r.vmin : r.vmax) / ad);
+        ap = fmin(ap, (d > 0.0 ? r.amax : -r.amin) / ad);
+        an = fmin(an, (d > 0.0 ? -r.amin : r.amax) / ad);
+        j = fmin(j, r.jmax / ad);
+    }
+    out->vmax = vp;
+    out->vmin = -vn;
+    out->amax = ap;
+    out->amin = -an;
+    out->jmax = j;
+    return any;
+}
+
+/* Rewrites a PHASE group's states as the comment above says; returns 1 for a line group
+ * (rest to rest or proportional), 0 for one left random. */
+static int phase_line(ref_rng *g, jcase *c)
+{
+    double u = ref_rng_unit(g), kv = 0.0, ka = 0.0, kvf = 0.0, kaf = 0.0;
+    mref_lim b;
+    size_t i;
+    if (u < 0.25) return 0;
+    if (u >= 0.5 && line_lim(c, 1, &b)) {
+        float v, a;
+        /* 1e-6 inside: the float32 products (kv d_i) stay within each joint's limits */
+        b.vmax *= 1.0 - 1e-6;
+        b.vmin *= 1.0 - 1e-6;
+        b.amax *= 1.0 - 1e-6;
+        b.amin *= 1.0 - 1e-6;
+        b.jmax *= 1.0 - 1e-6;
+        rand_state(g, &b, 0, &v, &a);
+        kv = v;
+        ka = a;
+        if (ref_rng_unit(g) < 0.5) {
+            rand_state(g, &b, 1, &v, &a);
+            kvf = v;
+            kaf = a;
+        }
+    }
+    for (i = 0; i < NJ; i++) {
+        double d = case_d(&c[i]);
+        c[i].v0 = (float)(kv * d);
+        c[i].a0 = (float)(ka * d);
+        c[i].vf = (float)(kvf * d);
+        c[i].af = (float)(kaf * d);
+    }
+    return 1;
+}
+
+/* Largest |velocity| and |acceleration| of joint i's phases (ends, and the velocity's interior
+ * extremum): the scale of its float32 rounding. */
+static void joint_peaks(const qo_motion_joint_f32 *jt, double *vpk, double *apk)
+{
+    unsigned k;
+    *vpk = *apk = 0.0;
+    for (k = 0; k < jt->nph; k++) {
+        const qo_motion_phase_f32 *ph = &jt->ph[k];
+        double d = ph->d, tz = ph->j != 0.0f ? -(double)ph->a / ph->j : -1.0;
+        *vpk = fmax(*vpk, fmax(fabs(ph->v), fabs(ph->v + d * (ph->a + 0.5 * d * ph->j))));
+        if (tz > 0.0 && tz < d) *vpk = fmax(*vpk, fabs(ph->v + tz * (ph->a + 0.5 * tz * ph->j)));
+        *apk = fmax(*apk, fmax(fabs(ph->a), fabs(ph->a + d * ph->j)));
+    }
+}
+
+/* 1 if a line group's straight line is one the planner must take (motion.h): its scalar limits
+ * within the accepted range (by 0.1 %: the planner's are float32 quotients) and the reference
+ * finds the scalar profile. A line group that falls back to TIME although it is feasible is a
+ * failure (a planner that never took the line would pass every other check). */
+static int line_feasible(const jcase *c)
+{
+    mref_lim sl;
+    const double lo = (double)QO_MOTION_LIMIT_MIN * 1.001, hi = (double)QO_MOTION_LIMIT_MAX / 1.001;
+    size_t i, r = 0;
+    double dr;
+    for (i = 0; i < NJ; i++)
+        if (fabs(case_d(&c[i])) > fabs(case_d(&c[r]))) r = i;
+    dr = case_d(&c[r]);
+    if (!line_lim(c, 0, &sl) || sl.vmax < lo || sl.vmax > hi || -sl.vmin < lo || -sl.vmin > hi || sl.amax < lo ||
+        sl.amax > hi || -sl.amin < lo || -sl.amin > hi || sl.jmax < lo || sl.jmax > hi)
+        return 0;
+    return mref_min_time(&sl, 0.0, c[r].v0 / dr, c[r].a0 / dr, 1.0, c[r].vf / dr, c[r].af / dr) >= 0.0;
+}
+
+/* A plan that reports PHASE: every joint on the straight line of the joint r with the largest
+ * |d| (position, velocity, acceleration at LINE_SAMPLES + 1 dense samples: the d_i / d_r-scaled
+ * copy of joint r's, to 1e-5 of the joint's own scale), one duration, and that duration the
+ * reference's minimum of the scalar line (0.1 %), not below the slowest joint's own minimum
+ * tmax. Returns the number of failures (each printed). */
+static int check_line(const qo_motion_planner_f32 *pl, int cs, const jcase *c, double tmax)
+{
+    const qo_motion_joint_f32 *jts = pl->joints;
+    double d[NJ], vpk[NJ], apk[NJ], T = pl->duration, tl, dr;
+    mref_lim sl;
+    size_t i, r = 0;
+    int s, bad = 0;
+    for (i = 0; i < NJ; i++) {
+        d[i] = case_d(&c[i]);
+        if (fabs(d[i]) > fabs(d[r])) r = i;
+        joint_peaks(&jts[i], &vpk[i], &apk[i]);
+    }
+    dr = d[r];
+    for (i = 0; i < NJ; i++)
+        if (d[i] != 0.0 && jts[i].duration != jts[r].duration) {
+            print_case("PHASE: joint duration not the line's", cs, i, &c[i], jts[i].duration, jts[r].duration);
+            bad++;
+        }
+    if (!line_lim(c, 0, &sl)) {
+        if (!g_quiet) print_error("case %d: PHASE used with no joint moving\n", cs);
+        return bad + 1;
+    }
+    tl = mref_min_time(&sl, 0.0, c[r].v0 / dr, c[r].a0 / dr, 1.0, c[r].vf / dr, c[r].af / dr);
+    if (tl < 0.0 || fabs(T - tl) > RELTIME * tl + 1e-6) {
+        print_case("PHASE: duration vs the line's reference", cs, r, &c[r], T, tl);
+        bad++;
+    }
+    if (T < tmax * (1.0 - RELTIME) - 1e-6) {
+        if (!g_quiet) print_error("case %d: PHASE T %.9g below the slowest joint's minimum %.9g\n", cs, T, tmax);
+        bad++;
+    }
+    if (T > tmax * (1.0 + RELTIME) + 1e-6) g_line.slower++;
+    if (tmax > 0.0) g_line.worst = fmax(g_line.worst, T / tmax);
+    for (s = 0; s <= LINE_SAMPLES; s++) {
+        float pos[NJ], vel[NJ], acc[NJ];
+        double sp, sv, sa;
+        qo_motion_sample_f32(pl, pl->t0 + (float)(T * s / LINE_SAMPLES), pos, vel, acc);
+        sp = ((double)pos[r] - c[r].p0) / dr;
+        sv = vel[r] / dr;
+        sa = acc[r] / dr;
+        for (i = 0; i < NJ; i++) {
+            double ep = fabs(pos[i] - (c[i].p0 + d[i] * sp)), ev = fabs(vel[i] - d[i] * sv), ea = fabs(acc[i] - d[i] * sa);
+            if (ep > 1e-5 * (fabs(c[i].p0) + fabs(d[i])) || ev > 1e-5 * vpk[i] || ea > 1e-5 * apk[i]) {
+                if (!g_quiet)
+                    print_error("case %d joint %zu: PHASE off the line at t %g: p %.9g v %.9g a %.9g, line %.9g %.9g %.9g\n",
+                            cs, i, T * s / LINE_SAMPLES, (double)pos[i], (double)vel[i], (double)acc[i],
+                            c[i].p0 + d[i] * sp, d[i] * sv, d[i] * sa);
+                return bad + 1;
+            }
+        }
+    }
+    return bad;
+}
+
 /* No position jump: on dense samples |p(t + dt) - p(t)| <= 1.05 max|v| dt + 1e-5 (1 + |p|), max|v|
  * over the samples (the plan's true velocities; not the limit, which may be 1e9). A plan that
  * loses its target and snaps to it (issue 11, vmax 1e8) moves far more than its velocity allows.
@@ -385,11 +573,11 @@ static int check_group(ref_rng *g, int cs, qo_motion_sync sync, double *tref_out
     double tref[NJ], tmax = 0.0, T;
     float pos[NJ], vel[NJ], acc[NJ], pos2[NJ], vel2[NJ], acc2[NJ], tg[NJ];
     size_t i;
-    int bad = 0;
+    int bad = 0, line = 0, timed;
+    for (i = 0; i < NJ; i++) rand_case_mix(g, &c[i], 1);
+    if (sync == QO_MOTION_SYNC_PHASE) line = phase_line(g, c);
     for (i = 0; i < NJ; i++) {
-        rand_case_mix(g, &c[i], 1);
-        /* PHASE is judged on its limits only (the straight line may be slower than TIME) */
-        tref[i] = sync == QO_MOTION_SYNC_PHASE ? 0.0 : ref_time(&c[i]);
+        tref[i] = ref_time(&c[i]);
         if (tref[i] < 0.0) {
             print_case("reference found no profile", cs, i, &c[i], 0.0, tref[i]);
             bad++;
@@ -402,6 +590,22 @@ static int check_group(ref_rng *g, int cs, qo_motion_sync sync, double *tref_out
         return bad + 1;
     }
     T = pl.duration;
+    /* PHASE: the straight line where the plan says so; else the TIME fallback, judged as TIME */
+    timed = sync == QO_MOTION_SYNC_TIME || (sync == QO_MOTION_SYNC_PHASE && pl.sync_used != QO_MOTION_SYNC_PHASE);
+    if (sync == QO_MOTION_SYNC_PHASE) {
+        g_line.plans++;
+        if (pl.sync_used == QO_MOTION_SYNC_PHASE) {
+            g_line.used++;
+            bad += check_line(&pl, cs, c, tmax);
+        } else {
+            g_line.fell++;
+            g_line.fell_line += line;
+            if (line && line_feasible(c)) {
+                print_error("case %d: PHASE fell back to TIME on a feasible straight line\n", cs);
+                bad++;
+            }
+        }
+    }
     for (i = 0; i < NJ; i++) {
         double e = limit_excess(&pl, i, 64);
         if (e > RELLIM) {
@@ -415,7 +619,7 @@ static int check_group(ref_rng *g, int cs, qo_motion_sync sync, double *tref_out
                 print_case("joint time vs reference", cs, i, &c[i], t, tref[i]);
                 bad++;
             }
-        } else if (sync != QO_MOTION_SYNC_PHASE && !(pl.unsynced >> i & 1u) && jts[i].nph > 0 &&
+        } else if ((timed || sync == QO_MOTION_SYNC_TIME_IF_NECESSARY) && !(pl.unsynced >> i & 1u) && jts[i].nph > 0 &&
                    fabs(jts[i].duration - tmax) > RELTIME * tmax + 1e-6) {
             print_case("joint not given the common duration", cs, i, &c[i], jts[i].duration, tmax);
             bad++;
@@ -435,7 +639,7 @@ static int check_group(ref_rng *g, int cs, qo_motion_sync sync, double *tref_out
     bad += check_continuity(&pl, cs, c);
     /* TIME: the plan takes the slowest joint's minimum time; TIME_IF_NECESSARY: at least the
      * slowest moving-target joint's (a joint with a target at rest may take longer alone) */
-    if ((sync == QO_MOTION_SYNC_TIME && (T > tmax * (1.0 + RELTIME) + 1e-6 || T < tmax * (1.0 - RELTIME) - 1e-6)) ||
+    if ((timed && (T > tmax * (1.0 + RELTIME) + 1e-6 || T < tmax * (1.0 - RELTIME) - 1e-6)) ||
         (sync == QO_MOTION_SYNC_TIME_IF_NECESSARY && T < tmax * (1.0 - RELTIME) - 1e-6)) {
         print_error("time sync case %d: T %.9g ref %.9g\n", cs, T, tmax);
         bad++;
@@ -474,12 +678,13 @@ static int check_group(ref_rng *g, int cs, qo_motion_sync sync, double *tref_out
 }
 
 /* Draws what check_group draws for one group, checking nothing (to reach a case by index). */
-static void skip_group(ref_rng *g)
+static void skip_group(ref_rng *g, qo_motion_sync sync)
 {
     jcase c[NJ];
     float v, a;
     size_t i;
     for (i = 0; i < NJ; i++) rand_case_mix(g, &c[i], 1);
+    if (sync == QO_MOTION_SYNC_PHASE) (void)phase_line(g, c);
     for (i = 0; i < NJ; i++) {
         mref_lim r = state_box(&c[i].lim);
         (void)ref_rng_range(g, -1.0, 1.0);
@@ -488,11 +693,30 @@ static void skip_group(ref_rng *g)
 }
 
 /* QO_MOTION_ORACLE_FIRST=n QO_MOTION_ORACLE_NUM=m run groups n..n+m-1 of each mode only (the
- * same cases as a full run: e.g. one failure of check-motion by its case number). */
+ * same cases as a full run: e.g. one failure of check-motion by its case number).
+ * QO_MOTION_ORACLE_SYNC=s runs only sync mode s of test_oracle_wide and test_oracle_stress (the
+ * other modes' cases drawn and skipped, so the cases are those of a full run). */
 static int env_int(const char *name, int dflt)
 {
     const char *e = getenv(name);
     return e ? atoi(e) : dflt;
+}
+
+/* 0 if QO_MOTION_ORACLE_SYNC names a mode other than `sync`. */
+static int mode_wanted(qo_motion_sync sync)
+{
+    int s = env_int("QO_MOTION_ORACLE_SYNC", -1);
+    return s < 0 || s == (int)sync;
+}
+
+/* The PHASE counts of g_line (see phase_line), and what each PHASE plan was checked with. */
+static void print_line_counts(const char *what)
+{
+    print_message("%sPHASE: %d plans, %d on the straight line (%d of them slower than TIME's minimum, at most "
+                  "%.3gx), %d fell back to TIME (%d of them line cases); per joint %d dense samples for the limits, "
+                  "%d for continuity, %d on the line\n",
+                  what, g_line.plans, g_line.used, g_line.slower, g_line.worst, g_line.fell, g_line.fell_line, 64 + 64 / 4 + 1,
+                  2 * (CONT_SAMPLES + 1), LINE_SAMPLES + 1);
 }
 
 static void run_mode(qo_motion_sync sync, uint64_t seed)
@@ -501,10 +725,12 @@ static void run_mode(qo_motion_sync sync, uint64_t seed)
     int cs, bad = 0, groups = (QO_MOTION_ORACLE_JOINTS + NJ - 1) / NJ, first = env_int("QO_MOTION_ORACLE_FIRST", 0);
     int num = env_int("QO_MOTION_ORACLE_NUM", groups);
     g.s = seed;
-    for (cs = 0; cs < first && cs < groups; cs++) skip_group(&g);
+    memset(&g_line, 0, sizeof g_line);
+    for (cs = 0; cs < first && cs < groups; cs++) skip_group(&g, sync);
     if (num < groups - cs) groups = cs + num;
     for (; cs < groups && bad < 20; cs++) bad += check_group(&g, cs, sync, NULL);
     print_message("sync %d: %d groups of %d joints, %d failures\n", (int)sync, cs - first, NJ, bad);
+    if (sync == QO_MOTION_SYNC_PHASE) print_line_counts("");
     assert_int_equal(bad, 0);
 }
 
@@ -547,11 +773,15 @@ static void test_oracle_wide(void **state)
     g.s = 1107;
     for (m = 0; m < 4; m++) {
         int b = 0, first = env_int("QO_MOTION_ORACLE_FIRST", 0), end = groups, num = env_int("QO_MOTION_ORACLE_NUM", groups);
-        for (cs = 0; cs < first && cs < groups; cs++) skip_group(&g);
+        memset(&g_line, 0, sizeof g_line);
+        if (!mode_wanted(modes[m])) first = groups;
+        for (cs = 0; cs < first && cs < groups; cs++) skip_group(&g, modes[m]);
         if (num < end - cs) end = cs + num;
         for (; cs < end && b < 20; cs++) b += check_group(&g, cs, modes[m], NULL);
-        for (; cs < groups; cs++) skip_group(&g); /* the next mode's cases as in a full run */
+        for (; cs < groups; cs++) skip_group(&g, modes[m]); /* the next mode's cases as in a full run */
+        if (!mode_wanted(modes[m])) continue;
         print_message("wide limits, sync %d: %d groups of %d joints, %d failures\n", (int)modes[m], end - first, NJ, b);
+        if (modes[m] == QO_MOTION_SYNC_PHASE) print_line_counts("wide limits, ");
         bad += b;
     }
     g_wide = 0;
@@ -572,7 +802,8 @@ static void test_oracle_stress(void **state)
     for (m = 0; m < 3; m++) {
         int b = 0, first = env_int("QO_MOTION_ORACLE_FIRST", 0), end = groups, num = env_int("QO_MOTION_ORACLE_NUM", groups);
         g.s = 1108 + (uint64_t)m;
-        for (cs = 0; cs < first && cs < groups; cs++) skip_group(&g);
+        if (!mode_wanted(modes[m])) continue;
+        for (cs = 0; cs < first && cs < groups; cs++) skip_group(&g, modes[m]);
         if (num < end - cs) end = cs + num;
         for (; cs < end && b < 20; cs++) b += check_group(&g, cs, modes[m], NULL);
         print_message("stress, sync %d: %d groups of %d joints, %d failures\n", (int)modes[m], end - first, NJ, b);
@@ -930,6 +1161,49 @@ static void test_issue_large_vmax_jump(void **state)
             }
             assert_true(fabs(prev) <= 1e-6f); /* at the goal */
         }
+    }
+}
+
+/* check_line and line_feasible reject what they must: a PHASE plan of a line group passes,
+ * and fails with one joint's jerk 0.1 % off, with its duration 1 % long, against a slowest
+ * joint's minimum above it, and as the TIME plan of the same group; line_feasible holds for it
+ * (a planner that fell back on it would fail). 20 line groups with moving starts. */
+static void test_line_checks_fail(void **state)
+{
+    ref_rng g;
+    int n = 0;
+    (void)state;
+    g.s = 1109;
+    while (n < 20) {
+        qo_motion_planner_f32 pl, bad;
+        qo_motion_joint_f32 jts[NJ], jb[NJ];
+        jcase c[NJ];
+        size_t i;
+        unsigned k;
+        for (i = 0; i < NJ; i++) rand_case_mix(&g, &c[i], 1);
+        if (!phase_line(&g, c) || c[0].v0 == 0.0f) continue;
+        n++;
+        assert_int_equal(plan_cases(&pl, jts, c, NJ, QO_MOTION_SYNC_PHASE), QO_OK);
+        assert_int_equal(pl.sync_used, QO_MOTION_SYNC_PHASE);
+        assert_true(line_feasible(c));
+        assert_int_equal(check_line(&pl, n, c, 0.0), 0);
+        g_quiet = 1;
+        /* one joint off the line */
+        bad = pl;
+        memcpy(jb, jts, sizeof jb);
+        bad.joints = jb;
+        for (k = 0; k < jb[0].nph; k++) jb[0].ph[k].j *= 1.001f;
+        assert_true(check_line(&bad, n, c, 0.0) > 0);
+        /* a line slower than its minimum */
+        memcpy(jb, jts, sizeof jb);
+        bad.duration = pl.duration * 1.01f;
+        assert_true(check_line(&bad, n, c, 0.0) > 0);
+        /* a joint's own minimum above the plan's */
+        assert_true(check_line(&pl, n, c, 1.01 * pl.duration) > 0);
+        /* the TIME plan: one duration, not one line */
+        assert_int_equal(plan_cases(&pl, jts, c, NJ, QO_MOTION_SYNC_TIME), QO_OK);
+        assert_true(check_line(&pl, n, c, 0.0) > 0);
+        g_quiet = 0;
     }
 }
 
@@ -1441,6 +1715,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_reference_closed_form),
+        cmocka_unit_test(test_line_checks_fail),
         cmocka_unit_test(test_issue_phase_sync_moving),
         cmocka_unit_test(test_issue_missing_shape),
         cmocka_unit_test(test_issue_large_vmax_jump),

@@ -104,13 +104,16 @@
  *     because the cruise may then be arbitrarily slow). Known limitation: from a start far
  *     from rest relative to the jerk limit (velocity changes taking seconds), no profile of
  *     the family may have exactly T (the achievable durations have a gap); that joint then
- *     keeps its own minimum-time profile, arrives early and waits at rest, and its bit is set
+ *     keeps its own minimum-time profile, arrives early (at its target state, at its own
+ *     minimum time) and waits at rest there, or, with a moving target state, moves on past it
+ *     as after the end of any plan (qo_motion_set_target_state_f32); its bit is set
  *     in planner.unsynced (seen once in 40,000 random 4-joint cases with limits spread over
  *     1e-3..1e3; never in bench/bench_motion.c's cases). The exact-duration search uses the
  *     extremum-velocity family only: a joint whose minimum is a dip or a two-holds shape (target
  *     states) has no profile of that family between its minimum and the family's own shortest,
  *     e.g. check-motion case 5781 joint 5: minimum 0.809 s, none between it and 2.018 s, so at
- *     a common 1.560 s it is reported unsynced. That gap is real, not the family's: no jerk
+ *     a common 1.560 s it is reported unsynced (it passes its target state at 0.809 s and moves
+ *     on at about -3.05 u/s). That gap is real, not the family's: no jerk
  *     profile of any shape within the limits takes that joint to its target state in 1.560 s
  *     (an LP over piecewise-constant jerk, tests/core/motion_gap_lp.py, finds profiles for
  *     about [0.809, 0.861] s and [2.019 s, inf) only, none between even with the bounds widened;
@@ -120,7 +123,9 @@
  *     through v = 0 to -0.56 u/s, after which only -0.72 u of travel remain until it must leave
  *     at -3.05 u/s. Arriving later means spending the extra time near v = 0, and climbing back
  *     there at amax 2.06 first takes the joint out to the 2.018 s profile. The narrow
- *     [0.809, 0.861] s above its minimum (stretching the dip itself) is not searched either.
+ *     [0.809, 0.861] s above its minimum (stretching the dip itself) is not searched either: a
+ *     common duration there leaves the joint unsynced at its minimum in the same way
+ *     (tests/core/test_motion.c test_issue_case_5781 checks 0.83, 0.85, 1.2 and 1.56 s).
  *   - QO_MOTION_SYNC_PHASE: straight line in joint space: p_i(t) = p0_i + d_i s(t), one scalar
  *     profile s: 0 -> 1 with limits min_i(vmax_i/|d_i|) etc. (vmin_i for a joint moving the
  *     other way). Possible only when every joint's (v0, a0) and target (v, a) are proportional
@@ -131,7 +136,9 @@
  *     introduce, and when the scalar limits min_i(vmax_i/|d_i|)...
  *     lie in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] (a tiny d_i makes them overflow
  *     float32 products), and when the straight line's phase coefficients keep every joint
- *     within its own vmax, amax, jmax (or its start values beyond them) to 1e-6 relative:
+ *     within its own vmax, amax, jmax (or its start values beyond them) to 1e-6 relative (a
+ *     line over them by float32 rounding only, less than 1e-4, is solved again within limits
+ *     shrunk by that excess: make check-motion wide PHASE case 87, 3.1e-6):
  *     from a moving start the shared jerk min_i(jmax_i/|d_i|) may brake a joint's initial
  *     acceleration too late (issue 11: 3.84x vmax); otherwise the plan falls back to TIME and
  *     qo_motion_sync_used() says so. The straight line can take longer than TIME sync, because
@@ -326,7 +333,9 @@ typedef struct qo_motion_planner_f32 {
                                     * straight line, else TIME if any joint was synchronised,
                                     * else NONE */
     uint32_t unsynced;             /* bit i: joint i could not be given the common duration
-                                    * (it arrives earlier, at its own minimum time; see above) */
+                                    * (it arrives earlier, at its own minimum time, and
+                                    * waits there or moves on from a moving target state;
+                                    * see above) */
     int braking;                   /* 1 if the current plan is a safety stop */
     float min_duration, period;    /* duration rules (qo_motion_set_timing_f32), 0 = off */
     int vel_mode;                  /* 1 if the current plan came from qo_motion_set_velocity_f32 */
@@ -481,7 +490,8 @@ int qo_motion_done_f32(const qo_motion_planner_f32 *pl, float t);
  * SYNC_NONE each joint's own; SYNC_PHASE is used only if its straight line already obeys
  * them, else the plan falls back to TIME (sync_used says so). A joint that cannot be given
  * the longer duration (the sync gap described above) keeps its own minimum time, arrives
- * early and waits at rest, and its bit in `unsynced` is set (e.g. make check-motion
+ * early and waits at rest (or moves on from a moving target state), and its bit in
+ * `unsynced` is set (e.g. make check-motion
  * test_timing case 645: minimum 0.20722 s, period 0.041511 s; no profile of the family has
  * 5 ticks, so it waits 0.34 ms for the 5th instead of taking 6). 0 = off (the
  * default after init). Does not re-plan: the rules apply from the next re-plan.
