@@ -9,6 +9,8 @@
 #include "qorient/euler.h"
 #include "qorient/quat.h"
 
+#include "common/ref.h"   /* the double reference: tests/common/ref.c, linked */
+
 #ifndef QO_FUZZ_ENTRY
 #define QO_FUZZ_ENTRY LLVMFuzzerTestOneInput
 #endif
@@ -16,27 +18,14 @@
 #define FUZZ_EULER_PI 3.14159274f
 #define FUZZ_EULER_HALF_PI 1.57079637f
 
-/* Rotation angle between q (any non-zero finite) and the composition of e in seq, in double:
- * q scaled by its largest component (exact), then 2*atan2(|vec(conj(c) u)|, |scalar|), which
- * stays accurate at small angles (acos of a dot product would not). */
+/* Rotation angle between q (any non-zero finite) and the composition of e in seq: the double
+ * reference of tests/common/ref.c (both normalised, 2 atan2(|vec|, |scalar|) of conj(q) c,
+ * accurate at small angles). */
 static double fuzz_euler_recompose_err(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f32 e)
 {
     qo_quat_f32 c;
-    double m = fabs((double)q.w), w, x, y, z, n, rw, rx, ry, rz;
     if (qo_euler_to_quat_f32(seq, e, &c) != QO_OK) return 1e9;
-    if (fabs((double)q.x) > m) m = fabs((double)q.x);
-    if (fabs((double)q.y) > m) m = fabs((double)q.y);
-    if (fabs((double)q.z) > m) m = fabs((double)q.z);
-    if (m == 0.0) return 0.0;
-    w = q.w / m; x = q.x / m; y = q.y / m; z = q.z / m;
-    n = sqrt(w * w + x * x + y * y + z * z);
-    w /= n; x /= n; y /= n; z /= n;
-    /* conj(c) * u */
-    rw = c.w * w + c.x * x + c.y * y + c.z * z;
-    rx = c.w * x - c.x * w - c.y * z + c.z * y;
-    ry = c.w * y + c.x * z - c.y * w - c.z * x;
-    rz = c.w * z - c.x * y + c.y * x - c.z * w;
-    return 2.0 * atan2(sqrt(rx * rx + ry * ry + rz * rz), fabs(rw));
+    return ref_quat_angle_between(ref_quat_from_f32(q), ref_quat_from_f32(c));
 }
 
 static void fuzz_euler_check_ok(qo_quat_f32 q, qo_euler_seq seq, qo_euler_f32 e, qo_euler_info_f32 info,

@@ -14,6 +14,8 @@
 #include "qorient/fxmath.h"
 #include "qorient/quat_fx.h"
 
+#include "common/ref.h"   /* the double reference: tests/common/ref.c, linked */
+
 #ifndef QO_FUZZ_ENTRY
 #define QO_FUZZ_ENTRY LLVMFuzzerTestOneInput
 #endif
@@ -28,9 +30,10 @@ static qo_quat_q30 fuzz_fxo_quat(qo_fz *f)
     return q;
 }
 
+/* |q| as a real number: the double reference (tests/common/ref.c) of q's exact value. */
 static double fuzz_fxo_norm(qo_quat_q30 q)
 {
-    return sqrt((double)q.w * q.w + (double)q.x * q.x + (double)q.y * q.y + (double)q.z * q.z) / FUZZ_FXO_ONE;
+    return ref_quat_norm(ref_quat_from_q30(q));
 }
 
 static int fuzz_fxo_is_identity(qo_quat_q30 q)
@@ -51,17 +54,11 @@ static void fuzz_fxo_unit(qo_quat_q30 q, double lsb, const char *what)
                   q.z, (n - 1.0) * FUZZ_FXO_ONE);
 }
 
-/* Rotation angle between unit(q) and unit(c), in double. */
+/* Rotation angle between unit(q) and unit(c): the double reference of tests/common/ref.c on
+ * the exact values of the Q1.30 inputs. */
 static double fuzz_fxo_angle(qo_quat_q30 q, qo_quat_q30 c)
 {
-    double nq = fuzz_fxo_norm(q) * FUZZ_FXO_ONE, nc = fuzz_fxo_norm(c) * FUZZ_FXO_ONE;
-    double qw = q.w / nq, qx = q.x / nq, qy = q.y / nq, qz = q.z / nq;
-    double cw = c.w / nc, cx = c.x / nc, cy = c.y / nc, cz = c.z / nc;
-    double rw = cw * qw + cx * qx + cy * qy + cz * qz;
-    double rx = cw * qx - cx * qw - cy * qz + cz * qy;
-    double ry = cw * qy + cx * qz - cy * qw - cz * qx;
-    double rz = cw * qz - cx * qy + cy * qx - cz * qw;
-    return 2.0 * atan2(sqrt(rx * rx + ry * ry + rz * rz), fabs(rw));
+    return ref_quat_angle_between(ref_quat_from_q30(q), ref_quat_from_q30(c));
 }
 
 /* round((p0 + p1 + p2 + p3) / 2^30), ties toward +inf, exactly (|p| <= 2^62 each). */
