@@ -19,12 +19,12 @@
  *                              flag when it clamped
  *   qo_fx_add_sat_sym_i64      a + b clamped to the symmetric [-INT64_MAX, INT64_MAX], flag
  *   qo_fx_mul_sat_sym_i64      a * k (small k > 0) clamped to [-INT64_MAX, INT64_MAX], flag
- *   qo_fx_bits_above_30_u64    max(0, bit length of v - 30): the shift that brings v below 2^30
- *                              (a leading-zero count on 32-bit words: no CLZ on ARMv6-M)
  *   qo_fx_recip62_u32          about 2^62 / d for d in [2^31, 2^32) (Newton, no division)
  *   qo_fx_recip62_step         one more Newton step of that reciprocal
  *   qo_fx_rsqrt32_q30          about 2^30 / sqrt(x / 2^32) for x in [2^30, 2^32) (Newton)
  *   qo_fx_sincos_2y_q30        sin and cos of 2y for y in [0, pi/4] (no reduction, 32-bit)
+ *   qo_fx_bits_above_30_u64    max(0, bit length of v - 30): the shift that brings v below 2^30
+ *                              (a leading-zero count on 32-bit words: no CLZ on ARMv6-M)
  *
  * The rounding shifts rely on >> of a negative int64 being an arithmetic shift (implementation-
  * defined in C99, arithmetic on gcc and clang for every target): checked here, once, for every
