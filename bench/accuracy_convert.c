@@ -18,9 +18,8 @@
 #include "qorient/convert.h"
 #include "qorient/quat.h"
 
-/* The Makefile builds each bench program from its one source file: pull the double
- * reference helpers in directly rather than duplicate them. */
-#include "common/ref.c"
+/* the double reference, linked from tests/common/ref.c */
+#include "common/ref.h"
 
 #define LIMIT_RAD 1e-6
 
@@ -114,8 +113,11 @@ static void measure(ref_quat rq, ref_rng *rng)
     /* axis-angle -> quat with a non-unit axis of random length and angle in [-2pi, 2pi]. */
     {
         double len = pow(10.0, ref_rng_range(rng, -3.0, 3.0));
-        ref_vec3 a = { ref_rng_range(rng, -1, 1) * len, ref_rng_range(rng, -1, 1) * len,
-                       ref_rng_range(rng, -1, 1) * len };
+        ref_vec3 a;
+        /* one draw per statement: the order of an initializer list's calls is unspecified */
+        a.x = ref_rng_range(rng, -1, 1) * len;
+        a.y = ref_rng_range(rng, -1, 1) * len;
+        a.z = ref_rng_range(rng, -1, 1) * len;
         qo_vec3_f32 af = ref_vec3_to_f32(a);
         float an = (float)ref_rng_range(rng, -2.0 * REF_PI, 2.0 * REF_PI);
         s = qo_axis_angle_to_quat_f32(af, an, &q2);

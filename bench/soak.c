@@ -40,7 +40,7 @@
 #include "qorient/quat.h"
 #include "qorient/spline.h"
 
-#include "common/ref.c"
+#include "common/ref.h"   /* the double reference: tests/common/ref.c, linked */
 
 #define NJ 18
 #define NK 5

@@ -30,9 +30,10 @@ static qo_quat_q30 fuzz_fxo_quat(qo_fz *f)
     return q;
 }
 
+/* |q| as a real number: the double reference (tests/common/ref.c) of q's exact value. */
 static double fuzz_fxo_norm(qo_quat_q30 q)
 {
-    return sqrt((double)q.w * q.w + (double)q.x * q.x + (double)q.y * q.y + (double)q.z * q.z) / FUZZ_FXO_ONE;
+    return ref_quat_norm(ref_quat_from_q30(q));
 }
 
 static int fuzz_fxo_is_identity(qo_quat_q30 q)

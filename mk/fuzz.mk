@@ -12,7 +12,8 @@
 # fuzz/run.sh prints the executions per target (libFuzzer's stat::number_of_executed_units)
 # and a last line "N passed, M failed"; it exits non-zero on any finding.
 #
-# Everything (core, ports, CLI except its main.c) is rebuilt with clang into build/fuzz with
+# Everything (core, ports, CLI except its main.c, and the tests' double reference
+# tests/common/ref.c) is rebuilt with clang into build/fuzz with
 # -fsanitize=fuzzer-no-link,address,undefined, so libFuzzer sees coverage in the code under
 # test, not only in the harness.
 
@@ -27,6 +28,9 @@ FUZZ_SRC      := $(sort $(wildcard fuzz/fuzz_*.c))
 FUZZ_NAMES    := $(FUZZ_SRC:fuzz/fuzz_%.c=%)
 FUZZ_BIN      := $(FUZZ_NAMES:%=$(FUZZ_BUILD)/fuzz_%)
 FUZZ_LIB_SRC  := $(CORE_SRC) $(PORT_SRC) $(filter-out cli/main.c,$(CLI_SRC))
+# The double reference of the tests (tests/common/ref.c), in the same archive: a target that
+# includes "common/ref.h" links it, one copy for every test, bench and fuzz program.
+FUZZ_LIB_SRC  += tests/common/ref.c
 FUZZ_LIB_OBJ  := $(FUZZ_LIB_SRC:%.c=$(FUZZ_BUILD)/obj/%.o)
 
 .PHONY: fuzz fuzz-ci fuzz-build
@@ -54,12 +58,16 @@ $(FUZZ_BUILD)/obj/cli/%.o: cli/%.c
 	@mkdir -p $(@D)
 	$(FUZZ_CC) -MMD -MP $(FUZZ_CFLAGS) $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports -Icli $(PKG_CFLAGS) -c $< -o $@
 
+$(FUZZ_BUILD)/obj/tests/%.o: tests/%.c
+	@mkdir -p $(@D)
+	$(FUZZ_CC) -MMD -MP $(FUZZ_CFLAGS) $(CPPFLAGS_CORE) -Itests -c $< -o $@
+
 $(FUZZ_BUILD)/libqo_fuzz.a: $(FUZZ_LIB_OBJ)
 	rm -f $@ && ar rcs $@ $^
 
 $(FUZZ_BUILD)/obj/fuzz/%.o: fuzz/%.c
 	@mkdir -p $(@D)
-	$(FUZZ_CC) -MMD -MP $(FUZZ_CFLAGS) $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports -Ifuzz $(PKG_CFLAGS) -c $< -o $@
+	$(FUZZ_CC) -MMD -MP $(FUZZ_CFLAGS) $(PORT_DEFS) $(CPPFLAGS_CORE) -Iports -Ifuzz -Itests $(PKG_CFLAGS) -c $< -o $@
 
 $(FUZZ_BUILD)/fuzz_%: $(FUZZ_BUILD)/obj/fuzz/fuzz_%.o $(FUZZ_BUILD)/libqo_fuzz.a
 	$(FUZZ_CC) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ $< $(FUZZ_BUILD)/libqo_fuzz.a $(PKG_LIBS) -lm -pthread -lutil

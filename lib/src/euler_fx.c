@@ -36,13 +36,8 @@ static int64_t smul(int64_t a, int64_t b)
     return (a < 0) != (b < 0) ? -(int64_t)p : (int64_t)p;
 }
 
-/* atan2(y, x) for int64 arguments of one scale, |y|, |x| < 2^63: both are reduced by the
- * same power of two to below 2^30 (30 significant bits of the larger: 1e-9 rad at worst),
- * rounded on the magnitude so the result stays odd in y, then qo_fx_atan2_q28. */
-
-/* The number of bits of v above 30 (0 when v < 2^30), on 32-bit words by a binary search
- * (ARMv6-M has no count-leading-zeros instruction). */
-static unsigned bits_above_30(uint64_t v)
+/* fx_internal.h: defined here, its one user (out of line on purpose: see there). */
+unsigned qo_fx_bits_above_30_u64(uint64_t v)
 {
     unsigned s = 0;
     uint32_t t;
@@ -56,10 +51,13 @@ static unsigned bits_above_30(uint64_t v)
     return s + t;
 }
 
+/* atan2(y, x) for int64 arguments of one scale, |y|, |x| < 2^63: both are reduced by the
+ * same power of two to below 2^30 (30 significant bits of the larger: 1e-9 rad at worst),
+ * rounded on the magnitude so the result stays odd in y, then qo_fx_atan2_q28. */
 static qo_q28 atan2_i64(int64_t y, int64_t x)
 {
     uint64_t ay = qo_fx_abs_u64(y), ax = qo_fx_abs_u64(x), m = ay > ax ? ay : ax;
-    unsigned s = bits_above_30(m);   /* (a 64-bit shift per step is slow on Cortex-M0) */
+    unsigned s = qo_fx_bits_above_30_u64(m);   /* (a 64-bit shift per step is slow on Cortex-M0) */
     int32_t yy, xx;
     yy = (int32_t)qo_fx_urshift_round_up_u32(ay, s);
     xx = (int32_t)qo_fx_urshift_round_up_u32(ax, s);
@@ -399,7 +397,7 @@ static qo_q28 wrap_turn(int32_t t)
 /* v = m 2^e (m truncated) with e even and m < 2^32, m >= 2^30 when v >= 2^30. */
 static uint32_t mant_even(uint64_t v, unsigned *e)
 {
-    unsigned s = bits_above_30(v);
+    unsigned s = qo_fx_bits_above_30_u64(v);
     s += s & 1u;
     *e = s;
     return s == 0 ? (uint32_t)v : s < 32u ? (uint32_t)(v >> s) : (uint32_t)(v >> 32) >> (s - 32u);
@@ -463,7 +461,7 @@ qo_status qo_euler_from_quat_fast_q30(qo_quat_q30 q, qo_euler_seq seq, qo_q28 ba
      * factor 2): r = s - (ep + eq)/2 - 1 >= 0, as 2 |P| |Q| <= |P|^2 + |Q|^2 < 2^(30 + s). */
     sp = qo_fx_sq_u64(pr) + qo_fx_sq_u64(pi);
     sq = qo_fx_sq_u64(qr) + qo_fx_sq_u64(qi);
-    s = bits_above_30(sp + sq);
+    s = qo_fx_bits_above_30_u64(sp + sq);
     hp = qo_fx_urshift_round_up_u32(sp, s);
     hq = qo_fx_urshift_round_up_u32(sq, s);
     mp = mant_even(sp, &ep);

@@ -15,10 +15,16 @@
  *   qo_fx_rshift_floor         floor(v / 2^s) (plain arithmetic shift, named for its rounding)
  *   qo_fx_div_round_away       round(num / den), ties away from zero (64-bit division)
  *   qo_fx_div_floor            floor(num / den) for den > 0 (64-bit division)
+ *   qo_fx_sat_i32_flag         qo_fx_sat_i32 (clamp to [INT32_MIN, INT32_MAX]) that also sets a
+ *                              flag when it clamped
+ *   qo_fx_add_sat_sym_i64      a + b clamped to the symmetric [-INT64_MAX, INT64_MAX], flag
+ *   qo_fx_mul_sat_sym_i64      a * k (small k > 0) clamped to [-INT64_MAX, INT64_MAX], flag
  *   qo_fx_recip62_u32          about 2^62 / d for d in [2^31, 2^32) (Newton, no division)
  *   qo_fx_recip62_step         one more Newton step of that reciprocal
  *   qo_fx_rsqrt32_q30          about 2^30 / sqrt(x / 2^32) for x in [2^30, 2^32) (Newton)
  *   qo_fx_sincos_2y_q30        sin and cos of 2y for y in [0, pi/4] (no reduction, 32-bit)
+ *   qo_fx_bits_above_30_u64    max(0, bit length of v - 30): the shift that brings v below 2^30
+ *                              (a leading-zero count on 32-bit words: no CLZ on ARMv6-M)
  *
  * The rounding shifts rely on >> of a negative int64 being an arithmetic shift (implementation-
  * defined in C99, arithmetic on gcc and clang for every target): checked here, once, for every
@@ -149,6 +155,47 @@ static inline int64_t qo_fx_div_floor(int64_t num, int64_t den)
     return (num % den < 0) ? q - 1 : q;
 }
 
+/* qo_fx_sat_i32(v) (v clamped to [INT32_MIN, INT32_MAX]), every int64 v, and *ovf = 1 when
+ * it clamped (*ovf is left as it was otherwise, so one flag collects a run of calls). */
+static inline int32_t qo_fx_sat_i32_flag(int64_t v, int *ovf)
+{
+    int32_t r = qo_fx_sat_i32(v);
+    if ((int64_t)r != v) *ovf = 1;
+    return r;
+}
+
+/* a + b for every int64 a and b, clamped to the symmetric range [-INT64_MAX, INT64_MAX] (so
+ * the result can be negated; INT64_MIN comes back only as a itself when b == 0), and
+ * *ovf = 1 when it clamped (left as it was otherwise). */
+static inline int64_t qo_fx_add_sat_sym_i64(int64_t a, int64_t b, int *ovf)
+{
+    if (b > 0 && a > INT64_MAX - b) {
+        *ovf = 1;
+        return INT64_MAX;
+    }
+    if (b < 0 && a < -INT64_MAX - b) {
+        *ovf = 1;
+        return -INT64_MAX;
+    }
+    return a + b;
+}
+
+/* a * k for every int64 a and a small k >= 1 (motion_fx.c: 2, 3, 6), clamped to the
+ * symmetric range [-INT64_MAX, INT64_MAX] (INT64_MIN too is clamped, for every k), and
+ * *ovf = 1 when it clamped (left as it was otherwise). One 64-bit division by k per call. */
+static inline int64_t qo_fx_mul_sat_sym_i64(int64_t a, int k, int *ovf)
+{
+    if (a > INT64_MAX / k) {
+        *ovf = 1;
+        return INT64_MAX;
+    }
+    if (a < -INT64_MAX / k) {
+        *ovf = 1;
+        return -INT64_MAX;
+    }
+    return a * k;
+}
+
 /* One Newton step r += r (2^62 - d r) / 2^62 of a reciprocal r ~ 2^62 / d, d in [2^31, 2^32),
  * for r within 2^-13 relative of the true value (then |2^62 - d r| <= 2^50): the relative
  * error squares (plus ~2^-31 of truncation). Multiplications only (no divider on ARMv6-M). */
@@ -174,6 +221,14 @@ uint32_t qo_fx_rsqrt32_q30(uint32_t x);
  * formulas, no range reduction and no 64-bit multiply or division (the fast tier of slerp;
  * within 8 LSB, tests/core/test_fx_internal.c). In fxmath_fx.c. */
 void qo_fx_sincos_2y_q30(uint32_t y, qo_q30 *s, qo_q30 *c);
+
+/* The number of significant bits of v above bit 29: max(0, bit length(v) - 30), so v >> s
+ * < 2^30 for s = qo_fx_bits_above_30_u64(v) and no smaller s (0 when v < 2^30, 34 for
+ * v >= 2^63). A binary-search leading-zero count on 32-bit words (ARMv6-M has no CLZ and a
+ * 64-bit shift per step is slow there). Defined in euler_fx.c, its one user, out of line:
+ * static inline here, gcc copied it into its three callers (euler_fx.o 540 bytes larger on
+ * Cortex-M0+). */
+unsigned qo_fx_bits_above_30_u64(uint64_t v);
 
 /* The unit quaternion of a rotation vector rv (Q3.28 radians, |rv| < 16): the kernel of
  * qo_quat_exp_q30 (quat_fx.c) and of qo_rotvec_to_quat_q30 (convert_fx.c), which calls it, so

@@ -3,34 +3,6 @@
 
 #include "fx_internal.h"
 
-/* Floor of x / 2^s without relying on the implementation-defined right shift of negatives. */
-static int64_t sat_add(int64_t a, int64_t b, int *ovf)
-{
-    if (b > 0 && a > INT64_MAX - b) {
-        *ovf = 1;
-        return INT64_MAX;
-    }
-    if (b < 0 && a < -INT64_MAX - b) {
-        *ovf = 1;
-        return -INT64_MAX;
-    }
-    return a + b;
-}
-
-/* a * k for a small positive k, saturating. */
-static int64_t sat_mul_k(int64_t a, int k, int *ovf)
-{
-    if (a > INT64_MAX / k) {
-        *ovf = 1;
-        return INT64_MAX;
-    }
-    if (a < -INT64_MAX / k) {
-        *ovf = 1;
-        return -INT64_MAX;
-    }
-    return a * k;
-}
-
 /* round(a * b / 2^16): a in Q31.32, b in Q16.16, result Q31.32, int64 only (a split in 32-bit
  * halves so that no partial product exceeds 63 bits). */
 static int64_t mul_q16(int64_t a, int32_t b, int *ovf)
@@ -54,7 +26,7 @@ static int64_t horner_q16(const int64_t *c, unsigned n, int32_t tau, int *ovf)
 {
     int64_t r = c[0];
     unsigned j;
-    for (j = 1; j < n; j++) r = sat_add(mul_q16(r, tau, ovf), c[j], ovf);
+    for (j = 1; j < n; j++) r = qo_fx_add_sat_sym_i64(mul_q16(r, tau, ovf), c[j], ovf);
     return r;
 }
 
@@ -111,14 +83,14 @@ qo_status qo_motion_sample_q16(const qo_motion_table_q16 *table, qo_q16 t, qo_q1
         c[2] = sg->c1;
         c[3] = sg->c0;
         pos[i] = out_q16(horner_q16(c, 4, tau, &ovf), &ovf);
-        c[1] = sat_mul_k(sg->c2, 2, &ovf);
+        c[1] = qo_fx_mul_sat_sym_i64(sg->c2, 2, &ovf);
         if (vel) {
-            c[0] = sat_mul_k(sg->c3, 3, &ovf);
+            c[0] = qo_fx_mul_sat_sym_i64(sg->c3, 3, &ovf);
             c[2] = sg->c1;
             vel[i] = out_q16(horner_q16(c, 3, tau, &ovf), &ovf);
         }
         if (acc) {
-            c[0] = sat_mul_k(sg->c3, 6, &ovf);
+            c[0] = qo_fx_mul_sat_sym_i64(sg->c3, 6, &ovf);
             acc[i] = out_q16(horner_q16(c, 2, tau, &ovf), &ovf);
         }
     }

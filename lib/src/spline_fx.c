@@ -36,13 +36,6 @@ static int64_t scale(int64_t x, int32_t m, int32_t e, int64_t lim, int *big)
     return p * ((int64_t)1 << -e);
 }
 
-static int32_t sat32(int64_t x, int *ovf)
-{
-    if (x > INT32_MAX) { *ovf = 1; return INT32_MAX; }
-    if (x < INT32_MIN) { *ovf = 1; return INT32_MIN; }
-    return (int32_t)x;
-}
-
 /* sum over n = lo..5 of w[n] b[n] s^(n-lo), by Horner with a rounding after each product
  * (s in Q5.27). A loop rather than three unrolled chains: it keeps the int64 register
  * pressure, and so the stack of an interrupt on a 32-bit core, small. */
@@ -159,9 +152,9 @@ qo_status qo_spline_sample_q16(const qo_spline_q16 *s, qo_q16 t, qo_q16 *pos, qo
         if (x < jr[0]) { x = jr[0]; c = -1; }
         else if (x > jr[1]) { x = jr[1]; c = 1; }
         if (c) v = a = 0;
-        pos[j] = sat32(x, &ovf);
-        if (vel) vel[j] = sat32(v, &ovf);
-        if (acc) acc[j] = sat32(a, &ovf);
+        pos[j] = qo_fx_sat_i32_flag(x, &ovf);
+        if (vel) vel[j] = qo_fx_sat_i32_flag(v, &ovf);
+        if (acc) acc[j] = qo_fx_sat_i32_flag(a, &ovf);
         if (clamped) clamped[j] = c;
     }
     return ovf ? QO_E_OVERFLOW : QO_OK;

@@ -300,6 +300,153 @@ static void test_internal_sincos_2y(void **state)
     for (i = 0; i < 100000; i++) check_sincos_2y((uint32_t)(rnd() % top));
 }
 
+/* ---- the saturating helpers (spline_fx.c, motion_fx.c) and the bit count (euler_fx.c),
+ * each against its specification computed another way: the exact sum or product in two
+ * 64-bit words (a 128-bit value, no __int128: this runs on 32-bit targets too), the int32
+ * clamp in double (exact for every value near the int32 range), the bit count by a linear
+ * search with 64-bit shifts. A flag starts at 2: a clamp must set it to 1, anything else must
+ * leave it at 2 (the helpers collect one flag over a run of calls, never clear it). ---- */
+
+/* An exact 128-bit two's complement value hi 2^64 + lo. */
+typedef struct wide { int64_t hi; uint64_t lo; } wide;
+
+static wide wide_from(int64_t a)
+{
+    wide w;
+    w.hi = a < 0 ? -1 : 0;
+    w.lo = (uint64_t)a;
+    return w;
+}
+
+static wide wide_add(wide a, wide b)
+{
+    wide r;
+    r.lo = a.lo + b.lo;
+    r.hi = a.hi + b.hi + (r.lo < a.lo);
+    return r;
+}
+
+/* The exact value clamped to the symmetric int64 range; *clamped says whether it was
+ * outside [-INT64_MAX, INT64_MAX]. */
+static int64_t wide_clamp_sym(wide w, int *clamped)
+{
+    int fits = w.hi == ((w.lo >> 63) ? -1 : 0);
+    *clamped = 1;
+    if (!fits) return w.hi < 0 ? -INT64_MAX : INT64_MAX;
+    if (w.lo == (uint64_t)1 << 63) return -INT64_MAX;   /* INT64_MIN itself */
+    *clamped = 0;
+    return (int64_t)w.lo;
+}
+
+static void check_add_sat(int64_t a, int64_t b)
+{
+    int ovf = 2, clamped;
+    int64_t got = qo_fx_add_sat_sym_i64(a, b, &ovf);
+    int64_t want = wide_clamp_sym(wide_add(wide_from(a), wide_from(b)), &clamped);
+    if (b == 0) { want = a; clamped = 0; }   /* documented: a + 0 is a, even INT64_MIN */
+    if (got != want || ovf != (clamped ? 1 : 2))
+        fail_msg("add_sat_sym_i64(%lld, %lld) = %lld flag %d, want %lld flag %d", (long long)a,
+                 (long long)b, (long long)got, ovf, (long long)want, clamped ? 1 : 2);
+    if (got == INT64_MIN && !(a == INT64_MIN && b == 0))
+        fail_msg("add_sat_sym_i64(%lld, %lld) = INT64_MIN", (long long)a, (long long)b);
+}
+
+static void check_mul_sat(int64_t a, int k)
+{
+    int ovf = 2, clamped, i;
+    int64_t got = qo_fx_mul_sat_sym_i64(a, k, &ovf), want;
+    wide w = wide_from(0);
+    for (i = 0; i < k; i++) w = wide_add(w, wide_from(a));   /* k a by repeated addition */
+    want = wide_clamp_sym(w, &clamped);
+    if (got != want || ovf != (clamped ? 1 : 2))
+        fail_msg("mul_sat_sym_i64(%lld, %d) = %lld flag %d, want %lld flag %d", (long long)a, k,
+                 (long long)got, ovf, (long long)want, clamped ? 1 : 2);
+}
+
+static void check_sat_i32(int64_t v)
+{
+    int ovf = 2;
+    int32_t got = qo_fx_sat_i32_flag(v, &ovf);
+    double d = (double)v, want = d > 2147483647.0 ? 2147483647.0 : d < -2147483648.0 ? -2147483648.0 : d;
+    int clamped = d > 2147483647.0 || d < -2147483648.0;
+    if ((double)got != want || ovf != (clamped ? 1 : 2) || got != qo_fx_sat_i32(v))
+        fail_msg("sat_i32_flag(%lld) = %ld flag %d, want %.0f flag %d", (long long)v, (long)got,
+                 ovf, want, clamped ? 1 : 2);
+}
+
+static void check_bits_above_30(uint64_t v)
+{
+    unsigned want = 0, got = qo_fx_bits_above_30_u64(v);
+    while ((v >> want) >= ((uint64_t)1 << 30)) want++;
+    if (got != want)
+        fail_msg("bits_above_30_u64(%llu) = %u, want %u", (unsigned long long)v, got, want);
+}
+
+static void test_internal_saturate_count(void **state)
+{
+    static const int64_t e[] = { 0, 1, -1, 2, -2, INT32_MAX, INT32_MIN, (int64_t)INT32_MAX + 1,
+                                 (int64_t)INT32_MIN - 1, INT64_MAX, INT64_MIN, INT64_MAX - 1,
+                                 INT64_MIN + 1, INT64_MAX / 2, INT64_MIN / 2, INT64_MAX / 2 + 1,
+                                 INT64_MIN / 2 - 1, INT64_MAX / 3, INT64_MAX / 3 + 1,
+                                 -(INT64_MAX / 3) - 1, INT64_MAX / 6, INT64_MAX / 6 + 1,
+                                 -(INT64_MAX / 6) - 1, (int64_t)1 << 62, -((int64_t)1 << 62) };
+    static const int ks[] = { 1, 2, 3, 6, 7, 16 };
+    size_t i, j;
+    unsigned k;
+    int ovf;
+    (void)state;
+    rng_state = 0x5EED001Au;
+    /* the documented edges by value */
+    ovf = 0;
+    assert_true(qo_fx_sat_i32_flag((int64_t)INT32_MAX + 1, &ovf) == INT32_MAX && ovf == 1);
+    ovf = 0;
+    assert_true(qo_fx_sat_i32_flag(INT64_MIN, &ovf) == INT32_MIN && ovf == 1);
+    ovf = 0;
+    assert_true(qo_fx_sat_i32_flag(INT32_MIN, &ovf) == INT32_MIN && ovf == 0);
+    ovf = 0;
+    assert_true(qo_fx_add_sat_sym_i64(INT64_MAX, 1, &ovf) == INT64_MAX && ovf == 1);
+    ovf = 0;
+    assert_true(qo_fx_add_sat_sym_i64(INT64_MIN + 1, -1, &ovf) == -INT64_MAX && ovf == 1);
+    ovf = 0;
+    assert_true(qo_fx_add_sat_sym_i64(-INT64_MAX, 0, &ovf) == -INT64_MAX && ovf == 0);
+    assert_true(qo_fx_add_sat_sym_i64(INT64_MIN, 0, &ovf) == INT64_MIN && ovf == 0);
+    assert_true(qo_fx_add_sat_sym_i64(INT64_MIN, 1, &ovf) == INT64_MIN + 1 && ovf == 0);
+    assert_true(qo_fx_mul_sat_sym_i64(INT64_MAX / 6, 6, &ovf) == INT64_MAX / 6 * 6 && ovf == 0);
+    assert_true(qo_fx_mul_sat_sym_i64(INT64_MIN, 1, &ovf) == -INT64_MAX && ovf == 1);
+    ovf = 0;
+    assert_true(qo_fx_mul_sat_sym_i64(-(INT64_MAX / 3) - 1, 3, &ovf) == -INT64_MAX && ovf == 1);
+    assert_true(qo_fx_bits_above_30_u64(0) == 0 && qo_fx_bits_above_30_u64((1u << 30) - 1u) == 0);
+    assert_true(qo_fx_bits_above_30_u64(1u << 30) == 1 && qo_fx_bits_above_30_u64(UINT64_MAX) == 34);
+    /* every pair of edges, every edge times every k */
+    for (i = 0; i < sizeof e / sizeof e[0]; i++) {
+        check_sat_i32(e[i]);
+        check_bits_above_30((uint64_t)e[i]);
+        for (j = 0; j < sizeof e / sizeof e[0]; j++) check_add_sat(e[i], e[j]);
+        for (j = 0; j < sizeof ks / sizeof ks[0]; j++) check_mul_sat(e[i], ks[j]);
+    }
+    /* each power of two and its neighbours, both signs */
+    for (k = 0; k < 64; k++) {
+        uint64_t p = (uint64_t)1 << k;
+        check_bits_above_30(p);
+        check_bits_above_30(p - 1u);
+        check_bits_above_30(p + 1u);
+        if (k < 63) {
+            int64_t sp = (int64_t)p;
+            check_sat_i32(sp); check_sat_i32(-sp); check_sat_i32(sp - 1); check_sat_i32(-sp - 1);
+            check_add_sat(sp, INT64_MAX - sp + 1); check_add_sat(-sp, -INT64_MAX + sp - 1);
+            check_add_sat(sp, INT64_MAX - sp); check_add_sat(-sp, -INT64_MAX + sp);
+        }
+    }
+    /* random values of random magnitude */
+    for (i = 0; i < 400000; i++) {
+        int64_t a = (int64_t)rnd() >> (rnd() % 64u), b = (int64_t)rnd() >> (rnd() % 64u);
+        check_sat_i32(a);
+        check_bits_above_30(rnd() >> (rnd() % 64u));
+        check_add_sat(a, b);
+        check_mul_sat(a, 1 + (int)(rnd() % 16u));
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -308,6 +455,7 @@ int main(void)
         cmocka_unit_test(test_internal_int32_helpers),
         cmocka_unit_test(test_internal_newton),
         cmocka_unit_test(test_internal_sincos_2y),
+        cmocka_unit_test(test_internal_saturate_count),
     };
     return cmocka_run_group_tests_name("fx_internal", tests, NULL, NULL);
 }
