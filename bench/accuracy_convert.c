@@ -28,10 +28,10 @@ enum {
     C_RV2Q, C_Q2RV, C_Q2M2Q, C_COUNT
 };
 static const char *const names[C_COUNT] = {
-    "quat_to_mat3", "quat_from_mat3", "quat_from_mat3_trusted", "quat_from_mat3 (drift 1e-5)",
-    "quat_from_mat3_ortho (rotation)",
-    "quat_from_mat3_ortho (noise 1e-2)", "mat3_orthonormalize (noise 1e-2)",
-    "quat_from_axis_angle", "quat_to_axis_angle", "quat_from_rotvec", "quat_to_rotvec",
+    "mat3_from_quat", "mat3_to_quat", "mat3_to_quat_trusted", "mat3_to_quat (drift 1e-5)",
+    "mat3_to_quat_ortho (rotation)",
+    "mat3_to_quat_ortho (noise 1e-2)", "mat3_orthonormalize (noise 1e-2)",
+    "axis_angle_to_quat", "axis_angle_from_quat", "rotvec_to_quat", "rotvec_from_quat",
     "quat -> mat3 -> quat",
 };
 

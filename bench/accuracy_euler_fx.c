@@ -191,15 +191,15 @@ int main(int argc, char **argv)
     printf("accuracy_euler_fx: %ld cases per convention x 24 conventions (seed 0x5EED0E17)\n", n_per);
     printf("  lock band QO_EULER_LOCK_BAND_Q28      = %d LSB = %.3g rad\n",
            (int)QO_EULER_LOCK_BAND_Q28, QO_EULER_LOCK_BAND_Q28 / REF_Q28);
-    printf("  from_euler worst error                 = %.3g rad (%s), %.2f LSB per component   goal <= 1e-6\n",
+    printf("  euler_to_quat worst error              = %.3g rad (%s), %.2f LSB per component   goal <= 1e-6\n",
            w_from, ref_euler_names[s_from], w_from_lsb);
-    printf("  to_euler generic worst recomposition   = %.3g rad (%s)   goal <= 1e-6\n", w_gen, ref_euler_names[s_gen]);
-    printf("  to_euler_near generic worst recomp.    = %.3g rad         goal <= 1e-6\n", w_nearfn);
-    printf("  to_euler at exact lock worst recomp.   = %.3g rad (%s)   goal <= 1e-5\n", w_lock, ref_euler_names[s_lock]);
+    printf("  euler_from_quat generic worst recomp.  = %.3g rad (%s)   goal <= 1e-6\n", w_gen, ref_euler_names[s_gen]);
+    printf("  euler_from_quat_near generic recomp.   = %.3g rad         goal <= 1e-6\n", w_nearfn);
+    printf("  euler_from_quat at exact lock recomp.  = %.3g rad (%s)   goal <= 1e-5\n", w_lock, ref_euler_names[s_lock]);
     printf("  near lock, flagged, worst recomp.      = %.3g rad         goal <= 1e-5\n", w_near_in);
     printf("  near lock, not flagged, worst recomp.  = %.3g rad (%s)   goal <= 1e-5\n", w_near_out, ref_euler_names[s_near]);
     printf("  exactly singular inputs flagged        = %ld of %ld\n", n_exact_flagged, n_exact);
-    printf("  largest margin at an exact singularity = %.3g rad (rounded from double), %.3g rad (via from_euler_q30)\n",
+    printf("  largest margin at an exact singularity = %.3g rad (rounded from double), %.3g rad (via euler_to_quat_q30)\n",
            max_exact_margin, max_exact_margin_f);
     printf("  singular + up to 2 LSB per component   = %ld of %ld flagged, largest margin %.3g rad\n",
            n_noisy_flagged, n_noisy, max_noisy_margin);
@@ -233,7 +233,7 @@ int main(int argc, char **argv)
             sink += qq.w;
         }
         t2 = now_s();
-        printf("  host time per call: to_euler %.1f ns, from_euler %.1f ns (-O2, informative)\n",
+        printf("  host time per call: euler_from_quat %.1f ns, euler_to_quat %.1f ns (-O2, informative)\n",
                1e9 * (t1 - t0) / reps, 1e9 * (t2 - t1) / reps);
         (void)sink;
     }

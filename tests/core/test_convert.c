@@ -241,7 +241,7 @@ static void test_mat3_quat(void **state)
         if (c->to_mat3(q, &m) != QO_OK || m_dist(&m, &want) > (c->fixed ? 3 / Q30 : 1e-6) ||
             ref_mat3_rotation_distance(&m, &want) > (c->fixed ? 4 * c->tol_rot : 1e-6) ||
             m_orth_err(&m) > (c->fixed ? 4 * c->tol_abs : 1e-6))
-            fail_msg("%s to_mat3 case %d: q " QFMT " error %.3g, orthogonality %.3g", c->name, n,
+            fail_msg("%s mat3_from_quat case %d: q " QFMT " error %.3g, orthogonality %.3g", c->name, n,
                      QARG(q), m_dist(&m, &want), m_orth_err(&m));
         /* M v to one rounding, and the rotation of v by q/|q| */
         mv = c->mat3_mul_vec3(&m, v);
@@ -256,23 +256,23 @@ static void test_mat3_quat(void **state)
         if (c->normalize(q, &qn) != QO_OK) fail_msg("%s normalize case %d", c->name, n);
         rv = c->rotate(qn, v);
         if (v_dist(mv, rv) > (c->fixed ? 8 / Q30 : 2e-6))
-            fail_msg("%s to_mat3 case %d disagrees with rotate: (%.12g %.12g %.12g) vs "
+            fail_msg("%s mat3_from_quat case %d disagrees with rotate: (%.12g %.12g %.12g) vs "
                      "(%.12g %.12g %.12g)", c->name, n, mv.x, mv.y, mv.z, rv.x, rv.y, rv.z);
         mr = m_in(c, &want);
         wq = ref_mat3_to_quat(&mr);
         if (c->from_mat3(&mr, &o) != QO_OK || rot_err(o, wq) > 4 * c->tol_rot || o.w < 0)
-            fail_msg("%s from_mat3 case %d: q " QFMT " got " QFMT, c->name, n, QARG(q), QARG(o));
+            fail_msg("%s mat3_to_quat case %d: q " QFMT " got " QFMT, c->name, n, QARG(q), QARG(o));
         /* float32: the angle and the norm; Q1.30: each component (at w == 0 either sign) */
         e = c->fixed ? fmin(q_dist(o, wq), fabs(wq.w) < 1e-8 ? q_dist(o, dq_neg(wq)) : 1)
                      : rot_err(o, wq);
         if (e > (c->fixed ? 3 / Q30 : 1e-6) || (!c->fixed && fabs(dq_norm(o) - 1) > 1e-6))
-            fail_msg("%s from_mat3 case %d: q " QFMT " got " QFMT " want " QFMT " error %.3g",
+            fail_msg("%s mat3_to_quat case %d: q " QFMT " got " QFMT " want " QFMT " error %.3g",
                      c->name, n, QARG(q), QARG(o), QARG(wq), e);
         if (c->from_mat3_trusted(&mr, &o) != QO_OK || rot_err(o, wq) > 4 * c->tol_rot || o.w < 0)
-            fail_msg("%s from_mat3_trusted case %d: q " QFMT " got " QFMT, c->name, n, QARG(q),
+            fail_msg("%s mat3_to_quat_trusted case %d: q " QFMT " got " QFMT, c->name, n, QARG(q),
                      QARG(o));
         if (c->from_mat3_ortho(&mr, &o) != QO_OK || rot_err(o, wq) > 4 * c->tol_rot || o.w < 0)
-            fail_msg("%s from_mat3_ortho case %d: q " QFMT " got " QFMT, c->name, n, QARG(q),
+            fail_msg("%s mat3_to_quat_ortho case %d: q " QFMT " got " QFMT, c->name, n, QARG(q),
                      QARG(o));
     }
     /* identity both ways; q and -q give the same matrix */
@@ -453,7 +453,7 @@ static double core_check_ortho(const core *c, const char *what, int n, const ref
                  "orthogonality error %.3g", c->name, what, n, e, m_orth_err(&o));
     }
     if (c->from_mat3_ortho(m, &q) != QO_OK || rot_err(q, ref_mat3_to_quat(&want)) > tol || q.w < 0)
-        fail_msg("%s from_mat3_ortho %s case %d: " QFMT, c->name, what, n, QARG(q));
+        fail_msg("%s mat3_to_quat_ortho %s case %d: " QFMT, c->name, what, n, QARG(q));
     return e;
 }
 
@@ -670,7 +670,7 @@ static ref_quat edge_quat(size_t k)
 
 /* ---- quaternion -> matrix ---- */
 
-static void test_f32_quat_to_mat3_errors(void **state)
+static void test_f32_mat3_from_quat_errors(void **state)
 {
     qo_mat3_f32 m;
     (void)state;
@@ -701,14 +701,14 @@ static void check_from_mat3(const char *name, int n, const qo_mat3_f32 *m, ref_q
     double err;
     if (st != QO_OK) {
         print_mf("m", m);
-        fail_msg("quat_from_mat3 %s (case %d): status %d", name, n, (int)st);
+        fail_msg("mat3_to_quat %s (case %d): status %d", name, n, (int)st);
     }
     err = ref_quat_angle_between(ref_quat_from_f32(q), expect);
     if (err > TOL_RAD || q.w < 0.0f || fabs(ref_quat_norm(ref_quat_from_f32(q)) - 1.0) > 1e-6) {
         print_mf("m", m);
         print_q("got", q);
         print_q("expected", ref_quat_to_f32(ref_quat_canonical(expect)));
-        fail_msg("quat_from_mat3 %s (case %d): error %.3g rad (w must be >= 0, |q| 1)", name, n,
+        fail_msg("mat3_to_quat %s (case %d): error %.3g rad (w must be >= 0, |q| 1)", name, n,
                  err);
     }
 }
@@ -716,7 +716,7 @@ static void check_from_mat3(const char *name, int n, const qo_mat3_f32 *m, ref_q
 /* The trusted variant: random rotations and the edge table (every pivot, 180 deg, tiny) against
  * the double quaternion; non-finite entries (diagonal and off-diagonal) and NULL refused with
  * the identity written; a non-rotation gives some unit quaternion, never NaN. */
-static void test_f32_quat_from_mat3_trusted(void **state)
+static void test_f32_mat3_to_quat_trusted(void **state)
 {
     ref_rng rng = { 37 };
     int n, i;
@@ -740,7 +740,7 @@ static void test_f32_quat_from_mat3_trusted(void **state)
         if (err > TOL_RAD || q.w < 0.0f || fabs(ref_quat_norm(ref_quat_from_f32(q)) - 1.0) > 1e-6) {
             print_mf("m", &m);
             print_q("got", q);
-            fail_msg("quat_from_mat3_trusted case %d: error %.3g rad (w >= 0, |q| 1)", n, err);
+            fail_msg("mat3_to_quat_trusted case %d: error %.3g rad (w >= 0, |q| 1)", n, err);
         }
     }
     for (k = 0; k < 9; k++) {
@@ -767,7 +767,7 @@ static void test_f32_quat_from_mat3_trusted(void **state)
  * with |q| near 1 (the documented "off by e, |q| off 1 by about e"); any finite matrix, entries
  * of every magnitude up to FLT_MAX and both signs of zero, gives QO_OK with a finite q, w >= 0
  * (never NaN), or QO_E_NONFINITE with the identity (entries so large the formula overflows). */
-static void test_f32_quat_from_mat3_trusted_domain(void **state)
+static void test_f32_mat3_to_quat_trusted_domain(void **state)
 {
     ref_rng rng = { 41 };
     int n, i, j, overflow = 0;
@@ -826,7 +826,7 @@ static void test_f32_quat_from_mat3_trusted_domain(void **state)
                   "matrices overflow\n", worst, worst_norm, overflow, 20 * N_F32);
 }
 
-static void test_f32_quat_from_mat3_edges(void **state)
+static void test_f32_mat3_to_quat_edges(void **state)
 {
     size_t k;
     int pivots[4] = { 0, 0, 0, 0 };
@@ -881,7 +881,7 @@ static void test_f32_quat_from_mat3_edges(void **state)
     }
 }
 
-static void test_f32_quat_from_mat3_non_rotations(void **state)
+static void test_f32_mat3_to_quat_non_rotations(void **state)
 {
     struct { const char *name; qo_mat3_f32 m; qo_status st; } cases[13];
     qo_mat3_f32 r;
@@ -932,7 +932,7 @@ static void test_f32_quat_from_mat3_non_rotations(void **state)
         if (st != cases[k].st || (st != QO_OK && !is_identity_q(q))) {
             print_mf("m", &cases[k].m);
             print_q("out", q);
-            fail_msg("quat_from_mat3 %s: status %d, expected %d (out must be identity on error)",
+            fail_msg("mat3_to_quat %s: status %d, expected %d (out must be identity on error)",
                      cases[k].name, (int)st, (int)cases[k].st);
         }
     }
@@ -946,7 +946,7 @@ static void test_f32_quat_from_mat3_non_rotations(void **state)
 
 /* Accepted but drifted matrices (max |M^T M - I| up to the 1e-4 tolerance) give the quaternion
  * of their NEAREST rotation, not whatever the direct formula lands on. */
-static void test_f32_quat_from_mat3_drifted(void **state)
+static void test_f32_mat3_to_quat_drifted(void **state)
 {
     static const double amp[] = { 1e-7, 3e-7, 1e-6, 1e-5, 3e-5 };
     ref_rng rng = { 45 };
@@ -1033,7 +1033,7 @@ static void check_ortho_tol(const char *name, int n, const qo_mat3_f32 *m, doubl
     st = qo_mat3_to_quat_ortho_f32(m, &q);
     qerr = ref_quat_angle_between(ref_quat_from_f32(q), ref_mat3_to_quat(&ref));
     if (st != QO_OK || qerr > tol || q.w < 0.0f)
-        fail_msg("quat_from_mat3_ortho %s (case %d): status %d, error %.3g rad", name, n, (int)st,
+        fail_msg("mat3_to_quat_ortho %s (case %d): status %d, error %.3g rad", name, n, (int)st,
                  qerr);
 }
 
@@ -1331,7 +1331,7 @@ static void test_q30_rotvec_edges(void **state)
 
 /* to_mat3 and mat3_mul_vec3 at the ends of the format: zero, NULL, saturation (the rounding is
  * test_mat3_quat, both cores) */
-static void test_q30_to_mat3_edges(void **state)
+static void test_q30_mat3_from_quat_edges(void **state)
 {
     qo_mat3_q30 m;
     qo_vec3_q30 r;
@@ -1357,20 +1357,20 @@ static void x_check_from_mat3(const qo_mat3_q30 *m, const char *what)
     qo_status st = qo_mat3_to_quat_q30(m, &r);
     for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) d[i][j] = m->m[i][j] / TWO30;
     want = dq_from_mat(d);
-    if (st != QO_OK) fail_msg("from_mat3 %s: status %d", what, st);
-    if (r.w < 0) fail_msg("from_mat3 %s: not canonical " XFMT, what, XARG(r));
+    if (st != QO_OK) fail_msg("mat3_to_quat %s: status %d", what, st);
+    if (r.w < 0) fail_msg("mat3_to_quat %s: not canonical " XFMT, what, XARG(r));
     e = ref_quat_err_lsb_q30(r, want);
     /* At w == 0 (exact half turns) both signs are canonical candidates: compare either. */
     if (e > 3.0) {
         dq nw = { -want.w, -want.x, -want.y, -want.z };
-        if (!(fabs(want.w) < 1e-8 && ref_quat_err_lsb_q30(r, nw) <= 3.0)) fail_msg("from_mat3 %s = " XFMT ": %.3f LSB", what, XARG(r), e);
+        if (!(fabs(want.w) < 1e-8 && ref_quat_err_lsb_q30(r, nw) <= 3.0)) fail_msg("mat3_to_quat %s = " XFMT ": %.3f LSB", what, XARG(r), e);
     }
 }
 
 /* from_mat3 at the edges: exact half turns (either sign at w == 0), NULL, reflection, scale,
  * shear, zero, INT32_MIN, the tolerance just inside and outside (random rotations: test_mat3_quat,
  * both cores) */
-static void test_q30_from_mat3_edges(void **state)
+static void test_q30_mat3_to_quat_edges(void **state)
 {
     static const double half_turns[][4] = {
         { 0, 1, 0, 0 }, { 0, 0, 1, 0 }, { 0, 0, 0, 1 }, { 0, 0.70710678118654752, 0.70710678118654752, 0 },
@@ -1428,12 +1428,12 @@ int main(void)
         BOTH(test_mat3_ops),
         BOTH(test_orthonormalize),
         BOTH(test_round_trips),
-        cmocka_unit_test(test_f32_quat_to_mat3_errors),
-        cmocka_unit_test(test_f32_quat_from_mat3_edges),
-        cmocka_unit_test(test_f32_quat_from_mat3_trusted),
-        cmocka_unit_test(test_f32_quat_from_mat3_trusted_domain),
-        cmocka_unit_test(test_f32_quat_from_mat3_non_rotations),
-        cmocka_unit_test(test_f32_quat_from_mat3_drifted),
+        cmocka_unit_test(test_f32_mat3_from_quat_errors),
+        cmocka_unit_test(test_f32_mat3_to_quat_edges),
+        cmocka_unit_test(test_f32_mat3_to_quat_trusted),
+        cmocka_unit_test(test_f32_mat3_to_quat_trusted_domain),
+        cmocka_unit_test(test_f32_mat3_to_quat_non_rotations),
+        cmocka_unit_test(test_f32_mat3_to_quat_drifted),
         cmocka_unit_test(test_f32_edges_all_conversions),
         cmocka_unit_test(test_f32_orthonormalize_scaled),
         cmocka_unit_test(test_f32_orthonormalize_rejects),
@@ -1442,8 +1442,8 @@ int main(void)
         cmocka_unit_test(test_f32_rotvec_edges),
         cmocka_unit_test(test_q30_axis_angle_edges),
         cmocka_unit_test(test_q30_rotvec_edges),
-        cmocka_unit_test(test_q30_to_mat3_edges),
-        cmocka_unit_test(test_q30_from_mat3_edges),
+        cmocka_unit_test(test_q30_mat3_from_quat_edges),
+        cmocka_unit_test(test_q30_mat3_to_quat_edges),
     };
     return cmocka_run_group_tests_name("convert", tests, NULL, NULL);
 }

@@ -256,7 +256,7 @@ static void test_seq_parse_rejects(void **state)
 }
 
 /* ---- from_euler (float32, fixed) ----------------------------------------------------------- */
-static void test_from_euler_random_all24(void **state)
+static void test_euler_to_quat_random_all24(void **state)
 {
     const core *c = *state;
     int seq, n;
@@ -277,7 +277,7 @@ static void test_from_euler_random_all24(void **state)
             sum = fabs(q.w - r.w) + fabs(q.x - r.x) + fabs(q.y - r.y) + fabs(q.z - r.z);
             ang = dq_angle(q, r);
             if (err > c->tol_from || sum > c->tol_from_sum || ang > c->tol_from_sum)
-                fail_msg("%s from_euler %s (%.10g %.10g %.10g): component error %.3g (sum %.3g, "
+                fail_msg("%s euler_to_quat %s (%.10g %.10g %.10g): component error %.3g (sum %.3g, "
                          "rotation %.3g)", c->name, ref_euler_names[seq], a[0], a[1], a[2], err, sum, ang);
         }
     }
@@ -294,7 +294,7 @@ static void expect_image(const core *c, const char *what, dq q, ref_vec3 v, doub
 }
 
 /* scipy's documented examples and hand-derived values (exact answers, not code output). */
-static void test_from_euler_known_values(void **state)
+static void test_euler_to_quat_known_values(void **state)
 {
     const core *c = *state;
     const double h = sqrt(0.5), d90 = c->ra(PI / 2);
@@ -349,7 +349,7 @@ static void test_from_euler_known_values(void **state)
 /* Bad sequences: QO_E_ARG and the identity; NULL out. An angle past the core's range (1e39:
  * Inf in float32, saturated to INT32_MAX in Q3.28) in each place: float32 rejects it with
  * QO_E_NONFINITE and the identity, fixed point takes the saturated angle as any other. */
-static void test_from_euler_bad_inputs(void **state)
+static void test_euler_to_quat_bad_inputs(void **state)
 {
     const core *c = *state;
     const double a[3] = { 0.1, 0.2, 0.3 };
@@ -358,7 +358,7 @@ static void test_from_euler_bad_inputs(void **state)
     assert_int_equal(c->from_euler(QO_EULER_xyz, a, NULL), QO_E_NULL);
     assert_int_equal(c->from_euler(QO_EULER_SEQ_COUNT_, a, &q), QO_E_ARG);
     if (q.w != 1.0 || q.x != 0.0 || q.y != 0.0 || q.z != 0.0)
-        fail_msg("%s from_euler bad seq: out is not the identity", c->name);
+        fail_msg("%s euler_to_quat bad seq: out is not the identity", c->name);
     assert_int_equal(c->from_euler(-3, a, &q), QO_E_ARG);
     assert_true(q.w == 1.0 && q.x == 0.0 && q.y == 0.0 && q.z == 0.0);
     for (i = 0; i < 6; i++) {
@@ -369,7 +369,7 @@ static void test_from_euler_bad_inputs(void **state)
         b[i / 2] = c->ra(i % 2 ? -1e39 : 1e39);
         st = c->from_euler(QO_EULER_ZXZ, b, &q);
         if (st != (c->fixed ? QO_OK : QO_E_NONFINITE))
-            fail_msg("%s from_euler angle %d = %g: status %d", c->name, i / 2, b[i / 2], (int)st);
+            fail_msg("%s euler_to_quat angle %d = %g: status %d", c->name, i / 2, b[i / 2], (int)st);
         if (st != QO_OK) {
             assert_true(q.w == 1.0 && q.x == 0.0 && q.y == 0.0 && q.z == 0.0);
             continue;
@@ -377,7 +377,7 @@ static void test_from_euler_bad_inputs(void **state)
         r = ref_quat_from_euler(ref_euler_names[QO_EULER_ZXZ], b[0], b[1], b[2]);
         err = fmax(fmax(fabs(q.w - r.w), fabs(q.x - r.x)), fmax(fabs(q.y - r.y), fabs(q.z - r.z)));
         if (err > c->tol_from)
-            fail_msg("%s from_euler saturated angle %d: error %.3g", c->name, i / 2, err);
+            fail_msg("%s euler_to_quat saturated angle %d: error %.3g", c->name, i / 2, err);
     }
 }
 
@@ -395,7 +395,7 @@ static dq random_unit(void)
     return dq_unit(r);
 }
 
-static void test_to_euler_random_rotations_all24(void **state)
+static void test_euler_from_quat_random_rotations_all24(void **state)
 {
     const core *c = *state;
     int seq, n;
@@ -410,7 +410,7 @@ static void test_to_euler_random_rotations_all24(void **state)
             check_ranges(c, seq, e, "random");
             err = recompose_err(seq, e, q);
             if (err > c->tol_fine)
-                fail_msg("%s to_euler %s of q=(%.10g %.10g %.10g %.10g): (%.10g %.10g %.10g) "
+                fail_msg("%s euler_from_quat %s of q=(%.10g %.10g %.10g %.10g): (%.10g %.10g %.10g) "
                          "recomposes %.3g rad off", c->name, ref_euler_names[seq], q.w, q.x, q.y, q.z,
                          e[0], e[1], e[2], err);
             if (info.locked != (info.margin <= c->band))
@@ -429,7 +429,7 @@ static void test_to_euler_random_rotations_all24(void **state)
 }
 
 /* Angles in scipy's ranges, away from lock, come back as given (mod 2pi near +-pi). */
-static void test_to_euler_recovers_angles_all24(void **state)
+static void test_euler_from_quat_recovers_angles_all24(void **state)
 {
     const core *c = *state;
     int seq, n;
@@ -464,7 +464,7 @@ static void test_to_euler_recovers_angles_all24(void **state)
 /* scipy's as_euler docs: rotvec (0, 0, pi/2) is zxy (90, 0, 0); rotvec (0, -pi/3, 0) is
  * zxy (0, 0, -60). Hand-derived: identity gives zeros for Tait-Bryan; for proper sequences it
  * is exactly singular: locked, margin 0, a3 = 0, a1 = 0. */
-static void test_to_euler_known_values(void **state)
+static void test_euler_from_quat_known_values(void **state)
 {
     const core *c = *state;
     dq q = { sqrt(0.5), 0, 0, sqrt(0.5) };
@@ -623,7 +623,7 @@ static void test_exactly_singular_all24(void **state)
                 assert_int_equal(c->to_euler(qs, seq, 1, 0, e, &info), QO_OK);
                 err = recompose_err(seq, e, ref_quat_from_euler(ref_euler_names[seq], s[0], a2, s[2]));
                 if (!info.locked || e[2] != 0.0 || err > c->tol_lock)
-                    fail_msg("%s singular via from_euler %s (%.10g %.10g %.10g): locked %d "
+                    fail_msg("%s singular via euler_to_quat %s (%.10g %.10g %.10g): locked %d "
                              "margin %.3g err %.3g", c->name, ref_euler_names[seq], s[0], s[1], s[2],
                              info.locked, info.margin, err);
                 /* 3. then every component moved by up to 2 steps (noise from an upstream
@@ -788,7 +788,7 @@ static void expect_error(const core *c, dq q, int seq, double band, qo_status wa
     }
 }
 
-static void test_to_euler_bad_inputs(void **state)
+static void test_euler_from_quat_bad_inputs(void **state)
 {
     const core *c = *state;
     const dq ok = { 0.9, 0.1, 0.2, 0.3 }, zero = { 0, 0, 0, 0 }, negzero = { -0.0, 0, -0.0, 0 };
@@ -937,7 +937,7 @@ static void test_near_picks_branch_and_locks(void **state)
 }
 
 /* ---- float32 only: NaN, Inf, subnormal and huge components --------------------------------- */
-static void test_f32_from_euler_nan(void **state)
+static void test_f32_euler_to_quat_nan(void **state)
 {
     const core *c = &CORE_F32;
     int i;
@@ -947,7 +947,7 @@ static void test_f32_from_euler_nan(void **state)
         dq q;
         a[i] = NAN;
         if (c->from_euler(QO_EULER_ZXZ, a, &q) != QO_E_NONFINITE)
-            fail_msg("float32 from_euler accepted a NaN angle %d", i);
+            fail_msg("float32 euler_to_quat accepted a NaN angle %d", i);
         assert_true(q.w == 1.0 && q.x == 0.0 && q.y == 0.0 && q.z == 0.0);
     }
 }
@@ -955,7 +955,7 @@ static void test_f32_from_euler_nan(void **state)
 /* A non-unit input is normalised: 1e-20 and 1e20 times the yaw quaternion; subnormal and
  * near-FLT_MAX components are scaled, not rejected, not overflowing; a tiny but not yet
  * subnormal singular input is still flagged (the margin is a ratio). */
-static void test_f32_to_euler_scaled_inputs(void **state)
+static void test_f32_euler_from_quat_scaled_inputs(void **state)
 {
     static const struct { const char *what; dq q; int seq; double a1, a2, tol; int locked; } k[] = {
         { "yaw 90 x 1e-20", { 0.70710678118655e-20, 0, 0, 0.70710678118655e-20 }, QO_EULER_ZYX,
@@ -985,7 +985,7 @@ static void test_f32_to_euler_scaled_inputs(void **state)
 }
 
 /* Non-finite components, band and prev: QO_E_NONFINITE with the documented outputs. */
-static void test_f32_to_euler_nonfinite(void **state)
+static void test_f32_euler_from_quat_nonfinite(void **state)
 {
     const core *c = &CORE_F32;
     const dq ok = { 0.9, 0.1, 0.2, 0.3 };
@@ -1049,7 +1049,7 @@ static void test_fx_near_range_end(void **state)
 }
 
 /* Every int32 angle is a valid from_euler input; INT32_MIN/MAX angles against double. */
-static void test_fx_from_euler_extreme_angles(void **state)
+static void test_fx_euler_to_quat_extreme_angles(void **state)
 {
     static const int32_t v[] = { INT32_MIN, INT32_MIN + 1, -1, 0, 1, INT32_MAX - 1, INT32_MAX,
                                  843314857 /* pi */, -843314857, 421657428 /* pi/2 */ };
@@ -1069,7 +1069,7 @@ static void test_fx_from_euler_extreme_angles(void **state)
                 err = fmax(fmax(fabs(q.w / Q30 - r.w), fabs(q.x / Q30 - r.x)),
                            fmax(fabs(q.y / Q30 - r.y), fabs(q.z / Q30 - r.z)));
                 if (err > 1e-8)
-                    fail_msg("fixed from_euler %s raw (%d %d %d): error %.3g", ref_euler_names[seq],
+                    fail_msg("fixed euler_to_quat %s raw (%d %d %d): error %.3g", ref_euler_names[seq],
                              (int)e.a1, (int)e.a2, (int)e.a3, err);
             }
 }
@@ -1163,28 +1163,28 @@ int main(void)
         cmocka_unit_test(test_seq_parse_and_name),
         cmocka_unit_test(test_seq_parse_rejects),
         /* shared bodies */
-        BOTH(test_from_euler_random_all24),
-        BOTH(test_from_euler_known_values),
-        BOTH(test_from_euler_bad_inputs),
-        ALL3(test_to_euler_random_rotations_all24),
-        ALL3(test_to_euler_recovers_angles_all24),
-        ALL3(test_to_euler_known_values),
+        BOTH(test_euler_to_quat_random_all24),
+        BOTH(test_euler_to_quat_known_values),
+        BOTH(test_euler_to_quat_bad_inputs),
+        ALL3(test_euler_from_quat_random_rotations_all24),
+        ALL3(test_euler_from_quat_recovers_angles_all24),
+        ALL3(test_euler_from_quat_known_values),
         ALL3(test_edge_table),
         ALL3(test_exactly_singular_all24),
         ALL3(test_singular_free_angle_choice),
         ALL3(test_just_off_singular_all24),
         ALL3(test_range_ends_all24),
-        ALL3(test_to_euler_bad_inputs),
+        ALL3(test_euler_from_quat_bad_inputs),
         BOTH(test_near_through_singularity_all24),
         BOTH(test_near_across_wrap_and_turns),
         BOTH(test_near_picks_branch_and_locks),
         /* float32 only */
-        cmocka_unit_test(test_f32_from_euler_nan),
-        cmocka_unit_test(test_f32_to_euler_scaled_inputs),
-        cmocka_unit_test(test_f32_to_euler_nonfinite),
+        cmocka_unit_test(test_f32_euler_to_quat_nan),
+        cmocka_unit_test(test_f32_euler_from_quat_scaled_inputs),
+        cmocka_unit_test(test_f32_euler_from_quat_nonfinite),
         /* fixed only */
         cmocka_unit_test(test_fx_near_range_end),
-        cmocka_unit_test(test_fx_from_euler_extreme_angles),
+        cmocka_unit_test(test_fx_euler_to_quat_extreme_angles),
         cmocka_unit_test(test_fx_random_raw_inputs),
         cmocka_unit_test(test_fx_band_limits),
     };
