@@ -128,11 +128,11 @@ qo_status qo_mat3_from_quat_full_f32(qo_quat_f32 q, qo_mat3_f32 *out);
 /*
  * Canonical unit quaternion (w >= 0) of the rotation matrix *m (row-major, v' = M v).
  * The matrix must already be a rotation within QO_MAT3_ROTATION_TOL_F32 (max entry of
- * |M^T M - I|) with det M > 0. The result is the rotation nearest M (within 1e-6 rad, tests/core/test_convert.c:
- * test_f32_quat_from_mat3_edges, test_f32_quat_from_mat3_drifted): a matrix
- * off by more than float32 rounding (max |M^T M - I| > 5e-7) is first projected with
- * qo_mat3_orthonormalize_f32, since the direct formula would land up to ~1.6 * that error
- * away. Robust at every angle: the pivot is the largest of trace, m00, m11, m22 (Shepperd),
+ * |M^T M - I|) with det M > 0. The result is the rotation nearest M (within 1e-6 rad,
+ * tests/core/test_convert.c: test_f32_quat_from_mat3_edges, test_f32_quat_from_mat3_drifted):
+ * a matrix off by more than float32 rounding (max |M^T M - I| > 5e-7) is first projected with
+ * qo_mat3_orthonormalize_f32, since the direct formula would carry that error into the
+ * result. Robust at every angle: the pivot is the largest of trace, m00, m11, m22 (Shepperd),
  * so 180-degree rotations, where the trace is -1, lose no precision; the result is the
  * normalised pivot vector (e.g. (1 + trace, m21 - m12, m02 - m20, m10 - m01) / its length:
  * one square root, one divide). A matrix within ~4 ulps of orthonormal (max |M^T M - I|

@@ -118,7 +118,7 @@ qo_status qo_euler_to_quat_f32(qo_euler_seq seq, qo_euler_f32 e, qo_quat_f32 *ou
  * QO_EULER_LOCK_BAND_F32. q need not be unit (file comment); q and -q give the same result.
  * Method: Bernardes & Viollet 2022, directly from the quaternion, atan2 only (never NaN).
  * At lock (info.locked == 1): a3 = 0 and a1 carries the rest (file comment); a2 as measured.
- * Accuracy (bench/accuracy_euler): composing the result in double gives q within 1e-6 rad
+ * Accuracy (tests/core/test_euler.c): composing the result in double gives q within 1e-6 rad
  * generically and within 1e-5 rad at or near lock (the measured worst: docs/FIGURES.md,
  * accuracy).
  * info may be NULL. Returns QO_OK; QO_E_NULL (out NULL); QO_E_ARG (bad seq); QO_E_NONFINITE
