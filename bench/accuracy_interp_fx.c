@@ -165,11 +165,11 @@ int main(void)
 
     /* ---- Bezier, n = 2..8 ---- */
     for (i = 0; i < n_bez; i++) {
-        qo_quat_q30 c[QO_BEZIER_MAX_POINTS], out;
-        dq p[QO_BEZIER_MAX_POINTS];
+        qo_quat_q30 c[QO_INTERP_BEZIER_MAX_POINTS], out;
+        dq p[QO_INTERP_BEZIER_MAX_POINTS];
         qo_q30 t = fx_from_d(rng_u(), Q30);
         double e;
-        n = 2 + (size_t)(i % (QO_BEZIER_MAX_POINTS - 1));
+        n = 2 + (size_t)(i % (QO_INTERP_BEZIER_MAX_POINTS - 1));
         rand_keys(c, n, 1.5);
         x_align(c, n, p);
         qo_interp_bezier_q30(c, n, t, &out);

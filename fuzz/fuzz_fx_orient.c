@@ -140,7 +140,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     }
 
     /* Hamilton product: each component the exact sum rounded once, or saturated with a status */
-    st = qo_quat_mul_q30_checked(a, b, &o);
+    st = qo_quat_mul_checked_q30(a, b, &o);
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_OVERFLOW, "mul_checked status %d", (int)st);
     {
         /* exact: round(sum / 2^30), ties toward +inf, from a split of each product */

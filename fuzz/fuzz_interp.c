@@ -134,11 +134,11 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_TOO_FEW || st == QO_E_CAPACITY || st == QO_E_NONFINITE
                   || st == QO_E_DEGENERATE || st == QO_E_RANGE, "bezier status %d", (int)st);
     if (st == QO_OK) {
-        QO_FUZZ_CHECK(n >= 2 && n <= QO_BEZIER_MAX_POINTS && keys_ok && t >= 0.0f && t <= 1.0f,
+        QO_FUZZ_CHECK(n >= 2 && n <= QO_INTERP_BEZIER_MAX_POINTS && keys_ok && t >= 0.0f && t <= 1.0f,
                       "bezier accepted n %zu t %.9g", n, (double)t);
         QO_FUZZ_CHECK(qo_fz_unit_quat(o, QO_FZ_UNIT_TOL), "bezier n %zu t %.9g -> " QO_FZ_QFMT, n, (double)t, QO_FZ_QARG(o));
         if (t == 0.0f) QO_FUZZ_CHECK(qo_fz_same_quat(o, al[0]), "bezier t=0 not unit ctrl[0]");
-    } else if (st == QO_E_RANGE || (st == QO_E_NONFINITE && keys_ok && n >= 2 && n <= QO_BEZIER_MAX_POINTS)) {
+    } else if (st == QO_E_RANGE || (st == QO_E_NONFINITE && keys_ok && n >= 2 && n <= QO_INTERP_BEZIER_MAX_POINTS)) {
         QO_FUZZ_CHECK(qo_fz_same_quat(o, al[0]), "bezier t error output not unit ctrl[0]");
     } else {
         QO_FUZZ_CHECK(qo_fz_is_identity(o), "bezier error output not identity (status %d)", (int)st);

@@ -119,7 +119,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     QO_FUZZ_CHECK(st == QO_OK || st == QO_E_TOO_FEW || st == QO_E_CAPACITY || st == QO_E_DEGENERATE || st == QO_E_RANGE,
                   "bezier status %d", (int)st);
     if (st == QO_OK) {
-        QO_FUZZ_CHECK(n >= 2 && n <= QO_BEZIER_MAX_POINTS && !any_zero && tin, "bezier accepted n %zu t %d", n, t);
+        QO_FUZZ_CHECK(n >= 2 && n <= QO_INTERP_BEZIER_MAX_POINTS && !any_zero && tin, "bezier accepted n %zu t %d", n, t);
         fuzz_ifx_unit(o, "bezier");
         if (t == 0) QO_FUZZ_CHECK(fuzz_ifx_same(o, al[0]), "bezier t=0");
         if (t == QO_Q30_ONE) QO_FUZZ_CHECK(fuzz_ifx_same(o, al[n - 1]), "bezier t=1 not the last aligned point");

@@ -357,19 +357,19 @@ static qo_status quat_from_mat3_checked(const qo_mat3_f32 *m, qo_quat_f32 *out)
  * dot products and determinant in the same rounding order, so both paths give the same bits. */
 static int mat3_is_rotation_direct(const qo_mat3_f32 *m)
 {
-#if QO_SIMD_SSE2
+#if QO_QUAT_SIMD_SSE2
     /* Rows as lanes (x, y, z, unused): lane j of sum_i r_i * r_i is column j's squared norm,
      * of sum_i r_i * r_i.yzx the dot of columns j and j+1 (mod 3), each summed over the rows
      * in the scalar order. Row 2 is loaded from m[1][2] on, so no read passes the matrix. */
     const __m128 r0 = _mm_loadu_ps(&m->m[0][0]), r1 = _mm_loadu_ps(&m->m[1][0]);
-    const __m128 r2 = QO_SIMD_SHUFFLE_PS(_mm_loadu_ps(&m->m[1][2]), _MM_SHUFFLE(3, 3, 2, 1));
-    const __m128 r1yzx = QO_SIMD_SHUFFLE_PS(r1, _MM_SHUFFLE(3, 0, 2, 1));
-    const __m128 r1zxy = QO_SIMD_SHUFFLE_PS(r1, _MM_SHUFFLE(3, 1, 0, 2));
+    const __m128 r2 = QO_QUAT_SIMD_SHUFFLE_PS(_mm_loadu_ps(&m->m[1][2]), _MM_SHUFFLE(3, 3, 2, 1));
+    const __m128 r1yzx = QO_QUAT_SIMD_SHUFFLE_PS(r1, _MM_SHUFFLE(3, 0, 2, 1));
+    const __m128 r1zxy = QO_QUAT_SIMD_SHUFFLE_PS(r1, _MM_SHUFFLE(3, 1, 0, 2));
     const __m128 tol = _mm_set1_ps(CONV_SHEPPERD_DIRECT_TOL), abs = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
     __m128 d = _mm_add_ps(_mm_add_ps(_mm_mul_ps(r0, r0), _mm_mul_ps(r1, r1)), _mm_mul_ps(r2, r2));
-    __m128 o = _mm_add_ps(_mm_add_ps(_mm_mul_ps(r0, QO_SIMD_SHUFFLE_PS(r0, _MM_SHUFFLE(3, 0, 2, 1))),
+    __m128 o = _mm_add_ps(_mm_add_ps(_mm_mul_ps(r0, QO_QUAT_SIMD_SHUFFLE_PS(r0, _MM_SHUFFLE(3, 0, 2, 1))),
                                      _mm_mul_ps(r1, r1yzx)),
-                          _mm_mul_ps(r2, QO_SIMD_SHUFFLE_PS(r2, _MM_SHUFFLE(3, 0, 2, 1))));
+                          _mm_mul_ps(r2, QO_QUAT_SIMD_SHUFFLE_PS(r2, _MM_SHUFFLE(3, 0, 2, 1))));
     __m128 ok, c;
     d = _mm_and_ps(_mm_sub_ps(d, _mm_set1_ps(1.0f)), abs);
     o = _mm_and_ps(o, abs);
@@ -377,7 +377,7 @@ static int mat3_is_rotation_direct(const qo_mat3_f32 *m)
     if ((_mm_movemask_ps(ok) & 7) != 7) return 0;
     /* det = r0 . (r1 x r2), summed ((p0 + p1) + p2) as qo_mat3_det_f32 */
     c = _mm_mul_ps(r0, qo_quat_internal_cross_ps(r1yzx, r1zxy, r2));
-    c = _mm_add_ss(_mm_add_ss(c, QO_SIMD_SHUFFLE_PS(c, 0x55)), QO_SIMD_SHUFFLE_PS(c, 0xaa));
+    c = _mm_add_ss(_mm_add_ss(c, QO_QUAT_SIMD_SHUFFLE_PS(c, 0x55)), QO_QUAT_SIMD_SHUFFLE_PS(c, 0xaa));
     return _mm_comigt_ss(c, _mm_setzero_ps());
 #else
     return mat3_orthogonality_error(m) <= CONV_SHEPPERD_DIRECT_TOL && qo_mat3_det_f32(m) > 0.0f;

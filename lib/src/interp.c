@@ -50,7 +50,7 @@ static float angle4(qo_quat_f32 a, qo_quat_f32 b, float *sin_th)
     return 2.0f * qo_fm_atan2_f32(d, s);
 }
 
-/* sin(u th)/sin(th) for th < QO_SLERP_SERIES_ANGLE: u (1 + (1 - u^2) th^2/6) + O(th^4). */
+/* sin(u th)/sin(th) for th < QO_INTERP_SLERP_SERIES_ANGLE: u (1 + (1 - u^2) th^2/6) + O(th^4). */
 static float series_weight(float u, float th2)
 {
     return u * (1.0f + (1.0f - u * u) * th2 * (1.0f / 6.0f));
@@ -62,7 +62,7 @@ static qo_quat_f32 slerp_weights(qo_quat_f32 a, qo_quat_f32 b, float th, float s
 {
     float wa, wb;
     qo_quat_f32 r, n;
-    if (th < QO_SLERP_SERIES_ANGLE) {
+    if (th < QO_INTERP_SLERP_SERIES_ANGLE) {
         float th2 = th * th;
         wa = series_weight(1.0f - u, th2);
         wb = series_weight(u, th2);
@@ -98,7 +98,7 @@ static int slerp_raw(qo_quat_f32 a, qo_quat_f32 b, float u, qo_quat_f32 *out)
 {
     float sin_th;
     float th = angle4(a, b, &sin_th);
-    if (QO_PI_F - th < QO_SLERP_SERIES_ANGLE) {
+    if (QO_PI_F - th < QO_INTERP_SLERP_SERIES_ANGLE) {
         *out = a;
         return 0;
     }
@@ -188,7 +188,7 @@ qo_status qo_interp_nlerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32
     vy = y * QO_SER_K1(i); \
     ra = 1.0f + (ua * QO_SER_K2(i) - vy) * ra; \
     rb = 1.0f + (ub * QO_SER_K2(i) - vy) * rb
-#if !QO_SIMD_SSE2
+#if !QO_QUAT_SIMD_SSE2
 static void sin_ratios(float u, float y, float *wa, float *wb)
 {
     float va = 1.0f - u, vb = u;
@@ -201,7 +201,7 @@ static void sin_ratios(float u, float y, float *wa, float *wb)
 #undef QO_SER_STEP
 #endif
 
-#if QO_SIMD_SSE2
+#if QO_QUAT_SIMD_SSE2
 /* sin_ratios with the two weights in lanes 0 and 1, lane for lane the same operations (so the
  * same bits). The step coefficients uu K2(i) - y K1(i) do not depend on the running sums, so
  * two steps' pairs are made in one 4-wide operation (lanes 2, 3 hold step i - 1); only the
@@ -264,12 +264,12 @@ static qo_status slerp_common(qo_quat_f32 a, qo_quat_f32 b, float t, int longway
         return qo_interp_slerp_f32(ua, ub, t, out);
     }
     th = angle4(ua, ub, &sin_th);
-    if (QO_PI_F - th < QO_SLERP_SERIES_ANGLE) return QO_E_DEGENERATE;
+    if (QO_PI_F - th < QO_INTERP_SLERP_SERIES_ANGLE) return QO_E_DEGENERATE;
     *out = slerp_weights(ua, ub, th, sin_th, t);
     return QO_OK;
 }
 
-#if QO_SIMD_SSE2
+#if QO_QUAT_SIMD_SSE2
 static uint32_t bits_of(float f)
 {
     union { float f; uint32_t u; } b;
@@ -289,10 +289,10 @@ static void slerp_half_weights(float t, float x, float *wa, float *wb)
     float c = qo_fm_sqrt_nonneg(0.5f + 0.5f * x), h = 0.5f / c;
     /* 2t and 2t - 1 are exact (the latter by Sterbenz) */
     float u = t <= 0.5f ? 2.0f * t : 2.0f * t - 1.0f;
-#if QO_SIMD_SSE2
+#if QO_QUAT_SIMD_SSE2
     __m128 w = sin_ratios_ps(u, c - 1.0f);
     *wa = _mm_cvtss_f32(w);
-    *wb = _mm_cvtss_f32(QO_SIMD_SHUFFLE_PS(w, 0x55));
+    *wb = _mm_cvtss_f32(QO_QUAT_SIMD_SHUFFLE_PS(w, 0x55));
 #else
     sin_ratios(u, c - 1.0f, wa, wb);
 #endif
@@ -323,7 +323,7 @@ qo_status qo_interp_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32
      * a * ia is unit a, bit for bit as qo_quat_normalize_f32; x = cos th; b' = -b (ib < 0)
      * for the short way. The output is normalised (its norm is 1 to a few ulp before). */
     float ia, ib, x, wa, wb;
-#if QO_SIMD_SSE2
+#if QO_QUAT_SIMD_SSE2
     /* The three dot products a.a, b.b, a.b at once: the products transposed to columns and
      * summed ((p0 + p1) + p2) + p3 per lane, the scalar order; the range test is one compare
      * pair on both norms plus t's bits (t in [+0, 1] <=> bits <= those of 1). Every lane
@@ -343,7 +343,7 @@ qo_status qo_interp_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32
         return slerp_common(a, b, t, 0, out);
     inv = _mm_div_ps(_mm_set1_ps(1.0f), _mm_sqrt_ps(s));
     ia = _mm_cvtss_f32(inv);
-    ib = _mm_cvtss_f32(QO_SIMD_SHUFFLE_PS(inv, 0x55));
+    ib = _mm_cvtss_f32(QO_QUAT_SIMD_SHUFFLE_PS(inv, 0x55));
     x = _mm_cvtss_f32(_mm_movehl_ps(s, s)) * (ia * ib);
     if (x < 0.0f) { ib = -ib; x = -x; }
     if (tb - 1u >= 0x3f7fffffu) return slerp_end(a, b, t, ib < 0.0f, out);  /* t 0 or 1 */
@@ -352,7 +352,7 @@ qo_status qo_interp_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32
     r4 = _mm_add_ps(_mm_mul_ps(_mm_set1_ps(wa * ia), a4), _mm_mul_ps(_mm_set1_ps(wb * ib), b4));
     s = qo_quat_internal_sum4_ss(_mm_mul_ps(r4, r4));
     inv = _mm_div_ss(_mm_set_ss(1.0f), _mm_sqrt_ss(s));
-    _mm_storeu_ps(&out->w, _mm_mul_ps(r4, QO_SIMD_SHUFFLE_PS(inv, 0x00)));
+    _mm_storeu_ps(&out->w, _mm_mul_ps(r4, QO_QUAT_SIMD_SHUFFLE_PS(inv, 0x00)));
 #else
     float na = qo_quat_dot_f32(a, a), nb = qo_quat_dot_f32(b, b);
     if (out == NULL || !(na >= 1e-30f && na <= 1e30f && nb >= 1e-30f && nb <= 1e30f &&
@@ -474,14 +474,14 @@ static qo_quat_f32 casteljau(qo_quat_f32 *p, size_t n, float t)
 
 qo_status qo_interp_bezier_f32(const qo_quat_f32 *ctrl, size_t n, float t, qo_quat_f32 *out)
 {
-    qo_quat_f32 p[QO_BEZIER_MAX_POINTS];
+    qo_quat_f32 p[QO_INTERP_BEZIER_MAX_POINTS];
     size_t i;
     qo_status st;
     if (out == NULL) return QO_E_NULL;
     *out = qo_quat_identity_f32();
     if (ctrl == NULL) return QO_E_NULL;
     if (n < 2) return QO_E_TOO_FEW;
-    if (n > QO_BEZIER_MAX_POINTS) return QO_E_CAPACITY;
+    if (n > QO_INTERP_BEZIER_MAX_POINTS) return QO_E_CAPACITY;
     st = check_keys(ctrl, n);
     if (st != QO_OK) return st;
     (void)qo_quat_normalize_f32(ctrl[0], &p[0]);

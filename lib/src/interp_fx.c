@@ -206,7 +206,7 @@ static qo_quat_q30 slerp_weights(qo_quat_q30 a, qo_quat_q30 b, qo_q28 th, int64_
 static int slerp_raw(qo_quat_q30 a, qo_quat_q30 b, int64_t u, qo_quat_q30 *out)
 {
     qo_q28 th = angle4(a, b);
-    if (QO_Q28_PI - th < QO_SLERP_NEAR_PI_Q28) {
+    if (QO_Q28_PI - th < QO_INTERP_SLERP_NEAR_PI_Q28) {
         *out = a;
         return 0;
     }
@@ -285,7 +285,7 @@ static qo_status slerp_common(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, int longwa
     th = angle4(ua, ub);
     /* Long way between the same rotation (phi below 2e-3 rad): a full turn about an axis the
      * inputs no longer define (the rule and limit of qo_interp_slerp_long_f32). */
-    if (longway && QO_Q28_PI - th < QO_SLERP_NEAR_PI_Q28) return QO_E_DEGENERATE;
+    if (longway && QO_Q28_PI - th < QO_INTERP_SLERP_NEAR_PI_Q28) return QO_E_DEGENERATE;
     if (t == 0) return QO_OK;
     if (t == QO_Q30_ONE) {
         *out = ub;
@@ -432,14 +432,14 @@ static qo_quat_q30 casteljau(qo_quat_q30 *p, size_t n, qo_q30 t)
 
 qo_status qo_interp_bezier_q30(const qo_quat_q30 *ctrl, size_t n, qo_q30 t, qo_quat_q30 *out)
 {
-    qo_quat_q30 p[QO_BEZIER_MAX_POINTS];
+    qo_quat_q30 p[QO_INTERP_BEZIER_MAX_POINTS];
     size_t i;
     qo_status st;
     if (out == NULL) return QO_E_NULL;
     *out = identity_q();
     if (ctrl == NULL) return QO_E_NULL;
     if (n < 2) return QO_E_TOO_FEW;
-    if (n > QO_BEZIER_MAX_POINTS) return QO_E_CAPACITY;
+    if (n > QO_INTERP_BEZIER_MAX_POINTS) return QO_E_CAPACITY;
     st = check_keys(ctrl, n);
     if (st != QO_OK) return st;
     (void)unit_in(ctrl[0], &p[0]);

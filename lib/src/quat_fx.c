@@ -190,7 +190,7 @@ qo_quat_q30 qo_quat_mul_q30(qo_quat_q30 a, qo_quat_q30 b)
     return out;
 }
 
-qo_status qo_quat_mul_q30_checked(qo_quat_q30 a, qo_quat_q30 b, qo_quat_q30 *out)
+qo_status qo_quat_mul_checked_q30(qo_quat_q30 a, qo_quat_q30 b, qo_quat_q30 *out)
 {
     int64_t r[4];
     if (out == NULL) return QO_E_NULL;

@@ -823,13 +823,13 @@ static dq d_bezier(const dq *c, size_t n, double t)
 static void test_bezier(void **state)
 {
     const core *c = *state;
-    dq cp[QO_BEZIER_MAX_POINTS + 1], out, o2, u0, un;
+    dq cp[QO_INTERP_BEZIER_MAX_POINTS + 1], out, o2, u0, un;
     int i, k;
     size_t n;
     rng_seed(0xBE21E4ull);
     for (i = 0; i < 400; i++) {
         dq p = rand_unit();
-        n = 2 + (size_t)(i % (QO_BEZIER_MAX_POINTS - 1));
+        n = 2 + (size_t)(i % (QO_INTERP_BEZIER_MAX_POINTS - 1));
         for (k = 0; k < (int)n; k++) {
             p = dq_mul(p, rand_axis_rot(rng_range(0, 1.5)));
             cp[k] = c->q_in(dq_scale(rng_u() < 0.3 ? dq_neg(p) : p, rng_range(0.5, 1.9)));
@@ -864,10 +864,10 @@ static void test_bezier(void **state)
         }
     }
     /* errors */
-    for (k = 0; k <= QO_BEZIER_MAX_POINTS; k++) cp[k] = c->q_in(rand_unit());
-    assert_int_equal(c->bezier(cp, QO_BEZIER_MAX_POINTS + 1, 0.5, &out), QO_E_CAPACITY);
+    for (k = 0; k <= QO_INTERP_BEZIER_MAX_POINTS; k++) cp[k] = c->q_in(rand_unit());
+    assert_int_equal(c->bezier(cp, QO_INTERP_BEZIER_MAX_POINTS + 1, 0.5, &out), QO_E_CAPACITY);
     assert_true(dq_equal(out, ID));
-    assert_int_equal(c->bezier(cp, QO_BEZIER_MAX_POINTS, 0.5, &out), QO_OK);
+    assert_int_equal(c->bezier(cp, QO_INTERP_BEZIER_MAX_POINTS, 0.5, &out), QO_OK);
     assert_int_equal(c->bezier(cp, 1, 0.5, &out), QO_E_TOO_FEW);
     assert_int_equal(c->bezier(cp, 0, 0.5, &out), QO_E_TOO_FEW);
     assert_true(dq_equal(out, ID));

@@ -17,7 +17,7 @@
 #define QO_FX_MUL_PARTS 1
 #define qo_quat_identity_q30 parts_quat_identity_q30
 #define qo_quat_mul_q30 parts_quat_mul_q30
-#define qo_quat_mul_q30_checked parts_quat_mul_q30_checked
+#define qo_quat_mul_checked_q30 parts_quat_mul_q30_checked
 #define qo_quat_conj_q30 parts_quat_conj_q30
 #define qo_quat_inverse_q30 parts_quat_inverse_q30
 #define qo_quat_dot_q30 parts_quat_dot_q30
@@ -33,14 +33,14 @@
 #define qo_quat_integrate_q30 parts_quat_integrate_q30
 #include "../lib/src/quat_fx.c"
 #undef qo_quat_mul_q30
-#undef qo_quat_mul_q30_checked
+#undef qo_quat_mul_checked_q30
 #undef qo_quat_normalize_q30
 #undef qo_quat_normalize_fast_q30
 #undef qo_quat_rotate_q30
 
 /* The library's own (native) definitions; quat_fx.h was read above under the parts_ names. */
 qo_quat_q30 qo_quat_mul_q30(qo_quat_q30 a, qo_quat_q30 b);
-qo_status qo_quat_mul_q30_checked(qo_quat_q30 a, qo_quat_q30 b, qo_quat_q30 *out);
+qo_status qo_quat_mul_checked_q30(qo_quat_q30 a, qo_quat_q30 b, qo_quat_q30 *out);
 qo_status qo_quat_normalize_q30(qo_quat_q30 q, qo_quat_q30 *out);
 qo_status qo_quat_normalize_fast_q30(qo_quat_q30 q, qo_quat_q30 *out);
 qo_vec3_q30 qo_quat_rotate_q30(qo_quat_q30 q, qo_vec3_q30 v);
@@ -90,7 +90,7 @@ static void test_parts_equal_native(void **state)
         if (!same_q(r1, r2))
             fail_msg("mul (%ld %ld %ld %ld)(%ld %ld %ld %ld) native != parts", (long)a.w,
                      (long)a.x, (long)a.y, (long)a.z, (long)b.w, (long)b.x, (long)b.y, (long)b.z);
-        s1 = qo_quat_mul_q30_checked(a, b, &r1);
+        s1 = qo_quat_mul_checked_q30(a, b, &r1);
         s2 = parts_quat_mul_q30_checked(a, b, &r2);
         if (s1 != s2 || !same_q(r1, r2)) fail_msg("mul_checked differs at case %ld", i);
         v1 = qo_quat_rotate_q30(a, v);

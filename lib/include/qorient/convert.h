@@ -231,8 +231,8 @@ qo_status qo_mat3_from_quat_f32(qo_quat_f32 q, qo_mat3_f32 *out);
  */
 QO_CONVERT_INLINE qo_status qo_mat3_from_quat_f32(qo_quat_f32 q, qo_mat3_f32 *out)
 {
-#if QO_SIMD_SSE2
-    /* The scalar body below, lane for lane in the same order (see quat.h's QO_SIMD_SSE2):
+#if QO_QUAT_SIMD_SSE2
+    /* The scalar body below, lane for lane in the same order (see quat.h's QO_QUAT_SIMD_SSE2):
      * d = the diagonal, pl and mi = the s * (a + b) and s * (a - b) off-diagonal terms. */
     const __m128 q4 = _mm_loadu_ps(&q.w);
     __m128 n4 = qo_quat_internal_sum4_ss(_mm_mul_ps(q4, q4));
@@ -244,22 +244,22 @@ QO_CONVERT_INLINE qo_status qo_mat3_from_quat_f32(qo_quat_f32 q, qo_mat3_f32 *ou
     uu = _mm_mul_ps(u, u);
     /* ((ww + xx) + yy) + zz as in qo_quat_internal_sum4_ss, with the yy and zz lanes taken
      * from the two shuffles the diagonal needs anyway */
-    da = QO_SIMD_SHUFFLE_PS(uu, _MM_SHUFFLE(0, 1, 1, 2));                     /* yy xx xx */
-    db = QO_SIMD_SHUFFLE_PS(uu, _MM_SHUFFLE(0, 2, 3, 3));                     /* zz zz yy */
-    s = _mm_add_ss(_mm_add_ss(_mm_add_ss(QO_SIMD_SHUFFLE_PS(uu, 0x55), uu), da), db);
+    da = QO_QUAT_SIMD_SHUFFLE_PS(uu, _MM_SHUFFLE(0, 1, 1, 2));                     /* yy xx xx */
+    db = QO_QUAT_SIMD_SHUFFLE_PS(uu, _MM_SHUFFLE(0, 2, 3, 3));                     /* zz zz yy */
+    s = _mm_add_ss(_mm_add_ss(_mm_add_ss(QO_QUAT_SIMD_SHUFFLE_PS(uu, 0x55), uu), da), db);
     s = _mm_div_ss(_mm_set_ss(2.0f), s);
     s = _mm_shuffle_ps(s, s, 0);
     d = _mm_add_ps(da, db);
     /* 1 - sd as 1 + (-sd): the same rounding, without a register copy of 1 */
     d = _mm_xor_ps(_mm_mul_ps(d, s), _mm_set1_ps(-0.0f));
     d = _mm_add_ps(d, _mm_set1_ps(1.0f));                                     /* m00 m11 m22 */
-    pr = _mm_mul_ps(QO_SIMD_SHUFFLE_PS(u, _MM_SHUFFLE(0, 2, 1, 1)),           /* xy xz yz */
-                    QO_SIMD_SHUFFLE_PS(u, _MM_SHUFFLE(0, 3, 3, 2)));
-    wr = _mm_mul_ps(QO_SIMD_SHUFFLE_PS(u, 0x00), QO_SIMD_SHUFFLE_PS(u, 0x1b)); /* wz wy wx */
+    pr = _mm_mul_ps(QO_QUAT_SIMD_SHUFFLE_PS(u, _MM_SHUFFLE(0, 2, 1, 1)),           /* xy xz yz */
+                    QO_QUAT_SIMD_SHUFFLE_PS(u, _MM_SHUFFLE(0, 3, 3, 2)));
+    wr = _mm_mul_ps(QO_QUAT_SIMD_SHUFFLE_PS(u, 0x00), QO_QUAT_SIMD_SHUFFLE_PS(u, 0x1b)); /* wz wy wx */
     pl = _mm_mul_ps(_mm_add_ps(pr, wr), s);                                   /* m10 m02 m21 */
     mi = _mm_mul_ps(_mm_sub_ps(pr, wr), s);                                   /* m01 m20 m12 */
     /* rows are contiguous: m00 m01 m02 m10 | m11 m12 m20 m21 | m22 */
-    _mm_store_ss(&out->m[2][2], QO_SIMD_SHUFFLE_PS(d, 0xaa));
+    _mm_store_ss(&out->m[2][2], QO_QUAT_SIMD_SHUFFLE_PS(d, 0xaa));
     lo = _mm_unpacklo_ps(d, mi);                                              /* m00 m01 m11 m20 */
     _mm_storeu_ps(&out->m[0][0], _mm_shuffle_ps(lo, pl, _MM_SHUFFLE(0, 1, 1, 0)));
     _mm_storeu_ps(&out->m[0][0] + 4,

@@ -21,8 +21,8 @@
  * of the 3-sphere; the rotation angle between the orientations is twice the 4-D angle.
  *
  * Index:
- *   QO_SLERP_SERIES_ANGLE  4-D angle below which slerp_long, Bezier, ... use a small-angle series
- *   QO_BEZIER_MAX_POINTS  largest control polygon qo_interp_bezier_f32 accepts (stack array)
+ *   QO_INTERP_SLERP_SERIES_ANGLE  4-D angle below which slerp_long, Bezier, ... use a small-angle series
+ *   QO_INTERP_BEZIER_MAX_POINTS  largest control polygon qo_interp_bezier_f32 accepts (stack array)
  *   qo_interp_lerp_f32            component-wise lerp, not normalised
  *   qo_interp_nlerp_f32           normalised lerp, short way
  *   qo_interp_slerp_f32           spherical linear interpolation, short way, exact endpoints
@@ -68,11 +68,11 @@ extern "C" {
  * w(u) = u * (1 + (1 - u^2) th^2 / 6), whose truncation error (< th^4 / 40 < 3e-14) is far below
  * float resolution, instead of dividing by a vanishing sin(th). The result is normalised after
  * either branch. 1e-3 rad of 4-D angle is 2e-3 rad (0.11 deg) of rotation. */
-#define QO_SLERP_SERIES_ANGLE 1e-3f
+#define QO_INTERP_SLERP_SERIES_ANGLE 1e-3f
 
 /* Largest number of control points qo_interp_bezier_f32 takes. The de Casteljau pyramid is kept
  * in one stack array of this many quaternions (16 bytes each: 128 bytes for 8). */
-#define QO_BEZIER_MAX_POINTS 8
+#define QO_INTERP_BEZIER_MAX_POINTS 8
 
 /* Component-wise linear interpolation (1-t)*a + t*b. No normalisation and no sign flip: the
  * result is generally not unit length (it is a building block, not a rotation interpolator).
@@ -122,7 +122,7 @@ qo_status qo_interp_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32
  * inputs no longer define: the plane of the path, and so the result, is only known to about
  * 1e-6/phi rad (float rounding of the inputs divided by |a + b'| ~ phi/2): within
  * 1e-6 (1 + 1/phi) of the double slerp, checked by tests/core/test_interp.c: test_slerp_long
- * (the worst error x phi measured by bench/accuracy_interp: docs/FIGURES.md, accuracy). The function refuses phi < 2*QO_SLERP_SERIES_ANGLE (0.002 rad)
+ * (the worst error x phi measured by bench/accuracy_interp: docs/FIGURES.md, accuracy). The function refuses phi < 2*QO_INTERP_SLERP_SERIES_ANGLE (0.002 rad)
  * with QO_E_DEGENERATE (*out = unit a).
  * Endpoints: t == 0 gives unit a, t == 1 gives unit b' exactly.
  * Other statuses and outputs as qo_interp_slerp_f32. */
@@ -152,11 +152,11 @@ qo_status qo_interp_align_keys_f32(const qo_quat_f32 *keys, size_t n, qo_quat_f3
  * with slerp in place of linear interpolation (Shoemake 1985). ctrl[0..n-1] are normalised and
  * sign-aligned as in qo_interp_align_keys_f32 (so the caller's signs do not change the curve),
  * then each level slerps neighbours with parameter t, without further flips (which keeps the
- * curve continuous in t). 2 <= n <= QO_BEZIER_MAX_POINTS; n == 2 is qo_interp_slerp_f32.
+ * curve continuous in t). 2 <= n <= QO_INTERP_BEZIER_MAX_POINTS; n == 2 is qo_interp_slerp_f32.
  * t in [0, 1]; t == 0 gives unit ctrl[0] exactly, t == 1 the last aligned control point
  * exactly (ctrl[n-1]/|ctrl[n-1]| or its negative, whichever the alignment chose).
  * Returns QO_OK; QO_E_NULL (out NULL: nothing written; ctrl NULL: *out = identity);
- * QO_E_TOO_FEW (n < 2), QO_E_CAPACITY (n > QO_BEZIER_MAX_POINTS), QO_E_NONFINITE /
+ * QO_E_TOO_FEW (n < 2), QO_E_CAPACITY (n > QO_INTERP_BEZIER_MAX_POINTS), QO_E_NONFINITE /
  * QO_E_DEGENERATE (a control point NaN/Inf / zero): *out = identity; QO_E_NONFINITE (t NaN/Inf)
  * or QO_E_RANGE (t outside [0, 1]): *out = unit ctrl[0]. */
 qo_status qo_interp_bezier_f32(const qo_quat_f32 *ctrl, size_t n, float t, qo_quat_f32 *out);
@@ -187,7 +187,7 @@ qo_status qo_interp_bezier3_f32(qo_quat_f32 q0, qo_quat_f32 q1, qo_quat_f32 q2, 
  * keys at a uniform rate about one axis give a_0 = q_0: the spline STARTS AND ENDS AT REST
  * there (zero angular velocity), and in general the end velocity is minus the second difference.
  * If abar_i is undefined because Slerp(q_{i-1}, q_i, 2) is antipodal to q_{i+1} (within
- * QO_SLERP_SERIES_ANGLE; e.g. a 180 deg swing out and back), abar_i = q_i: zero velocity at that
+ * QO_INTERP_SLERP_SERIES_ANGLE; e.g. a 180 deg swing out and back), abar_i = q_i: zero velocity at that
  * key, the limit of the Euclidean formula for q_{i+1} = q_{i-1}.
  * n == 2: the spline is the slerp between the two keys: a_0 = Slerp(q_0, q_1, 1/3),
  * b_1 = Slerp(q_0, q_1, 2/3) (evenly spaced on the arc, so the Bezier has constant rate).

@@ -24,8 +24,8 @@
  * 3-sphere; the rotation angle between the orientations is twice the 4-D angle.
  *
  * Index:
- *   QO_SLERP_NEAR_PI_Q28          4-D angle from antipodal below which two points have no circle
- *   QO_BEZIER_MAX_POINTS  largest control polygon qo_interp_bezier_q30 accepts (stack array)
+ *   QO_INTERP_SLERP_NEAR_PI_Q28          4-D angle from antipodal below which two points have no circle
+ *   QO_INTERP_BEZIER_MAX_POINTS  largest control polygon qo_interp_bezier_q30 accepts (stack array)
  *   qo_interp_lerp_q30            component-wise lerp, not normalised
  *   qo_interp_nlerp_q30           normalised lerp, short way
  *   qo_interp_slerp_q30           spherical linear interpolation, short way, exact endpoints
@@ -86,17 +86,17 @@
 extern "C" {
 #endif
 
-/* 4-D angle (Q3.28 radians; 268435 = 1e-3 rad, the value of QO_SLERP_SERIES_ANGLE in interp.h)
+/* 4-D angle (Q3.28 radians; 268435 = 1e-3 rad, the value of QO_INTERP_SLERP_SERIES_ANGLE in interp.h)
  * between a point and the antipode of another below which the internal great-circle slerp of
  * the Bezier and spline constructions treats the pair as having no circle (the float32 rule):
  * de Casteljau keeps the first point, the spline's bisector falls back to the key. The public
  * slerp never meets it: after the short-way flip its 4-D angle is at most pi/2. */
-#define QO_SLERP_NEAR_PI_Q28 ((qo_q28)268435)
+#define QO_INTERP_SLERP_NEAR_PI_Q28 ((qo_q28)268435)
 
 /* Largest number of control points qo_interp_bezier_q30 takes (the same value and name as in
  * interp.h; an identical redefinition, so a divergence is a compile error where both are
  * included). The de Casteljau pyramid is one stack array of this many quaternions. */
-#define QO_BEZIER_MAX_POINTS 8
+#define QO_INTERP_BEZIER_MAX_POINTS 8
 
 /* Component-wise linear interpolation a + t*(b - a) (= (1-t)*a + t*b), each component
  * rounded once to nearest (ties toward +inf). No normalisation and no sign flip (a building
@@ -153,7 +153,7 @@ qo_status qo_interp_slerp_fast_q30(qo_quat_q30 a, qo_quat_q30 b, qo_q30 t, qo_qu
  * qo_interp_slerp_q30 but b' = (dot(a, b) > 0) ? -b : b, so the path is the rotation of angle
  * 2 pi - phi (phi the short rotation angle) about the opposite sense of the same axis. For
  * dot == 0 (exact in 64 bits) b is kept. When a and b are the same rotation within 2e-3 rad
- * (phi < 2 * 1e-3, the 4-D angle of a and b' within QO_SLERP_NEAR_PI_Q28 of pi) the plane of
+ * (phi < 2 * 1e-3, the 4-D angle of a and b' within QO_INTERP_SLERP_NEAR_PI_Q28 of pi) the plane of
  * the full turn is undefined: QO_E_DEGENERATE with *out = unit a (the float32 rule and limit).
  * Endpoints: t == 0 gives unit a, t == QO_Q30_ONE unit b' exactly.
  * Returns QO_OK; QO_E_NULL (out NULL, nothing written); QO_E_DEGENERATE if a or b is zero
@@ -188,12 +188,12 @@ qo_status qo_interp_align_keys_q30(const qo_quat_q30 *keys, size_t n, qo_quat_q3
  * normalised and sign-aligned as in qo_interp_align_keys_q30 (so the caller's signs do not
  * change the curve), then each level slerps neighbours with parameter t without further flips
  * (which keeps the curve continuous in t); a pair inside the pyramid that is within
- * QO_SLERP_NEAR_PI_Q28 of antipodal has no circle and keeps its first point.
- * 2 <= n <= QO_BEZIER_MAX_POINTS; n == 2 is qo_interp_slerp_q30.
+ * QO_INTERP_SLERP_NEAR_PI_Q28 of antipodal has no circle and keeps its first point.
+ * 2 <= n <= QO_INTERP_BEZIER_MAX_POINTS; n == 2 is qo_interp_slerp_q30.
  * t in [0, QO_Q30_ONE]; t == 0 gives unit ctrl[0] exactly, t == QO_Q30_ONE the last aligned
  * control point exactly (unit ctrl[n-1] or its negative, whichever the alignment chose).
  * Returns QO_OK; QO_E_NULL (out NULL: nothing written; ctrl NULL: *out = identity);
- * QO_E_TOO_FEW (n < 2), QO_E_CAPACITY (n > QO_BEZIER_MAX_POINTS), QO_E_DEGENERATE (a control
+ * QO_E_TOO_FEW (n < 2), QO_E_CAPACITY (n > QO_INTERP_BEZIER_MAX_POINTS), QO_E_DEGENERATE (a control
  * point is zero): *out = identity; QO_E_RANGE (t outside [0, QO_Q30_ONE]): *out = unit
  * ctrl[0]. */
 qo_status qo_interp_bezier_q30(const qo_quat_q30 *ctrl, size_t n, qo_q30 t, qo_quat_q30 *out);
@@ -215,7 +215,7 @@ qo_status qo_interp_bezier3_q30(qo_quat_q30 q0, qo_quat_q30 q1, qo_quat_q30 q2, 
  *   n == 2: a_0 = Slerp(q_0, q_1, 1/3), b_1 = Slerp(q_0, q_1, 2/3) (the spline is the slerp).
  * The fractions 1/3, 2/3, -1/3 are Q1.30 constants rounded to nearest (1/3 -> 357913941,
  * error 3e-10, far below the result's rounding).
- * If abar_i is undefined because Slerp(q_{i-1}, q_i, 2) is within QO_SLERP_NEAR_PI_Q28 of
+ * If abar_i is undefined because Slerp(q_{i-1}, q_i, 2) is within QO_INTERP_SLERP_NEAR_PI_Q28 of
  * antipodal to q_{i+1} (a 180 deg swing out and back), abar_i = q_i: zero velocity at that key.
  * Segment i (from q_i to q_{i+1}) is the cubic Bezier q_i, a_i, b_{i+1}, q_{i+1}.
  * a and b are caller arrays of n entries each; they must not overlap keys or each other.

@@ -49,7 +49,7 @@
  * there compile with -ffp-contract=off (or -std=c99/c11) for bit-identical results.
  * On SSE2 targets (x86-64) mul, rotate, normalize and qo_mat3_from_quat_f32 have 4-wide bodies
  * with the scalar code's per-component rounding order, so the bits are the same (see
- * QO_SIMD_SSE2 below; tests/core/test_quat.c compares both bodies on 1e6 inputs).
+ * QO_QUAT_SIMD_SSE2 below; tests/core/test_quat.c compares both bodies on 1e6 inputs).
  */
 #ifndef QORIENT_QUAT_H
 #define QORIENT_QUAT_H
@@ -60,18 +60,18 @@
 #include "qorient/status.h"
 #include "qorient/types.h"
 
-/* QO_SIMD_SSE2: the inline bodies use SSE2 4-wide arithmetic (a compiler header, not an OS one)
+/* QO_QUAT_SIMD_SSE2: the inline bodies use SSE2 4-wide arithmetic (a compiler header, not an OS one)
  * where the compiler targets it; define QO_NO_SIMD to get the scalar bodies everywhere. Both
  * paths round every component in the same order, so the results are bit-identical (NaN
  * results stay NaN; IEEE 754 leaves the sign and payload of a NaN result unspecified). */
 #if defined(__SSE2__) && !defined(QO_NO_SIMD)
-#define QO_SIMD_SSE2 1
+#define QO_QUAT_SIMD_SSE2 1
 #include <emmintrin.h>
 /* Lanes of v picked by the constant imm (_MM_SHUFFLE order) with pshufd, which unlike shufps
  * leaves its source intact (no register copies); a macro because imm must be a constant. */
-#define QO_SIMD_SHUFFLE_PS(v, imm) _mm_castsi128_ps(_mm_shuffle_epi32(_mm_castps_si128(v), (imm)))
+#define QO_QUAT_SIMD_SHUFFLE_PS(v, imm) _mm_castsi128_ps(_mm_shuffle_epi32(_mm_castps_si128(v), (imm)))
 #else
-#define QO_SIMD_SSE2 0
+#define QO_QUAT_SIMD_SSE2 0
 #endif
 
 #ifdef __cplusplus
@@ -150,24 +150,24 @@ qo_quat_f32 qo_quat_canonical_f32(qo_quat_f32 q);
  * paths of convert.c and interp.c. Not API: not in the index or the parity table, may change
  * or vanish in any release; call the documented functions instead. The marker is a word, not
  * a double underscore, because these headers are also read by C++ (which reserves "__"). */
-#if QO_SIMD_SSE2
+#if QO_QUAT_SIMD_SSE2
 /* Lane 0 of the result is ((v0 + v1) + v2) + v3, the left-to-right order of the scalar sums
  * (a pairwise horizontal add would round differently). Internal, not API (see above). */
 static inline __m128 qo_quat_internal_sum4_ss(__m128 v)
 {
-    __m128 s = _mm_add_ss(QO_SIMD_SHUFFLE_PS(v, 0x55), v);   /* x + w: addition commutes */
-    s = _mm_add_ss(s, QO_SIMD_SHUFFLE_PS(v, 0xaa));
-    return _mm_add_ss(s, QO_SIMD_SHUFFLE_PS(v, 0xff));
+    __m128 s = _mm_add_ss(QO_QUAT_SIMD_SHUFFLE_PS(v, 0x55), v);   /* x + w: addition commutes */
+    s = _mm_add_ss(s, QO_QUAT_SIMD_SHUFFLE_PS(v, 0xaa));
+    return _mm_add_ss(s, QO_QUAT_SIMD_SHUFFLE_PS(v, 0xff));
 }
 #endif
 
-#if QO_SIMD_SSE2
+#if QO_QUAT_SIMD_SSE2
 /* u x b in lanes (x, y, z) as u.yzx * b.zxy - u.zxy * b.yzx, given u's two rotations.
  * Internal, not API (see above). */
 static inline __m128 qo_quat_internal_cross_ps(__m128 uyzx, __m128 uzxy, __m128 b)
 {
-    return _mm_sub_ps(_mm_mul_ps(uyzx, QO_SIMD_SHUFFLE_PS(b, _MM_SHUFFLE(3, 1, 0, 2))),
-                      _mm_mul_ps(uzxy, QO_SIMD_SHUFFLE_PS(b, _MM_SHUFFLE(3, 0, 2, 1))));
+    return _mm_sub_ps(_mm_mul_ps(uyzx, QO_QUAT_SIMD_SHUFFLE_PS(b, _MM_SHUFFLE(3, 1, 0, 2))),
+                      _mm_mul_ps(uzxy, QO_QUAT_SIMD_SHUFFLE_PS(b, _MM_SHUFFLE(3, 0, 2, 1))));
 }
 #endif
 
@@ -183,7 +183,7 @@ QO_QUAT_INLINE qo_quat_f32 qo_quat_identity_f32(void)
 QO_QUAT_INLINE qo_quat_f32 qo_quat_mul_f32(qo_quat_f32 a, qo_quat_f32 b)
 {
     qo_quat_f32 r;
-#if QO_SIMD_SSE2
+#if QO_QUAT_SIMD_SSE2
     /* Eigen's grouping, (m1 - m2) + (s1 + s2) per lane with the w lane's second pair negated
      * (x - y == x + (-y) exactly), so each lane rounds as the scalar expression below, in 7
      * shuffles, 4 multiplies, 3 adds and 1 sign flip. m1 = aw * b rather than Eigen's a * bw:
@@ -192,13 +192,13 @@ QO_QUAT_INLINE qo_quat_f32 qo_quat_mul_f32(qo_quat_f32 a, qo_quat_f32 b)
      * padding). Lanes are (w, x, y, z). */
     const __m128 a4 = _mm_loadu_ps(&a.w), b4 = _mm_loadu_ps(&b.w);
     const __m128 sw = _mm_castsi128_ps(_mm_set_epi32(0, 0, 0, INT32_MIN));
-    const __m128 m1 = _mm_mul_ps(QO_SIMD_SHUFFLE_PS(a4, 0x00), b4);           /* aw * b */
-    const __m128 m2 = _mm_mul_ps(QO_SIMD_SHUFFLE_PS(a4, _MM_SHUFFLE(2, 1, 3, 1)),  /* x z x y */
-                                 QO_SIMD_SHUFFLE_PS(b4, _MM_SHUFFLE(1, 3, 2, 1))); /* x y z x */
-    const __m128 s1 = _mm_mul_ps(QO_SIMD_SHUFFLE_PS(a4, _MM_SHUFFLE(1, 3, 2, 3)),  /* z y z x */
-                                 QO_SIMD_SHUFFLE_PS(b4, _MM_SHUFFLE(2, 1, 3, 3))); /* z z x y */
-    const __m128 s2 = _mm_mul_ps(QO_SIMD_SHUFFLE_PS(a4, _MM_SHUFFLE(3, 2, 1, 2)),  /* y x y z */
-                                 QO_SIMD_SHUFFLE_PS(b4, _MM_SHUFFLE(0, 0, 0, 2))); /* y w w w */
+    const __m128 m1 = _mm_mul_ps(QO_QUAT_SIMD_SHUFFLE_PS(a4, 0x00), b4);           /* aw * b */
+    const __m128 m2 = _mm_mul_ps(QO_QUAT_SIMD_SHUFFLE_PS(a4, _MM_SHUFFLE(2, 1, 3, 1)),  /* x z x y */
+                                 QO_QUAT_SIMD_SHUFFLE_PS(b4, _MM_SHUFFLE(1, 3, 2, 1))); /* x y z x */
+    const __m128 s1 = _mm_mul_ps(QO_QUAT_SIMD_SHUFFLE_PS(a4, _MM_SHUFFLE(1, 3, 2, 3)),  /* z y z x */
+                                 QO_QUAT_SIMD_SHUFFLE_PS(b4, _MM_SHUFFLE(2, 1, 3, 3))); /* z z x y */
+    const __m128 s2 = _mm_mul_ps(QO_QUAT_SIMD_SHUFFLE_PS(a4, _MM_SHUFFLE(3, 2, 1, 2)),  /* y x y z */
+                                 QO_QUAT_SIMD_SHUFFLE_PS(b4, _MM_SHUFFLE(0, 0, 0, 2))); /* y w w w */
     _mm_storeu_ps(&r.w, _mm_add_ps(_mm_sub_ps(m1, m2), _mm_xor_ps(_mm_add_ps(s1, s2), sw)));
 #else
     r.w = (a.w * b.w - a.x * b.x) - (a.z * b.z + a.y * b.y);
@@ -236,19 +236,19 @@ QO_QUAT_INLINE int qo_quat_is_finite_f32(qo_quat_f32 q)
  * first). 15 multiplies, 15 adds: t = 2 u x v; v' = v + w t + u x t. */
 QO_QUAT_INLINE qo_vec3_f32 qo_quat_rotate_f32(qo_quat_f32 q, qo_vec3_f32 v)
 {
-#if QO_SIMD_SSE2
+#if QO_QUAT_SIMD_SSE2
     /* Lanes (x, y, z, unused): both cross products as a.yzx * b.zxy - a.zxy * b.yzx, then
      * (v + w t) + u x t, each lane in the scalar order; 2 * (...) is exact. v and the result
      * are moved as 8 + 4 bytes (never past the vector's 12). */
     const __m128 q4 = _mm_loadu_ps(&q.w);
     const __m64 *vxy = (const __m64 *)(const void *)&v.x;
     const __m128 v4 = _mm_movelh_ps(_mm_loadl_pi(_mm_setzero_ps(), vxy), _mm_load_ss(&v.z));
-    const __m128 uyzx = QO_SIMD_SHUFFLE_PS(q4, _MM_SHUFFLE(0, 1, 3, 2));
-    const __m128 uzxy = QO_SIMD_SHUFFLE_PS(q4, _MM_SHUFFLE(0, 2, 1, 3));
+    const __m128 uyzx = QO_QUAT_SIMD_SHUFFLE_PS(q4, _MM_SHUFFLE(0, 1, 3, 2));
+    const __m128 uzxy = QO_QUAT_SIMD_SHUFFLE_PS(q4, _MM_SHUFFLE(0, 2, 1, 3));
     __m128 t = qo_quat_internal_cross_ps(uyzx, uzxy, v4), r4;
     qo_vec3_f32 r;
     t = _mm_add_ps(t, t);
-    r4 = _mm_add_ps(v4, _mm_mul_ps(QO_SIMD_SHUFFLE_PS(q4, 0x00), t));
+    r4 = _mm_add_ps(v4, _mm_mul_ps(QO_QUAT_SIMD_SHUFFLE_PS(q4, 0x00), t));
     r4 = _mm_add_ps(r4, qo_quat_internal_cross_ps(uyzx, uzxy, t));
     _mm_storel_pi((__m64 *)(void *)&r.x, r4);
     _mm_store_ss(&r.z, _mm_movehl_ps(r4, r4));
@@ -274,7 +274,7 @@ QO_QUAT_INLINE qo_vec3_f32 qo_quat_rotate_f32(qo_quat_f32 q, qo_vec3_f32 v)
  * full path computes); anything else goes to qo_quat_normalize_full_f32. */
 QO_QUAT_INLINE qo_status qo_quat_normalize_f32(qo_quat_f32 q, qo_quat_f32 *out)
 {
-#if QO_SIMD_SSE2
+#if QO_QUAT_SIMD_SSE2
     /* The same operations lane for lane: squares 4-wide, the sum in lane 0 in the scalar order,
      * sqrtss (correctly rounded like sqrtf, and without libm's errno branch: n > 0 here). */
     const __m128 q4 = _mm_loadu_ps(&q.w);

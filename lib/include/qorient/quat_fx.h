@@ -8,7 +8,7 @@
  *   quat.canonical       qo_quat_canonical_q30
  *   quat.inverse         qo_quat_inverse_q30
  *   quat.mul             qo_quat_mul_q30
- *   quat.mul_checked     qo_quat_mul_q30_checked
+ *   quat.mul_checked     qo_quat_mul_checked_q30
  *   quat.rotate          qo_quat_rotate_q30
  *   quat.angle_between   qo_quat_angle_between_q30
  *   quat.exp             qo_quat_exp_q30
@@ -26,7 +26,7 @@
  * Index:
  *   qo_quat_identity_q30        (1, 0, 0, 0)
  *   qo_quat_mul_q30             Hamilton product a*b (apply b first, then a), saturating
- *   qo_quat_mul_q30_checked     the same, with QO_E_OVERFLOW when a component saturated
+ *   qo_quat_mul_checked_q30     the same, with QO_E_OVERFLOW when a component saturated
  *   qo_quat_conj_q30            conjugate (w, -x, -y, -z)
  *   qo_quat_dot_q30             4-D dot product, Q1.30, rounded once
  *   qo_quat_norm_q30            Euclidean length, Q1.30, correctly rounded
@@ -62,12 +62,12 @@ qo_quat_q30 qo_quat_identity_q30(void);
 /* Hamilton product a*b; as rotations, b first, then a. Each component is the exact sum of
  * its four products rounded once (<= 0.5 LSB); for unit a and b no component exceeds 1. With
  * non-unit inputs a component can exceed the Q1.30 range: it saturates silently here, and
- * qo_quat_mul_q30_checked says so. */
+ * qo_quat_mul_checked_q30 says so. */
 qo_quat_q30 qo_quat_mul_q30(qo_quat_q30 a, qo_quat_q30 b);
 
 /* qo_quat_mul_q30 with a status. Returns QO_OK; QO_E_NULL if out is NULL; QO_E_OVERFLOW if a
  * component saturated (*out holds the saturated product). */
-qo_status qo_quat_mul_q30_checked(qo_quat_q30 a, qo_quat_q30 b, qo_quat_q30 *out);
+qo_status qo_quat_mul_checked_q30(qo_quat_q30 a, qo_quat_q30 b, qo_quat_q30 *out);
 
 /* Conjugate (w, -x, -y, -z). A component equal to INT32_MIN (-2.0) negates to INT32_MAX. */
 qo_quat_q30 qo_quat_conj_q30(qo_quat_q30 q);
