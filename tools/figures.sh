@@ -20,6 +20,7 @@ accuracy check
 ir check
 sizes check
 m0 check
+motion-ir check
 timing live
 motion live
 stream live

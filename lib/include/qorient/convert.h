@@ -128,10 +128,11 @@ qo_status qo_mat3_from_quat_full_f32(qo_quat_f32 q, qo_mat3_f32 *out);
 /*
  * Canonical unit quaternion (w >= 0) of the rotation matrix *m (row-major, v' = M v).
  * The matrix must already be a rotation within QO_MAT3_ROTATION_TOL_F32 (max entry of
- * |M^T M - I|) with det M > 0. The result is the rotation nearest M (to ~5e-7 rad): a matrix
- * off by more than float32 rounding (max |M^T M - I| > 5e-7) is first projected with
- * qo_mat3_orthonormalize_f32, since the direct formula would land up to ~1.6 * that error
- * away. Robust at every angle: the pivot is the largest of trace, m00, m11, m22 (Shepperd),
+ * |M^T M - I|) with det M > 0. The result is the rotation nearest M (within 1e-6 rad,
+ * tests/core/test_convert.c: test_f32_quat_from_mat3_edges, test_f32_quat_from_mat3_drifted):
+ * a matrix off by more than float32 rounding (max |M^T M - I| > 5e-7) is first projected with
+ * qo_mat3_orthonormalize_f32, since the direct formula would carry that error into the
+ * result. Robust at every angle: the pivot is the largest of trace, m00, m11, m22 (Shepperd),
  * so 180-degree rotations, where the trace is -1, lose no precision; the result is the
  * normalised pivot vector (e.g. (1 + trace, m21 - m12, m02 - m20, m10 - m01) / its length:
  * one square root, one divide). A matrix within ~4 ulps of orthonormal (max |M^T M - I|
@@ -147,13 +148,14 @@ qo_status qo_mat3_to_quat_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
  * decomposition M = R S (S symmetric positive definite). Computed by scaled Newton iteration
  * R <- (g R + R^-T / g) / 2 (Higham), after scaling M by its largest entry so no
  * intermediate overflows; converges in a handful of steps and gives a matrix orthonormal to
- * float32 round-off (max |R^T R - I| ~ 2e-7). A uniformly scaled rotation gives that rotation
- * back. m and out may point to the same matrix.
- * Accuracy: for a drifted or noisy rotation (singular values near 1) the result is within
- * ~3e-7 rad of the exact nearest rotation of the float input. For a strongly stretched M with
- * singular values s1 >= s2 >= s3 the nearest rotation is itself sensitive (it moves by
- * ~|dM|/(s2 + s3)) and the error grows to about 4e-8 * s1/(s2 + s3) rad (measured:
- * 2e-6 rad at s = (1, 0.01, 0.01), 4e-5 at (1, 5e-4, 5e-4)).
+ * float32 round-off (max |R^T R - I| within 1e-6). A uniformly scaled rotation gives that
+ * rotation back. m and out may point to the same matrix.
+ * Accuracy, checked by tests/core/test_convert.c: for a drifted, noisy or uniformly scaled
+ * rotation the result is within 1e-6 rad of the exact nearest rotation of the float input
+ * (test_orthonormalize). For a strongly stretched M with singular values s1 >= s2 >= s3 the
+ * nearest rotation is itself sensitive (it moves by ~|dM|/(s2 + s3)) and the error grows like
+ * s1/(s2 + s3): within 5e-7 + 1.2e-7 * s1/(s2 + s3) rad (test_f32_orthonormalize_scaled). The
+ * worst measured by bench/accuracy_convert.c: docs/FIGURES.md, accuracy.
  * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NONFINITE for a NaN/Inf entry;
  * QO_E_NOT_ROTATION if det M <= 0 (a reflection, whose nearest orthogonal matrix is not a
  * rotation) or M is numerically rank-deficient (Frobenius condition |M| |M^-1| above 3e3,
@@ -181,8 +183,10 @@ qo_status qo_mat3_to_quat_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
  * entry, and q = v / (2 sqrt(c)) for that pivot's vector v and c = 4 p^2 (|v| = 2 sqrt(c) for
  * a rotation, so the pivot vector is not normalised by its own length).
  * Defined for rotation matrices within QO_MAT3_ROTATION_TOL_F32 (max |M^T M - I|): for a
- * float-rounded rotation the result is the same rotation to ~2e-7 rad and |q| = 1 to ~1e-6
- * (bench/accuracy_convert.c); off a rotation by e, |q| is off 1 by about e. For any other
+ * float-rounded rotation the result is the same rotation within 1e-6 rad, w >= 0
+ * (tests/core/test_convert.c: test_f32_mat3_to_quat_trusted; the worst measured by
+ * bench/accuracy_convert.c: docs/FIGURES.md, accuracy); off a rotation by e, |q| is off 1
+ * by about e. For any other
  * finite matrix the quaternion is unspecified (not unit, possibly not near any rotation of
  * it), but finite, never NaN, with w >= 0 - use qo_mat3_to_quat_f32 or _ortho_f32 when
  * that can happen.
@@ -273,8 +277,8 @@ QO_CONVERT_INLINE qo_status qo_mat3_from_quat_f32(qo_quat_f32 q, qo_mat3_f32 *ou
     float r = sqrtf(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z), s = 1.0f / r;
     float w, x, y, z, xx, yy, zz, xy, xz, yz, wx, wy, wz;
     if (out == NULL || !(r >= 1e-15f && s >= 1e-15f)) return qo_mat3_from_quat_full_f32(q, out);
-    /* Normalising is kept although s = 2/|n|^2 below would absorb any scale: measured, the
-     * unnormalised form is up to 1.4x less accurate. */
+    /* Normalising is kept although s = 2/|n|^2 below would absorb any scale: the unnormalised
+     * form rounds the products of unnormalised components and is less accurate. */
     w = q.w * s; x = q.x * s; y = q.y * s; z = q.z * s;
     /* s = 2/|n|^2 rather than 2: I + s(...) is orthogonal for ANY non-zero n, so the few-ulp
      * norm error left by normalising does not leak into the matrix as non-orthogonality. */

@@ -45,8 +45,10 @@
  * Signs: qo_mat3_to_quat_q30 returns the canonical sign (w >= 0, ties as
  * qo_quat_canonical_q30); qo_axis_angle_to_quat_q30 and qo_rotvec_to_quat_q30 return
  * (cos(angle/2), sin(angle/2) * unit axis) as the formula gives it (angle beyond pi: w < 0).
- * Accuracy (bench/accuracy_fx.c): every conversion is within a few LSB of Q1.30 / Q3.28 of
- * the exact result for its exact fixed-point input, i.e. ~1e-8 rad of rotation.
+ * Accuracy: every conversion is within a few LSB of Q1.30 / Q3.28 of the exact result for its
+ * exact fixed-point input: within 8e-8 rad of rotation, checked by tests/core/test_convert.c
+ * (its Q1.30 row: test_axis_angle, test_rotvec, test_mat3_quat, test_round_trips); the worst
+ * measured by bench/accuracy_fx.c: docs/FIGURES.md, accuracy.
  */
 #ifndef QORIENT_CONVERT_FX_H
 #define QORIENT_CONVERT_FX_H
@@ -132,8 +134,9 @@ qo_vec3_q30 qo_mat3_mul_vec3_q30(const qo_mat3_q30 *m, qo_vec3_q30 v);
  * than 2 LSB (at most 48 steps): no inverse, no division, every entry an exact 64-bit sum
  * rounded once. A uniformly scaled rotation gives that rotation back (to a few LSB); m and
  * out may point to the same matrix. The result is orthonormal to a few LSB (max
- * |R^T R - I| checked against QO_MAT3_ROTATION_TOL_Q30) and within ~1e-8 rad of the exact
- * nearest rotation for a drifted or noisy rotation (tests/core/test_convert.c).
+ * |R^T R - I| checked against QO_MAT3_ROTATION_TOL_Q30) and within 8e-8 rad of the exact
+ * nearest rotation for a drifted or noisy rotation (tests/core/test_convert.c:
+ * test_orthonormalize).
  * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NOT_ROTATION if M is zero, a reflection,
  * singular or too close to singular (det(M / |M|_F) <= 2^-14, which keeps every singular
  * value of M / |M|_F above 1.2e-4: the float core's limit is a condition number of 3e3). *out

@@ -47,17 +47,19 @@
  * Why QO_EULER_LOCK_BAND_F32 is 2e-6 rad (and not the 1e-3 of matrix-based code):
  *   - The middle angle and the margin are computed directly from the quaternion (Bernardes &
  *     Viollet 2022: atan2 of two norms, no asin/acos, never NaN), so float32 noise moves the
- *     margin LINEARLY. Measured (bench/accuracy_euler): an exactly singular rotation built by
- *     qo_euler_to_quat_f32 with the float nearest pi/2 (or pi) shows a margin <= 8.7e-8 rad;
- *     with every component further moved by up to 2 ulp (upstream float noise), <= 3.8e-7
- *     rad. An asin/acos form would turn 1e-7 of noise into sqrt(2e-7) ~ 4.5e-4 rad, which is
- *     why such code (PX4) needs 1e-3. 2e-6 leaves 5x headroom over the noisy case: every exactly
- *     singular float32 input is flagged.
- *   - A flagged input recomposes within 2*margin <= 4e-6 rad (measured worst 3.2e-6 rad), inside
- *     the 1e-5 rad goal. A band of 1e-3 would let flagged inputs recompose up to 2e-3 rad off.
+ *     margin LINEARLY: an exactly singular rotation built by qo_euler_to_quat_f32 with the float
+ *     nearest pi/2 (or pi), and the same with every component further moved by up to 2 ulp
+ *     (upstream float noise), keeps its margin inside the band, so it is flagged
+ *     (tests/core/test_euler.c: test_exactly_singular_all24; the largest margins seen are in
+ *     docs/FIGURES.md, accuracy, accuracy_euler). An asin/acos form would turn 1e-7 of noise
+ *     into sqrt(2e-7) ~ 4.5e-4 rad, which is why such code (PX4) needs 1e-3.
+ *   - A flagged input recomposes within 2*margin <= 4e-6 rad, inside the 1e-5 rad goal
+ *     (test_exactly_singular_all24, test_just_off_singular_all24). A band of 1e-3 would let
+ *     flagged inputs recompose up to 2e-3 rad off.
  *   - Outside the band the full decomposition is returned and recomposes to float precision
  *     however close to lock (a1 and a3 are individually ill-conditioned there, like
- *     1e-7/margin, but their composition is not): measured worst 4.6e-7 rad near lock.
+ *     1e-7/margin, but their composition is not): within 1e-6 rad, checked by
+ *     test_just_off_singular_all24 (the worst seen: docs/FIGURES.md, accuracy).
  *   - 2e-6 rad is 1.1e-4 degrees: the flag is never raised anywhere near 2 degrees away.
  *   A gimbal that wants a wider "hold" zone (e.g. 0.5 deg) passes its own band to
  *   qo_euler_from_quat_band_f32 / qo_euler_from_quat_near_f32 and accepts the 2*margin bound.
@@ -67,10 +69,14 @@
  * component once more); q and -q give the same angles. Angles of any finite size for
  * from_euler (they are periodic; float32 carries them with ulp(|angle|) resolution).
  *
- * Measured accuracy (bench/accuracy_euler, 20000 cases x 24 conventions, composed in double):
- * from_euler <= 2.7e-7 rad; to_euler <= 4.2e-7 rad generic and at/near lock outside the band,
- * <= 3.2e-6 rad inside the default band; to_euler_near <= 1.1e-6 rad off lock (its outputs
- * may leave [-pi, pi], where float32's spacing is coarser). Goals: 1e-6 / 1e-5 / 2e-6.
+ * Accuracy, composed in double, bounds checked by tests/core/test_euler.c on fixed-seed cases in
+ * all 24 conventions: from_euler <= 1e-6 rad (test_from_euler_random_all24); to_euler <= 1e-6
+ * rad generic and at/near lock outside the band (test_to_euler_random_rotations_all24,
+ * test_just_off_singular_all24), <= 2*margin + 1e-5 rad inside the band
+ * (test_exactly_singular_all24); to_euler_near <= 2e-6 rad off lock (its outputs may leave
+ * [-pi, pi], where float32's spacing is coarser; test_near_through_singularity_all24). The
+ * worst errors measured (bench/accuracy_euler, 20000 cases x 24 conventions): docs/FIGURES.md,
+ * accuracy.
  */
 #ifndef QORIENT_EULER_H
 #define QORIENT_EULER_H
@@ -112,8 +118,9 @@ qo_status qo_euler_to_quat_f32(qo_euler_seq seq, qo_euler_f32 e, qo_quat_f32 *ou
  * QO_EULER_LOCK_BAND_F32. q need not be unit (file comment); q and -q give the same result.
  * Method: Bernardes & Viollet 2022, directly from the quaternion, atan2 only (never NaN).
  * At lock (info.locked == 1): a3 = 0 and a1 carries the rest (file comment); a2 as measured.
- * Accuracy (bench/accuracy_euler): composing the result in double gives q within 1e-6 rad
- * generically and within 1e-5 rad at or near lock (measured figures in the file comment).
+ * Accuracy (tests/core/test_euler.c): composing the result in double gives q within 1e-6 rad
+ * generically and within 1e-5 rad at or near lock (the measured worst: docs/FIGURES.md,
+ * accuracy).
  * info may be NULL. Returns QO_OK; QO_E_NULL (out NULL); QO_E_ARG (bad seq); QO_E_NONFINITE
  * (a component of q is NaN or Inf); QO_E_DEGENERATE (all four components are zero; tiny and
  * subnormal quaternions are fine). Checked in that order. On error *out = (0, 0, 0) and

@@ -1,7 +1,7 @@
 /* parity fixed (tools/parity.sh writes docs/PARITY.md from these blocks):
  *   euler.to_quat         qo_euler_to_quat_q30
  *   euler.from_quat       qo_euler_from_quat_q30
- *   euler.from_quat       qo_euler_from_quat_fast_q30 (the fast tier: 6e-9 rad, under half the Cortex-M0 instructions)
+ *   euler.from_quat       qo_euler_from_quat_fast_q30 (the fast tier for Cortex-M0: within 5e-8 rad; docs/FIGURES.md, m0)
  *   euler.from_quat_near  qo_euler_from_quat_near_q30
  *   euler.from_quat_band  qo_euler_from_quat_band_q30
  */
@@ -42,16 +42,17 @@
  *   - The middle angle and the margin come straight from the quaternion as atan2 of two
  *     norms, so component noise moves the margin LINEARLY: k LSB of Q1.30 on each component
  *     of an exactly singular unit quaternion give a margin of at most about 4k/2^30 rad, i.e.
- *     k LSB of Q3.28. Measured (bench/accuracy_euler_fx): an exactly singular rotation rounded
- *     from double to Q1.30 shows a margin of 0; built by qo_euler_to_quat_q30 with the Q3.28
- *     nearest pi/2 (or pi), <= 3.7e-9 rad (1 LSB); with every component then moved by up to
- *     2 LSB (upstream fixed-point noise), <= 7.5e-9 rad (2 LSB). 27 LSB leaves 13x headroom
- *     over that: every singular Q1.30 input whose components are off by up to ~25 LSB (a
- *     normalised filter output, a product of a few quaternions) is flagged.
- *   - A flagged input recomposes within 2*margin <= 2e-7 rad (measured 2.03e-7), 50x inside
- *     the 1e-5 goal. A larger band only loosens that bound: outside it the full
- *     decomposition recomposes to ~1e-8 rad however close to lock (measured), because every
- *     product is exact in int64.
+ *     k LSB of Q3.28. An exactly singular rotation rounded from double to Q1.30, built by
+ *     qo_euler_to_quat_q30 with the Q3.28 nearest pi/2 (or pi), or with every component then
+ *     moved by up to 2 LSB (upstream fixed-point noise), is flagged
+ *     (tests/core/test_euler.c: test_exactly_singular_all24; the largest margins seen:
+ *     docs/FIGURES.md, accuracy, accuracy_euler_fx). By the linear rule above, 27 LSB also
+ *     flags singular Q1.30 inputs whose components are off by up to ~25 LSB (a normalised
+ *     filter output, a product of a few quaternions).
+ *   - A flagged input recomposes within 2*margin <= 2e-7 rad, inside the 1e-5 goal. A larger
+ *     band only loosens that bound: outside it the full decomposition recomposes within
+ *     5e-8 rad however close to lock (test_just_off_singular_all24), because every product
+ *     is exact in int64.
  *   - 1e-7 rad is 5.8e-6 degrees: the flag is never raised anywhere near 2 degrees away.
  *   A quaternion that carries FLOAT32 noise (converted from the float core with fxconv.h)
  *   sits up to ~4e-7 rad off an exact singularity: pass the float core's band, 537 LSB
@@ -71,15 +72,18 @@
  * product of the decomposition is exact in int64; its roundings are two correctly rounded
  * square roots, the reduction of each atan2 argument pair to 30 significant bits and the
  * atan2 itself (<= 1 LSB, qorient/fxmath.h). The fit at lock and from_euler round each
- * quaternion product once (at 2^-30 or finer). Measured (bench/accuracy_euler_fx, 20000 cases
- * x 24 conventions, the Q3.28 result composed in double vs the Q1.30 input): from_euler
- * <= 4.0e-9 rad (<= 2.3 LSB per component); to_euler <= 5.8e-9 rad generic, <= 7.3e-9 at
- * exact lock, <= 6.1e-9 near lock outside the band, <= 2.1e-7 inside the default band (the
- * 2*margin bound); to_euler_near <= 8.4e-9 generic. Goals: 1e-6 generic, 1e-5 at/near lock;
- * the float core's figures are 2.7e-7 / 4.2e-7 / 3.2e-6.
- * Cost (Cortex-M0+, arm-none-eabi-gcc -O2, tools/core-check.sh): 7.4 kB of code besides
- * fxmath (1.6 kB of it the fast tier), at most ~0.65 kB of stack (the nearest variant at
- * lock); libgcc's 64-bit multiply and divide helpers only. Every function is pure (no state, reentrant).
+ * quaternion product once (at 2^-30 or finer). Bounds checked by tests/core/test_euler.c on
+ * fixed-seed cases in all 24 conventions (the Q3.28 result composed in double vs the Q1.30
+ * input): from_euler within 1e-8 per component (test_from_euler_random_all24); to_euler
+ * <= 5e-8 rad generic (test_to_euler_random_rotations_all24), at exact lock
+ * (test_exactly_singular_all24) and near lock outside the band (test_just_off_singular_all24),
+ * <= 2*margin + 5e-8 inside the band; to_euler_near <= 1e-7 off lock
+ * (test_near_through_singularity_all24). Goals: 1e-6 generic, 1e-5 at/near lock. The worst
+ * errors measured (bench/accuracy_euler_fx, 20000 cases x 24 conventions), beside the float
+ * core's: docs/FIGURES.md, accuracy.
+ * Cost (Cortex-M0+, arm-none-eabi-gcc -O2): code and stack of the module in docs/FIGURES.md,
+ * sizes (tools/size-report.sh; the deepest path is the nearest variant at lock); libgcc's
+ * 64-bit multiply and divide helpers only. Every function is pure (no state, reentrant).
  */
 #ifndef QORIENT_EULER_FX_H
 #define QORIENT_EULER_FX_H
@@ -165,13 +169,14 @@ qo_status qo_euler_from_quat_near_q30(qo_quat_q30 q, qo_euler_seq seq, qo_euler_
  * (Cortex-M0/M0+): the same conventions, ranges, lock band rule, lock choice (a3 = 0) and
  * statuses, from 32-bit arithmetic: three atan2 and one square root, no quaternion product
  * (lib/src/euler_fx.c). Not bit-identical to the exact function: each angle within a few LSB
- * of Q3.28. The composed result vs the Q1.30 input (bench/accuracy_euler_fx, 20000 cases x
- * 24 conventions): generic <= 6.0e-9 rad (goal 2e-7; the exact function 5.7e-9), exact lock
- * <= 5.5e-9, inside the band <= 2*margin (a1 is then twice the argument of the determined
- * component pair, not a fit); tests/core/test_euler.c runs every shared to_euler test body on
- * it with a 5e-8 bound. q need not be unit (a component of +-1.0 or beyond costs one bit);
- * q and -q give the same bits. Pass QO_EULER_LOCK_BAND_Q28 for the default band. Under half
- * the exact function's instructions on Cortex-M0 (tools/qemu-icount.sh, docs/FIGURES.md).
+ * of Q3.28. The composed result vs the Q1.30 input: within 5e-8 rad generic and at exact lock
+ * (goal 2e-7), inside the band <= 2*margin (a1 is then twice the argument of the determined
+ * component pair, not a fit): tests/core/test_euler.c runs every shared to_euler test body on
+ * it with these bounds (the worst measured by bench/accuracy_euler_fx: docs/FIGURES.md,
+ * accuracy). q need not be unit (a component of +-1.0 or beyond costs one bit);
+ * q and -q give the same bits. Pass QO_EULER_LOCK_BAND_Q28 for the default band. Its
+ * instructions on Cortex-M0 beside the exact function's: docs/FIGURES.md, m0
+ * (tools/qemu-icount.sh).
  * Returns QO_OK; QO_E_NULL (out NULL); QO_E_ARG (bad seq); QO_E_DEGENERATE (q zero);
  * QO_E_RANGE (band outside [0, QO_Q28_HALF_PI]), checked in that order. On error
  * *out = (0, 0, 0) and *info = { 0, 0 }. info may be NULL.

@@ -39,33 +39,37 @@
  * Rounding: "rounded" means round to nearest with ties toward +infinity (add half an LSB,
  * then floor), unless a function says otherwise. Saturation clamps to [INT32_MIN, INT32_MAX].
  *
- * Methods, accuracy and size. "worst" = measured by bench/accuracy_fx.c against double libm
- * (strided sweeps of the whole int32 domain + 4M random inputs); "bytes" = Thumb code for
- * Cortex-M0+ at -O2 (arm-none-eabi-gcc 12, -ffunction-sections; integer helpers
- * __aeabi_lmul / __aeabi_(u)ldivmod from libgcc not counted). No RAM tables, no static state.
+ * Methods and accuracy. "within b LSB" = the bound tests/core/test_math.c asserts against
+ * double libm or an exact 128-bit integer reference (the test named); bench/accuracy_fx.c
+ * measures the worst case (strided sweeps of the whole int32 domain + 4M random inputs),
+ * printed in docs/FIGURES.md, accuracy. Code size: Thumb for Cortex-M0+ at -O2, the module
+ * fxmath_fx in docs/FIGURES.md, sizes (tools/size-report.sh). No RAM tables, no static state.
  * Cortex-M0/M0+ (ARMv6-M) has no divider and only a 32x32 -> 32 multiply, so the hot paths
  * (sqrt_u64, atan2_q28 and the quaternion operations built on them) use no 64-bit division
  * and take their 64-bit products through qo_fx_umul32_u64 / qo_fx_mul32_i64 below; the
- * instruction counts per call on an emulated M0 are measured by tools/qemu-icount.sh.
- *   mul_q30/q28/q16    exact 64-bit product, rounded once, saturated.  worst 0.5 LSB. 76 bytes.
- *   add/sub/neg, sat   saturating.  exact.  32-64 bytes.
- *   sum_round_i64      exact hi/lo split sum, one rounding.  exact.  324 bytes.
- *   div_q30/q28/q16    64-bit integer division, remainder rounding.  worst 0.5 LSB. 164 bytes.
+ * instruction counts per call on an emulated M0 are measured by tools/qemu-icount.sh
+ * (docs/FIGURES.md, m0).
+ *   mul_q30/q28/q16    exact 64-bit product, rounded once, saturated.  within 0.5 LSB
+ *                      (correctly rounded; test_mul_edges_and_sweep).
+ *   add/sub/neg, sat   saturating.  exact.
+ *   sum_round_i64      exact hi/lo split sum, one rounding.  exact (test_sum_round).
+ *   div_q30/q28/q16    64-bit integer division, remainder rounding.  within 0.5 LSB (test_div).
  *   sqrt_u64           Newton with multiplications only: v normalised by an even shift,
  *                      1/sqrt seed from a 96-entry table (192 bytes) + one 16-bit Newton
  *                      step, the root refined once by s += (x - s^2) y / 2, then made exactly
  *                      floor(sqrt) against the exact remainder (0-2 steps) and rounded:
- *                      correctly rounded, every uint64.  816 bytes.
- *   sqrt_q30           sqrt_u64(x << 30).  worst 0.5 LSB (correctly rounded).  196 bytes.
+ *                      correctly rounded, every uint64.
+ *   sqrt_q30           sqrt_u64(x << 30).  within 0.5 LSB (correctly rounded; test_sqrt).
  *   rsqrt_q30          correctly rounded sqrt of x * 2^32 or 2^34, one rounded division.
- *                      worst 0.99 LSB.  352 bytes.
- *   norm3/norm4_q30    exact 64-bit sum of squares + sqrt_u64.  worst 0.5 LSB.  272/304 bytes.
+ *                      within 1 LSB (test_rsqrt).
+ *   norm3/norm4_q30    exact 64-bit sum of squares + sqrt_u64.  within 0.5 LSB (test_norm).
  *   sincos (q28, half, q60)  reduction mod pi/2 in Q3.60 with a 61-bit pi/2 (exact to 2^-60
  *                      for every input), then Taylor polynomials on [-pi/4, pi/4] (sin to
  *                      r^11, cos to r^12; truncation < 1e-11): the leading r and 1 kept exact
  *                      in Q2.62, r^2 exact in 64 bits, only the correction terms through a
  *                      Q1.31 Horner evaluation, one final rounding to Q1.30.
- *                      worst 0.94 LSB (sincos_q28), 0.98 LSB (half).  1110 bytes, 11 consts.
+ *                      within 1 LSB (test_sincos; the half and Q3.60 forms:
+ *                      test_q30_sincos_half_q60_null).  11 consts.
  *   atan2_q28          octant folding to t = min/max in [0, 1]; the nearest k = 0..8 is
  *                      taken and (x, y) rotated by -atan(k/8) EXACTLY in integers
  *                      (8x + ky, 8y - kx), so |t'| <= 1/16; k by three comparisons and
@@ -73,12 +77,11 @@
  *                      seed table, 256 bytes, a 16-bit and a 64-bit step: ~2^-28, < 2^-32
  *                      absolute on t'), no division; then atan(t') = t'(1 - t'^2/3 + t'^4/5
  *                      - t'^6/7) in Q1.31 plus the 9-entry atan(k/8) const table (72 bytes).
- *                      worst 0.70 LSB of Q3.28 (2.6e-9 rad; libfixmath's fix16_atan2 is off
- *                      by up to 1e-2 rad). 1380 bytes.
+ *                      within 1 LSB of Q3.28 (test_atan2; libfixmath's fix16_atan2 beside
+ *                      it: docs/FIGURES.md, ir).
  *   asin/acos_q28      atan2 of (x, sqrt(1 - x^2)) with 1 - x^2 exact in Q2.60, so +-1 and
- *                      their neighbourhood keep full accuracy. worst 0.77 LSB. 220/250 bytes.
- *   wrap_pi_q28        one exact 2pi step in Q3.60. worst 0.07 LSB. 76 bytes.
- * The whole of fxmath_fx.c is 5.8 kB of Cortex-M0+ code (incl. 520 bytes of const tables).
+ *                      their neighbourhood keep full accuracy. within 1 LSB (test_asin_acos).
+ *   wrap_pi_q28        one exact 2pi step in Q3.60. within 0.5 LSB (test_wrap).
  * Portability: the fixed core needs two's-complement int32_t/int64_t and an arithmetic right
  * shift of negative values (true of gcc and clang on every target); fxmath_fx.c checks this at
  * compile time.
@@ -102,7 +105,7 @@ int32_t qo_fx_sat_i32(int64_t v);
 /*
  * Exact products (int64_t)a * b and (uint64_t)a * b, for every int32 / uint32 input.
  * Why they exist: ARMv6-M (Cortex-M0/M0+) has only a 32x32 -> 32 MULS, so a C 64-bit product
- * becomes a call to libgcc's general 64x64 __aeabi_lmul (~40 instructions plus the call).
+ * becomes a call to libgcc's general 64x64 __aeabi_lmul (the full 64x64 product, plus the call).
  * Written as four 16x16 partial products, the same product is 4 MULS and a few adds inline.
  * On targets with a widening multiply the compiler does as well either way.
  * The signed product is the unsigned one of the two's-complement bit patterns with the

@@ -224,7 +224,7 @@ typedef struct qo_gimbal_track_sample_f32 {
     int settled;          /* 1 when the path holds still and every joint is on it at rest */
 } qo_gimbal_track_sample_f32;
 
-/* The filter's state: caller storage (888 bytes on x86-64: three planner joints of 248),
+/* The filter's state: caller storage (three planner joints: sizeof(qo_gimbal_track_f32)),
  * written only by the functions. */
 typedef struct qo_gimbal_track_f32 {
     qo_gimbal_track_settings_f32 s;

@@ -46,7 +46,8 @@
  *   - Signs: q and -q are the same rotation. "Short way" means b is replaced by -b when
  *     dot(a, b) < 0, so the path is the smaller rotation (<= pi). Each function says which sign
  *     it returns.
- *   - Results are unit length within 1e-6 (measured by bench/accuracy_interp.c).
+ *   - Results are unit length within 1e-6 (checked by tests/core/test_interp.c on every slerp,
+ *     slerp_long, nlerp, Bezier, spline and Squad case; the worst measured: docs/FIGURES.md, accuracy).
  *   - No heap, no static state; all storage is the caller's or a bounded stack array.
  */
 #ifndef QORIENT_INTERP_H
@@ -99,8 +100,9 @@ qo_status qo_interp_nlerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32
  * No angle and no sine are computed: the unit midpoint of a and b' splits the arc into halves
  * of th/2 <= pi/4, and the weights of the half that holds t are Eberly's series in
  * cos(th/2) - 1 (7 terms, truncation < 2.5e-8; lib/src/interp.c), which stays accurate as
- * th -> 0 (the weights depend smoothly on the cosine there; acos(dot) would not). Worst
- * rotation error 2.7e-7 rad, |norm - 1| <= 1.7e-7 (bench/accuracy_interp, docs/FIGURES.md).
+ * th -> 0 (the weights depend smoothly on the cosine there; acos(dot) would not). Rotation
+ * error and |norm - 1| within 1e-6 (tests/core/test_interp.c: test_slerp_random_vs_double,
+ * test_slerp_edge_table); the worst measured by bench/accuracy_interp: docs/FIGURES.md, accuracy.
  * The flipped b' is used throughout, so q and -q (the same rotation) interpolate to that
  * rotation, unit length.
  * Endpoints are exact: t == 0 returns unit a (a/|a| exactly as qo_quat_normalize_f32 gives it,
@@ -118,8 +120,9 @@ qo_status qo_interp_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32
  * about the opposite sense of the same axis. For dot == 0 b is kept (both ways are 180 deg).
  * When a and b are the same rotation (phi -> 0) the long way is a full turn about an axis the
  * inputs no longer define: the plane of the path, and so the result, is only known to about
- * 1e-6/phi rad (float rounding of the inputs divided by |a + b'| ~ phi/2; measured 7.4e-7/phi by
- * bench/accuracy_interp.c). The function refuses phi < 2*QO_INTERP_SLERP_SERIES_ANGLE (0.002 rad)
+ * 1e-6/phi rad (float rounding of the inputs divided by |a + b'| ~ phi/2): within
+ * 1e-6 (1 + 1/phi) of the double slerp, checked by tests/core/test_interp.c: test_slerp_long
+ * (the worst error x phi measured by bench/accuracy_interp: docs/FIGURES.md, accuracy). The function refuses phi < 2*QO_INTERP_SLERP_SERIES_ANGLE (0.002 rad)
  * with QO_E_DEGENERATE (*out = unit a).
  * Endpoints: t == 0 gives unit a, t == 1 gives unit b' exactly.
  * Other statuses and outputs as qo_interp_slerp_f32. */

@@ -59,17 +59,19 @@
  *   - The output is always written when its pointer is not NULL, also on error.
  *   - Signs: q and -q are the same rotation. "Short way" means b is replaced by -b when
  *     dot(a, b) < 0 (the dot product is exact in 64 bits, so dot == 0 is exact too).
- *   - Accuracy (bench/accuracy_interp_fx.c, vs double on the same Q1.30 inputs, 38k slerp
- *     cases incl. the edge table): slerp worst 4.2e-9 rad of rotation (the float32 core:
- *     3.2e-7 on the same cases), results unit length within 1.1e-9, spline keys 1.7e-9 rad,
- *     spline between keys 1.1e-8 rad, Squad inner points 1.0e-8 rad. The 4-D angle comes
+ *   - Accuracy vs double on the same Q1.30 inputs: slerp, nlerp and the spline at its keys
+ *     within 3e-8 rad, Bezier within 6e-8, results unit length within 3e-9, checked by
+ *     tests/core/test_interp.c (its fixed row; test_slerp_random_vs_double,
+ *     test_slerp_edge_table, test_nlerp, test_bezier, test_spline_vs_double_and_through_keys).
+ *     The worst measured by bench/accuracy_interp_fx.c, beside the float32
+ *     core's on the same cases: docs/FIGURES.md, accuracy. The 4-D angle comes
  *     from qo_fx_atan2_q28 (1 LSB = 3.7e-9 rad); the weights sin(u th)/th come from a
  *     degree-20 sinc series in Q1.31 with 64-bit products, accurate in RELATIVE terms however
  *     small th is.
  *   - No heap, no static state; all storage is the caller's or a bounded stack array.
- *   - Cost on Cortex-M0+ (arm-none-eabi-gcc -O2, tools/core-check.sh -fstack-usage): 8.3 kB of
- *     code for the module (plus fxmath, quat_fx), deepest stack path about 0.9 kB
- *     (qo_interp_bezier_q30 -> de Casteljau -> slerp -> normalise). The only divisions are
+ *   - Cost on Cortex-M0+ (arm-none-eabi-gcc -O2, -fstack-usage): code and stack of the module
+ *     interp_fx (plus fxmath, quat_fx) in docs/FIGURES.md, sizes (tools/size-report.sh); the
+ *     deepest stack path is qo_interp_bezier_q30 -> de Casteljau -> slerp -> normalise. The only divisions are
  *     64-bit integer ones (__aeabi_uldivmod on Cortex-M0+).
  */
 #ifndef QORIENT_INTERP_FX_H

@@ -107,8 +107,8 @@
  *     keeps its own minimum-time profile, arrives early (at its target state, at its own
  *     minimum time) and waits at rest there, or, with a moving target state, moves on past it
  *     as after the end of any plan (qo_motion_set_target_state_f32); its bit is set
- *     in planner.unsynced (seen once in 40,000 random 4-joint cases with limits spread over
- *     1e-3..1e3; never in bench/bench_motion.c's cases). The exact-duration search uses the
+ *     in planner.unsynced (rare: bench/bench_motion.c counts the plans not TIME-synchronised,
+ *     docs/FIGURES.md, motion). The exact-duration search uses the
  *     extremum-velocity family only: a joint whose minimum is a dip or a two-holds shape (target
  *     states) has no profile of that family between its minimum and the family's own shortest,
  *     e.g. check-motion case 5781 joint 5: minimum 0.809 s, none between it and 2.018 s, so at
@@ -140,7 +140,7 @@
  *     line over them by float32 rounding only, less than 1e-4, is solved again within limits
  *     shrunk by that excess: make check-motion wide PHASE case 87, 3.1e-6):
  *     from a moving start the shared jerk min_i(jmax_i/|d_i|) may brake a joint's initial
- *     acceleration too late (issue 11: 3.84x vmax); otherwise the plan falls back to TIME and
+ *     acceleration too late (issue 11); otherwise the plan falls back to TIME and
  *     qo_motion_sync_used() says so. The straight line can take longer than TIME sync, because
  *     the binding limit may come from different joints for v, a and j.
  *
@@ -171,8 +171,9 @@
  *
  * Numerics: float32, -ffp-contract=off. Each phase keeps its exact duration d and the next
  * phase starts from the state integrated over d, so p, v (and a) are continuous at every
- * boundary to a few float32 ulps of the values, and limits hold to float32 rounding (~1e-7
- * relative). The phase start times are rounded float32 sums: a sample falling in the
+ * boundary to a few float32 ulps of the values, and limits hold to float32 rounding (the
+ * oracle tests allow 1e-5 relative; the worst overshoot measured by bench/bench_motion.c:
+ * docs/FIGURES.md, motion). The phase start times are rounded float32 sums: a sample falling in the
  * <= ulp(T)/2 gap or overlap between two phases sees the boundary state a fraction of an ulp
  * early or late (T = duration; ulp(100 s) = 7.6e-6 s). The end snaps to the exact target at
  * rest; the remaining step is the solver residual (~1e-7 relative in position, float32
@@ -207,24 +208,19 @@ extern "C" {
  * to 1e-5, continuous, at the goal), and every other limit gets QO_E_LIMIT:
  *   - vmax, amax, jmax in [QO_MOTION_LIMIT_MIN, QO_MOTION_LIMIT_MAX] = [1e-3, 1e9] (checked
  *     log-uniform over the whole range, in every sync mode, from moving starts and to moving
- *     target states that can stop within a few units). Clean at scale: all 9,523 wide groups
- *     of make check-motion (66,661 joints per sync mode, NONE, TIME, PHASE,
- *     TIME_IF_NECESSARY) give 0 failures (QO_MOTION_ORACLE_FILTER=test_oracle_wide
+ *     target states that can stop within a few units). At scale, make check-motion runs
+ *     test_oracle_wide in every sync mode (NONE, TIME, PHASE, TIME_IF_NECESSARY) and fails on
+ *     any failure (QO_MOTION_ORACLE_FILTER=test_oracle_wide
  *     build/check/test_motion_oracle_1000000, run in chunks with QO_MOTION_ORACLE_FIRST /
- *     _NUM). What it found on the way, all to moving target states at extreme ratios: dips
- *     dropped by a root tolerance that did not scale with the speed flown (1.26x slower), a
- *     dip tolerance that let a plan snap 4.5e-6 of its move to the target (0.3 % faster than
- *     possible), the reference's coarse ramp grid (up to 6.6x slower than the planner), and a
- *     PHASE start step of 4e-6 vmax with vmin = -12 vmax (tests/core/test_motion.c:
- *     test_issue_wide_cases, test_phase_step_asym).
- *     Beyond the range the float32 solver was seen
- *     up to 3.1x slower than optimal (limits over 1e-6..1e12, issue 11); subnormal
- *     or tiny limits would also give durations beyond float, huge ones overflowing products.
+ *     _NUM). The cases it found on the way (moving target states at extreme ratios: dips, a
+ *     dip tolerance, the reference's ramp grid, a PHASE start step with an asymmetric vmin)
+ *     are kept as tests/core/test_motion.c: test_issue_wide_cases, test_phase_step_asym.
+ *     Beyond the range the float32 solver is not time-optimal (issue 11); subnormal or tiny
+ *     limits would also give durations beyond float, huge ones overflowing products.
  *   - vmin, amin: 0 (symmetric) or within a factor QO_MOTION_LIMIT_RATIO = 20 of -vmax, -amax
  *     (and in [-QO_MOTION_LIMIT_MAX, -QO_MOTION_LIMIT_MIN]): checked with ratios log-uniform
  *     over [1/20, 20] across the whole range (and up to 20 in the ordinary ranges of make
- *     check-motion); with ratios up to 1000 plans exceeded a limit by up to 6e-5 relative
- *     (issue 11).
+ *     check-motion); beyond that ratio plans were found exceeding a limit (issue 11).
  * Start positions, targets (after clamping to [pmin, pmax]) and wrap periods within
  * +-QO_MOTION_POS_MAX (QO_E_RANGE / QO_E_LIMIT). Every plan is also checked after it is made:
  * each phase's coefficients, its end state, the durations and the final positions must be
@@ -247,9 +243,9 @@ extern "C" {
  * and the durations themselves carry the rounding of the solve (T minus the ramps' times).
  * The phases are not forced to sum to T bit for bit: that would move the end position by the
  * velocity times the correction, and the position is what the end snaps to. make check-motion
- * (test_timing) prints the largest seen: 4 ulps. */
+ * (test_timing) asserts this bound on every synchronised joint and prints the largest seen. */
 #define QO_MOTION_SYNC_END_ULPS 8
-/* Upper bound of root-search steps in one solve (typically 5-12 are used; bounded anyway). */
+/* Upper bound of root-search steps in one solve (a solve usually stops far earlier; bounded anyway). */
 #define QO_MOTION_BISECT_ITERS 48
 
 typedef enum qo_motion_profile {
