@@ -6,7 +6,6 @@
 #include "cli.h"
 
 #include <errno.h>
-#include <float.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
@@ -93,10 +92,10 @@ int qo_cli_gimbal(int argc, char **argv)
     FILE *in = stdin;
     float *t = NULL;
     qo_quat_f32 *keys = NULL, *ks = NULL, *a = NULL, *b = NULL;
-    size_t n = 0, cap = 0, lcap = 0;
+    size_t n = 0, cap = 0, lcap = 0, left = QO_CLI_INPUT_MAX;
     long len = -1;
     qo_traj_ns t0n = 0;
-    char *line = NULL;
+    char *line = NULL, qt[QO_CLI_QUOTE_CAP];
     unsigned long lineno = 0;
     qo_gimbal_path_f32 path;
     qo_gimbal_f32 g;
@@ -108,7 +107,8 @@ int qo_cli_gimbal(int argc, char **argv)
         switch (ch) {
         case 's':
             if (qo_euler_seq_parse(optarg, &gs.seq) != QO_OK) {
-                fprintf(stderr, "qorient gimbal: --seq: '%s' is not a sequence (e.g. ZYX, zyx, ZXZ)\n", optarg);
+                fprintf(stderr, "qorient gimbal: --seq: %s is not a sequence (e.g. ZYX, zyx, ZXZ)\n",
+                        qo_cli_quote(qt, sizeof qt, optarg, -1));
                 return 2;
             }
             break;
@@ -122,7 +122,7 @@ int qo_cli_gimbal(int argc, char **argv)
             if (strcmp(optarg, "slerp") == 0) interp = QO_GIMBAL_PATH_SLERP;
             else if (strcmp(optarg, "spline") == 0) interp = QO_GIMBAL_PATH_SPLINE;
             else {
-                fprintf(stderr, "qorient gimbal: --interp: '%s' is not slerp or spline\n", optarg);
+                fprintf(stderr, "qorient gimbal: --interp: %s is not slerp or spline\n", qo_cli_quote(qt, sizeof qt, optarg, -1));
                 return 2;
             }
             break;
@@ -131,7 +131,7 @@ int qo_cli_gimbal(int argc, char **argv)
             break;
         case 'v':
             if (!parse_positive(optarg, &v)) {
-                fprintf(stderr, "qorient gimbal: --vmax: '%s' is not a positive number\n", optarg);
+                fprintf(stderr, "qorient gimbal: --vmax: %s is not a positive number\n", qo_cli_quote(qt, sizeof qt, optarg, -1));
                 return 2;
             }
             vmax = v;
@@ -139,7 +139,8 @@ int qo_cli_gimbal(int argc, char **argv)
         case 'a':
         case 'j':
             if (!parse_positive(optarg, &v)) {
-                fprintf(stderr, "qorient gimbal: --%s: '%s' is not a positive number\n", ch == 'a' ? "amax" : "jmax", optarg);
+                fprintf(stderr, "qorient gimbal: --%s: %s is not a positive number\n", ch == 'a' ? "amax" : "jmax",
+                        qo_cli_quote(qt, sizeof qt, optarg, -1));
                 return 2;
             }
             if (ch == 'a') amax = v; else jmax = v;
@@ -179,10 +180,12 @@ int qo_cli_gimbal(int argc, char **argv)
         return 2;
     }
 
-    while ((len = qo_cli_getline(&line, &lcap, in)) >= 0) {
+    while ((len = qo_cli_getline(&line, &lcap, in, &left)) >= 0) {
         double f[6];
         size_t m;
         int prc;
+        struct qo_cli_field bad;
+        char why[QO_CLI_REASON_CAP];
         qo_traj_ns tn;
         float rel;
         lineno++;
@@ -190,21 +193,17 @@ int qo_cli_gimbal(int argc, char **argv)
             fprintf(stderr, "qorient gimbal: line %lu: contains a NUL byte\n", lineno);
             goto out;
         }
-        prc = qo_cli_parse_numbers(line, f, 6, &m);
+        /* the parser refuses NaN, Inf and what float32 (the core's quaternion) cannot hold */
+        prc = qo_cli_parse_fields(line, f, 6, &m, &bad);
         if (prc == 0 && m == 0) continue;
-        if (prc == -1) {
-            fprintf(stderr, "qorient gimbal: line %lu: not a number\n", lineno);
+        if (prc != 0 && prc != QO_CLI_NUM_MANY) {
+            fprintf(stderr, "qorient gimbal: line %lu: %s\n", lineno,
+                    qo_cli_field_reason(prc, &bad, "column", why, sizeof why));
             goto out;
         }
-        if (prc == -2 || m != 5) {
+        if (prc == QO_CLI_NUM_MANY || m != 5) {
             fprintf(stderr, "qorient gimbal: line %lu: expected 5 numbers (t,w,x,y,z), got %s%zu\n",
-                    lineno, prc == -2 ? "more than " : "", m);
-            goto out;
-        }
-        /* the quaternion goes to the float32 core: 1e39 is as non-finite there as inf */
-        if (!isfinite(f[0]) || !(fabs(f[1]) <= FLT_MAX) || !(fabs(f[2]) <= FLT_MAX) ||
-            !(fabs(f[3]) <= FLT_MAX) || !(fabs(f[4]) <= FLT_MAX)) {
-            fprintf(stderr, "qorient gimbal: line %lu: %s\n", lineno, qo_status_str(QO_E_NONFINITE));
+                    lineno, prc == QO_CLI_NUM_MANY ? "more than " : "", m);
             goto out;
         }
         if (f[1] == 0 && f[2] == 0 && f[3] == 0 && f[4] == 0) {
@@ -218,6 +217,19 @@ int qo_cli_gimbal(int argc, char **argv)
             goto out;
         }
         if (n == 0) t0n = tn;
+        /* Bounded as it is read: more keys than --max-samples, or keys whose times already
+         * span more than --max-samples rows, stop the reading here (the rows are counted
+         * exactly, catch-up included, once the path is known). */
+        if ((double)n >= max_samples) {
+            fprintf(stderr, "qorient gimbal: line %lu: more than --max-samples %.0f keyframes: nothing more is "
+                    "read (raise --max-samples)\n", lineno, max_samples);
+            goto out;
+        }
+        if (qo_cli_span_rows(t0n, tn, rate) > max_samples) {
+            fprintf(stderr, "qorient gimbal: line %lu: the output is more than --max-samples %.0f rows at %g Hz by "
+                    "this key's time: lower --rate or raise --max-samples\n", lineno, max_samples, rate);
+            goto out;
+        }
         rel = (float)((double)(tn - t0n) * 1e-9);
         if (n > 0 && !(rel > t[n - 1])) {
             fprintf(stderr, "qorient gimbal: line %lu: time %.9g is not after the previous key's (as a float32 "

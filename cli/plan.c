@@ -269,6 +269,7 @@ int qo_cli_plan(int argc, char **argv)
     int c, rc;
 
     qo_cli_plan_opts_default(&o);
+    o.sampled = 1;
     memset(&r, 0, sizeof r);
     memset(&p, 0, sizeof p);
     while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
