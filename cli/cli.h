@@ -129,10 +129,10 @@ struct qo_cli_rows {
 int qo_cli_rows_add(const char *who, const char *name, const struct qo_cli_plan_opts *o, int has_time,
                     long lineno, char *text, long len, struct qo_cli_rows *r);
 /* Every line of path (NULL or "-": standard input); a read error (a directory) is an I/O
- * error. Needs 2 keyframes or 1 start line. Bounded: more than --max-samples keyframes or
- * targets, more than QO_CLI_INPUT_MAX bytes or (o->sampled) times spanning more than
- * --max-samples rows stop the reading at the line that crosses the bound. Returns 0 or 1
- * (message printed). */
+ * error. Needs 2 keyframes or 1 start line. Bounded: more than QO_CLI_INPUT_MAX bytes, more
+ * than QO_CLI_MAX_VALUES numbers, more than --max-samples keyframes or targets or (o->sampled)
+ * times spanning more than --max-samples rows stop the reading at the line that crosses the
+ * bound. Returns 0 or 1 (message printed). */
 int qo_cli_rows_read(const char *who, const struct qo_cli_plan_opts *o, const char *path,
                      struct qo_cli_rows *r);
 void qo_cli_rows_free(struct qo_cli_rows *r);
@@ -237,11 +237,13 @@ void qo_cli_print_time(FILE *f, qo_traj_ns t);
  * (QO_CLI_MAX_FIELDS numbers), low enough that an endless line (/dev/zero, a binary file)
  * ends in a message at once instead of filling memory. */
 #define QO_CLI_LINE_MAX 1048576L
-/* The most bytes read from one input the commands keep in memory (plan, gimbal, stream's
- * FILE): 64 MiB. With --max-samples (the most keyframes or targets read), what bounds their
- * memory and time before anything is planned; a longer input is refused as soon as it is
- * longer, never after reading it all. */
+/* The inputs the commands keep in memory (plan, gimbal, stream's FILE) are bounded as they are
+ * read, and refused at the line that crosses a bound, never after reading them all: at most
+ * QO_CLI_INPUT_MAX bytes (64 MiB: the time spent reading), --max-samples keyframes or targets,
+ * and QO_CLI_MAX_VALUES numbers kept (keyframes x columns: the memory, a few tens of bytes
+ * a number once planned). */
 #define QO_CLI_INPUT_MAX 67108864UL
+#define QO_CLI_MAX_VALUES 4194304UL
 
 /* Reads one line of up to QO_CLI_LINE_MAX characters into *buf (grown with realloc). Returns
  * the length, -1 at end of input or on a read error (check ferror), QO_CLI_LINE_LONG for a
@@ -257,10 +259,12 @@ long qo_cli_getline(char **buf, size_t *cap, FILE *f, size_t *left);
 /* What a qo_cli_getline result below -1 means, for "line N: ..." messages. */
 const char *qo_cli_line_problem(long len);
 
-/* A lower bound on the rows of a grid at `rate` Hz from the time `from` through `to` (ns), kept
- * below the count of every sampler of the command (float32 offsets included): a plan whose
- * input already spans more than --max-samples rows is refused while it is read. */
-double qo_cli_span_rows(qo_traj_ns from, qo_traj_ns to, double rate);
+/* The sample grid of plan and stream: time i is t0 + i/rate, exact to the ns from t0. */
+qo_traj_ns qo_cli_grid(qo_traj_ns t0, double rate, double i);
+/* The rows of the grid from t0 through tl: its points before tl, and tl (a keyframe plan prints
+ * exactly these; a targets plan at least these), so a plan whose input already spans more than
+ * --max-samples rows is refused while it is read. */
+double qo_cli_grid_rows(qo_traj_ns t0, qo_traj_ns tl, double rate);
 
 /* getopt_long's optind is global state: each subcommand resets it through this. */
 void qo_cli_reset_getopt(void);

@@ -50,9 +50,11 @@ static void gimbal_usage(FILE *f)
           "                      before anything is printed\n"
           "  -h, --help          this text\n"
           "\n"
-          "Errors (non-monotonic times, wrong column count, non-numbers, a zero quaternion, a line\n"
-          "longer than 1048576 characters, bad options) are reported on standard error naming the\n"
-          "line; the exit status is then 1 (2 for usage errors) and nothing is written. When the\n"
+          "Errors (non-monotonic times, wrong column count, non-numbers, NaN or Inf, numbers out of\n"
+          "float32 range, a zero quaternion, a line longer than 1048576 characters, more than\n"
+          "67108864 bytes or --max-samples keyframes, keyframes spanning more than --max-samples\n"
+          "rows, bad options) are reported on standard error naming the line (the rest is not read);\n"
+          "the exit status is then 1 (2 for usage errors) and nothing is written. When the\n"
           "joints have not caught up with the path's end after one hour of rows, the rows are\n"
           "written, a message says so and the exit status is 1.\n"
           "\n"
@@ -225,12 +227,14 @@ int qo_cli_gimbal(int argc, char **argv)
                     "read (raise --max-samples)\n", lineno, max_samples);
             goto out;
         }
-        if (qo_cli_span_rows(t0n, tn, rate) > max_samples) {
-            fprintf(stderr, "qorient gimbal: line %lu: the output is more than --max-samples %.0f rows at %g Hz by "
-                    "this key's time: lower --rate or raise --max-samples\n", lineno, max_samples, rate);
+        rel = (float)((double)(tn - t0n) * 1e-9);
+        /* the rows up to this key on the grid sampled below (at least these are printed) */
+        if (floor((double)rel * rate + 1e-9) + 1.0 > max_samples) {
+            fprintf(stderr, "qorient gimbal: line %lu: the output is at least %.0f rows at %g Hz by this key's time, "
+                    "more than --max-samples %.0f: lower --rate or raise --max-samples\n", lineno,
+                    floor((double)rel * rate + 1e-9) + 1.0, rate, max_samples);
             goto out;
         }
-        rel = (float)((double)(tn - t0n) * 1e-9);
         if (n > 0 && !(rel > t[n - 1])) {
             fprintf(stderr, "qorient gimbal: line %lu: time %.9g is not after the previous key's (as a float32 "
                     "offset from the first key)\n", lineno, f[0]);

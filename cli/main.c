@@ -82,7 +82,10 @@ int main(int argc, char **argv)
             return finish(cmds[i].fn(argc, argv));
         }
     }
-    fprintf(stderr, "qorient: unknown command '%s'\n", argv[0]);
+    {
+        char q[QO_CLI_QUOTE_CAP];
+        fprintf(stderr, "qorient: unknown command %s\n", qo_cli_quote(q, sizeof q, argv[0], -1));
+    }
     usage(stderr);
     return 2;
 }

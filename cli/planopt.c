@@ -289,14 +289,18 @@ int qo_cli_rows_read(const char *who, const struct qo_cli_plan_opts *o, const ch
         if (rc != 0 || r->rows == had) continue;
         /* Bounded as it is read, at the line that crosses the bound: what is refused after
          * reading (--max-samples) is refused before the rest is read. */
-        if ((double)r->rows > o->max_samples) {
+        if (r->rows * r->width > QO_CLI_MAX_VALUES) {
+            fprintf(stderr, "qorient %s: %s: line %ld: more than %lu numbers (keyframes or targets x columns): "
+                    "nothing more is read\n", who, name, lineno, QO_CLI_MAX_VALUES);
+            rc = 1;
+        } else if ((double)r->rows > o->max_samples) {
             fprintf(stderr, "qorient %s: %s: line %ld: more than --max-samples %.0f %s: nothing more is read "
                     "(raise --max-samples)\n", who, name, lineno, o->max_samples, o->motion ? "targets" : "keyframes");
             rc = 1;
-        } else if (o->sampled && qo_cli_span_rows(r->t[0], r->t[r->rows - 1], o->rate) > o->max_samples) {
-            fprintf(stderr, "qorient %s: %s: line %ld: the plan is more than --max-samples %.0f samples at %g Hz by "
-                    "this line's time: lower --rate or raise --max-samples\n", who, name, lineno, o->max_samples,
-                    o->rate);
+        } else if (o->sampled && qo_cli_grid_rows(r->t[0], r->t[r->rows - 1], o->rate) > o->max_samples) {
+            fprintf(stderr, "qorient %s: %s: line %ld: the plan is at least %.0f samples at %g Hz by this line's "
+                    "time, more than --max-samples %.0f: lower --rate or raise --max-samples\n", who, name, lineno,
+                    qo_cli_grid_rows(r->t[0], r->t[r->rows - 1], o->rate), o->rate, o->max_samples);
             rc = 1;
         }
     }

@@ -175,12 +175,17 @@ const char *qo_cli_line_problem(long len)
                                      : "out of memory";
 }
 
-double qo_cli_span_rows(qo_traj_ns from, qo_traj_ns to, double rate)
+qo_traj_ns qo_cli_grid(qo_traj_ns t0, double rate, double i)
 {
-    /* floor of the span in periods, less a margin for the samplers' own rounding (a float32
-     * offset from the first key is within 2^-24 of the time), plus the first row */
-    double x = (double)(to - from) * 1e-9 * rate;
-    return x > 0.0 ? floor(x * (1.0 - 1e-6)) + 1.0 : 1.0;
+    /* exact ns from the first line's time (the rate is not a float32 here) */
+    return t0 + (qo_traj_ns)llround(i * (1e9 / rate));
+}
+
+double qo_cli_grid_rows(qo_traj_ns t0, qo_traj_ns tl, double rate)
+{
+    /* grid points up to the last time, plus the last time when the grid misses it */
+    double rows = floor((double)(tl - t0) * 1e-9 * rate + 1e-9);
+    return rows + (rows <= 1e12 && qo_cli_grid(t0, rate, rows) >= tl ? 1.0 : 2.0);
 }
 
 void qo_cli_reset_getopt(void)
