@@ -225,6 +225,9 @@ const char *qo_cli_field_reason(int rc, const struct qo_cli_field *bad, const ch
  * a control character or unbounded text from the input. buf of QO_CLI_QUOTE_CAP bytes holds
  * any text (a smaller one cuts it shorter). Returns buf. */
 const char *qo_cli_quote(char *buf, size_t cap, const char *s, long len);
+/* qo_cli_quote of the C string s into a buffer of its own (a C99 compound literal, alive to the
+ * end of the enclosing block): for a message's argument list. */
+#define QO_CLI_QUOTED(s) qo_cli_quote((char[QO_CLI_QUOTE_CAP]){ 0 }, QO_CLI_QUOTE_CAP, (s), -1)
 
 /* Prints a float with enough significant digits (9) to read back the same float32. */
 void qo_cli_print_f32(FILE *f, float v);

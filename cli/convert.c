@@ -302,9 +302,7 @@ int qo_cli_convert(int argc, char **argv)
     }
     for (ch = 0; ch < 2; ch++)
         if (parse_rep(argv[optind + ch], ch ? &c.to : &c.from) != 0) {
-            char q[QO_CLI_QUOTE_CAP];
-            fprintf(stderr, "qorient convert: unknown representation %s\n",
-                    qo_cli_quote(q, sizeof q, argv[optind + ch], -1));
+            fprintf(stderr, "qorient convert: unknown representation %s\n", QO_CLI_QUOTED(argv[optind + ch]));
             return 2;
         }
     return for_each_record("convert", rep_count(c.from.kind), convert_one, &c);
@@ -364,8 +362,7 @@ int qo_cli_slerp(int argc, char **argv)
         }
     }
     if (optind != argc) {
-        char q[QO_CLI_QUOTE_CAP];
-        fprintf(stderr, "qorient slerp: unexpected argument %s\n", qo_cli_quote(q, sizeof q, argv[optind], -1));
+        fprintf(stderr, "qorient slerp: unexpected argument %s\n", QO_CLI_QUOTED(argv[optind]));
         return 2;
     }
     return for_each_record("slerp", 9, slerp_one, &fixed);

@@ -97,7 +97,7 @@ int qo_cli_gimbal(int argc, char **argv)
     size_t n = 0, cap = 0, lcap = 0, left = QO_CLI_INPUT_MAX;
     long len = -1;
     qo_traj_ns t0n = 0;
-    char *line = NULL, qt[QO_CLI_QUOTE_CAP];
+    char *line = NULL;
     unsigned long lineno = 0;
     qo_gimbal_path_f32 path;
     qo_gimbal_f32 g;
@@ -110,7 +110,7 @@ int qo_cli_gimbal(int argc, char **argv)
         case 's':
             if (qo_euler_seq_parse(optarg, &gs.seq) != QO_OK) {
                 fprintf(stderr, "qorient gimbal: --seq: %s is not a sequence (e.g. ZYX, zyx, ZXZ)\n",
-                        qo_cli_quote(qt, sizeof qt, optarg, -1));
+                        QO_CLI_QUOTED(optarg));
                 return 2;
             }
             break;
@@ -124,7 +124,7 @@ int qo_cli_gimbal(int argc, char **argv)
             if (strcmp(optarg, "slerp") == 0) interp = QO_GIMBAL_PATH_SLERP;
             else if (strcmp(optarg, "spline") == 0) interp = QO_GIMBAL_PATH_SPLINE;
             else {
-                fprintf(stderr, "qorient gimbal: --interp: %s is not slerp or spline\n", qo_cli_quote(qt, sizeof qt, optarg, -1));
+                fprintf(stderr, "qorient gimbal: --interp: %s is not slerp or spline\n", QO_CLI_QUOTED(optarg));
                 return 2;
             }
             break;
@@ -133,7 +133,7 @@ int qo_cli_gimbal(int argc, char **argv)
             break;
         case 'v':
             if (!parse_positive(optarg, &v)) {
-                fprintf(stderr, "qorient gimbal: --vmax: %s is not a positive number\n", qo_cli_quote(qt, sizeof qt, optarg, -1));
+                fprintf(stderr, "qorient gimbal: --vmax: %s is not a positive number\n", QO_CLI_QUOTED(optarg));
                 return 2;
             }
             vmax = v;
@@ -142,7 +142,7 @@ int qo_cli_gimbal(int argc, char **argv)
         case 'j':
             if (!parse_positive(optarg, &v)) {
                 fprintf(stderr, "qorient gimbal: --%s: %s is not a positive number\n", ch == 'a' ? "amax" : "jmax",
-                        qo_cli_quote(qt, sizeof qt, optarg, -1));
+                        QO_CLI_QUOTED(optarg));
                 return 2;
             }
             if (ch == 'a') amax = v; else jmax = v;

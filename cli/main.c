@@ -82,10 +82,7 @@ int main(int argc, char **argv)
             return finish(cmds[i].fn(argc, argv));
         }
     }
-    {
-        char q[QO_CLI_QUOTE_CAP];
-        fprintf(stderr, "qorient: unknown command %s\n", qo_cli_quote(q, sizeof q, argv[0], -1));
-    }
+    fprintf(stderr, "qorient: unknown command %s\n", QO_CLI_QUOTED(argv[0]));
     usage(stderr);
     return 2;
 }

@@ -25,13 +25,12 @@ static int pick(const char *who, const char *opt, const char *arg, const char *c
                 const char *expect, int *out)
 {
     int i;
-    char q[QO_CLI_QUOTE_CAP];
     for (i = 0; names[i]; i++)
         if (strcmp(arg, names[i]) == 0) {
             *out = i;
             return 0;
         }
-    fprintf(stderr, "qorient %s: %s: %s is not %s\n", who, opt, qo_cli_quote(q, sizeof q, arg, -1), expect);
+    fprintf(stderr, "qorient %s: %s: %s is not %s\n", who, opt, QO_CLI_QUOTED(arg), expect);
     return 2;
 }
 

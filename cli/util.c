@@ -213,7 +213,7 @@ int qo_cli_number(const char *who, const char *opt, const char *arg, double lo, 
                   const char *unit, double *out)
 {
     char *end;
-    char range[80], q[QO_CLI_QUOTE_CAP];
+    char range[80];
     double v;
     errno = 0;
     v = strtod(arg, &end);
@@ -223,14 +223,14 @@ int qo_cli_number(const char *who, const char *opt, const char *arg, double lo, 
         return 0;
     }
     range_text(range, sizeof range, lo, hi);
-    fprintf(stderr, "qorient %s: %s: %s is not %s%s%s\n", who, opt, qo_cli_quote(q, sizeof q, arg, -1), range,
+    fprintf(stderr, "qorient %s: %s: %s is not %s%s%s\n", who, opt, QO_CLI_QUOTED(arg), range,
             unit ? " " : "", unit ? unit : "");
     return 2;
 }
 
 int qo_cli_count(const char *who, const char *opt, const char *arg, double lo, double hi, double *out)
 {
-    char *end, q[QO_CLI_QUOTE_CAP];
+    char *end;
     double v;
     v = strtod(arg, &end);
     *out = 0.0;
@@ -239,7 +239,7 @@ int qo_cli_count(const char *who, const char *opt, const char *arg, double lo, d
         return 0;
     }
     fprintf(stderr, "qorient %s: %s: %s is not a whole number in [%g, %g]\n", who, opt,
-            qo_cli_quote(q, sizeof q, arg, -1), lo, hi);
+            QO_CLI_QUOTED(arg), lo, hi);
     return 2;
 }
 
@@ -274,7 +274,7 @@ int qo_cli_list(const char *who, const char *opt, const char *arg, size_t n, dou
     }
     if (pr != 0 || m == 0) {
         fprintf(stderr, "qorient %s: %s: %s is not a list of numbers separated by commas\n", who, opt,
-                qo_cli_quote(why, sizeof why, arg, -1));
+                QO_CLI_QUOTED(arg));
         return 2;
     }
     if (m != 1 && m != n) {
@@ -293,13 +293,12 @@ int qo_cli_list(const char *who, const char *opt, const char *arg, size_t n, dou
 
 int qo_cli_joint_set(const char *who, const char *opt, const char *arg, size_t n, unsigned char *flags)
 {
-    char q[QO_CLI_QUOTE_CAP];
     double v[64];
     size_t m = 0, i;
     memset(flags, 0, n);
     if (arg == NULL) return 0;
     if (strlen(arg) >= 1024 || qo_cli_parse_numbers(arg, v, sizeof v / sizeof v[0], &m) != 0 || m == 0) {
-        fprintf(stderr, "qorient %s: %s: %s is not a list of joint numbers\n", who, opt, qo_cli_quote(q, sizeof q, arg, -1));
+        fprintf(stderr, "qorient %s: %s: %s is not a list of joint numbers\n", who, opt, QO_CLI_QUOTED(arg));
         return 2;
     }
     for (i = 0; i < m; i++) {

@@ -129,6 +129,10 @@ run "$T/in" gimbal; said "gimbal quotes the field" 1 "qorient gimbal: line 2: no
 # an option value and an unknown command, the same way
 run /dev/null plan --profile "$(printf 'x\033[2Jy')"
 said "plan --profile ESC" 2 "qorient plan: --profile: 'x\x1b[2Jy' is not linear, cubic, catmull, spline, quintic, trapezoid or scurve"
+run /dev/null $STREAM --on-fail "$(printf 'a\033b')" -
+said "stream --on-fail ESC" 2 "qorient stream: --on-fail: 'a\x1bb' is not hold or disable"
+run /dev/null sim --map $MAP --fault "$(printf 'drop\001')"
+said "sim --fault ^A" 2 "qorient sim: bad --fault 'drop\x01' (delay:MS, drop, exception, close)"
 run /dev/null "$(printf 'no\tsuch%060d' 0)"
 grep -F -q "qorient: unknown command 'no\\x09such$(printf '%033d' 0)'..." "$T/e" && ok ||
     bad "unknown command not quoted: $(head -c 200 "$T/e")"
