@@ -265,18 +265,18 @@ static int live_start(struct stream_ctx *c)
     return rc;
 }
 
-static void print_budget(const qo_wire_budget *b, const qo_modbus_spec *spec, double rate)
+static void print_budget(const qo_wire_budget *b, const qo_modbus_link_spec *spec, double rate)
 {
     size_t i;
     printf("dry-run: %zu request(s) per tick (FC16)\n", b->n_requests);
     for (i = 0; i < b->n_requests; i++) {
-        const qo_wire_request *r = &b->req[i];
+        const qo_wire_budget_request *r = &b->req[i];
         printf("  slave %u: registers %u..%u (%u), request %u bytes, reply %u bytes",
                r->slave, r->first, r->first + r->registers - 1, r->registers, r->request_bytes, r->reply_bytes);
-        if (spec->transport == QO_MODBUS_RTU) printf(", %.0f us on the wire", r->time_us);
+        if (spec->transport == QO_MODBUS_LINK_RTU) printf(", %.0f us on the wire", r->time_us);
         putchar('\n');
     }
-    if (spec->transport == QO_MODBUS_RTU) {
+    if (spec->transport == QO_MODBUS_LINK_RTU) {
         printf("rtu: %d baud %d%c%d: %u bits/char, %.1f us/char, t3.5 = %.0f us\n", spec->baud,
                spec->data_bits, spec->parity, spec->stop_bits, b->bits_per_char, b->char_us, b->t35_us);
         printf("wire budget per tick: %.0f us; highest rate: %.1f Hz; requested %g Hz: %s\n",
@@ -293,7 +293,7 @@ static int stream_settle(qo_modbus_sink *ms, const qo_regmap *map, qo_traj *tr, 
                          double settle, double *elapsed)
 {
     float final[QO_REGMAP_MAX_JOINTS];
-    qo_modbus_settle_report rep;
+    qo_modbus_sink_settle_report rep;
     qo_traj_ns end = 0;
     qo_status s;
     size_t j;
@@ -343,7 +343,7 @@ int qo_cli_stream(int argc, char **argv)
     int dry = 0, no_rt = 0, quiet = 0, live = 0, c, rc = 1, reader = 0;
     static qo_regmap map; /* 20 KiB: not on the stack */
     /* GPIO: step and dir line offsets per joint, steps per unit, step rates */
-    double sp[QO_GPIO_MAX_LINES], spu[QO_GPIO_MAX_JOINTS], sr[QO_GPIO_MAX_JOINTS];
+    double sp[QO_GPIO_SINK_MAX_LINES], spu[QO_GPIO_SINK_MAX_JOINTS], sr[QO_GPIO_SINK_MAX_JOINTS];
     struct qo_cli_plan_opts po;
     struct qo_cli_rows rows;
     static struct qo_cli_plan plan;
@@ -429,17 +429,17 @@ int qo_cli_stream(int argc, char **argv)
 
     /* The drives' description first: a bad map is reported before anything else happens. */
     if (modbus) {
-        qo_modbus_spec spec;
+        qo_modbus_link_spec spec;
         if (qo_regmap_load(map_path, &map, err, sizeof err) != QO_OK) {
             fprintf(stderr, "qorient stream: %s\n", err);
             goto out;
         }
-        if (qo_modbus_parse_spec(modbus, &spec) != QO_OK) {
+        if (qo_modbus_link_parse_spec(modbus, &spec) != QO_OK) {
             fprintf(stderr, "qorient stream: --modbus: '%s' is not tcp://HOST:PORT or rtu:DEVICE,BAUD,8N1\n", modbus);
             goto usage;
         }
         n_joints = map.n_joints;
-        if (!dry && spec.transport == QO_MODBUS_RTU && access(spec.device, R_OK | W_OK) != 0) {
+        if (!dry && spec.transport == QO_MODBUS_LINK_RTU && access(spec.device, R_OK | W_OK) != 0) {
             fprintf(stderr, "qorient stream: serial device %s: %s\n", spec.device, strerror(errno));
             goto out;
         }
@@ -450,7 +450,7 @@ int qo_cli_stream(int argc, char **argv)
                 goto out;
             }
             if (dry) print_budget(&b, &spec, rate);
-            else if (spec.transport == QO_MODBUS_RTU && rate > b.max_rate_hz) {
+            else if (spec.transport == QO_MODBUS_LINK_RTU && rate > b.max_rate_hz) {
                 fprintf(stderr, "qorient stream: --rate %g Hz is more than %s allows for this map "
                         "(%.0f us of wire time per tick: at most %.1f Hz; see --dry-run)\n",
                         rate, modbus, b.tick_us, b.max_rate_hz);
@@ -465,7 +465,7 @@ int qo_cli_stream(int argc, char **argv)
         strcpy(buf, lines);
         for (p = buf; *p; p++) if (*p == ':') *p = ',';
         n = 0;
-        if (qo_cli_parse_numbers(buf, sp, QO_GPIO_MAX_LINES, &n) != 0 || n == 0 || n % 2) n = 0;
+        if (qo_cli_parse_numbers(buf, sp, QO_GPIO_SINK_MAX_LINES, &n) != 0 || n == 0 || n % 2) n = 0;
         /* line offsets are unsigned: -1 or 1e30 would not convert (undefined behaviour) */
         for (i = 0; i < n; i++)
             if (!(sp[i] >= 0.0 && sp[i] <= 65535.0 && sp[i] == floor(sp[i]))) n = 0;
@@ -539,7 +539,7 @@ int qo_cli_stream(int argc, char **argv)
         ss.response_timeout_us = (uint32_t)to;
         ss.byte_timeout_us = (uint32_t)fmin(to, 5000.0);
         ss.open_timeout_us = 500000u; /* connecting is outside the loop: be patient there */
-        ss.on_fail = strcmp(on_fail, "disable") == 0 ? QO_MODBUS_ON_FAIL_DISABLE : QO_MODBUS_ON_FAIL_HOLD;
+        ss.on_fail = strcmp(on_fail, "disable") == 0 ? QO_MODBUS_SINK_ON_FAIL_DISABLE : QO_MODBUS_SINK_ON_FAIL_HOLD;
         s = qo_modbus_sink_open(modbus, &map, &ss, &ms);
         if (s != QO_OK) {
             fprintf(stderr, "qorient stream: cannot reach the drives at %s: %s\n", modbus, qo_status_str(s));
@@ -548,14 +548,14 @@ int qo_cli_stream(int argc, char **argv)
         qo_modbus_sink_as_sink(ms, &cfg.sink);
     } else {
         qo_gpio_sink_config gc;
-        qo_gpio_joint jd;
-        qo_gpio_backend be;
-        static qo_gpio_libgpiod gstore;
+        qo_gpio_sink_joint jd;
+        qo_gpio_sink_backend be;
+        static qo_gpio_sink_libgpiod gstore;
         size_t nspu = 0, nsr = 0, j;
         nspu = spu_s ? n_joints : 0;
         nsr = step_rate_s ? n_joints : 0;
         gc = qo_gpio_sink_config_default;
-        jd = qo_gpio_joint_default;
+        jd = qo_gpio_sink_joint_default;
         gc.period_s = 1.0 / rate;
         gc.n_joints = n_joints;
         for (j = 0; j < n_joints; j++) {
@@ -567,7 +567,7 @@ int qo_cli_stream(int argc, char **argv)
             if (nspu) gc.joint[j].steps_per_unit = spu[nspu == 1 ? 0 : j];
             if (nsr) gc.joint[j].max_rate_hz = sr[nsr == 1 ? 0 : j];
         }
-        qo_gpio_libgpiod_backend(&gstore, "qorient", &be);
+        qo_gpio_sink_libgpiod_backend(&gstore, "qorient", &be);
         s = qo_gpio_sink_open(&gs, &gc, &be);
         if (s != QO_OK) {
             fprintf(stderr, "qorient stream: cannot open the GPIO lines on %s: %s\n", gpio, qo_status_str(s));
