@@ -105,6 +105,9 @@ struct qo_cli_plan_opts {
     int discrete;               /* --discrete: durations in whole periods of --rate */
     int degrees, unwrapped, fixed;
     const char *key_opt, *motion_opt; /* an option of the other mode, to refuse by name */
+    int sampled;                /* 1 (plan): the plan is printed at --rate, so an input whose
+                                 * times already span more than --max-samples rows is refused
+                                 * at the line that crosses it */
 };
 void qo_cli_plan_opts_default(struct qo_cli_plan_opts *o);
 /* Takes one getopt_long result of QO_CLI_PLAN_OPTIONS. Returns 0 or 2 (message printed). */
@@ -120,12 +123,16 @@ struct qo_cli_rows {
     long *line, first_line;
 };
 /* One input line (len from qo_cli_getline, or -1 for a C string): blank and '#' lines are
- * skipped; any error (NUL byte, not a number, not finite in float32, column count, time out of
- * range or out of order) prints a message naming the line and returns 1; nothing is added. */
+ * skipped; any error (NUL byte, not a number, not finite, out of float32 range, column count,
+ * time out of range or out of order) prints a message naming the line and returns 1; nothing
+ * is added. */
 int qo_cli_rows_add(const char *who, const char *name, const struct qo_cli_plan_opts *o, int has_time,
                     long lineno, char *text, long len, struct qo_cli_rows *r);
 /* Every line of path (NULL or "-": standard input); a read error (a directory) is an I/O
- * error. Needs 2 keyframes or 1 start line. Returns 0 or 1 (message printed). */
+ * error. Needs 2 keyframes or 1 start line. Bounded: more than QO_CLI_INPUT_MAX bytes, more
+ * than QO_CLI_MAX_VALUES numbers, more than --max-samples keyframes or targets or (o->sampled)
+ * times spanning more than --max-samples rows stop the reading at the line that crosses the
+ * bound. Returns 0 or 1 (message printed). */
 int qo_cli_rows_read(const char *who, const struct qo_cli_plan_opts *o, const char *path,
                      struct qo_cli_rows *r);
 void qo_cli_rows_free(struct qo_cli_rows *r);
@@ -174,12 +181,53 @@ qo_status qo_cli_convert_fixed(const struct rep_spec *from, const struct rep_spe
                                const double *v, int degrees, double *o, size_t *n);
 qo_status qo_cli_slerp_fixed(const double *v, double *o);
 
-/* Splits `line` in place into numbers separated by blanks and/or commas. Writes at most `max`
- * values to out and their count to *n. Returns 0 on success, -1 if a field is not a number
- * (the whole field must parse; "nan"/"inf" are accepted as numbers and left for the math to
- * reject), -2 if there are more than `max` fields. A line that is blank or starts with '#'
- * gives *n == 0. */
-int qo_cli_parse_numbers(char *line, double *out, size_t max, size_t *n);
+/* ---- the one parser of input numbers (util.c): every record of every subcommand, and the
+ * lists of option values, go through qo_cli_parse_fields ---- */
+
+/* Why a field is refused (the return values of qo_cli_parse_fields). */
+#define QO_CLI_NUM_BAD (-1)       /* not a number: the whole field must parse ("1.5x", "") */
+#define QO_CLI_NUM_MANY (-2)      /* more fields than the caller takes */
+#define QO_CLI_NUM_NONFINITE (-3) /* nan, inf: not a finite number */
+#define QO_CLI_NUM_RANGE (-4)     /* finite in the text, beyond float32 (1e39, 1e400) */
+
+/* The field a refusal is about: its 1-based index and its text in the line (not quoted yet). */
+struct qo_cli_field {
+    size_t index;
+    const char *text;
+    size_t len;
+};
+
+/* Splits `line` into numbers separated by blanks and/or commas. Writes at most `max` values to
+ * out and their count to *n. Returns 0, or one of QO_CLI_NUM_* above for the first field
+ * refused, described in *bad (may be NULL). Every number the core takes is a float32, so a
+ * value float32 cannot hold (it would round to infinity: |v| >= 2^128 - 2^103) is refused
+ * here, as out of float32 range, apart from NaN and Inf. A line that is blank or starts with
+ * '#' gives *n == 0. */
+int qo_cli_parse_fields(const char *line, double *out, size_t max, size_t *n, struct qo_cli_field *bad);
+/* The same without the description. */
+int qo_cli_parse_numbers(const char *line, double *out, size_t max, size_t *n);
+/* The reason of a QO_CLI_NUM_BAD, _NONFINITE or _RANGE refusal for a message, written to buf
+ * (QO_CLI_REASON_CAP bytes are always enough): "out of float32 range: '1e39' (column 3)",
+ * noun naming the field ("column", "value"). Returns buf. */
+#define QO_CLI_REASON_CAP 256
+const char *qo_cli_field_reason(int rc, const struct qo_cli_field *bad, const char *noun, char *buf,
+                                size_t cap);
+
+/* ---- user text in messages (util.c): one quoting for every message ---- */
+
+/* The most bytes of a user's text a message repeats. */
+#define QO_CLI_QUOTE_MAX 40
+/* Room for a quoted text: each byte at most 4 characters, quotes, "..." and the NUL. */
+#define QO_CLI_QUOTE_CAP (4 * QO_CLI_QUOTE_MAX + 6)
+/* Writes s (len bytes, or up to its NUL when len < 0) to buf as 'TEXT', for a message: at most
+ * QO_CLI_QUOTE_MAX bytes of it, "..." after the closing quote when there is more; a byte that
+ * is not printable ASCII as \xNN and ' and \ as \' and \\, so a message never carries a NUL,
+ * a control character or unbounded text from the input. buf of QO_CLI_QUOTE_CAP bytes holds
+ * any text (a smaller one cuts it shorter). Returns buf. */
+const char *qo_cli_quote(char *buf, size_t cap, const char *s, long len);
+/* qo_cli_quote of the C string s into a buffer of its own (a C99 compound literal, alive to the
+ * end of the enclosing block): for a message's argument list. */
+#define QO_CLI_QUOTED(s) qo_cli_quote((char[QO_CLI_QUOTE_CAP]){ 0 }, QO_CLI_QUOTE_CAP, (s), -1)
 
 /* Prints a float with enough significant digits (9) to read back the same float32. */
 void qo_cli_print_f32(FILE *f, float v);
@@ -192,17 +240,34 @@ void qo_cli_print_time(FILE *f, qo_traj_ns t);
  * (QO_CLI_MAX_FIELDS numbers), low enough that an endless line (/dev/zero, a binary file)
  * ends in a message at once instead of filling memory. */
 #define QO_CLI_LINE_MAX 1048576L
+/* The inputs the commands keep in memory (plan, gimbal, stream's FILE) are bounded as they are
+ * read, and refused at the line that crosses a bound, never after reading them all: at most
+ * QO_CLI_INPUT_MAX bytes (64 MiB: the time spent reading), --max-samples keyframes or targets,
+ * and QO_CLI_MAX_VALUES numbers kept (keyframes x columns: the memory, a few tens of bytes
+ * a number once planned). */
+#define QO_CLI_INPUT_MAX 67108864UL
+#define QO_CLI_MAX_VALUES 4194304UL
 
 /* Reads one line of up to QO_CLI_LINE_MAX characters into *buf (grown with realloc). Returns
  * the length, -1 at end of input or on a read error (check ferror), QO_CLI_LINE_LONG for a
- * longer line (the rest of it is left unread: callers stop reading there) or
- * QO_CLI_LINE_NOMEM. The trailing newline (and CR) is removed. A line with a NUL byte has
- * strlen(*buf) < the length returned: callers refuse it. */
+ * longer line (the rest of it is left unread: callers stop reading there),
+ * QO_CLI_LINE_NOMEM, or QO_CLI_INPUT_BIG when *left (bytes the input may still take, newlines
+ * counted; NULL: no bound) would go below 0: the byte after the bound is not read. The
+ * trailing newline (and CR) is removed. A line with a NUL byte has strlen(*buf) < the length
+ * returned: callers refuse it. */
 #define QO_CLI_LINE_LONG (-2L)
 #define QO_CLI_LINE_NOMEM (-3L)
-long qo_cli_getline(char **buf, size_t *cap, FILE *f);
+#define QO_CLI_INPUT_BIG (-4L)
+long qo_cli_getline(char **buf, size_t *cap, FILE *f, size_t *left);
 /* What a qo_cli_getline result below -1 means, for "line N: ..." messages. */
 const char *qo_cli_line_problem(long len);
+
+/* The sample grid of plan and stream: time i is t0 + i/rate, exact to the ns from t0. */
+qo_traj_ns qo_cli_grid(qo_traj_ns t0, double rate, double i);
+/* The rows of the grid from t0 through tl: its points before tl, and tl (a keyframe plan prints
+ * exactly these; a targets plan at least these), so a plan whose input already spans more than
+ * --max-samples rows is refused while it is read. */
+double qo_cli_grid_rows(qo_traj_ns t0, qo_traj_ns tl, double rate);
 
 /* getopt_long's optind is global state: each subcommand resets it through this. */
 void qo_cli_reset_getopt(void);

@@ -158,11 +158,14 @@ static int for_each_record(const char *cmd, size_t want, record_fn fn, void *ctx
     unsigned long lineno = 0;
     int failed = 0;
     double v[16];
-    char msg[96];
+    char msg[QO_CLI_REASON_CAP];
     long len = -1;
-    while ((len = qo_cli_getline(&buf, &cap, stdin)) >= 0) {
+    /* A filter: one line in memory at a time (at most QO_CLI_LINE_MAX characters), so the
+     * input needs no bound on its length. */
+    while ((len = qo_cli_getline(&buf, &cap, stdin, NULL)) >= 0) {
         size_t n;
         int rc;
+        struct qo_cli_field bad;
         const char *p = buf;
         lineno++;
         if (strlen(buf) != (size_t)len) {
@@ -176,14 +179,14 @@ static int for_each_record(const char *cmd, size_t want, record_fn fn, void *ctx
             puts(buf); /* keep line N of output answering line N of input */
             continue;
         }
-        rc = qo_cli_parse_numbers(buf, v, sizeof v / sizeof v[0], &n);
-        if (rc == -1) {
-            line_error(cmd, lineno, "not a number");
+        rc = qo_cli_parse_fields(buf, v, sizeof v / sizeof v[0], &n, &bad);
+        if (rc != 0 && rc != QO_CLI_NUM_MANY) {
+            line_error(cmd, lineno, qo_cli_field_reason(rc, &bad, "column", msg, sizeof msg));
             failed = 1;
             continue;
         }
-        if (rc == -2 || n != want) {
-            snprintf(msg, sizeof msg, "expected %zu numbers, got %s%zu", want, rc == -2 ? "more than " : "", n);
+        if (rc == QO_CLI_NUM_MANY || n != want) {
+            snprintf(msg, sizeof msg, "expected %zu numbers, got %s%zu", want, rc == QO_CLI_NUM_MANY ? "more than " : "", n);
             line_error(cmd, lineno, msg);
             failed = 1;
             continue;
@@ -209,16 +212,13 @@ static int for_each_record(const char *cmd, size_t want, record_fn fn, void *ctx
     return failed;
 }
 
-/* The --fixed paths take the inputs the float32 core sees (rounded to float32), so both
- * refuse and accept the same records. Returns 0 if a value is not finite in float32. */
-static int as_float32(const double *v, size_t m, double *w)
+/* The --fixed paths take the inputs the float32 core sees (rounded to float32: what rounds to
+ * zero in float32, 1e-320, is zero here too), so both refuse and accept the same records;
+ * the parser has refused what float32 cannot hold (1e39). */
+static void as_float32(const double *v, size_t m, double *w)
 {
     size_t i;
-    for (i = 0; i < m; i++) {
-        w[i] = (double)(float)v[i];
-        if (!isfinite(w[i])) return 0;
-    }
-    return 1;
+    for (i = 0; i < m; i++) w[i] = (double)(float)v[i];
 }
 
 struct convert_ctx {
@@ -233,11 +233,9 @@ static const char *convert_one(const double *v, void *vctx)
     size_t n;
     qo_status st;
     if (c->fixed) {
-        /* The same inputs as the float32 core sees: what float32 cannot hold (1e39) is refused
-         * the same way, and what rounds to zero in float32 (1e-320) is zero here too. */
         double w[16];
         size_t m = c->from.kind == REP_MATRIX ? 9 : c->from.kind == REP_QUAT || c->from.kind == REP_AXISANGLE ? 4 : 3;
-        if (!as_float32(v, m, w)) return qo_status_str(QO_E_NONFINITE);
+        as_float32(v, m, w);
         st = qo_cli_convert_fixed(&c->from, &c->to, w, c->degrees, o, &n);
     } else {
         qo_quat_f32 q;
@@ -302,14 +300,11 @@ int qo_cli_convert(int argc, char **argv)
         convert_usage(stderr);
         return 2;
     }
-    if (parse_rep(argv[optind], &c.from) != 0) {
-        fprintf(stderr, "qorient convert: unknown representation '%s'\n", argv[optind]);
-        return 2;
-    }
-    if (parse_rep(argv[optind + 1], &c.to) != 0) {
-        fprintf(stderr, "qorient convert: unknown representation '%s'\n", argv[optind + 1]);
-        return 2;
-    }
+    for (ch = 0; ch < 2; ch++)
+        if (parse_rep(argv[optind + ch], ch ? &c.to : &c.from) != 0) {
+            fprintf(stderr, "qorient convert: unknown representation %s\n", QO_CLI_QUOTED(argv[optind + ch]));
+            return 2;
+        }
     return for_each_record("convert", rep_count(c.from.kind), convert_one, &c);
 }
 
@@ -320,7 +315,7 @@ static const char *slerp_one(const double *v, void *vctx)
     qo_status st;
     if (*fixed) {
         double w[9];
-        if (!as_float32(v, 9, w)) return qo_status_str(QO_E_NONFINITE);
+        as_float32(v, 9, w);
         st = qo_cli_slerp_fixed(w, o);
     } else {
         qo_quat_f32 a = { (float)v[0], (float)v[1], (float)v[2], (float)v[3] };
@@ -367,7 +362,7 @@ int qo_cli_slerp(int argc, char **argv)
         }
     }
     if (optind != argc) {
-        fprintf(stderr, "qorient slerp: unexpected argument '%s'\n", argv[optind]);
+        fprintf(stderr, "qorient slerp: unexpected argument %s\n", QO_CLI_QUOTED(argv[optind]));
         return 2;
     }
     return for_each_record("slerp", 9, slerp_one, &fixed);

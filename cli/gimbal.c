@@ -6,7 +6,6 @@
 #include "cli.h"
 
 #include <errno.h>
-#include <float.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
@@ -51,9 +50,11 @@ static void gimbal_usage(FILE *f)
           "                      before anything is printed\n"
           "  -h, --help          this text\n"
           "\n"
-          "Errors (non-monotonic times, wrong column count, non-numbers, a zero quaternion, a line\n"
-          "longer than 1048576 characters, bad options) are reported on standard error naming the\n"
-          "line; the exit status is then 1 (2 for usage errors) and nothing is written. When the\n"
+          "Errors (non-monotonic times, wrong column count, non-numbers, NaN or Inf, numbers out of\n"
+          "float32 range, a zero quaternion, a line longer than 1048576 characters, more than\n"
+          "67108864 bytes or --max-samples keyframes, keyframes spanning more than --max-samples\n"
+          "rows, bad options) are reported on standard error naming the line (the rest is not read);\n"
+          "the exit status is then 1 (2 for usage errors) and nothing is written. When the\n"
           "joints have not caught up with the path's end after one hour of rows, the rows are\n"
           "written, a message says so and the exit status is 1.\n"
           "\n"
@@ -93,7 +94,7 @@ int qo_cli_gimbal(int argc, char **argv)
     FILE *in = stdin;
     float *t = NULL;
     qo_quat_f32 *keys = NULL, *ks = NULL, *a = NULL, *b = NULL;
-    size_t n = 0, cap = 0, lcap = 0;
+    size_t n = 0, cap = 0, lcap = 0, left = QO_CLI_INPUT_MAX;
     long len = -1;
     qo_traj_ns t0n = 0;
     char *line = NULL;
@@ -108,7 +109,8 @@ int qo_cli_gimbal(int argc, char **argv)
         switch (ch) {
         case 's':
             if (qo_euler_seq_parse(optarg, &gs.seq) != QO_OK) {
-                fprintf(stderr, "qorient gimbal: --seq: '%s' is not a sequence (e.g. ZYX, zyx, ZXZ)\n", optarg);
+                fprintf(stderr, "qorient gimbal: --seq: %s is not a sequence (e.g. ZYX, zyx, ZXZ)\n",
+                        QO_CLI_QUOTED(optarg));
                 return 2;
             }
             break;
@@ -122,7 +124,7 @@ int qo_cli_gimbal(int argc, char **argv)
             if (strcmp(optarg, "slerp") == 0) interp = QO_GIMBAL_PATH_SLERP;
             else if (strcmp(optarg, "spline") == 0) interp = QO_GIMBAL_PATH_SPLINE;
             else {
-                fprintf(stderr, "qorient gimbal: --interp: '%s' is not slerp or spline\n", optarg);
+                fprintf(stderr, "qorient gimbal: --interp: %s is not slerp or spline\n", QO_CLI_QUOTED(optarg));
                 return 2;
             }
             break;
@@ -131,7 +133,7 @@ int qo_cli_gimbal(int argc, char **argv)
             break;
         case 'v':
             if (!parse_positive(optarg, &v)) {
-                fprintf(stderr, "qorient gimbal: --vmax: '%s' is not a positive number\n", optarg);
+                fprintf(stderr, "qorient gimbal: --vmax: %s is not a positive number\n", QO_CLI_QUOTED(optarg));
                 return 2;
             }
             vmax = v;
@@ -139,7 +141,8 @@ int qo_cli_gimbal(int argc, char **argv)
         case 'a':
         case 'j':
             if (!parse_positive(optarg, &v)) {
-                fprintf(stderr, "qorient gimbal: --%s: '%s' is not a positive number\n", ch == 'a' ? "amax" : "jmax", optarg);
+                fprintf(stderr, "qorient gimbal: --%s: %s is not a positive number\n", ch == 'a' ? "amax" : "jmax",
+                        QO_CLI_QUOTED(optarg));
                 return 2;
             }
             if (ch == 'a') amax = v; else jmax = v;
@@ -179,10 +182,12 @@ int qo_cli_gimbal(int argc, char **argv)
         return 2;
     }
 
-    while ((len = qo_cli_getline(&line, &lcap, in)) >= 0) {
+    while ((len = qo_cli_getline(&line, &lcap, in, &left)) >= 0) {
         double f[6];
         size_t m;
         int prc;
+        struct qo_cli_field bad;
+        char why[QO_CLI_REASON_CAP];
         qo_traj_ns tn;
         float rel;
         lineno++;
@@ -190,21 +195,17 @@ int qo_cli_gimbal(int argc, char **argv)
             fprintf(stderr, "qorient gimbal: line %lu: contains a NUL byte\n", lineno);
             goto out;
         }
-        prc = qo_cli_parse_numbers(line, f, 6, &m);
+        /* the parser refuses NaN, Inf and what float32 (the core's quaternion) cannot hold */
+        prc = qo_cli_parse_fields(line, f, 6, &m, &bad);
         if (prc == 0 && m == 0) continue;
-        if (prc == -1) {
-            fprintf(stderr, "qorient gimbal: line %lu: not a number\n", lineno);
+        if (prc != 0 && prc != QO_CLI_NUM_MANY) {
+            fprintf(stderr, "qorient gimbal: line %lu: %s\n", lineno,
+                    qo_cli_field_reason(prc, &bad, "column", why, sizeof why));
             goto out;
         }
-        if (prc == -2 || m != 5) {
+        if (prc == QO_CLI_NUM_MANY || m != 5) {
             fprintf(stderr, "qorient gimbal: line %lu: expected 5 numbers (t,w,x,y,z), got %s%zu\n",
-                    lineno, prc == -2 ? "more than " : "", m);
-            goto out;
-        }
-        /* the quaternion goes to the float32 core: 1e39 is as non-finite there as inf */
-        if (!isfinite(f[0]) || !(fabs(f[1]) <= FLT_MAX) || !(fabs(f[2]) <= FLT_MAX) ||
-            !(fabs(f[3]) <= FLT_MAX) || !(fabs(f[4]) <= FLT_MAX)) {
-            fprintf(stderr, "qorient gimbal: line %lu: %s\n", lineno, qo_status_str(QO_E_NONFINITE));
+                    lineno, prc == QO_CLI_NUM_MANY ? "more than " : "", m);
             goto out;
         }
         if (f[1] == 0 && f[2] == 0 && f[3] == 0 && f[4] == 0) {
@@ -218,7 +219,22 @@ int qo_cli_gimbal(int argc, char **argv)
             goto out;
         }
         if (n == 0) t0n = tn;
+        /* Bounded as it is read: more keys than --max-samples, or keys whose times already
+         * span more than --max-samples rows, stop the reading here (the rows are counted
+         * exactly, catch-up included, once the path is known). */
+        if ((double)n >= max_samples) {
+            fprintf(stderr, "qorient gimbal: line %lu: more than --max-samples %.0f keyframes: nothing more is "
+                    "read (raise --max-samples)\n", lineno, max_samples);
+            goto out;
+        }
         rel = (float)((double)(tn - t0n) * 1e-9);
+        /* the rows up to this key on the grid sampled below (at least these are printed) */
+        if (floor((double)rel * rate + 1e-9) + 1.0 > max_samples) {
+            fprintf(stderr, "qorient gimbal: line %lu: the output is at least %.0f rows at %g Hz by this key's time, "
+                    "more than --max-samples %.0f: lower --rate or raise --max-samples\n", lineno,
+                    floor((double)rel * rate + 1e-9) + 1.0, rate, max_samples);
+            goto out;
+        }
         if (n > 0 && !(rel > t[n - 1])) {
             fprintf(stderr, "qorient gimbal: line %lu: time %.9g is not after the previous key's (as a float32 "
                     "offset from the first key)\n", lineno, f[0]);

@@ -82,7 +82,7 @@ int main(int argc, char **argv)
             return finish(cmds[i].fn(argc, argv));
         }
     }
-    fprintf(stderr, "qorient: unknown command '%s'\n", argv[0]);
+    fprintf(stderr, "qorient: unknown command %s\n", QO_CLI_QUOTED(argv[0]));
     usage(stderr);
     return 2;
 }

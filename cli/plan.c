@@ -95,9 +95,11 @@ static const char *const plan_usage[] = {
     "                   sample ends exactly on a sample (the last one at rest)\n"
     "  -h, --help       this text\n"
     "\n"
-    "A bad input line (not a number, not finite in float32, a NUL byte, the wrong number of\n"
-    "columns, a time out of order) stops the command with a message naming the line before\n"
-    "anything is printed, in both modes.\n"
+    "A bad input line (not a number, NaN or Inf, out of float32 range, a NUL byte, the wrong\n"
+    "number of columns, a time out of order) stops the command with a message naming the line\n"
+    "before anything is printed, in both modes; so does an input past a bound: more than\n"
+    "67108864 bytes, --max-samples lines or 4194304 numbers, or times that already make more\n"
+    "than --max-samples samples (the rest is not read).\n"
     "Exit status: 0 ok; 1 bad input, unreadable input or a failed plan; 2 usage error.\n",
     NULL
 };
@@ -143,12 +145,6 @@ static void print_row_q16(qo_traj_ns t, size_t n, const qo_q16 *pva)
         print_q16(pva[j]);
     }
     putchar('\n');
-}
-
-/* Grid time i: exact ns from the first line's time (the rate is not a float32 here). */
-static qo_traj_ns grid(qo_traj_ns t0, double rate, double i)
-{
-    return t0 + (qo_traj_ns)llround(i * (1e9 / rate));
 }
 
 /* Seconds after `from` as Q16.16 (saturated: the table says what is beyond it). */
@@ -269,6 +265,7 @@ int qo_cli_plan(int argc, char **argv)
     int c, rc;
 
     qo_cli_plan_opts_default(&o);
+    o.sampled = 1;
     memset(&r, 0, sizeof r);
     memset(&p, 0, sizeof p);
     while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
@@ -295,9 +292,7 @@ int qo_cli_plan(int argc, char **argv)
         rc = targets_rows(&o, &r, name, &rows);
         if (rc) goto done;
     } else {
-        /* grid points up to the last key, plus the last key when the grid misses it */
-        rows = floor((double)(tl - t0) * 1e-9 * o.rate + 1e-9);
-        rows += rows <= 1e12 && grid(t0, o.rate, rows) >= tl ? 1.0 : 2.0;
+        rows = qo_cli_grid_rows(t0, tl, o.rate);
     }
     if (rows > o.max_samples) {
         fprintf(stderr, "qorient plan: the plan is %.0f samples at %g Hz, more than --max-samples %.0f: "
@@ -334,7 +329,7 @@ int qo_cli_plan(int argc, char **argv)
         }
     }
     for (i = 0;; i++) {
-        t = grid(t0, o.rate, i);
+        t = qo_cli_grid(t0, o.rate, i);
         if (!o.motion && t >= tl) {
             rc |= emit(&w, tl); /* the last key, exactly */
             break;

@@ -30,7 +30,7 @@ static int pick(const char *who, const char *opt, const char *arg, const char *c
             *out = i;
             return 0;
         }
-    fprintf(stderr, "qorient %s: %s: '%s' is not %s\n", who, opt, arg, expect);
+    fprintf(stderr, "qorient %s: %s: %s is not %s\n", who, opt, QO_CLI_QUOTED(arg), expect);
     return 2;
 }
 
@@ -46,8 +46,9 @@ static int sync_items(const char *who, const char *arg, size_t cap, qo_motion_sy
         for (i = 0; i < 4; i++)
             if (strlen(names[i]) == len && strncmp(p, names[i], len) == 0) break;
         if (i == 4) {
-            fprintf(stderr, "qorient %s: --sync: item %d '%.*s' is not time, phase, none or if-necessary\n",
-                    who, count + 1, (int)len, p);
+            char q[QO_CLI_QUOTE_CAP];
+            fprintf(stderr, "qorient %s: --sync: item %d %s is not time, phase, none or if-necessary\n",
+                    who, count + 1, qo_cli_quote(q, sizeof q, p, (long)len));
             return -1;
         }
         if (out != NULL && (size_t)count < cap) out[count] = (qo_motion_sync)i;
@@ -184,30 +185,28 @@ int qo_cli_rows_add(const char *who, const char *name, const struct qo_cli_plan_
                     long lineno, char *text, long len, struct qo_cli_rows *r)
 {
     double v[QO_CLI_MAX_FIELDS + 1];
-    size_t n = 0, i, width;
+    size_t n = 0, width;
     int pr;
+    struct qo_cli_field bad;
+    char why[QO_CLI_REASON_CAP];
     qo_traj_ns t = 0;
     if (len >= 0 && strlen(text) != (size_t)len) {
         fprintf(stderr, "qorient %s: %s: line %ld: contains a NUL byte\n", who, name, lineno);
         return 1;
     }
-    pr = qo_cli_parse_numbers(text, v, QO_CLI_MAX_FIELDS + 1, &n);
-    if (pr == -2) {
+    pr = qo_cli_parse_fields(text, v, QO_CLI_MAX_FIELDS + 1, &n, &bad);
+    if (pr == QO_CLI_NUM_MANY) {
         fprintf(stderr, "qorient %s: %s: line %ld: more than %d columns\n", who, name, lineno,
                 QO_CLI_MAX_FIELDS + 1);
         return 1;
     }
     if (pr != 0) {
-        fprintf(stderr, "qorient %s: %s: line %ld: not a number: '%s'\n", who, name, lineno, text);
+        /* the field, quoted (at most QO_CLI_QUOTE_MAX bytes, escaped), never the raw line */
+        fprintf(stderr, "qorient %s: %s: line %ld: %s\n", who, name, lineno,
+                qo_cli_field_reason(pr, &bad, "column", why, sizeof why));
         return 1;
     }
     if (n == 0) return 0;
-    for (i = 0; i < n; i++)
-        if (!isfinite(v[i]) || !isfinite((float)v[i])) {
-            fprintf(stderr, "qorient %s: %s: line %ld: column %zu is not a finite float32 number\n", who,
-                    name, lineno, i + 1);
-            return 1;
-        }
     width = n - (size_t)has_time;
     if (r->rows == 0) {
         size_t per = (size_t)o->columns;
@@ -273,7 +272,7 @@ int qo_cli_rows_read(const char *who, const struct qo_cli_plan_opts *o, const ch
     FILE *in = stdin;
     const char *name = path ? path : "-";
     char *line = NULL;
-    size_t cap = 0;
+    size_t cap = 0, left = QO_CLI_INPUT_MAX;
     long len = -1, lineno = 0;
     int rc = 0;
     if (path && strcmp(path, "-") != 0) {
@@ -283,8 +282,27 @@ int qo_cli_rows_read(const char *who, const struct qo_cli_plan_opts *o, const ch
             return 1;
         }
     }
-    while (rc == 0 && (len = qo_cli_getline(&line, &cap, in)) >= 0)
+    while (rc == 0 && (len = qo_cli_getline(&line, &cap, in, &left)) >= 0) {
+        size_t had = r->rows;
         rc = qo_cli_rows_add(who, name, o, 1, ++lineno, line, len, r);
+        if (rc != 0 || r->rows == had) continue;
+        /* Bounded as it is read, at the line that crosses the bound: what is refused after
+         * reading (--max-samples) is refused before the rest is read. */
+        if (r->rows * r->width > QO_CLI_MAX_VALUES) {
+            fprintf(stderr, "qorient %s: %s: line %ld: more than %lu numbers (keyframes or targets x columns): "
+                    "nothing more is read\n", who, name, lineno, QO_CLI_MAX_VALUES);
+            rc = 1;
+        } else if ((double)r->rows > o->max_samples) {
+            fprintf(stderr, "qorient %s: %s: line %ld: more than --max-samples %.0f %s: nothing more is read "
+                    "(raise --max-samples)\n", who, name, lineno, o->max_samples, o->motion ? "targets" : "keyframes");
+            rc = 1;
+        } else if (o->sampled && qo_cli_grid_rows(r->t[0], r->t[r->rows - 1], o->rate) > o->max_samples) {
+            fprintf(stderr, "qorient %s: %s: line %ld: the plan is at least %.0f samples at %g Hz by this line's "
+                    "time, more than --max-samples %.0f: lower --rate or raise --max-samples\n", who, name, lineno,
+                    qo_cli_grid_rows(r->t[0], r->t[r->rows - 1], o->rate), o->rate, o->max_samples);
+            rc = 1;
+        }
+    }
     if (rc == 0 && len < -1) {
         fprintf(stderr, "qorient %s: %s: line %ld: %s\n", who, name, lineno + 1, qo_cli_line_problem(len));
         rc = 1;

@@ -1,5 +1,6 @@
 #include "cli.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <float.h>
 #include <getopt.h>
@@ -10,33 +11,114 @@
 
 #include "qorient/version.h"
 
-int qo_cli_parse_numbers(char *line, double *out, size_t max, size_t *n)
+/* The least magnitude float32 rounds to infinity (round to nearest even: FLT_MAX + half an
+ * ulp, 2^128 - 2^103); every smaller finite value is a float32 once rounded. */
+static const double F32_OVERFLOW = 0x1.ffffffp127;
+
+static int is_sep(char c)
 {
-    char *p = line;
+    return c == ' ' || c == '\t' || c == ',' || c == '\0';
+}
+
+int qo_cli_parse_fields(const char *line, double *out, size_t max, size_t *n, struct qo_cli_field *bad)
+{
+    const char *p = line;
+    struct qo_cli_field scratch;
+    if (bad == NULL) bad = &scratch;
     *n = 0;
+    bad->index = 0;
+    bad->text = line;
+    bad->len = 0;
     while (*p == ' ' || *p == '\t') p++;
     if (*p == '#' || *p == '\0') return 0;
     for (;;) {
         char *end;
+        const char *f;
         double v;
+        int rc = 0;
         while (*p == ' ' || *p == '\t') p++;
         if (*p == '\0') break;
+        f = p;
+        while (!is_sep(*p)) p++;
+        bad->index = *n + 1;
+        bad->text = f;
+        bad->len = (size_t)(p - f);
+        /* The whole field must be the number: "1.5x" is not one, and neither is a field strtod
+         * would reach by skipping a vertical tab or a form feed. */
         errno = 0;
-        v = strtod(p, &end);
-        if (end == p) return -1;
-        /* The field must end at a separator: "1.5x" is not a number. */
-        if (*end != '\0' && *end != ' ' && *end != '\t' && *end != ',') return -1;
-        if (*n >= max) return -2;
+        v = strtod(f, &end);
+        if (end == f || end != p || isspace((unsigned char)*f)) return QO_CLI_NUM_BAD;
+        if (*n >= max) return QO_CLI_NUM_MANY;
+        /* inf and nan as text are not finite; a finite text beyond double (1e400, ERANGE) or
+         * beyond float32 (1e39) is out of range, which the core's float32 cannot take either */
+        if (isnan(v) || (isinf(v) && errno != ERANGE)) rc = QO_CLI_NUM_NONFINITE;
+        else if (!(fabs(v) < F32_OVERFLOW)) rc = QO_CLI_NUM_RANGE;
+        if (rc != 0) return rc;
         out[(*n)++] = v;
-        p = end;
         while (*p == ' ' || *p == '\t') p++;
         if (*p == ',') {
             p++;
             while (*p == ' ' || *p == '\t') p++;
-            if (*p == '\0' || *p == ',') return -1; /* empty field */
+            if (*p == '\0' || *p == ',') { /* an empty field */
+                bad->index = *n + 1;
+                bad->text = p;
+                bad->len = 0;
+                return QO_CLI_NUM_BAD;
+            }
         }
     }
     return 0;
+}
+
+int qo_cli_parse_numbers(const char *line, double *out, size_t max, size_t *n)
+{
+    return qo_cli_parse_fields(line, out, max, n, NULL);
+}
+
+const char *qo_cli_field_reason(int rc, const struct qo_cli_field *bad, const char *noun, char *buf,
+                                size_t cap)
+{
+    char q[QO_CLI_QUOTE_CAP];
+    snprintf(buf, cap, "%s: %s (%s %zu)",
+             rc == QO_CLI_NUM_NONFINITE ? "not a finite number"
+             : rc == QO_CLI_NUM_RANGE  ? "out of float32 range"
+                                       : "not a number",
+             qo_cli_quote(q, sizeof q, bad->text, (long)bad->len), noun, bad->index);
+    return buf;
+}
+
+const char *qo_cli_quote(char *buf, size_t cap, const char *s, long len)
+{
+    static const char hex[] = "0123456789abcdef";
+    size_t n = len < 0 ? strlen(s) : (size_t)len, i, o = 0;
+    if (cap < 3) {
+        if (cap > 0) buf[0] = '\0';
+        return buf;
+    }
+    buf[o++] = '\'';
+    for (i = 0; i < n && i < QO_CLI_QUOTE_MAX; i++) {
+        unsigned char c = (unsigned char)s[i];
+        /* room for this byte's 4 characters, the closing quote, "..." and the NUL */
+        if (o + 4 + 5 > cap) break;
+        if (c == '\'' || c == '\\') {
+            buf[o++] = '\\';
+            buf[o++] = (char)c;
+        } else if (c >= 0x20 && c < 0x7f) {
+            buf[o++] = (char)c;
+        } else {
+            buf[o++] = '\\';
+            buf[o++] = 'x';
+            buf[o++] = hex[c >> 4];
+            buf[o++] = hex[c & 15];
+        }
+    }
+    buf[o++] = '\'';
+    if (i < n && o + 4 <= cap) {
+        memcpy(buf + o, "...", 3);
+        o += 3;
+    }
+    buf[o] = '\0';
+    return buf;
 }
 
 void qo_cli_print_f32(FILE *f, float v)
@@ -46,7 +128,7 @@ void qo_cli_print_f32(FILE *f, float v)
     fprintf(f, "%.9g", (double)v);
 }
 
-long qo_cli_getline(char **buf, size_t *cap, FILE *f)
+long qo_cli_getline(char **buf, size_t *cap, FILE *f, size_t *left)
 {
     size_t n = 0;
     int c = EOF;
@@ -56,7 +138,16 @@ long qo_cli_getline(char **buf, size_t *cap, FILE *f)
         *buf = nb;
         *cap = 256;
     }
-    while ((c = getc(f)) != EOF && c != '\n') {
+    for (;;) {
+        /* the bound on the whole input first: reading stops at the first byte past it */
+        if (left != NULL && *left == 0) {
+            (*buf)[n] = '\0';
+            if ((c = getc(f)) == EOF) break;
+            return QO_CLI_INPUT_BIG;
+        }
+        if ((c = getc(f)) == EOF) break;
+        if (left != NULL) (*left)--;
+        if (c == '\n') break;
         if (n >= (size_t)QO_CLI_LINE_MAX) {
             (*buf)[n] = '\0';
             return QO_CLI_LINE_LONG;
@@ -79,7 +170,22 @@ long qo_cli_getline(char **buf, size_t *cap, FILE *f)
 
 const char *qo_cli_line_problem(long len)
 {
-    return len == QO_CLI_LINE_LONG ? "longer than 1048576 characters" : "out of memory";
+    return len == QO_CLI_LINE_LONG   ? "longer than 1048576 characters"
+           : len == QO_CLI_INPUT_BIG ? "the input is longer than 67108864 bytes: nothing more is read"
+                                     : "out of memory";
+}
+
+qo_traj_ns qo_cli_grid(qo_traj_ns t0, double rate, double i)
+{
+    /* exact ns from the first line's time (the rate is not a float32 here) */
+    return t0 + (qo_traj_ns)llround(i * (1e9 / rate));
+}
+
+double qo_cli_grid_rows(qo_traj_ns t0, qo_traj_ns tl, double rate)
+{
+    /* grid points up to the last time, plus the last time when the grid misses it */
+    double rows = floor((double)(tl - t0) * 1e-9 * rate + 1e-9);
+    return rows + (rows <= 1e12 && qo_cli_grid(t0, rate, rows) >= tl ? 1.0 : 2.0);
 }
 
 void qo_cli_reset_getopt(void)
@@ -117,8 +223,8 @@ int qo_cli_number(const char *who, const char *opt, const char *arg, double lo, 
         return 0;
     }
     range_text(range, sizeof range, lo, hi);
-    fprintf(stderr, "qorient %s: %s: '%s' is not %s%s%s\n", who, opt, arg, range, unit ? " " : "",
-            unit ? unit : "");
+    fprintf(stderr, "qorient %s: %s: %s is not %s%s%s\n", who, opt, QO_CLI_QUOTED(arg), range,
+            unit ? " " : "", unit ? unit : "");
     return 2;
 }
 
@@ -132,7 +238,8 @@ int qo_cli_count(const char *who, const char *opt, const char *arg, double lo, d
         *out = v;
         return 0;
     }
-    fprintf(stderr, "qorient %s: %s: '%s' is not a whole number in [%g, %g]\n", who, opt, arg, lo, hi);
+    fprintf(stderr, "qorient %s: %s: %s is not a whole number in [%g, %g]\n", who, opt,
+            QO_CLI_QUOTED(arg), lo, hi);
     return 2;
 }
 
@@ -150,20 +257,24 @@ static int list_in_range(double v, double lo, double hi)
 int qo_cli_list(const char *who, const char *opt, const char *arg, size_t n, double lo, double hi,
                 double *out)
 {
-    char buf[1024];
     double v[QO_MOTION_MAX_JOINTS > 64 ? QO_MOTION_MAX_JOINTS : 64];
     size_t m = 0, i;
-    char range[80];
+    char range[80], why[QO_CLI_REASON_CAP];
+    struct qo_cli_field bad;
     int pr;
     if (arg == NULL) return 0;
-    if (strlen(arg) >= sizeof buf) {
-        fprintf(stderr, "qorient %s: %s: the list is longer than %zu characters\n", who, opt, sizeof buf - 1);
+    if (strlen(arg) >= 1024) {
+        fprintf(stderr, "qorient %s: %s: the list is longer than 1023 characters\n", who, opt);
         return 2;
     }
-    strcpy(buf, arg);
-    pr = qo_cli_parse_numbers(buf, v, sizeof v / sizeof v[0], &m);
+    pr = qo_cli_parse_fields(arg, v, sizeof v / sizeof v[0], &m, &bad);
+    if (pr != 0 && pr != QO_CLI_NUM_MANY) {
+        fprintf(stderr, "qorient %s: %s: %s\n", who, opt, qo_cli_field_reason(pr, &bad, "value", why, sizeof why));
+        return 2;
+    }
     if (pr != 0 || m == 0) {
-        fprintf(stderr, "qorient %s: %s: '%s' is not a list of numbers separated by commas\n", who, opt, arg);
+        fprintf(stderr, "qorient %s: %s: %s is not a list of numbers separated by commas\n", who, opt,
+                QO_CLI_QUOTED(arg));
         return 2;
     }
     if (m != 1 && m != n) {
@@ -182,15 +293,12 @@ int qo_cli_list(const char *who, const char *opt, const char *arg, size_t n, dou
 
 int qo_cli_joint_set(const char *who, const char *opt, const char *arg, size_t n, unsigned char *flags)
 {
-    char buf[1024];
     double v[64];
     size_t m = 0, i;
     memset(flags, 0, n);
     if (arg == NULL) return 0;
-    if (strlen(arg) < sizeof buf) strcpy(buf, arg);
-    else buf[0] = 'x', buf[1] = '\0';
-    if (qo_cli_parse_numbers(buf, v, sizeof v / sizeof v[0], &m) != 0 || m == 0) {
-        fprintf(stderr, "qorient %s: %s: '%s' is not a list of joint numbers\n", who, opt, arg);
+    if (strlen(arg) >= 1024 || qo_cli_parse_numbers(arg, v, sizeof v / sizeof v[0], &m) != 0 || m == 0) {
+        fprintf(stderr, "qorient %s: %s: %s is not a list of joint numbers\n", who, opt, QO_CLI_QUOTED(arg));
         return 2;
     }
     for (i = 0; i < m; i++) {

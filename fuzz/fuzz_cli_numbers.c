@@ -2,9 +2,11 @@
  * fuzz/fuzz_cli_numbers.c - the command's number parser qo_cli_parse_numbers
  * (cli/cli.h) on raw text: first byte = max (0..31), the rest the line, copied
  * into an exactly sized buffer (and out[] exactly max doubles) so ASan sees any overrun.
- * Properties from the header: returns 0, -1 or -2; *n <= max; a blank or '#' line gives
- * *n == 0 with 0; on 0 the fields are exactly the non-empty comma/blank separated tokens and
- * each value is what strtod reads from its token (an independent split done here).
+ * Properties from the header: returns 0 or one of QO_CLI_NUM_* (-1 not a number, -2 too many,
+ * -3 not finite, -4 out of float32 range); *n <= max; a blank or '#' line gives *n == 0 with
+ * 0; on 0 the fields are exactly the non-empty comma/blank separated tokens, each value is
+ * what strtod reads from its token (an independent split done here) and is finite and a
+ * finite float32 once converted (the compiler's own float32 rounding, not the parser's bound).
  */
 #include "fuzz_common.h"
 #include "../cli/cli.h"
@@ -34,7 +36,9 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     memcpy(copy, line, len + 1);
 
     rc = qo_cli_parse_numbers(line, out, max, &n);
-    QO_FUZZ_CHECK(rc == 0 || rc == -1 || rc == -2, "parse_numbers returned %d", rc);
+    QO_FUZZ_CHECK(rc == 0 || rc == QO_CLI_NUM_BAD || rc == QO_CLI_NUM_MANY || rc == QO_CLI_NUM_NONFINITE ||
+                      rc == QO_CLI_NUM_RANGE,
+                  "parse_numbers returned %d", rc);
     QO_FUZZ_CHECK(n <= max, "parse_numbers n %zu > max %zu", n, max);
     p = copy + strspn(copy, " \t");
     if (*p == '\0' || *p == '#') QO_FUZZ_CHECK(rc == 0 && n == 0, "blank/comment line gave rc %d n %zu", rc, n);
@@ -60,7 +64,9 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
         }
         QO_FUZZ_CHECK(k == n, "parse_numbers gave %zu values for %zu tokens", n, k);
     }
-    for (i = 0; i < n; i++) (void)out[i];
+    for (i = 0; rc == 0 && i < n; i++)
+        QO_FUZZ_CHECK(isfinite(out[i]) && isfinite((float)out[i]), "accepted value %zu %.17g is not a finite float32",
+                      i, out[i]);
     free(line);
     free(copy);
     free(out);

@@ -52,7 +52,9 @@ echo "== summary per program:$summary"
 echo "== summary per suite:"
 for su in $SUITES; do
     [ "$su" = other ] && eval "[ \$sn_other -eq 0 ]" && continue
-    eval "printf '  %-27s %5s passed, %s failed (%s programs)\n' \"suite \$su:\" \$sp_$su \$sf_$su \$sn_$su"
+    eval "n=\$sn_$su"
+    [ "$n" -eq 1 ] && progs="1 program" || progs="$n programs"
+    eval "printf '  %-27s %5s passed, %s failed (%s)\n' \"suite \$su:\" \$sp_$su \$sf_$su \"\$progs\""
 done
 [ -n "$crashed" ] && echo "crashed or exited non-zero without a report:$crashed"
 echo "$passed passed, $failed failed"

@@ -141,15 +141,15 @@ int qo_cli_sim(int argc, char **argv)
             break;
         case 'f':
             if (parse_fault(optarg, &set.fault) != 0) {
-                fprintf(stderr, "qorient sim: bad --fault '%s' (delay:MS, drop, exception, close)\n",
-                        optarg);
+                fprintf(stderr, "qorient sim: bad --fault %s (delay:MS, drop, exception, close)\n",
+                        QO_CLI_QUOTED(optarg));
                 return 2;
             }
             fault_given = 1;
             break;
         case 'p':
             if (parse_dbl(optarg, 0.0, 1.0, &set.fault.share) != 0) {
-                fprintf(stderr, "qorient sim: bad --fault-share '%s' (0..1)\n", optarg);
+                fprintf(stderr, "qorient sim: bad --fault-share %s (0..1)\n", QO_CLI_QUOTED(optarg));
                 return 2;
             }
             break;
@@ -157,7 +157,7 @@ int qo_cli_sim(int argc, char **argv)
         case 'c':
         case 's':
             if (parse_u64(optarg, &u) != 0) {
-                fprintf(stderr, "qorient sim: bad number '%s'\n", optarg);
+                fprintf(stderr, "qorient sim: bad number %s\n", QO_CLI_QUOTED(optarg));
                 return 2;
             }
             if (c == 'a') set.fault.after = u;
@@ -173,7 +173,7 @@ int qo_cli_sim(int argc, char **argv)
     }
     if (optind < argc || map_path == NULL) {
         if (map_path == NULL) fputs("qorient sim: --map FILE is required\n", stderr);
-        else fprintf(stderr, "qorient sim: unexpected argument '%s'\n", argv[optind]);
+        else fprintf(stderr, "qorient sim: unexpected argument %s\n", QO_CLI_QUOTED(argv[optind]));
         sim_usage(stderr);
         return 2;
     }

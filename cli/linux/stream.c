@@ -407,7 +407,7 @@ int qo_cli_stream(int argc, char **argv)
     }
     if (optind < argc) in_path = argv[optind];
     if (live && strcmp(in_path, "-") != 0) {
-        fprintf(stderr, "qorient stream: --live reads standard input, not '%s'\n", in_path);
+        fprintf(stderr, "qorient stream: --live reads standard input, not %s\n", QO_CLI_QUOTED(in_path));
         goto usage;
     }
     if ((modbus != NULL) == (gpio != NULL)) {
@@ -423,7 +423,7 @@ int qo_cli_stream(int argc, char **argv)
         goto usage;
     }
     if (strcmp(on_fail, "hold") != 0 && strcmp(on_fail, "disable") != 0) {
-        fprintf(stderr, "qorient stream: --on-fail: '%s' is not hold or disable\n", on_fail);
+        fprintf(stderr, "qorient stream: --on-fail: %s is not hold or disable\n", QO_CLI_QUOTED(on_fail));
         goto usage;
     }
 
@@ -471,7 +471,8 @@ int qo_cli_stream(int argc, char **argv)
         for (i = 0; i < n; i++)
             if (!(sp[i] >= 0.0 && sp[i] <= 65535.0 && sp[i] == floor(sp[i]))) n = 0;
         if (n == 0) {
-            fprintf(stderr, "qorient stream: --lines: '%s' is not STEP:DIR[,STEP:DIR...] (offsets 0..65535)\n", lines);
+            fprintf(stderr, "qorient stream: --lines: %s is not STEP:DIR[,STEP:DIR...] (offsets 0..65535)\n",
+                    QO_CLI_QUOTED(lines));
             goto usage;
         }
         n_joints = n / 2;

@@ -32,7 +32,11 @@ check "targets over --max-samples: nothing printed" [ ! -s "$T/o" ]
 check "targets over --max-samples: says so" grep -q "more than --max-samples 1000000" "$T/e"
 printf '0,0\n20000,1\n' | $Q plan --profile linear > "$T/o" 2> "$T/e"; rc=$?
 check "keys over --max-samples refused" [ $rc -eq 1 ]
-check "keys: the count is named" grep -q "the plan is 2000001 samples at 100 Hz" "$T/e"
+check "keys: refused at the line whose time crosses it" grep -q "^qorient plan: -: line 2: the plan is at least 2000001 samples at 100 Hz by this line's time, more than --max-samples 1000000" "$T/e"
+# one sample over: the exact count named (keyframes: the rows through the line's time)
+printf '0,0\n10000,1\n' | $Q plan --profile linear > "$T/o" 2> "$T/e"; rc=$?
+check "keys one sample over --max-samples refused" [ $rc -eq 1 ]
+check "keys: the count is named" grep -q "line 2: the plan is at least 1000001 samples at 100 Hz" "$T/e"
 printf '0,0\n20000,1\n' | $Q plan --profile linear --max-samples 2000001 > "$T/o" 2> "$T/e"; rc=$?
 check "--max-samples raises it" [ $rc -eq 0 ]
 check "--max-samples: every row" [ "$(wc -l < "$T/o")" -eq 2000001 ]

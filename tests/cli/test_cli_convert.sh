@@ -71,11 +71,11 @@ printf '1 0 0 0\nfoo 1 2 3\n0 0 0 0\n1 2 3\n# comment\n\n0 1 0 0\nnan 0 0 1\n' >
 $Q convert quat quat < "$T/in" > "$T/out" 2> "$T/err"; rc=$?
 [ "$rc" = 1 ] && ok || bad "exit status with bad lines: $rc"
 [ "$(wc -l < "$T/out")" = 8 ] && ok || bad "output line count $(wc -l < "$T/out") != 8"
-[ "$(sed -n 2p "$T/out")" = "error: not a number" ] && ok || bad "line 2: '$(sed -n 2p "$T/out")'"
+[ "$(sed -n 2p "$T/out")" = "error: not a number: 'foo' (column 1)" ] && ok || bad "line 2: '$(sed -n 2p "$T/out")'"
 [ "$(sed -n 3p "$T/out")" = "error: zero-length quaternion or vector" ] && ok || bad "line 3: '$(sed -n 3p "$T/out")'"
 [ "$(sed -n 4p "$T/out")" = "error: expected 4 numbers, got 3" ] && ok || bad "line 4: '$(sed -n 4p "$T/out")'"
 [ "$(sed -n 5p "$T/out")" = "# comment" ] && ok || bad "comment not copied"
-[ "$(sed -n 8p "$T/out")" = "error: non-finite input (NaN or Inf)" ] && ok || bad "line 8: '$(sed -n 8p "$T/out")'"
+[ "$(sed -n 8p "$T/out")" = "error: not a finite number: 'nan' (column 1)" ] && ok || bad "line 8: '$(sed -n 8p "$T/out")'"
 grep -q "line 2:" "$T/err" && grep -q "line 3:" "$T/err" && grep -q "line 8:" "$T/err" && ok || bad "stderr does not name the lines: $(cat "$T/err")"
 near "good line after errors" "$(sed -n 7p "$T/out")" "0 1 0 0" 0
 # 8. A non-rotation matrix is rejected

@@ -148,13 +148,13 @@ expect_err "non-monotonic" 1 "0 0\n1 1\n1 2\n" "line 3: time 1 is not after.*lin
 expect_err "decreasing" 1 "0 0\n2 1\n1 2\n" "line 3: time"
 expect_err "column count" 1 "0 0 0\n1 1\n" "line 2: 2 columns, expected 3 as on line 1"
 expect_err "not a number" 1 "0 0\n1 abc\n" "line 2: not a number"
-expect_err "nan" 1 "0 0\n1 nan\n" "line 2: column 2 is not a finite"
+expect_err "nan" 1 "0 0\n1 nan\n" "line 2: not a finite number: 'nan' \\(column 2\\)"
 expect_err "too few keys" 1 "# only one\n0 0\n" "at least 2 keyframes, got 1"
 expect_err "empty input" 1 "" "at least 2 keyframes, got 0"
 expect_err "pv columns odd" 1 "0 1 2 3\n" "line 1: 4 columns: expected t and 2" --profile cubic
 expect_err "min > max" 2 "0 0 0\n1 1 1\n" "joint 2: min 3 > max 2" --min 0,3 --max 5,2
 expect_err "limit count" 2 "0 0 0\n1 1 1\n" "--min has 3 values for 2 joint" --min 0,1,2
-expect_err "bad limit" 2 "0 0\n1 1\n" "--min.*not a list" --min x
+expect_err "bad limit" 2 "0 0\n1 1\n" "--min: not a number: 'x' \\(value 1\\)" --min x
 expect_err "wrap index" 2 "0 0\n1 1\n" "--wrap: .2. is not a joint number 1..1" --wrap 2
 expect_err "vmax with keyframes" 2 "0 0\n1 1\n" "--vmax applies to --profile trapezoid[|]scurve only" --vmax 1
 expect_err "sync with keyframes" 2 "0 0\n1 1\n" "--sync applies to --profile trapezoid" --profile quintic --sync time

@@ -4,18 +4,19 @@
 # In README.md's ```sh blocks, a line "$ COMMAND" is run (with sh, from the repository root, the
 # command's build/qorient replaced by $QORIENT when set) and the lines after it, up to the next
 # "$ " line, a blank line or the end of the block, are its expected standard output, byte for
-# byte. Blocks without "$ " lines are listed commands, not checked here. Prints one line per
-# example and "N passed, M failed".
-set -u
+# byte. Blocks without "$ " lines are listed commands, not checked here. The running and the
+# comparing are tests/cli/examples.sh's, shared with the man page's examples (test_manpage.sh).
+# Prints one line per example and "N passed, M failed".
 cd "$(dirname "$0")/../.." || exit 2
 Q=${QORIENT:-build/qorient}
+T=${TMPDIR:-/tmp}/qo-readme.$$
+. tests/common/sh/prelude.sh
+. tests/cli/examples.sh
 [ -x "${Q%% *}" ] || command -v "${Q%% *}" >/dev/null 2>&1 || { echo "test_readme: $Q not built"; echo "0 passed, 1 failed"; exit 1; }
-tmp=${TMPDIR:-/tmp}/qo-readme.$$
-mkdir -p "$tmp" || exit 2
-trap 'rm -rf "$tmp"' EXIT INT TERM
 
-# Split README into numbered examples: $tmp/N.cmd and $tmp/N.want.
-awk -v dir="$tmp" '
+# Split README into numbered examples: $T/readme/N.cmd and $T/readme/N.want.
+mkdir -p "$T/readme"
+awk -v dir="$T/readme" '
     /^```sh[ ]*$/ { inblk = 1; cur = ""; next }
     /^```/ { inblk = 0; cur = ""; next }
     !inblk { next }
@@ -25,24 +26,7 @@ awk -v dir="$tmp" '
     cur != "" { printf "%s\n", $0 >> (cur ".want") }
     END { printf "%d\n", n > (dir "/count") }
 ' README.md
-n=$(cat "$tmp/count")
-passed=0; failed=0
-i=1
-while [ "$i" -le "$n" ]; do
-    cmd=$(cat "$tmp/$i.cmd")
-    # A trailing "# comment" is part of the shell line and harmless; the command itself is run
-    # as the README shows it, with the path of the built command substituted.
-    run=$(printf '%s\n' "$cmd" | sed "s#build/qorient#$Q#g")
-    sh -c "$run" >"$tmp/$i.got" 2>"$tmp/$i.err"
-    if cmp -s "$tmp/$i.want" "$tmp/$i.got"; then
-        passed=$((passed + 1)); echo "ok    README example $i: $cmd"
-    else
-        failed=$((failed + 1)); echo "FAIL  README example $i: $cmd"
-        diff "$tmp/$i.want" "$tmp/$i.got" | sed 's/^/      /'
-        sed 's/^/      stderr: /' "$tmp/$i.err"
-    fi
-    i=$((i + 1))
-done
-[ "$n" -gt 0 ] || { echo "test_readme: no examples with output found in README.md"; failed=$((failed + 1)); }
-echo "$passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+examples_run README "$T/readme" check
+[ "$(cat "$T/readme/count")" -gt 0 ] || bad "test_readme: no examples with output found in README.md"
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]

@@ -388,7 +388,7 @@ static void test_scurve_moving(void **state)
         }
         /* The extremum-velocity family is not all: "dip" profiles (issue 11) can be shorter.
          * For starts within the limits the full reference (tests/common/motion_ref.c) bounds the
-         * planner from below as well (the random sweep is tests/test_motion_oracle.c). */
+         * planner from below as well (the random sweep is tests/core/test_motion_oracle.c). */
         if (cs % 3 != 0) {
             mref_lim ml;
             double full;
