@@ -327,28 +327,12 @@ qo_status qo_gpio_sink_write(qo_gpio_sink *g, const float *targets, size_t n, ui
     else if (!g->open) st = QO_E_STATE;
     else if (n != g->cfg.n_joints) st = QO_E_RANGE;
     else st = emit(g, targets, n);
-    g->stats.writes++;
-    if (st == QO_OK) {
-        g->stats.writes_ok++;
-        g->stats.consecutive_failures = 0;
-    } else {
-        g->stats.writes_failed++;
-        g->stats.consecutive_failures++;
-    }
-    return st;
+    return qo_sink_view_count(&g->stats, st);
 }
 
 /* The qo_sink adapters: the void * of the sink interface stays in here, the public
  * functions take the typed handle (as the Modbus sink's do). */
-static qo_status sink_write(void *ctx, const float *targets, size_t n, uint64_t tick)
-{
-    return qo_gpio_sink_write(ctx, targets, n, tick);
-}
-
-static void sink_close(void *ctx)
-{
-    qo_gpio_sink_close(ctx);
-}
+QO_SINK_VIEW_ADAPTERS(gpio_sink, qo_gpio_sink)
 
 static qo_status sink_stats(void *ctx, qo_sink_stats *out)
 {
@@ -358,7 +342,8 @@ static qo_status sink_stats(void *ctx, qo_sink_stats *out)
 qo_status qo_gpio_sink_as_sink(qo_gpio_sink *g, qo_sink *out)
 {
     /* flush, service: none (every write is emitted at once; no link to revive) */
-    static const qo_sink ops = { .write = sink_write, .close = sink_close, .stats = sink_stats };
+    static const qo_sink ops = { .write = gpio_sink_view_write, .close = gpio_sink_view_close,
+                                 .stats = sink_stats };
     return qo_sink_view_fill(g, &ops, out);
 }
 

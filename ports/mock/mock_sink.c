@@ -8,7 +8,6 @@ qo_status qo_mock_sink_write(qo_mock_sink *m, const float *targets, size_t n, ui
     size_t i;
     qo_status st = QO_OK;
     if (m == NULL) return QO_E_NULL;
-    m->stats.writes++;
     if (targets == NULL) st = QO_E_NULL;
     else if (m->closed) st = QO_E_STATE;
     else if (n != m->n_joints) st = QO_E_RANGE;
@@ -26,14 +25,7 @@ qo_status qo_mock_sink_write(qo_mock_sink *m, const float *targets, size_t n, ui
             m->count++;
         }
     }
-    if (st == QO_OK) {
-        m->stats.writes_ok++;
-        m->stats.consecutive_failures = 0;
-    } else {
-        m->stats.writes_failed++;
-        m->stats.consecutive_failures++;
-    }
-    return st;
+    return qo_sink_view_count(&m->stats, st);
 }
 
 static qo_status mock_flush(void *ctx)
@@ -64,15 +56,7 @@ qo_status qo_mock_sink_get_stats(const qo_mock_sink *m, qo_sink_stats *out)
 }
 
 /* The qo_sink adapters: the void * of the sink interface stays in here. */
-static qo_status mock_write(void *ctx, const float *targets, size_t n, uint64_t tick)
-{
-    return qo_mock_sink_write(ctx, targets, n, tick);
-}
-
-static void mock_close(void *ctx)
-{
-    qo_mock_sink_close(ctx);
-}
+QO_SINK_VIEW_ADAPTERS(mock_sink, qo_mock_sink)
 
 static qo_status mock_stats(void *ctx, qo_sink_stats *out)
 {
@@ -99,7 +83,8 @@ qo_status qo_mock_sink_open(qo_mock_sink *m, size_t n_joints, float *values, uin
 
 qo_status qo_mock_sink_as_sink(qo_mock_sink *m, qo_sink *out)
 {
-    static const qo_sink ops = { .write = mock_write, .flush = mock_flush, .close = mock_close,
+    static const qo_sink ops = { .write = mock_sink_view_write, .flush = mock_flush,
+                                 .close = mock_sink_view_close,
                                  .stats = mock_stats };
     return qo_sink_view_fill(m, &ops, out);
 }

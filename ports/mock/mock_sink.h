@@ -49,7 +49,7 @@ typedef struct qo_mock_sink {
     size_t n_fail_ticks;
     qo_status fail_status;   /* status returned on those ticks */
     uint64_t flushes;        /* flush() calls */
-    int closed;              /* 1 after close() */
+    int closed;              /* 1 after close() or a failed open: not open */
     qo_sink_stats stats;
 } qo_mock_sink;
 
