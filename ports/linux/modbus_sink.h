@@ -100,8 +100,9 @@
  * mock/mock_sink.h; only the mock lives in caller storage):
  *   open -> as_sink -> write ... -> close -> free
  *   - open: QO_OK and an open object; on error nothing stays open (*out is NULL here).
- *   - a NULL object: write and the other calls returning a status return QO_E_NULL (their
- *     outputs zeroed); close and free do nothing.
+ *   - a NULL object: write, as_sink, get_stats and the other calls returning a status return
+ *     QO_E_NULL (as_sink and get_stats zero their output, read_feedback fills NaN); close and
+ *     free do nothing.
  *   - a closed object: write, service, enable, read_feedback and settle return QO_E_STATE;
  *     get_stats still reports (QO_OK, connected 0); as_sink still fills the view (whose write
  *     then returns QO_E_STATE); a second close does nothing; free is the only other call left
