@@ -6,6 +6,12 @@
  *                                      NULL (nothing written) or obj is NULL (*out zeroed).
  *   qo_sink_view_stats(src, out)       *out = *src; QO_OK. QO_E_NULL if out is NULL, or src is
  *                                      NULL (the sink's object was NULL: *out zeroed).
+ *   qo_sink_view_count(st, result)     counts one write that returned `result` in *st (writes,
+ *                                      writes_ok or writes_failed, consecutive_failures); returns
+ *                                      result
+ *   QO_SINK_VIEW_ADAPTERS(F, T)        the view's write and close of family qo_F_ with object
+ *                                      type T: static F_view_write and F_view_close, calling
+ *                                      qo_F_write and qo_F_close (the void * stays in the port)
  */
 #ifndef QORIENT_PORTS_SINK_VIEW_H
 #define QORIENT_PORTS_SINK_VIEW_H
@@ -34,5 +40,25 @@ static inline qo_status qo_sink_view_stats(const qo_sink_stats *src, qo_sink_sta
     *out = *src;
     return QO_OK;
 }
+
+static inline qo_status qo_sink_view_count(qo_sink_stats *st, qo_status result)
+{
+    st->writes++;
+    if (result == QO_OK) {
+        st->writes_ok++;
+        st->consecutive_failures = 0;
+    } else {
+        st->writes_failed++;
+        st->consecutive_failures++;
+    }
+    return result;
+}
+
+#define QO_SINK_VIEW_ADAPTERS(F, T)                                                          \
+    static qo_status F##_view_write(void *ctx, const float *targets, size_t n, uint64_t tick) \
+    {                                                                                        \
+        return qo_##F##_write((T *)ctx, targets, n, tick);                                   \
+    }                                                                                        \
+    static void F##_view_close(void *ctx) { qo_##F##_close((T *)ctx); }
 
 #endif

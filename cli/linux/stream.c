@@ -352,8 +352,7 @@ int qo_cli_stream(int argc, char **argv)
     qo_streamer st;
     qo_streamer_config cfg;
     qo_modbus_sink *ms = NULL;
-    qo_gpio_sink gs;
-    int gpio_open = 0;
+    qo_gpio_sink *gs = NULL;
     size_t n_joints = 0, plan_joints;
     char err[256];
     qo_status s;
@@ -546,7 +545,7 @@ int qo_cli_stream(int argc, char **argv)
             fprintf(stderr, "qorient stream: cannot reach the drives at %s: %s\n", modbus, qo_status_str(s));
             goto out;
         }
-        qo_modbus_sink_as_sink(ms, &cfg.sink);
+        (void)qo_modbus_sink_as_sink(ms, &cfg.sink); /* QO_E_NULL only */
     } else {
         qo_gpio_sink_config gc;
         qo_gpio_sink_joint jd;
@@ -569,13 +568,12 @@ int qo_cli_stream(int argc, char **argv)
             if (nsr) gc.joint[j].max_rate_hz = sr[nsr == 1 ? 0 : j];
         }
         qo_gpio_sink_libgpiod_backend(&gstore, "qorient", &be);
-        s = qo_gpio_sink_open(&gs, &gc, &be);
+        s = qo_gpio_sink_open(&gc, &be, &gs);
         if (s != QO_OK) {
             fprintf(stderr, "qorient stream: cannot open the GPIO lines on %s: %s\n", gpio, qo_status_str(s));
             goto out;
         }
-        gpio_open = 1;
-        (void)qo_gpio_sink_as_sink(&gs, &cfg.sink); /* QO_E_NULL only */
+        (void)qo_gpio_sink_as_sink(gs, &cfg.sink); /* QO_E_NULL only */
     }
 
     sc.plan = &plan;
@@ -666,8 +664,8 @@ usage:
     rc = 2;
     fputs("try 'qorient stream --help'\n", stderr);
 out:
-    if (ms) qo_modbus_sink_free(ms);
-    if (gpio_open) qo_gpio_sink_close(&gs);
+    qo_modbus_sink_free(ms); /* NULL: nothing */
+    qo_gpio_sink_free(gs);
     if (reader) {
         /* At end of input the reader has ended; after SIGINT it may still wait on a read:
          * detach it, the process ends with this return. */

@@ -212,7 +212,7 @@ int main(int argc, char **argv)
     cfg.n_joints = n;
     cfg.sample = sample_move;
     cfg.sample_ctx = &mv;
-    qo_modbus_sink_as_sink(sink, &cfg.sink);
+    (void)qo_modbus_sink_as_sink(sink, &cfg.sink); /* QO_E_NULL only */
     s = qo_streamer_init(&st, &cfg);
     if (s != QO_OK) {
         fprintf(stderr, "stream_modbus: streamer: %s\n", qo_status_str(s));

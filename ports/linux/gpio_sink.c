@@ -9,6 +9,7 @@
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
@@ -27,6 +28,29 @@
 #if defined(QO_GPIOD_V2)
 #include <dirent.h>
 #endif
+
+/* Per-joint state. */
+typedef struct qo_gpio_sink_joint_state {
+    int step_h, dir_h;
+    int64_t position;
+    int dir_level;
+    uint64_t dir_time_ns;       /* when the dir line last changed */
+    uint64_t last_rise_ns;
+    int have_rise;
+    uint64_t min_spacing_ns, high_ns, setup_ns;
+    uint64_t servo_next_frame_ns;
+    int servo_started;
+    uint64_t servo_width_ns;
+} qo_gpio_sink_joint_state;
+
+struct qo_gpio_sink {
+    qo_gpio_sink_config cfg;
+    qo_gpio_sink_backend be;
+    qo_gpio_sink_joint_state js[QO_GPIO_SINK_MAX_JOINTS];
+    uint64_t period_ns, window_ns;
+    int open;
+    qo_sink_stats stats;
+};
 
 /* ---- configuration --------------------------------------------------------------------- */
 
@@ -109,16 +133,18 @@ static uint64_t servo_width_ns(const qo_gpio_sink_joint *j, double x)
     return us_to_ns(w);
 }
 
-qo_status qo_gpio_sink_open(qo_gpio_sink *g, const qo_gpio_sink_config *cfg,
-                            const qo_gpio_sink_backend *be)
+qo_status qo_gpio_sink_open(const qo_gpio_sink_config *cfg, const qo_gpio_sink_backend *be,
+                            qo_gpio_sink **out)
 {
+    qo_gpio_sink *g;
     qo_status st;
     size_t i;
-    if (!g) return QO_E_NULL;
-    memset(g, 0, sizeof *g);
-    if (!cfg || !be || !be->open || !be->set_value || !be->close) return QO_E_NULL;
+    if (out != NULL) *out = NULL;
+    if (!out || !cfg || !be || !be->open || !be->set_value || !be->close) return QO_E_NULL;
     st = check_config(cfg);
     if (st != QO_OK) return st;
+    g = calloc(1, sizeof *g);
+    if (g == NULL) return QO_E_IO;
     g->cfg = *cfg;
     g->be = *be;
     if (!g->be.now_ns) g->be.now_ns = qo_mono_clock_now_ns;
@@ -144,12 +170,13 @@ qo_status qo_gpio_sink_open(qo_gpio_sink *g, const qo_gpio_sink_config *cfg,
         }
     }
     if (st != QO_OK) {
-        g->open = 1; /* so close_all may use the table */
         close_all(g);
-        g->open = 0;
+        free(g);
         return st;
     }
     g->open = 1;
+    g->stats.connected = 1;
+    *out = g;
     return QO_OK;
 }
 
@@ -176,7 +203,7 @@ static qo_status plan_step(qo_gpio_sink *g, size_t i, float target, uint64_t sta
     int level;
     if (!isfinite(target)) return QO_E_NONFINITE;
     d = (double)target * j->steps_per_unit;
-    if (fabs(d) > 9007199254740992.0) return QO_E_RANGE;
+    if (fabs(d) > 9007199254740992.0) return QO_E_OVERFLOW;
     r = floor(fabs(d) + 0.5); /* round half away from zero */
     desired = (int64_t)(d < 0.0 ? -r : r);
     owed = desired - s->position;
@@ -234,16 +261,12 @@ static void sleep_until(qo_gpio_sink *g, uint64_t t)
     do r = g->be.sleep_until_ns(g->be.ctx, t); while (r == EINTR);
 }
 
-qo_status qo_gpio_sink_write(qo_gpio_sink *g, const float *targets, size_t n, uint64_t tick)
+static qo_status emit(qo_gpio_sink *g, const float *targets, size_t n)
 {
     joint_plan plan[QO_GPIO_SINK_MAX_JOINTS];
     qo_status res = QO_OK;
     uint64_t start, win_end;
     size_t i;
-    (void)tick;
-    if (!g || !targets) return QO_E_NULL;
-    if (!g->open) return QO_E_STATE;
-    if (n != g->cfg.n_joints) return QO_E_ARG;
     memset(plan, 0, sizeof plan);
     start = g->be.now_ns(g->be.ctx);
     win_end = start + g->window_ns;
@@ -295,22 +318,32 @@ qo_status qo_gpio_sink_write(qo_gpio_sink *g, const float *targets, size_t n, ui
     return res;
 }
 
-/* The qo_sink adapters: the void * of the sink interface stays in here, the public
- * functions take the typed handle (as the Modbus sink's do). */
-static qo_status sink_write(void *ctx, const float *targets, size_t n, uint64_t tick)
+qo_status qo_gpio_sink_write(qo_gpio_sink *g, const float *targets, size_t n, uint64_t tick)
 {
-    return qo_gpio_sink_write(ctx, targets, n, tick);
+    qo_status st;
+    (void)tick;
+    if (!g) return QO_E_NULL;
+    if (!targets) st = QO_E_NULL;
+    else if (!g->open) st = QO_E_STATE;
+    else if (n != g->cfg.n_joints) st = QO_E_RANGE;
+    else st = emit(g, targets, n);
+    return qo_sink_view_count(&g->stats, st);
 }
 
-static void sink_close(void *ctx)
+/* The qo_sink adapters: the void * of the sink interface stays in here, the public
+ * functions take the typed handle (as the Modbus sink's do). */
+QO_SINK_VIEW_ADAPTERS(gpio_sink, qo_gpio_sink)
+
+static qo_status sink_stats(void *ctx, qo_sink_stats *out)
 {
-    qo_gpio_sink_close(ctx);
+    return qo_gpio_sink_get_stats(ctx, out);
 }
 
 qo_status qo_gpio_sink_as_sink(qo_gpio_sink *g, qo_sink *out)
 {
-    /* flush, stats, service: none (every write is emitted at once; no link to revive) */
-    static const qo_sink ops = { .write = sink_write, .close = sink_close };
+    /* flush, service: none (every write is emitted at once; no link to revive) */
+    static const qo_sink ops = { .write = gpio_sink_view_write, .close = gpio_sink_view_close,
+                                 .stats = sink_stats };
     return qo_sink_view_fill(g, &ops, out);
 }
 
@@ -325,11 +358,24 @@ qo_status qo_gpio_sink_position(const qo_gpio_sink *g, size_t joint, int64_t *st
     return QO_OK;
 }
 
+qo_status qo_gpio_sink_get_stats(const qo_gpio_sink *g, qo_sink_stats *out)
+{
+    return qo_sink_view_stats(g != NULL ? &g->stats : NULL, out);
+}
+
 void qo_gpio_sink_close(qo_gpio_sink *g)
 {
     if (!g || !g->open) return;
     close_all(g);
     g->open = 0;
+    g->stats.connected = 0;
+}
+
+void qo_gpio_sink_free(qo_gpio_sink *g)
+{
+    if (!g) return;
+    qo_gpio_sink_close(g);
+    free(g);
 }
 
 /* ---- libgpiod backend ------------------------------------------------------------------ */

@@ -12,13 +12,29 @@
  *   qo_gpio_sink_config_default  const defaults of the config (every joint =
  *                                qo_gpio_sink_joint_default)
  *   qo_gpio_sink_joint_default   const defaults of one joint
+ *   qo_gpio_sink                 the sink (opaque, on the heap: qo_gpio_sink_open allocates it)
  *   qo_gpio_sink_open()          check the config, open every line through the backend
+ *   qo_gpio_sink_as_sink()       fills the qo_sink view of a sink (write, close, stats)
  *   qo_gpio_sink_write()         one tick: emit the owed steps / servo frame (the view's write)
- *   qo_gpio_sink_as_sink()       fills the qo_sink view of a sink (write, close; service = NULL)
  *   qo_gpio_sink_position()      steps emitted so far for a step/dir joint
+ *   qo_gpio_sink_get_stats()     the common counters (qo_sink_stats)
  *   qo_gpio_sink_close()         drive step lines low and close every line (the view's close)
+ *   qo_gpio_sink_free()          close, then free the object
  *   qo_gpio_sink_libgpiod_backend()  the libgpiod backend (v1 API default, v2 when QO_GPIOD_V2)
  *   qo_gpio_sink_libgpiod_api()  "v1" or "v2"
+ *
+ * Lifecycle, the same for the three sinks (linux/modbus_sink.h, linux/gpio_sink.h,
+ * mock/mock_sink.h; only the mock lives in caller storage):
+ *   open -> as_sink -> write ... -> close -> free
+ *   - open: QO_OK and an open object; on error nothing stays open (*out is NULL here).
+ *   - a NULL object: write, position, get_stats and as_sink return QO_E_NULL (their outputs
+ *     zeroed); close and free do nothing.
+ *   - a closed object: write and position return QO_E_STATE; get_stats still reports (QO_OK,
+ *     connected 0); as_sink still fills the view (whose write then returns QO_E_STATE); a
+ *     second close does nothing; free is the only other call left to make. A closed sink is
+ *     not reopened: open a new one.
+ *   - the same error gives the same status in every sink: a NULL pointer QO_E_NULL, a wrong
+ *     number of targets QO_E_RANGE (nothing emitted), a closed sink QO_E_STATE.
  *
  * Step/dir model. Each joint keeps `position`, the signed count of steps emitted (positive =
  * positive joint direction). A tick with target x owes round(x * steps_per_unit) - position
@@ -121,27 +137,8 @@ typedef struct qo_gpio_sink_backend {
     int (*sleep_until_ns)(void *ctx, uint64_t abs_ns);
 } qo_gpio_sink_backend;
 
-/* Per-joint state; private. */
-typedef struct qo_gpio_sink_joint_state {
-    int step_h, dir_h;
-    int64_t position;
-    int dir_level;
-    uint64_t dir_time_ns;       /* when the dir line last changed */
-    uint64_t last_rise_ns;
-    int have_rise;
-    uint64_t min_spacing_ns, high_ns, setup_ns;
-    uint64_t servo_next_frame_ns;
-    int servo_started;
-    uint64_t servo_width_ns;
-} qo_gpio_sink_joint_state;
-
-typedef struct qo_gpio_sink {
-    qo_gpio_sink_config cfg;
-    qo_gpio_sink_backend be;
-    qo_gpio_sink_joint_state js[QO_GPIO_SINK_MAX_JOINTS];
-    uint64_t period_ns, window_ns;
-    int open;
-} qo_gpio_sink;
+/* The sink: opaque (qo_gpio_sink_open allocates it, qo_gpio_sink_free frees it). */
+typedef struct qo_gpio_sink qo_gpio_sink;
 
 /*
  * Defaults, copied by value (cfg = qo_gpio_sink_config_default): period 0.002 s (500 Hz),
@@ -154,46 +151,56 @@ extern const qo_gpio_sink_config qo_gpio_sink_config_default;
 extern const qo_gpio_sink_joint qo_gpio_sink_joint_default;
 
 /*
- * Checks cfg, then opens every line through be (step lines low; dir lines at level 0, which
- * counts as a direction change at open time for the setup delay). On any failure the lines
- * already opened are closed again. Returns QO_OK; QO_E_NULL (g, cfg, be or a required backend
- * function NULL, or a joint with neither chip nor name); QO_E_TOO_FEW (n_joints 0);
- * QO_E_CAPACITY (n_joints > QO_GPIO_SINK_MAX_JOINTS); QO_E_LIMIT (period, window, rate, steps per
- * unit, high time, setup or servo widths not finite or out of range); QO_E_ARG (unknown joint
- * kind); QO_E_CONFIG (high time not below 1/max rate, high time + dir setup not below the
- * window, a servo pulse that does not fit the window or the frame, or the backend could not
- * find a chip/line); QO_E_IO (the backend failed otherwise).
- * On error g is not open (write returns QO_E_STATE).
+ * Checks cfg, allocates the sink, then opens every line through be (step lines low; dir lines
+ * at level 0, which counts as a direction change at open time for the setup delay). cfg and
+ * *be are copied (the backend's ctx must outlive the sink). Returns QO_OK with *out set; on
+ * error *out is NULL and nothing stays open (the lines already opened are closed again):
+ * QO_E_NULL (cfg, be, out or a required backend function NULL, or a joint with neither chip
+ * nor name); QO_E_TOO_FEW (n_joints 0); QO_E_CAPACITY (n_joints > QO_GPIO_SINK_MAX_JOINTS);
+ * QO_E_LIMIT (period, window, rate, steps per unit, high time, setup or servo widths not
+ * finite or out of range); QO_E_ARG (unknown joint kind); QO_E_CONFIG (high time not below
+ * 1/max rate, high time + dir setup not below the window, a servo pulse that does not fit the
+ * window or the frame, or the backend could not find a chip/line); QO_E_IO (the backend
+ * failed otherwise, or no memory).
  */
-qo_status qo_gpio_sink_open(qo_gpio_sink *g, const qo_gpio_sink_config *cfg,
-                            const qo_gpio_sink_backend *be);
+qo_status qo_gpio_sink_open(const qo_gpio_sink_config *cfg, const qo_gpio_sink_backend *be,
+                            qo_gpio_sink **out);
 
-/*
- * One tick (what the qo_sink write of qo_gpio_sink_as_sink calls). targets[j] in joint units; n must be
- * cfg.n_joints. Emits the pulses as described above and returns when the last one is done.
- * Returns QO_OK; QO_E_NULL; QO_E_STATE (not open); QO_E_ARG (n differs: nothing emitted);
- * QO_E_NONFINITE (a target NaN/Inf: that joint holds, the others run); QO_E_RANGE (a target
- * whose step count exceeds +-2^53: that joint holds); QO_E_IO (a set_value failed: that joint
- * stops for this tick; position counts only the rises that succeeded). The first error wins.
- */
-qo_status qo_gpio_sink_write(qo_gpio_sink *g, const float *targets, size_t n, uint64_t tick);
-
-/* Fills *out with the qo_sink of g, the same shape as qo_modbus_sink_as_sink: ctx = g, write
- * calls qo_gpio_sink_write, close calls qo_gpio_sink_close (the sink opened its lines, so its
- * close releases them: step/PWM lines driven low, every line closed; g can then be opened
- * again with qo_gpio_sink_open, and a second close does nothing); flush, stats and service
- * NULL. Returns QO_OK; QO_E_NULL if g or out is NULL (*out zeroed when out is not NULL). */
+/* Fills *out (write, close, stats; flush and service NULL: every write is emitted at once and
+ * there is no link to revive) with ctx = g. close is qo_gpio_sink_close (step/PWM lines driven
+ * low, every line closed), so the object still needs qo_gpio_sink_free. Returns QO_OK;
+ * QO_E_NULL if g or out is NULL (*out zeroed when out is not NULL). */
 qo_status qo_gpio_sink_as_sink(qo_gpio_sink *g, qo_sink *out);
 
 /*
+ * One tick (the view's write). targets[j] in joint units; n must be cfg.n_joints. Emits the
+ * pulses as described above and returns when the last one is done. Returns QO_OK; QO_E_NULL
+ * (g or targets NULL); QO_E_STATE (closed); QO_E_RANGE (n differs from n_joints: nothing
+ * emitted); QO_E_NONFINITE (a target NaN/Inf: that joint holds, the others run);
+ * QO_E_OVERFLOW (a target whose step count exceeds +-2^53: that joint holds); QO_E_IO (a set_value failed:
+ * that joint stops for this tick; position counts only the rises that succeeded). The first
+ * error wins. Every call is counted in the statistics.
+ */
+qo_status qo_gpio_sink_write(qo_gpio_sink *g, const float *targets, size_t n, uint64_t tick);
+
+/*
  * Steps emitted so far by a step/dir joint (signed, positive direction +1). Returns QO_OK;
- * QO_E_NULL; QO_E_STATE (not open); QO_E_RANGE (joint index out of range or a servo joint).
+ * QO_E_NULL; QO_E_STATE (closed); QO_E_RANGE (joint index out of range or a servo joint).
  * *steps is 0 on error.
  */
 qo_status qo_gpio_sink_position(const qo_gpio_sink *g, size_t joint, int64_t *steps);
 
-/* Drives every step/PWM line low, closes all lines; g is then not open. NULL ignored. */
+/* Copies the common counters (writes, ok, failed, consecutive failures; limited and
+ * reconnects stay 0; connected 1 while open). QO_OK; QO_E_NULL if g or out is NULL (*out
+ * zeroed when out is not NULL). */
+qo_status qo_gpio_sink_get_stats(const qo_gpio_sink *g, qo_sink_stats *out);
+
+/* Drives every step/PWM line low and closes all lines; later writes return QO_E_STATE.
+ * Idempotent; NULL is ignored. */
 void qo_gpio_sink_close(qo_gpio_sink *g);
+
+/* Closes and frees. NULL is ignored. */
+void qo_gpio_sink_free(qo_gpio_sink *g);
 
 /* ---- libgpiod backend ------------------------------------------------------------------ */
 

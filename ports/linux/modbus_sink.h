@@ -22,7 +22,8 @@
  *   qo_modbus_sink_get_stats()   counters
  *   qo_modbus_sink_settle_time() the default settle deadline for a final target
  *   qo_modbus_sink_settle()      after the plan: send the final target until the drives hold it
- *   qo_modbus_sink_close()       drop the link (idempotent); qo_modbus_sink_free() frees
+ *   qo_modbus_sink_close()       drop the link (idempotent)
+ *   qo_modbus_sink_free()        close, then free the object
  *
  * What one write() does, in order:
  *   1. every target is checked (NaN/Inf -> nothing is sent), clamped to the joint's
@@ -94,6 +95,20 @@
  * QO_E_DISCONNECTED at once, without touching the bus; qo_modbus_sink_service() (called by
  * the streamer after its deadline work) reconnects with exponential backoff, resends the
  * init writes (the disable writes instead, while disabled) and clears the failure count.
+ *
+ * Lifecycle, the same for the three sinks (linux/modbus_sink.h, linux/gpio_sink.h,
+ * mock/mock_sink.h; only the mock lives in caller storage):
+ *   open -> as_sink -> write ... -> close -> free
+ *   - open: QO_OK and an open object; on error nothing stays open (*out is NULL here).
+ *   - a NULL object: write, as_sink, get_stats and the other calls returning a status return
+ *     QO_E_NULL (as_sink and get_stats zero their output, read_feedback fills NaN); close and
+ *     free do nothing.
+ *   - a closed object: write, service, enable, read_feedback and settle return QO_E_STATE;
+ *     get_stats still reports (QO_OK, connected 0); as_sink still fills the view (whose write
+ *     then returns QO_E_STATE); a second close does nothing; free is the only other call left
+ *     to make. A closed sink is not reopened: open a new one.
+ *   - the same error gives the same status in every sink: a NULL pointer QO_E_NULL, a wrong
+ *     number of targets QO_E_RANGE (nothing sent), a closed sink QO_E_STATE.
  *
  * Threads: a sink is used by one thread at a time (libmodbus contexts are not thread-safe).
  */

@@ -3,15 +3,13 @@
 
 #include <string.h>
 
-static qo_status mock_write(void *ctx, const float *targets, size_t n, uint64_t tick)
+qo_status qo_mock_sink_write(qo_mock_sink *m, const float *targets, size_t n, uint64_t tick)
 {
-    qo_mock_sink *m = ctx;
     size_t i;
     qo_status st = QO_OK;
     if (m == NULL) return QO_E_NULL;
-    m->stats.writes++;
-    if (m->closed) st = QO_E_STATE;
-    else if (targets == NULL) st = QO_E_NULL;
+    if (targets == NULL) st = QO_E_NULL;
+    else if (m->closed) st = QO_E_STATE;
     else if (n != m->n_joints) st = QO_E_RANGE;
     else {
         for (i = 0; i < m->n_fail_ticks; i++)
@@ -27,14 +25,7 @@ static qo_status mock_write(void *ctx, const float *targets, size_t n, uint64_t 
             m->count++;
         }
     }
-    if (st == QO_OK) {
-        m->stats.writes_ok++;
-        m->stats.consecutive_failures = 0;
-    } else {
-        m->stats.writes_failed++;
-        m->stats.consecutive_failures++;
-    }
-    return st;
+    return qo_sink_view_count(&m->stats, st);
 }
 
 static qo_status mock_flush(void *ctx)
@@ -46,40 +37,56 @@ static qo_status mock_flush(void *ctx)
     return QO_OK;
 }
 
-static void mock_close(void *ctx)
+void qo_mock_sink_close(qo_mock_sink *m)
 {
-    qo_mock_sink *m = ctx;
     if (m != NULL) {
         m->closed = 1;
         m->stats.connected = 0;
     }
 }
 
-static qo_status mock_stats(void *ctx, qo_sink_stats *out)
+void qo_mock_sink_free(qo_mock_sink *m)
 {
-    const qo_mock_sink *m = ctx;
+    qo_mock_sink_close(m);
+}
+
+qo_status qo_mock_sink_get_stats(const qo_mock_sink *m, qo_sink_stats *out)
+{
     return qo_sink_view_stats(m != NULL ? &m->stats : NULL, out);
 }
 
-qo_status qo_mock_sink_init(qo_mock_sink *m, size_t n_joints, float *values, uint64_t *ticks,
-                            size_t max_records, qo_sink *sink)
+/* The qo_sink adapters: the void * of the sink interface stays in here. */
+QO_SINK_VIEW_ADAPTERS(mock_sink, qo_mock_sink)
+
+static qo_status mock_stats(void *ctx, qo_sink_stats *out)
 {
-    if (sink != NULL) memset(sink, 0, sizeof *sink);
+    return qo_mock_sink_get_stats(ctx, out);
+}
+
+qo_status qo_mock_sink_open(qo_mock_sink *m, size_t n_joints, float *values, uint64_t *ticks,
+                            size_t max_records)
+{
     if (m == NULL) return QO_E_NULL;
     memset(m, 0, sizeof *m);
-    if (values == NULL || sink == NULL) return QO_E_NULL;
+    m->closed = 1; /* until every check passed */
+    if (values == NULL) return QO_E_NULL;
     if (n_joints == 0 || max_records == 0) return QO_E_TOO_FEW;
     m->n_joints = n_joints;
     m->values = values;
     m->ticks = ticks;
     m->max_records = max_records;
     m->fail_status = QO_E_IO;
+    m->closed = 0;
     m->stats.connected = 1;
-    {
-        static const qo_sink ops = { .write = mock_write, .flush = mock_flush, .close = mock_close,
-                                     .stats = mock_stats };
-        return qo_sink_view_fill(m, &ops, sink);
-    }
+    return QO_OK;
+}
+
+qo_status qo_mock_sink_as_sink(qo_mock_sink *m, qo_sink *out)
+{
+    static const qo_sink ops = { .write = mock_sink_view_write, .flush = mock_flush,
+                                 .close = mock_sink_view_close,
+                                 .stats = mock_stats };
+    return qo_sink_view_fill(m, &ops, out);
 }
 
 qo_status qo_mock_sink_fail_on(qo_mock_sink *m, const uint64_t *fail_ticks, size_t n,

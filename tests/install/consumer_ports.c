@@ -42,7 +42,8 @@ int main(void)
         const float *row;
         qo_mock_sink m;
         qo_sink sink;
-        if (qo_mock_sink_init(&m, 2, values, NULL, 2, &sink) != QO_OK ||
+        if (qo_mock_sink_open(&m, 2, values, NULL, 2) != QO_OK ||
+            qo_mock_sink_as_sink(&m, &sink) != QO_OK ||
             qo_sink_write(&sink, a, 2, 0) != QO_OK || qo_sink_write(&sink, b, 2, 1) != QO_OK ||
             (row = qo_mock_sink_row(&m, 1)) == NULL || row[0] != 0.75f || row[1] != 0.0f) {
             printf("consumer_ports: FAIL: the mock sink did not record two ticks\n");

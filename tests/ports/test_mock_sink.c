@@ -22,7 +22,8 @@ static void test_records_every_tick(void **state)
     qo_sink_stats st;
     uint64_t t;
     (void)state;
-    assert_int_equal(qo_mock_sink_init(&m, NJ, store, ticks, MAXR, &s), QO_OK);
+    assert_int_equal(qo_mock_sink_open(&m, NJ, store, ticks, MAXR), QO_OK);
+    assert_int_equal(qo_mock_sink_as_sink(&m, &s), QO_OK);
     for (t = 0; t < 5; t++) {
         float v[NJ];
         v[0] = (float)t;
@@ -59,7 +60,8 @@ static void test_fail_ticks_and_errors(void **state)
     float v[NJ] = { 1.0f, 2.0f, NAN };
     uint64_t t;
     (void)state;
-    assert_int_equal(qo_mock_sink_init(&m, NJ, store, NULL, MAXR, &s), QO_OK);
+    assert_int_equal(qo_mock_sink_open(&m, NJ, store, NULL, MAXR), QO_OK);
+    assert_int_equal(qo_mock_sink_as_sink(&m, &s), QO_OK);
     assert_int_equal(qo_mock_sink_fail_on(&m, fails, 2, QO_E_TIMEOUT), QO_OK);
     for (t = 0; t < 5; t++) {
         qo_status want = (t == 2 || t == 3) ? QO_E_TIMEOUT : QO_OK;
@@ -92,18 +94,25 @@ static void test_capacity_and_init_errors(void **state)
     qo_sink s;
     float v[NJ] = { 0.0f, 0.0f, 0.0f };
     (void)state;
-    assert_int_equal(qo_mock_sink_init(&m, NJ, store, NULL, 2, &s), QO_OK);
+    assert_int_equal(qo_mock_sink_open(&m, NJ, store, NULL, 2), QO_OK);
+    assert_int_equal(qo_mock_sink_as_sink(&m, &s), QO_OK);
     assert_int_equal(qo_sink_write(&s, v, NJ, 0), QO_OK);
     assert_int_equal(qo_sink_write(&s, v, NJ, 1), QO_OK);
     assert_int_equal(qo_sink_write(&s, v, NJ, 2), QO_E_CAPACITY);
     assert_int_equal(m.dropped, 1);
     assert_int_equal(m.count, 2);
-    assert_int_equal(qo_mock_sink_init(&m, 0, store, NULL, 2, &s), QO_E_TOO_FEW);
-    assert_null(s.write);
-    assert_int_equal(qo_mock_sink_init(&m, NJ, store, NULL, 0, &s), QO_E_TOO_FEW);
-    assert_int_equal(qo_mock_sink_init(&m, NJ, NULL, NULL, 2, &s), QO_E_NULL);
-    assert_int_equal(qo_mock_sink_init(NULL, NJ, store, NULL, 2, &s), QO_E_NULL);
-    assert_int_equal(qo_mock_sink_init(&m, NJ, store, NULL, 2, NULL), QO_E_NULL);
+    qo_mock_sink_free(&m);
+    assert_int_equal(qo_mock_sink_open(&m, 0, store, NULL, 2), QO_E_TOO_FEW);
+    assert_int_equal(m.count, 0); /* zeroed */
+    assert_int_equal(qo_mock_sink_write(&m, v, 0, 0), QO_E_STATE); /* not open */
+    assert_int_equal(qo_mock_sink_open(&m, NJ, store, NULL, 0), QO_E_TOO_FEW);
+    assert_int_equal(qo_mock_sink_write(&m, v, NJ, 0), QO_E_STATE);
+    assert_int_equal(qo_mock_sink_open(&m, NJ, NULL, NULL, 2), QO_E_NULL);
+    assert_int_equal(qo_mock_sink_open(NULL, NJ, store, NULL, 2), QO_E_NULL);
+    /* open again on the same storage after close: a fresh recorder */
+    assert_int_equal(qo_mock_sink_open(&m, NJ, store, NULL, 2), QO_OK);
+    assert_int_equal(qo_mock_sink_write(&m, v, NJ, 7), QO_OK);
+    assert_int_equal(m.count, 1);
     {
         qo_sink_stats st;
         qo_sink bare;

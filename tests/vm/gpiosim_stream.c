@@ -245,13 +245,14 @@ static int count_free(const qo_gpio_sink_config *cfg, size_t n)
 static int open_error(const char *what, qo_gpio_sink_line bad, qo_status want,
                       const qo_gpio_sink_backend *be)
 {
-    static qo_gpio_sink sink;
+    qo_gpio_sink *sink = NULL;
     qo_gpio_sink_config c = g_cfg;
     qo_status st;
     int n;
     c.n_joints = 2;
     c.joint[1].dir = bad;
-    st = qo_gpio_sink_open(&sink, &c, be);
+    st = qo_gpio_sink_open(&c, be, &sink);
+    if (sink != NULL) return fail("a failed open handed out a sink");
     c.joint[1].dir = g_cfg.joint[1].dir;
     n = count_free(&c, 2);
     printf("QOVM: part D %s: open %s (want %s), %d of 4 lines free after\n", what,
@@ -264,7 +265,7 @@ static int open_error(const char *what, qo_gpio_sink_line bad, qo_status want,
 /* Part E: a child opens the sink, moves, and exits (or is killed) without closing. */
 static int exit_release(int kill_it, const qo_gpio_sink_backend *be)
 {
-    static qo_gpio_sink sink;
+    qo_gpio_sink *sink = NULL;
     int status, n;
     pid_t pid;
     fflush(stdout);
@@ -272,8 +273,8 @@ static int exit_release(int kill_it, const qo_gpio_sink_backend *be)
     if (pid < 0) return fail("fork");
     if (pid == 0) {
         float x[NJ] = { 0.03f, -0.03f, 0.03f };
-        if (qo_gpio_sink_open(&sink, &g_cfg, be) != QO_OK) _exit(3);
-        (void)qo_gpio_sink_write(&sink, x, NJ, 0);
+        if (qo_gpio_sink_open(&g_cfg, be, &sink) != QO_OK) _exit(3);
+        (void)qo_gpio_sink_write(sink, x, NJ, 0);
         if (count_free(&g_cfg, NJ) != 0) _exit(4); /* held while the child lives */
         if (kill_it) raise(SIGKILL);
         _exit(0);
@@ -292,7 +293,7 @@ static int exit_release(int kill_it, const qo_gpio_sink_backend *be)
 int main(int argc, char **argv)
 {
     static qo_gpio_sink_libgpiod store, hold_store;
-    static qo_gpio_sink sink;
+    qo_gpio_sink *sink = NULL;
     static qo_streamer str;
     qo_gpio_sink_backend be, hold;
     qo_streamer_config sc;
@@ -320,7 +321,7 @@ int main(int argc, char **argv)
     be.set_value = chk_set;
     be.close = chk_close;
     if (count_free(&g_cfg, NJ) != 2 * NJ) return fail("lines not free at start");
-    if (qo_gpio_sink_open(&sink, &g_cfg, &be) != QO_OK) return fail("open");
+    if (qo_gpio_sink_open(&g_cfg, &be, &sink) != QO_OK) return fail("open");
     /* The probe must see the lines busy now, or part C-E could not detect a leak. */
     if (count_free(&g_cfg, NJ) != 0) return fail("probe could request lines the sink holds");
 
@@ -330,14 +331,14 @@ int main(int argc, char **argv)
         x[0] = (k & 1) ? -0.01f : 0.02f;
         x[1] = (k & 1) ? 0.02f : -0.01f;
         x[2] = (k & 1) ? 0.02f : -0.01f;
-        (void)qo_gpio_sink_write(&sink, x, NJ, k);
+        (void)qo_gpio_sink_write(sink, x, NJ, k);
     }
     /* Late wake-ups (TCG) may leave steps owed: repeat the last target until settled. */
     for (k = 0; k < 200; k++) {
         float x[NJ] = { -0.01f, 0.02f, 0.02f };
-        for (i = 0; i < NJ; i++) qo_gpio_sink_position(&sink, (size_t)i, &pa[i]);
+        for (i = 0; i < NJ; i++) qo_gpio_sink_position(sink, (size_t)i, &pa[i]);
         if (pa[0] == -1 && pa[1] == 2 && pa[2] == 2) break;
-        (void)qo_gpio_sink_write(&sink, x, NJ, 10 + k);
+        (void)qo_gpio_sink_write(sink, x, NJ, 10 + k);
     }
     for (i = 0; i < NJ; i++) neta[i] = g_net[i];
     dca2 = g_dir_changes[2];
@@ -353,7 +354,7 @@ int main(int argc, char **argv)
     sc.rate_hz = 250.0;
     sc.n_joints = NJ;
     sc.sample = ramp;
-    if (qo_gpio_sink_as_sink(&sink, &sc.sink) != QO_OK) return fail("as_sink");
+    if (qo_gpio_sink_as_sink(sink, &sc.sink) != QO_OK) return fail("as_sink");
     sc.lock_memory = 0;
     if (qo_streamer_init(&str, &sc) != QO_OK || qo_streamer_start(&str) != QO_OK)
         return fail("streamer start");
@@ -364,7 +365,7 @@ int main(int argc, char **argv)
     qo_streamer_request_stop(&str);
     if (qo_streamer_join(&str) != QO_OK) return fail("streamer final write");
     qo_streamer_stats_read(&str, &st);
-    for (i = 0; i < NJ; i++) qo_gpio_sink_position(&sink, (size_t)i, &p[i]);
+    for (i = 0; i < NJ; i++) qo_gpio_sink_position(sink, (size_t)i, &p[i]);
     printf("QOVM: part B: ticks %llu overruns %llu latency max %llu us; positions %lld %lld "
            "%lld, kernel saw %ld %ld %ld; dir changes %ld %ld %ld; %ld sets\n",
            (unsigned long long)st.ticks, (unsigned long long)st.overruns,
@@ -375,7 +376,7 @@ int main(int argc, char **argv)
            "min dir change to rise %llu us (>= 50); %ld violations\n",
            (unsigned long long)g_seen_spacing / 1000u, (unsigned long long)g_seen_high / 1000u,
            (unsigned long long)g_seen_setup / 1000u, g_timing);
-    qo_gpio_sink_close(&sink);
+    qo_gpio_sink_free(sink); /* closes: part C checks the lines */
     /* Every deadline of the 0.6 s is a tick or an overrun (stats span_ns): however slow the
      * emulated CPU, there are about 150 of them; how many were ticks depends on the load. */
     if (st.ticks < 1 || st.ticks + st.overruns < 100) return fail("too few deadlines");
@@ -400,8 +401,9 @@ int main(int argc, char **argv)
         hold.open(hold.ctx, &g_cfg.joint[1].dir, 0, &hold_h) != QO_OK)
         return fail("cannot hold a line");
     {
-        static qo_gpio_sink s2;
-        qo_status so = qo_gpio_sink_open(&s2, &g_cfg, &be);
+        qo_gpio_sink *s2 = NULL;
+        qo_status so = qo_gpio_sink_open(&g_cfg, &be, &s2);
+        qo_gpio_sink_free(s2); /* NULL after a failed open; frees one that wrongly opened */
         hold.close(hold.ctx, hold_h);
         i = count_free(&g_cfg, NJ);
         printf("QOVM: part D busy line: open %s (want %s), %d of %d lines free after\n",
