@@ -178,7 +178,7 @@ test-vm: $(BUILD)/libqorient.a $(BUILD)/libqorient_ports.a
 	BUILD=$(BUILD) sh tests/vm/run-gpiosim.sh
 
 # The main job with no hardware: simulated drives, a planned arm move and a gimbal path
-# streamed over loopback Modbus, and a picture of what the drives received.
+# streamed over loopback Modbus, and a picture of what was planned and sent, at the tick times.
 demo:
 	@sh tools/deps.sh demo
 	@$(MAKE) --no-print-directory all

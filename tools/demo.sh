@@ -7,8 +7,11 @@
 #  3. plans a gimbal path through the yaw-pitch-roll singular configuration (pitch 90 deg),
 #     turns it into joint angles (nearest solution, hold band, rate limit, then the tracking
 #     filter: acceleration- and jerk-limited, so the rates are continuous) and streams those;
-#  4. stops the simulators and draws what the drives received - positions and velocities per
-#     joint over time, and the lock margin of the gimbal path - into build/demo/demo.png.
+#  4. stops the simulators and draws, against the streamer's tick times (seconds since each
+#     stream began), what was planned (lines: `qorient plan` with the stream's own options, at
+#     the 200 Hz tick times) and what was sent (dots: `qorient stream --log`, each tick's
+#     scheduled time and targets) - positions and velocities per joint, the lock margin of the
+#     gimbal path and its hold-band flag - into build/demo/demo.png.
 set -eu
 cd "$(dirname "$0")/.."
 Q=build/qorient
@@ -21,19 +24,19 @@ trap cleanup EXIT INT TERM
 
 # Starts a simulator in THIS shell (not in a $(...) subshell, whose children the cleanup could
 # not reach) and waits, bounded, for its 'listening' line.
-start_sim() { # map log out
-    $Q sim --map "$1" --listen tcp://127.0.0.1:0 --lag 0.03 --log "$2" --duration 120 > "$3" 2>&1 &
+start_sim() { # map out
+    $Q sim --map "$1" --listen tcp://127.0.0.1:0 --lag 0.03 --duration 120 > "$2" 2>&1 &
     PIDS="$PIDS $!"
     i=0
-    while ! grep -q '^listening' "$3" 2>/dev/null; do
-        i=$((i + 1)); [ $i -gt 200 ] && { echo "demo: simulator did not start: $(cat "$3")" >&2; exit 1; }
+    while ! grep -q '^listening' "$2" 2>/dev/null; do
+        i=$((i + 1)); [ $i -gt 200 ] && { echo "demo: simulator did not start: $(cat "$2")" >&2; exit 1; }
         sleep 0.05
     done
 }
 port_of() { sed -n 's/^listening tcp:\/\/127.0.0.1:\([0-9]*\)$/\1/p' "$1"; }
 
-start_sim examples/maps/six_int32.ini "$D/arm-log.csv" "$D/arm-sim.out"
-start_sim examples/maps/gimbal3.ini "$D/gimbal-log.csv" "$D/gimbal-sim.out"
+start_sim examples/maps/six_int32.ini "$D/arm-sim.out"
+start_sim examples/maps/gimbal3.ini "$D/gimbal-sim.out"
 ARM_PORT=$(port_of "$D/arm-sim.out")
 GIM_PORT=$(port_of "$D/gimbal-sim.out")
 echo "demo: simulated drive banks on tcp://127.0.0.1:$ARM_PORT (arm) and :$GIM_PORT (gimbal)"
@@ -48,7 +51,7 @@ T
 echo "demo: streaming the arm move (jerk-limited, time-synchronised, re-planned at 0.8 s)"
 $Q stream --map examples/maps/six_int32.ini --modbus "tcp://127.0.0.1:$ARM_PORT" --rate 200 \
     --timeout-ms 50 --quiet --profile scurve --vmax 2 --amax 6 --jmax 40 --sync time \
-    "$D/arm-targets.csv" | tee "$D/arm-summary.txt"
+    --log "$D/arm-ticks.csv" "$D/arm-targets.csv" | tee "$D/arm-summary.txt"
 
 # The gimbal: yaw swings while pitch goes straight through +90 degrees (the ZYX singularity).
 awk 'BEGIN { pi = atan2(0, -1); d = pi / 180;
@@ -61,54 +64,68 @@ $Q gimbal --seq ZYX --interp spline --rate 200 --band 2 --vmax 3 --amax 20 --jma
 cut -d, -f1-4 "$D/gimbal-angles.csv" > "$D/gimbal-joint-keys.csv"
 echo "demo: streaming the gimbal path through the singular configuration"
 $Q stream --map examples/maps/gimbal3.ini --modbus "tcp://127.0.0.1:$GIM_PORT" --rate 200 \
-    --timeout-ms 50 --quiet --profile linear "$D/gimbal-joint-keys.csv" | tee "$D/gimbal-summary.txt"
+    --timeout-ms 50 --quiet --profile linear --log "$D/gimbal-ticks.csv" "$D/gimbal-joint-keys.csv" \
+    | tee "$D/gimbal-summary.txt"
 
 cleanup; PIDS=""
 
-# What was planned (qorient plan with the stream's own options: exact positions and
-# velocities at the 200 Hz tick times) and what the drives received (the simulators' logs, one
-# point per write, from the first write on). Velocities are the planner's, not differences of
-# receive times: a loaded machine's receive jitter is not motion.
+# What was planned: qorient plan with the stream's own options, exact positions and velocities
+# at the 200 Hz tick times k / 200 s. What was sent: the streams' tick logs (qorient stream
+# --log), one line per tick: its scheduled time (when it was due, k / 200 s) and the targets
+# handed to the drives (sampled at the tick's wake time, a few hundred microseconds later).
+# Velocities are the planner's: differences over receive or wake times would draw a loaded
+# machine's jitter, which is not motion. Angles in radians for the arm, degrees for the
+# gimbal, as the axes say.
 $Q plan --rate 200 --profile scurve --vmax 2 --amax 6 --jmax 40 --sync time "$D/arm-targets.csv" \
     | tr ',' ' ' > "$D/arm-plan.dat"
 $Q plan --rate 200 --profile linear "$D/gimbal-joint-keys.csv" | tr ',' ' ' > "$D/gimbal-plan.dat"
+# sent.dat: scheduled_s p1..pN, one line per write (the final one included)
 for which in arm gimbal; do
-    awk -F, 'NR > 1 && $5 != "" { if (t0 == "") t0 = $1; print $1 - t0, $6 > (OUT "-" $4 ".dat") }' \
-        OUT="$D/$which-rx" "$D/$which-log.csv"
+    awk -F, 'NR > 1 { printf "%s", $2; for (j = 5; j <= NF; j++) printf " %s", $j; printf "\n" }' \
+        "$D/$which-ticks.csv" > "$D/$which-sent.dat"
 done
 awk -F, '{ print $1, $5 * 180 / atan2(0, -1), $6 }' "$D/gimbal-angles.csv" > "$D/gimbal-margin.dat"
+# One x range per stream, shared by all of its panels: from 0 to the last tick (the final
+# write included), or the gimbal path's last sample if later.
+XA=$(awk 'END { print $1 }' "$D/arm-sent.dat")
+XG=$(cat "$D/gimbal-sent.dat" "$D/gimbal-margin.dat" | awk '$1 > m { m = $1 } END { print m }')
+# The gimbal's limits (qorient gimbal --vmax 3 --amax 20 --jmax 400, rad/s, rad/s^2, rad/s^3)
+# in the panel's unit, degrees.
+GLIM=$(awk 'BEGIN { d = 180 / atan2(0, -1); printf "%.0f deg/s, %.0f deg/s^2, %.0f deg/s^3", 3 * d, 20 * d, 400 * d }')
 
 gnuplot <<G
 set terminal pngcairo size 1400,1000 font ",10"
 set output "$D/demo.png"
-set multiplot layout 3,2 title "qorient demo: planned (lines) and received by the simulated drives (dots), loopback Modbus TCP, 200 Hz"
+set multiplot layout 3,2 title "qorient demo: planned (lines) and sent to the simulated drives (dots, every 4th tick) at the streamer's 200 Hz tick times; loopback Modbus TCP"
 set grid
 set key outside right
-set xlabel "t (s)"
+set xlabel "t (s), tick time since the stream began"
 r2d = 180 / pi
+set xrange [0:$XA]
 set ylabel "position (rad)"
 set title "arm: jerk-limited, time-synchronised move, new target at 0.8 s"
 plot for [j=0:5] "$D/arm-plan.dat" using 1:(column(j+2)) with lines lw 2 lc j+1 title "j".(j+1), \
-     for [j=0:5] "$D/arm-rx-".j.".dat" using 1:2 every 4 with points pt 7 ps 0.3 lc j+1 notitle
+     for [j=0:5] "$D/arm-sent.dat" using 1:(column(j+2)) every 4 with points pt 7 ps 0.3 lc j+1 notitle
 set ylabel "velocity (rad/s)"
 set title "arm: planned velocities at the tick times (no jump at the re-plan)"
 plot for [j=0:5] "$D/arm-plan.dat" using 1:(column(j+8)) with lines lw 1.5 lc j+1 title "j".(j+1)
+set xrange [0:$XG]
 set ylabel "angle (deg)"
-set title "gimbal ZYX joints: pitch carries on through 90 deg to 150, no flip"
+set title "gimbal ZYX joints: pitch carries on through 90 deg to 150 deg, no flip"
 plot for [j=0:2] "$D/gimbal-plan.dat" using 1:(column(j+2)*r2d) with lines lw 2 lc j+1 title word("yaw pitch roll", j+1), \
-     for [j=0:2] "$D/gimbal-rx-".j.".dat" using 1:(\$2*r2d) every 4 with points pt 7 ps 0.3 lc j+1 notitle
+     for [j=0:2] "$D/gimbal-sent.dat" using 1:(column(j+2)*r2d) every 4 with points pt 7 ps 0.3 lc j+1 notitle
 set ylabel "rate (deg/s)"
-set title "gimbal joint rates: continuous through the hold band (limits 3 rad/s = 172 deg/s, 20 rad/s^2, 400 rad/s^3)"
+set title "gimbal: planned joint rates, continuous through the hold band (limits $GLIM)"
 plot for [j=0:2] "$D/gimbal-plan.dat" using 1:(column(j+5)*r2d) with lines lw 1.5 lc j+1 title word("yaw pitch roll", j+1)
 set ylabel "margin (deg)"
-set title "gimbal: lock margin (distance from the singular configuration); band 2 deg"
+set title "gimbal: lock margin (angle from the singular configuration); hold band 2 deg"
 set yrange [0:*]
 plot "$D/gimbal-margin.dat" using 1:2 with lines lw 2 title "margin", 2 with lines dt 2 title "hold band"
 unset yrange
-set ylabel "in the hold band"
-set title "gimbal: samples inside the hold band (free angle held)"
+set ylabel "in the hold band (1 = yes)"
+set title "gimbal: planned samples inside the hold band (free angle held)"
 set yrange [-0.1:1.1]
-set ytics ("no" 0, "yes" 1)
+set ytics ("0" 0, "1" 1)
 plot "$D/gimbal-margin.dat" using 1:3 with steps lw 2 title "lock"
 unset multiplot
 G

@@ -80,6 +80,8 @@ static const char stream_usage[] =
     "                      for RTU the highest rate the line allows), send nothing\n"
     "  --no-rt             do not ask for SCHED_FIFO / mlockall\n"
     "  --quiet             no live progress line\n"
+    "  --log FILE          one CSV line per target handed to the drives, with the tick's\n"
+    "                      scheduled time (see 'Tick log' below)\n"
     "  -h, --help          this text\n"
     "\n"
     "On RTU a --rate above what the wire allows is refused (see --dry-run). Live progress\n"
@@ -119,6 +121,22 @@ static const char stream_fields[] =
     "each such joint is named with how far it is short); 2 on a usage error. Stopped by a\n"
     "signal: 0 when the last sampled target was written.\n";
 
+static const char stream_log_fields[] =
+    "\n"
+    "Tick log (--log FILE, CSV: a header line, then one line per write to the drives, the final\n"
+    "one included; FILE is created or truncated before streaming and written through a 1 MiB\n"
+    "buffer from the streaming thread):\n"
+    "  tick          the tick number the drives were sent (0, 1, ...)\n"
+    "  scheduled_s   when the tick was due: its deadline in seconds since streaming began\n"
+    "                (k / --rate on the k-th period; for the final write after the stop, the\n"
+    "                next deadline)\n"
+    "  sampled_s     the time the targets were sampled at (the tick's actual wake time, on the\n"
+    "                same axis: the plan's time minus its first time)\n"
+    "  write         ok, or why the write failed (as the summary's final)\n"
+    "  p1..pN        the targets handed to the sink, in the plan's units (before the map's\n"
+    "                min/max and max_step)\n"
+    "A write error on FILE makes the exit status 1.\n";
+
 /* Live input lines longer than this are refused (bounded memory for a pipe from anywhere). */
 #define STREAM_LINE_MAX 65536
 /* Targets that may arrive within one tick before the reader waits for the sampler. */
@@ -136,6 +154,7 @@ struct stream_ctx {
     qo_traj_ns last;            /* latest trajectory time sampled */
     volatile int eof;           /* the reader reached the end of input */
     int bad_lines;
+    double sampled;             /* time of the last successful sample (for --log) */
     const struct qo_cli_plan_opts *opts;
     struct qo_cli_rows rows;    /* the start line (row 0) and a scratch row 1 */
     long lineno;
@@ -165,7 +184,38 @@ static qo_status sample_traj(void *vctx, double t, float *targets, size_t n)
         c->ended = 1;
         qo_streamer_request_stop(c->st);
     }
-    return traj_sample_ok(s);
+    s = traj_sample_ok(s);
+    if (s == QO_OK) c->sampled = t;
+    return s;
+}
+
+/* --log FILE: a sink in front of the drives' that writes one CSV line per write (streamer
+ * thread only, like every sink call). */
+struct tick_log {
+    FILE *f;
+    qo_sink inner;
+    qo_streamer *st;
+    const struct stream_ctx *sc;
+};
+
+static qo_status tick_log_write(void *ctx, const float *targets, size_t n, uint64_t tick)
+{
+    struct tick_log *l = ctx;
+    qo_status s = qo_sink_write(&l->inner, targets, n, tick);
+    uint64_t due = 0;
+    size_t j;
+    (void)qo_streamer_tick_deadline(l->st, &due);
+    fprintf(l->f, "%llu,%.9f,%.9f,%s", (unsigned long long)tick, (double)due * 1e-9, l->sc->sampled,
+            s == QO_OK ? "ok" : qo_status_str(s));
+    for (j = 0; j < n; j++) fprintf(l->f, ",%.9g", (double)targets[j]);
+    fputc('\n', l->f);
+    return s;
+}
+
+static void tick_log_service(void *ctx)
+{
+    struct tick_log *l = ctx;
+    if (l->inner.service) l->inner.service(l->inner.ctx);
 }
 
 /* Reads one live line into buf (NUL bytes kept: the parser refuses them); returns its length,
@@ -319,7 +369,7 @@ static int stream_settle(qo_modbus_sink *ms, const qo_regmap *map, qo_traj *tr, 
 }
 
 enum { SO_MAP = QO_CLI_OPT_LAST_, SO_MODBUS, SO_GPIO, SO_LINES, SO_SPU, SO_STEP_RATE, SO_ON_FAIL, SO_HOLD,
-       SO_TIMEOUT, SO_TURNAROUND, SO_DRY, SO_NO_RT, SO_QUIET, SO_LIVE, SO_SETTLE };
+       SO_TIMEOUT, SO_TURNAROUND, SO_DRY, SO_NO_RT, SO_QUIET, SO_LIVE, SO_SETTLE, SO_LOG };
 
 int qo_cli_stream(int argc, char **argv)
 {
@@ -334,11 +384,12 @@ int qo_cli_stream(int argc, char **argv)
         { "turnaround-us", required_argument, NULL, SO_TURNAROUND },
         { "dry-run", no_argument, NULL, SO_DRY }, { "no-rt", no_argument, NULL, SO_NO_RT },
         { "quiet", no_argument, NULL, SO_QUIET }, { "live", no_argument, NULL, SO_LIVE },
-        { "settle", required_argument, NULL, SO_SETTLE },
+        { "settle", required_argument, NULL, SO_SETTLE }, { "log", required_argument, NULL, SO_LOG },
         { "help", no_argument, NULL, 'h' }, { NULL, 0, NULL, 0 }
     };
     const char *map_path = NULL, *modbus = NULL, *gpio = NULL, *lines = NULL, *in_path = "-";
-    const char *spu_s = NULL, *step_rate_s = NULL, *on_fail = "hold";
+    const char *spu_s = NULL, *step_rate_s = NULL, *on_fail = "hold", *log_path = NULL;
+    static struct tick_log tl;
     double rate = 100.0, hold = 0.2, timeout_ms = -1, turnaround = 0, settle = -1;
     int dry = 0, no_rt = 0, quiet = 0, live = 0, c, rc = 1, reader = 0;
     static qo_regmap map; /* 20 KiB: not on the stack */
@@ -360,11 +411,12 @@ int qo_cli_stream(int argc, char **argv)
     memset(&rows, 0, sizeof rows);
     memset(&plan, 0, sizeof plan);
     memset(&sc, 0, sizeof sc);
+    memset(&tl, 0, sizeof tl);
     qo_cli_plan_opts_default(&po);
     while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
         int bad = 0;
         switch (c) {
-        case 'h': fputs(stream_usage, stdout); fputs(stream_fields, stdout); return 0;
+        case 'h': fputs(stream_usage, stdout); fputs(stream_fields, stdout); fputs(stream_log_fields, stdout); return 0;
         case SO_MAP: map_path = optarg; break;
         case SO_MODBUS: modbus = optarg; break;
         case SO_GPIO: gpio = optarg; break;
@@ -382,6 +434,7 @@ int qo_cli_stream(int argc, char **argv)
         case SO_NO_RT: no_rt = 1; break;
         case SO_QUIET: quiet = 1; break;
         case SO_LIVE: live = 1; break;
+        case SO_LOG: log_path = optarg; break;
         case '?': bad = 2; break;
         default: bad = qo_cli_plan_opt("stream", &po, c, optarg); break;
         }
@@ -576,6 +629,25 @@ int qo_cli_stream(int argc, char **argv)
         (void)qo_gpio_sink_as_sink(gs, &cfg.sink); /* QO_E_NULL only */
     }
 
+    if (log_path && !dry) {
+        size_t j;
+        tl.f = fopen(log_path, "w");
+        if (tl.f == NULL) {
+            fprintf(stderr, "qorient stream: --log %s: %s\n", log_path, strerror(errno));
+            goto out;
+        }
+        (void)setvbuf(tl.f, NULL, _IOFBF, 1u << 20);
+        fputs("tick,scheduled_s,sampled_s,write", tl.f);
+        for (j = 0; j < n_joints; j++) fprintf(tl.f, ",p%zu", j + 1);
+        fputc('\n', tl.f);
+        tl.inner = cfg.sink;
+        tl.st = &st;
+        tl.sc = &sc;
+        memset(&cfg.sink, 0, sizeof cfg.sink);
+        cfg.sink.ctx = &tl;
+        cfg.sink.write = tick_log_write;
+        cfg.sink.service = tick_log_service;
+    }
     sc.plan = &plan;
     sc.hold = (qo_traj_ns)llround(hold * 1e9);
     sc.st = &st;
@@ -664,6 +736,10 @@ usage:
     rc = 2;
     fputs("try 'qorient stream --help'\n", stderr);
 out:
+    if (tl.f && (ferror(tl.f) | fclose(tl.f)) != 0) {
+        fprintf(stderr, "qorient stream: --log %s: write error\n", log_path);
+        if (rc == 0) rc = 1;
+    }
     qo_modbus_sink_free(ms); /* NULL: nothing */
     qo_gpio_sink_free(gs);
     if (reader) {

@@ -349,6 +349,16 @@ qo_status qo_streamer_install_stop_signals(qo_streamer *s)
     return QO_OK;
 }
 
+qo_status qo_streamer_tick_deadline(const qo_streamer *s, uint64_t *deadline_ns)
+{
+    if (!deadline_ns) return QO_E_NULL;
+    *deadline_ns = 0;
+    if (!s) return QO_E_NULL;
+    if (!s->initialised) return QO_E_STATE;
+    *deadline_ns = s->next_ns - s->origin_ns;
+    return QO_OK;
+}
+
 qo_status qo_streamer_stats_read(qo_streamer *s, qo_streamer_stats *out)
 {
     if (!out) return QO_E_NULL;

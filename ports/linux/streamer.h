@@ -20,6 +20,7 @@
  *   qo_streamer_stop_flag()        the flag itself, for an application's own signal handler
  *   qo_streamer_install_stop_signals()  SIGINT/SIGTERM set the flag of one streamer
  *   qo_streamer_finish()           hand the sink the defined final target (last sampled)
+ *   qo_streamer_tick_deadline()    the scheduled time of the tick in progress (for a tick log)
  *   qo_streamer_stats_read()       copy of the statistics, safe from any thread while running
  *   qo_streamer_rt_report()        what the real-time setup achieved and why not (text)
  *
@@ -260,6 +261,16 @@ qo_status qo_streamer_install_stop_signals(qo_streamer *s);
  * write happens) or s is not initialised; QO_E_NULL.
  */
 qo_status qo_streamer_finish(qo_streamer *s);
+
+/*
+ * The scheduled time of the tick in progress: its absolute deadline minus the time origin, in
+ * ns (k * period for a tick on the k-th deadline; the sampler is given the actual wake time,
+ * this is when the tick was due). Meant for the sampler and the sink's write, called from
+ * them in the streamer's thread; during the final write of qo_streamer_finish it is the first
+ * deadline after the stop. Returns QO_OK; QO_E_NULL (s or deadline_ns NULL); QO_E_STATE (not
+ * initialised). *deadline_ns is 0 on every error (when not NULL).
+ */
+qo_status qo_streamer_tick_deadline(const qo_streamer *s, uint64_t *deadline_ns);
 
 /*
  * Copies the statistics into *out (percentiles computed from the histogram). Safe from any

@@ -209,5 +209,58 @@ stop_sim
     ! grep -q ' late_replies 0 ' "$T/out" && grep -q 'faults 1 ' "$T/sim.out" && ok ||
     bad "exception while connecting, late replies ($L): rc=$rc $(cat "$T/out" "$T/err" "$T/sim.out")"
 
+# 6. --log FILE: one line per write, the final one included, with the tick's scheduled time
+#    (a multiple of the period, not the wake time) and the time it was sampled at; the
+#    targets checked against `qorient plan` sampled on a 10 kHz grid and interpolated at
+#    sampled_s (an independent sampling of the same plan, not the streamer's); what the
+#    simulator received last is the log's last line.
+start_sim
+$Q stream --map $MAP --modbus "tcp://127.0.0.1:$PORT" --rate 100 --timeout-ms 50 --no-rt --quiet \
+    --profile scurve --vmax 2 --amax 4 --jmax 20 --sync time --log "$T/ticks.csv" "$T/targets" > "$T/out" 2> "$T/err"; rc=$?
+stop_sim
+[ "$rc" = 0 ] && grep -q 'final ok$' "$T/out" && ok || bad "--log: exit $rc: $(cat "$T/out" "$T/err")"
+[ "$(head -n 1 "$T/ticks.csv")" = "tick,scheduled_s,sampled_s,write,p1,p2,p3,p4,p5,p6" ] && ok ||
+    bad "--log header: $(head -n 1 "$T/ticks.csv")"
+ticks=$(sed -n 's/^summary: ticks \([0-9]*\) .*/\1/p' "$T/out")
+n=$(($(wc -l < "$T/ticks.csv") - 1))
+[ -n "$ticks" ] && [ "$n" = $((ticks + 1)) ] && ok || bad "--log: $n lines for $ticks ticks (+1 final write)"
+# tick k on line k; scheduled on the 10 ms grid, increasing; sampled at or after it (the
+# final write re-sends the last sample: same targets, next deadline); every write ok
+awk -F, 'NR == 1 { next }
+    { k = NR - 2; if ($1 != k) { print "line " NR ": tick " $1 " != " k; exit 1 }
+      g = $2 * 100; if (g - int(g + 0.5) > 1e-6 || int(g + 0.5) - g > 1e-6) { print "line " NR ": scheduled " $2 " off the grid"; exit 1 }
+      if (NR > 2 && $2 <= prev) { print "line " NR ": scheduled " $2 " not after " prev; exit 1 }
+      if ($4 != "ok") { print "line " NR ": write " $4; exit 1 }
+      if (last != "" && lt < prev - 1e-9) { print "line " (NR - 1) ": sampled " lt " before scheduled " prev; exit 1 }
+      last = $0; prev = $2; lt = $3 }' "$T/ticks.csv" > "$T/msg" && ok || bad "--log columns: $(cat "$T/msg")"
+t1=$(tail -n 2 "$T/ticks.csv" | head -n 1 | cut -d, -f3,5-); t2=$(tail -n 1 "$T/ticks.csv" | cut -d, -f3,5-)
+[ "$t1" = "$t2" ] && ok || bad "--log: the final write '$t2' is not the last sample '$t1' again"
+$Q plan --rate 10000 --profile scurve --vmax 2 --amax 4 --jmax 20 --sync time "$T/targets" > "$T/plan10k" || bad "plan 10 kHz"
+awk -F, 'NR == FNR { t[NR] = $1; for (j = 1; j <= 6; j++) p[NR, j] = $(j + 1); n = NR; next }
+    FNR == 1 { next }
+    { i = int($3 * 10000) + 1; if (i >= n) i = n - 1; f = ($3 - t[i]) / (t[i + 1] - t[i]); if (f > 1) f = 1
+      for (j = 1; j <= 6; j++) { w = p[i, j] + f * (p[i + 1, j] - p[i, j]); d = $(j + 4) - w; if (d < 0) d = -d
+        if (d > m) { m = d; at = FNR " p" j } } }
+    END { printf "%.3g at line %s", m, at; exit !(m < 2e-6) }' "$T/plan10k" "$T/ticks.csv" > "$T/msg" && ok ||
+    bad "--log targets against the plan at sampled_s: largest difference $(cat "$T/msg")"
+r=$(log_summary)
+set -- $r
+shift 2
+last=$(tail -n 1 "$T/ticks.csv" | cut -d, -f5- | awk -F, '{ for (j = 1; j <= 6; j++) printf "%s%.6g", (j > 1 ? " " : ""), $j }')
+got=$(echo "$*" | awk '{ for (j = 1; j <= 6; j++) printf "%s%.6g", (j > 1 ? " " : ""), $j }')
+[ "$got" = "$last" ] && ok || bad "--log: the drives' last targets '$got' are not the log's last line '$last'"
+# a log that cannot be created: exit 1 naming it, nothing sent; --dry-run creates no log
+start_sim
+$Q stream --map $MAP --modbus "tcp://127.0.0.1:$PORT" --rate 100 --no-rt --quiet --profile scurve --vmax 2 \
+    --amax 4 --jmax 20 --log "$T/no/such/dir/ticks.csv" "$T/targets" > "$T/out" 2> "$T/err"; rc=$?
+stop_sim
+[ "$rc" = 1 ] && grep -q "^qorient stream: --log $T/no/such/dir/ticks.csv: " "$T/err" && ok ||
+    bad "--log to a missing directory: exit $rc: $(cat "$T/err")"
+[ "$(log_summary | cut -d' ' -f1)" = 0 ] && ok || bad "--log to a missing directory: writes reached the drives"
+rm -f "$T/dry.csv"
+$Q stream --map $MAP --modbus "tcp://127.0.0.1:1" --dry-run --profile scurve --vmax 2 --amax 4 --jmax 20 \
+    --log "$T/dry.csv" "$T/targets" > /dev/null 2>&1; rc=$?
+[ "$rc" = 0 ] && [ ! -e "$T/dry.csv" ] && ok || bad "--dry-run --log: exit $rc, or the log was created"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

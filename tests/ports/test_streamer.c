@@ -37,6 +37,7 @@ typedef struct fake {
     size_t n_write;
     float written[MAXT][3];
     uint64_t wtick[MAXT];
+    uint64_t wdeadline[MAXT]; /* qo_streamer_tick_deadline during the i-th write */
     int stop_after_write;     /* request stop inside write number k (1-based); 0 never */
     qo_streamer *s;
     qo_status sink_status;
@@ -84,6 +85,7 @@ static qo_status fk_write(void *ctx, const float *targets, size_t n, uint64_t ti
     assert_int_equal(n, 3);
     for (j = 0; j < n; j++) f->written[i][j] = targets[j];
     f->wtick[i] = tick;
+    assert_int_equal(qo_streamer_tick_deadline(f->s, &f->wdeadline[i]), QO_OK);
     if (f->stop_after_write && (int)f->n_write == f->stop_after_write) qo_streamer_request_stop(f->s);
     return f->sink_status;
 }
@@ -249,6 +251,10 @@ static void test_no_catch_up_burst_random(void **state)
         double want_t = (double)(F.wake[k] - origin) * 1e-9;
         if ((d - origin) % P != 0) fail_msg("tick %zu: deadline off the grid", k);
         if (F.t[k] != want_t) fail_msg("tick %zu: sampled %.9f, woke at %.9f", k, F.t[k], want_t);
+        /* the scheduled time a tick log gets: the deadline the tick slept to, from the origin */
+        if (F.wdeadline[k] != d - origin)
+            fail_msg("tick %zu: tick_deadline %llu, slept to %llu", k, (unsigned long long)F.wdeadline[k],
+                     (unsigned long long)(d - origin));
         if (F.wake[k] - d > max_lat) max_lat = F.wake[k] - d;
         if (k > 0) {
             uint64_t prev_end = F.end[k - 1];
@@ -461,6 +467,25 @@ static void test_no_sample_no_write(void **state)
     assert_int_equal(F.n_write, 0);
 }
 
+/* qo_streamer_tick_deadline: its errors write 0; before the first tick it is the origin. */
+static void test_tick_deadline_errors(void **state)
+{
+    qo_streamer fresh;
+    uint64_t d = 77;
+    (void)state;
+    memset(&fresh, 0, sizeof fresh);
+    assert_int_equal(qo_streamer_tick_deadline(NULL, &d), QO_E_NULL);
+    assert_int_equal(d, 0);
+    assert_int_equal(qo_streamer_tick_deadline(&S, NULL), QO_E_NULL);
+    d = 77;
+    assert_int_equal(qo_streamer_tick_deadline(&fresh, &d), QO_E_STATE);
+    assert_int_equal(d, 0);
+    setup_streamer(&S, 500.0);
+    d = 77;
+    assert_int_equal(qo_streamer_tick_deadline(&S, &d), QO_OK);
+    assert_int_equal(d, 0);
+}
+
 /* SIGINT through the installed handler sets the flag. */
 static void test_signal_sets_stop(void **state)
 {
@@ -587,6 +612,7 @@ int main(void)
         cmocka_unit_test(test_stop_leaves_defined_target),
         cmocka_unit_test(test_sampler_failure_holds_last_good),
         cmocka_unit_test(test_no_sample_no_write),
+        cmocka_unit_test(test_tick_deadline_errors),
         cmocka_unit_test(test_signal_sets_stop),
         cmocka_unit_test(test_real_time_run_sane),
     };
