@@ -52,7 +52,8 @@ typedef struct qo_sink {
     void *ctx; /* the port's object, passed back to every function below */
 
     /* Required. Takes the targets of all n joints for tick number `tick` (a counter the
-     * streamer increments by 1 per period, skipped ticks included), in the joints' user units.
+     * streamer increments by 1 per tick it runs; a deadline skipped after an overrun is not a
+     * tick and is counted in the streamer's overrun statistics instead), in the joints' user units.
      * Returns QO_OK when every target (possibly limited) reached the device, otherwise the
      * port's error status (QO_E_TIMEOUT, QO_E_IO, QO_E_DISCONNECTED, QO_E_PROTOCOL,
      * QO_E_STATE, QO_E_RANGE for a wrong n, QO_E_NULL, QO_E_NONFINITE, ...). A failed tick is
