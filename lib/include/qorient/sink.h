@@ -53,8 +53,8 @@ typedef struct qo_sink {
 
     /* Required. Takes the targets of all n joints for tick number `tick` (a counter the
      * streamer increments by 1 per tick it runs; a deadline skipped after an overrun is not a
-     * tick and is counted in the streamer's overrun statistics instead), in the joints' user units.
-     * Returns QO_OK when every target (possibly limited) reached the device, otherwise the
+     * tick and is counted in the streamer's overrun statistics instead), in the joints' user
+     * units. Returns QO_OK when every target (possibly limited) reached the device, otherwise the
      * port's error status (QO_E_TIMEOUT, QO_E_IO, QO_E_DISCONNECTED, QO_E_PROTOCOL,
      * QO_E_STATE, QO_E_RANGE for a wrong n, QO_E_NULL, QO_E_NONFINITE, ...). A failed tick is
      * not retried by the sink: the next write() carries the next targets. */
