@@ -34,7 +34,7 @@ static int32_t table[5 * NK + 3 * MAXJ + 7 * NK * MAXJ];
 static volatile float sink_f;
 static volatile int32_t sink_q;
 
-static void make_plan(size_t nj, int exact_times, qo_spline_f32 *sp, qo_spline_q16 *fx)
+static void make_plan(size_t nj, int exact_times, qo_spline_f32 *sp, qo_spline_table_q16 *fx)
 {
     qo_spline_settings_f32 set = qo_spline_settings_default;
     size_t i;
@@ -68,7 +68,7 @@ static double time_f32(const qo_spline_f32 *sp, double span, size_t nj, int deri
     return (bench_now_ns() - t0) / ((double)TICKS * (double)nj);
 }
 
-static double time_q16(const qo_spline_q16 *fx, double span, size_t nj, int derivs)
+static double time_q16(const qo_spline_table_q16 *fx, double span, size_t nj, int derivs)
 {
     qo_q16 pq[MAXJ], vq[MAXJ], aq[MAXJ];
     double t0 = bench_now_ns();
@@ -84,7 +84,7 @@ static double time_q16(const qo_spline_q16 *fx, double span, size_t nj, int deri
 static void bench(size_t nj)
 {
     qo_spline_f32 sp;
-    qo_spline_q16 fx;
+    qo_spline_table_q16 fx;
     double tf[RUNS], tq[RUNS], tfp[RUNS], tqp[RUNS], span;
     int r;
     make_plan(nj, 1, &sp, &fx);
@@ -111,7 +111,7 @@ static void bench(size_t nj)
 static void accuracy(int exact_times)
 {
     qo_spline_f32 sp;
-    qo_spline_q16 fx;
+    qo_spline_table_q16 fx;
     double wp = 0, wv = 0, wa = 0;
     int i, trial;
     size_t j;

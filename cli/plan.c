@@ -167,7 +167,7 @@ struct out {
     unsigned long *ncl;
     /* --fixed */
     int32_t *table;
-    qo_spline_q16 sq;
+    qo_spline_table_q16 sq;
     qo_motion_table_q16 mq;
     qo_motion_seg_q16 segs[QO_MOTION_MAX_JOINTS * QO_MOTION_Q16_SEGS];
     unsigned long exported;     /* re-plans seen by the last export */

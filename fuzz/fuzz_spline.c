@@ -57,7 +57,7 @@ int QO_FUZZ_ENTRY(const uint8_t *data, size_t size)
     unsigned char wr[FUZZ_SP_MAXN];
     qo_spline_settings_f32 set = qo_spline_settings_default;
     qo_spline_f32 sp;
-    qo_spline_q16 fx;
+    qo_spline_table_q16 fx;
     float *coef;
     int32_t *table;
     qo_status st;

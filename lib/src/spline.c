@@ -496,7 +496,7 @@ static int32_t limit_q16(float x, int32_t sat)
     return sat;
 }
 
-qo_status qo_spline_export_q16(const qo_spline_f32 *s, qo_spline_q16 *table, int32_t *words,
+qo_status qo_spline_export_q16(const qo_spline_f32 *s, qo_spline_table_q16 *table, int32_t *words,
                                size_t cap)
 {
     size_t nj, nk, need, j, k, n;

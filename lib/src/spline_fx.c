@@ -72,7 +72,7 @@ static void zero_out(size_t n, qo_q16 *pos, qo_q16 *vel, qo_q16 *acc, int8_t *cl
     }
 }
 
-qo_status qo_spline_sample_q16(const qo_spline_q16 *s, qo_q16 t, qo_q16 *pos, qo_q16 *vel,
+qo_status qo_spline_sample_q16(const qo_spline_table_q16 *s, qo_q16 t, qo_q16 *pos, qo_q16 *vel,
                                qo_q16 *acc, int8_t *clamped)
 {
     size_t nj, nk, j, k = 0;

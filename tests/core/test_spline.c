@@ -284,7 +284,7 @@ static int seg_of(const keys *ks, double t)
 /* Q16.16 table words of one plan: 5K + 3N + 7KN, at most 375 here (11 keys, 4 joints) */
 #define X_CAP 384
 static qo_spline_f32 f_plans[SLOTS];
-static qo_spline_q16 x_plans[SLOTS];
+static qo_spline_table_q16 x_plans[SLOTS];
 static int32_t x_tables[SLOTS][X_CAP];
 /* the Q16.16 table of the fixed-only bodies (they do not use the adapters' slot 0 meanwhile) */
 static int32_t *const table = x_tables[0];
@@ -589,7 +589,7 @@ static void fixed_vs_float(int exact_times, uint64_t seed)
         for (pi = 0; pi < NPROF; pi++) {
             qo_spline_settings_f32 set = settings_for(all_profiles[pi], end_of(trial & 1));
             qo_spline_f32 sp;
-            qo_spline_q16 fx;
+            qo_spline_table_q16 fx;
             int order;
             set.key_vel = v;
             assert_int_equal(qo_spline_init_f32((size_t)N, (size_t)K, t, p, &set, coef, COEF_CAP,
@@ -677,7 +677,7 @@ static void test_fixed_small_move_precision(void **state)
     const float p[2] = { 0.125f, 0.375f };
     qo_spline_settings_f32 set = qo_spline_settings_default;
     qo_spline_f32 sp;
-    qo_spline_q16 fx;
+    qo_spline_table_q16 fx;
     int i;
     double worst_p = 0, worst_v = 0;
     (void)state;
@@ -709,7 +709,7 @@ static void test_fixed_ends_wrap_limits(void **state)
     const float lo[2] = { -10.0f, -1.0f }, hi[2] = { 10.0f, 4.0f };
     qo_spline_settings_f32 set = qo_spline_settings_default;
     qo_spline_f32 sp;
-    qo_spline_q16 fx;
+    qo_spline_table_q16 fx;
     qo_q16 pos[2], vel[2], acc[2];
     int8_t cl[2];
     int i, seen_clamp = 0;
@@ -762,7 +762,7 @@ static void test_fixed_edges(void **state)
     const float t[2] = { 0.0f, 1.0f }, p[2] = { 0.0f, 1.0f };
     qo_spline_settings_f32 set = qo_spline_settings_default;
     qo_spline_f32 sp, empty;
-    qo_spline_q16 fx;
+    qo_spline_table_q16 fx;
     qo_q16 pos = 5, vel = 5, acc = 5;
     int8_t cl = 3;
     size_t need = qo_spline_q16_len(1, 2);

@@ -67,7 +67,7 @@ int main(void)
         int32_t table[96];
         qo_q16 pq[2];
         qo_spline_f32 s;
-        qo_spline_q16 sq;
+        qo_spline_table_q16 sq;
         check(qo_spline_coef_len(2, 3) <= 64 && qo_spline_q16_len(2, 3) <= 96, "storage", 0, 0);
         check(qo_spline_init_f32(2, 3, t, pk, &qo_spline_settings_default, coef, 64, &s) == QO_OK,
               "qo_spline_init_f32 status", 0, 0);

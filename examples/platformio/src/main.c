@@ -41,7 +41,7 @@ static const float g_key_p[QO_EX_KEYS * QO_EX_JOINTS] = {
 /* The sampler's table (5K + 3N + 7KN = 101 words) and its descriptor. The interrupt reads
  * g_plan_ready before the table: it is set once, after the table is complete. */
 static int32_t g_table[QO_EX_KEYS * 5u + QO_EX_JOINTS * 3u + QO_EX_KEYS * QO_EX_JOINTS * 7u];
-static qo_spline_q16 g_plan;
+static qo_spline_table_q16 g_plan;
 static volatile int g_plan_ready;
 static volatile uint32_t g_ticks;
 

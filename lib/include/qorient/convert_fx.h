@@ -55,6 +55,7 @@
 
 #include "qorient/status.h"
 #include "qorient/types.h"
+#include "qorient/quat_fx.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -211,7 +211,7 @@ qo_status qo_spline_sample_f32(const qo_spline_f32 *s, float t, float *pos, floa
  * round to the same Q16.16 value). On error *table is the empty table (n_keys == 0) and the
  * contents of words are unspecified. (Named qo_spline_to_q16_f32 before issue 16.)
  */
-qo_status qo_spline_export_q16(const qo_spline_f32 *s, qo_spline_q16 *table, int32_t *words,
+qo_status qo_spline_export_q16(const qo_spline_f32 *s, qo_spline_table_q16 *table, int32_t *words,
                                size_t cap);
 
 #ifdef __cplusplus

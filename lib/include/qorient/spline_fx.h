@@ -8,7 +8,7 @@
  * qorient/spline_fx.h - fixed-point (Q16.16) sampling of a keyframe trajectory, no float.
  *
  * Index:
- *   qo_spline_q16            a planned trajectory as an int32 table in caller storage
+ *   qo_spline_table_q16            a planned trajectory as an int32 table in caller storage
  *   qo_spline_q16_len()      int32 words the table needs for N joints and K keyframes
  *   qo_spline_sample_q16()   position, velocity, acceleration of every joint at time t
  *
@@ -69,12 +69,12 @@ extern "C" {
  * == 0 marks a table that is not usable (a failed conversion). The table memory belongs to
  * the caller and must outlive this struct. Read-only while sampling: several interrupts may
  * sample the same plan concurrently. */
-typedef struct qo_spline_q16 {
+typedef struct qo_spline_table_q16 {
     size_t n_joints;      /* N >= 1 */
     size_t n_keys;        /* K >= 2, 0 = not usable */
     int wrap_output;      /* nonzero: wrapped joints are output in (-period/2, period/2] */
     const int32_t *table; /* qo_spline_q16_len(N, K) words, layout above */
-} qo_spline_q16;
+} qo_spline_table_q16;
 
 /* int32 words the table needs: 5K + 3N + 7KN. Returns 0 when n_joints == 0, n_keys < 2 or the
  * size does not fit in size_t. */
@@ -96,7 +96,7 @@ size_t qo_spline_q16_len(size_t n_joints, size_t n_keys);
  * QO_E_OVERFLOW when a position, velocity or acceleration does not fit Q16.16 (that value is
  * saturated to INT32_MIN/INT32_MAX, the others are valid).
  */
-qo_status qo_spline_sample_q16(const qo_spline_q16 *s, qo_q16 t, qo_q16 *pos, qo_q16 *vel,
+qo_status qo_spline_sample_q16(const qo_spline_table_q16 *s, qo_q16 t, qo_q16 *pos, qo_q16 *vel,
                                qo_q16 *acc, int8_t *clamped);
 
 #ifdef __cplusplus
