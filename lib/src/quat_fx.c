@@ -107,10 +107,7 @@ static int32_t rnd30_sat(dsum c, int *over)
         uint32_t f = c.l + (((uint32_t)c.m & 0x3FFFu) << 16) + ((uint32_t)1 << 29);
         return c.h * 4 + (c.m >> 14) + (int32_t)(f >> 30);   /* |.| < 2^30 + 2^7 */
     } else {
-        int64_t v = rnd30(c);
-        int32_t r = qo_fx_sat_i32(v);
-        if ((int64_t)r != v) *over = 1;
-        return r;
+        return qo_fx_sat_i32_flag(rnd30(c), over);
     }
 }
 
@@ -132,10 +129,7 @@ static int64_t rnd29(dsum s) { return qo_fx_rshift_round_up(s, 29); }
 
 static int32_t rnd30_sat(dsum s, int *over)
 {
-    int64_t v = rnd30(s);
-    int32_t r = qo_fx_sat_i32(v);
-    if ((int64_t)r != v) *over = 1;
-    return r;
+    return qo_fx_sat_i32_flag(rnd30(s), over);
 }
 #endif
 
