@@ -49,8 +49,10 @@
 #endif
 /* The other random loops scale with the count: n groups at the default 10,500, at least 1 (the
  * emulated Cortex-M targets run a small sample: tests/qemu/cortexm.mk). */
+/* in long long: n * 10,000,000 (make check-motion-long) does not fit an int */
 #define ORACLE_GROUPS(n) \
-    ((n) * QO_MOTION_ORACLE_JOINTS / 10500 > 0 ? (n) * QO_MOTION_ORACLE_JOINTS / 10500 : 1)
+    ((long long)(n) * QO_MOTION_ORACLE_JOINTS / 10500 > 0 \
+         ? (int)((long long)(n) * QO_MOTION_ORACLE_JOINTS / 10500) : 1)
 #define RELTIME 1e-3 /* 0.1 % */
 #define RELLIM 1e-5
 
