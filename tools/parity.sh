@@ -131,41 +131,37 @@ ports/linux/streamer streamer
 ports/linux/wire_budget wire_budget'
 homes=$(printf '%s\n' "$FAMILIES" | sed "s|^|$H/|"; printf '%s\n' "$PORT_FAMILIES")
 
-# every lower-case name (function, type, tag, object) in the header of its family
+# every lower-case name (function, type, tag, object) in the header of its family, and every
+# macro and enum constant QO_<FAMILY>_... of its header's family (include guards QORIENT_..._H
+# aside). The core's shared constants have fixed homes: the status codes (QO_OK, QO_E_...) in
+# status.h, the fixed-point formats' constants (QO_Q30_ONE, QO_Q28_PI) in types.h, the Euler
+# sequences (QO_EULER_XYZ) in euler_seq.h, which the euler family shares.
 awk -F '\t' -v homes="$homes" -v core="$H/" '
     BEGIN {
         n = split(homes, lines, "\n")
-        for (i = 1; i <= n; i++) { k = split(lines[i], w, " "); for (j = 2; j <= k; j++) home[w[j]] = w[1] }
+        for (i = 1; i <= n; i++) {
+            k = split(lines[i], w, " ")
+            for (j = 2; j <= k; j++) { home[w[j]] = w[1]; fams[w[1]] = fams[w[1]] " " toupper(w[j]) }
+        }
+        fams[core "types"] = " Q16 Q28 Q30"; fams[core "version"] = " VERSION"
+        fams[core "status"] = fams[core "status"] " E"; fams[core "euler_seq"] = fams[core "euler_seq"] " EULER"
     }
-    $3 == "macro" || $3 == "enum" { next }
-    $1 == core "types.h" && $3 != "func" { next }
+    { h = $1; sub(/(_fx)?\.h$/, "", h) }
+    $3 == "macro" || $3 == "enum" {
+        if ($2 ~ /^QORIENT_[A-Z0-9_]*_H$/ || $2 == "QO_OK" && $1 == core "status.h") next
+        ok = 0; k = split(fams[h], fs, " ")
+        for (j = 1; j <= k; j++) if (index($2, "QO_" fs[j] "_") == 1) ok = 1
+        if (!ok) print $2 " (" $1 "): a macro or enum constant starts with its header family, QO_" (k ? fs[1] : "?") "_"
+        next
+    }
+    $1 == core "types.h" { next }
     {
         if ($2 !~ /^qo_/) { print $2 " (" $1 "): a public name starts with qo_"; next }
         name = substr($2, 4); best = ""
         for (fam in home) if ((name == fam || index(name, fam "_") == 1) && length(fam) > length(best)) best = fam
-        h = $1; sub(/(_fx)?\.h$/, "", h)
         if (best == "") print $2 " (" $1 "): no family: add its prefix to FAMILIES (core) or PORT_FAMILIES in tools/parity.sh"
         else if (home[best] != h) print $2 " is declared in " $1 ": family " best " lives in " home[best] ".h"
     }' "$W.all" > "$W.names"
-# every macro and enum constant QO_<FAMILY>_... of its header's family (include guards
-# QORIENT_..._H aside). The core's shared constants have fixed homes: the status codes
-# (QO_OK, QO_E_...) in status.h, the fixed-point formats' constants (QO_Q30_ONE, QO_Q28_PI)
-# in types.h, the Euler sequences (QO_EULER_XYZ) in euler_seq.h, which the euler family shares.
-awk -F '\t' -v homes="$homes" -v core="$H/" '
-    BEGIN {
-        n = split(homes, lines, "\n")
-        for (i = 1; i <= n; i++) { k = split(lines[i], w, " "); for (j = 2; j <= k; j++) fams[w[1]] = fams[w[1]] " " toupper(w[j]) }
-        fams[core "types"] = " Q16 Q28 Q30"; fams[core "version"] = " VERSION"
-        fams[core "status"] = fams[core "status"] " E"; fams[core "euler_seq"] = fams[core "euler_seq"] " EULER"
-    }
-    $3 != "macro" && $3 != "enum" { next }
-    $2 ~ /^QORIENT_[A-Z0-9_]*_H$/ || $2 == "QO_OK" && $1 == core "status.h" { next }
-    {
-        h = $1; sub(/(_fx)?\.h$/, "", h); ok = 0
-        k = split(fams[h], fs, " ")
-        for (j = 1; j <= k; j++) if (index($2, "QO_" fs[j] "_") == 1) ok = 1
-        if (!ok) print $2 " (" $1 "): a macro or enum constant starts with its header family, QO_" (k ? fs[1] : "?") "_"
-    }' "$W.all" >> "$W.names"
 while read -r line; do err "$line"; done < "$W.names"
 
 [ $fail = 0 ] || { echo "parity: FAIL (the blocks are at the top of $H/*.h, the families in tools/parity.sh)" >&2; exit 1; }
