@@ -6,7 +6,7 @@
 # missing and fail instead.
 set -eu
 BUILD="build-essential pkg-config libmodbus-dev libgpiod-dev libinih-dev"
-TEST="$BUILD libcmocka-dev"
+TEST="$BUILD libcmocka-dev python3"
 DEMO="$BUILD gnuplot-nox"
 # libFuzzer and the sanitizer runtimes are in libclang-rt-N-dev, only a Recommends of clang: named
 # for the clang that is installed (14 on Debian 12, 19 on Debian 13), after clang itself.
