@@ -339,11 +339,11 @@ static inline int quat_from_pivot_sse2(const qo_mat3_f32 *m, qo_quat_f32 *out)
     qo_quat_f32 v;
     const int p = mat3_pivot_vector(m, &v);
     const __m128 v4 = _mm_setr_ps(v.w, v.x, v.y, v.z);
-    const __m128 r = _mm_sqrt_ss(qo_quat_internal_sum4_ss(_mm_mul_ps(v4, v4)));
-    const __m128 inv = _mm_div_ss(_mm_set_ss(1.0f), r);
+    const __m128 n = qo_quat_internal_sumsq_ps(v4), r = _mm_sqrt_ps(n);
+    const __m128 inv = _mm_div_ps(r, n);
     __m128 q4;
     if (!qo_quat_internal_fast_range_ss(r, inv)) return 0;
-    q4 = _mm_mul_ps(v4, QO_QUAT_SIMD_SHUFFLE_PS(inv, 0x00));
+    q4 = _mm_mul_ps(v4, inv);
     if (p > 0 && !_mm_comigt_ss(q4, _mm_setzero_ps())) {
         if (!_mm_comilt_ss(q4, _mm_setzero_ps())) return 0;
         q4 = _mm_sub_ps(_mm_setzero_ps(), q4);   /* -q4, a zero as +0.0 as below */
@@ -453,78 +453,14 @@ qo_status qo_mat3_to_quat_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
     return quat_from_mat3_checked(m, out);
 }
 
-/* The trusted conversion's formula: Shepperd's method with one square root and one divide. The
- * trace is the pivot when t >= 0 (then 4w^2 = 1 + t >= 1), else the largest diagonal entry
- * (then 4p^2 = 1 + 2 m_pp - t >= 1 as well, p that component); v is the pivot vector of
- * mat3_pivot_vector and q = v / (2 sqrt(c)) with c = 4p^2, since |v| = 2 sqrt(c) for a rotation.
- * The sign of the scale makes w >= 0. Returns 0, *out unwritten, where it cannot answer: a
- * non-finite result (NaN/Inf entries, or entries so large that the formula overflows), or
- * w == 0 off the trace pivot (a half turn, where the sign rule looks further). */
-static int quat_from_rotation_fast(const qo_mat3_f32 *m, qo_quat_f32 *out)
-{
-    const float (*a)[3] = m->m;
-    const float t = a[0][0] + a[1][1] + a[2][2];
-    float c, k, w, x, y, z;
-    if (t >= 0.0f) {
-        c = 1.0f + t;
-        w = c;
-        x = a[2][1] - a[1][2];
-        y = a[0][2] - a[2][0];
-        z = a[1][0] - a[0][1];
-        k = 0.5f / qo_fm_sqrt_nonneg(c);
-    } else {
-        if (a[0][0] >= a[1][1] && a[0][0] >= a[2][2]) {
-            c = 1.0f + a[0][0] - a[1][1] - a[2][2];
-            w = a[2][1] - a[1][2];
-            x = c;
-            y = a[0][1] + a[1][0];
-            z = a[0][2] + a[2][0];
-        } else if (a[1][1] >= a[2][2]) {
-            c = 1.0f - a[0][0] + a[1][1] - a[2][2];
-            w = a[0][2] - a[2][0];
-            x = a[0][1] + a[1][0];
-            y = c;
-            z = a[1][2] + a[2][1];
-        } else {
-            c = 1.0f - a[0][0] - a[1][1] + a[2][2];
-            w = a[1][0] - a[0][1];
-            x = a[0][2] + a[2][0];
-            y = a[1][2] + a[2][1];
-            z = c;
-        }
-        /* c > 1 exactly for any matrix that takes this pivot (rounding may take it a hair
-         * lower): clamping at 1 keeps |k| <= 1/2, so no finite v overflows below; NaN gives 1
-         * (and a NaN c fails the test at the end) */
-        k = 0.5f / qo_fm_sqrt_nonneg(c > 1.0f ? c : 1.0f);
-        if (w < 0.0f) k = -k;
-        else if (!(w > 0.0f)) return 0;
-    }
-    /* The four products finite: c is one of the terms, so a NaN/Inf c (k NaN or 0) and a
-     * NaN/Inf v both give a NaN/Inf product, and with |k| <= 1/2 a finite v cannot overflow. */
-    {
-#if QO_QUAT_SIMD_SSE2
-        const __m128 q4 = _mm_mul_ps(_mm_setr_ps(w, x, y, z), _mm_set1_ps(k));
-        const __m128 d = _mm_sub_ps(q4, q4);                  /* NaN exactly where q4 is not finite */
-        if (_mm_movemask_ps(_mm_cmpunord_ps(d, d))) return 0;
-        _mm_storeu_ps(&out->w, _mm_add_ps(q4, _mm_setzero_ps()));   /* -0.0 -> +0.0 */
-#else
-        w *= k; x *= k; y *= k; z *= k;
-        if (!(isfinite(w) && isfinite(x) && isfinite(y) && isfinite(z))) return 0;
-        /* + 0.0f: -0.0 -> +0.0 as qo_quat_canonical_f32 */
-        out->w = w + 0.0f; out->x = x + 0.0f; out->y = y + 0.0f; out->z = z + 0.0f;
-#endif
-    }
-    return 1;
-}
-
-qo_status qo_mat3_to_quat_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
+qo_status qo_mat3_to_quat_trusted_full_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     if (out == NULL) return QO_E_NULL;
     if (m == NULL) {
         *out = qo_quat_identity_f32();
         return QO_E_NULL;
     }
-    if (quat_from_rotation_fast(m, out)) return QO_OK;
+    if (qo_mat3_internal_trusted_f32(m, out)) return QO_OK;
     /* Each pivot branch combines all six off-diagonal entries, so a NaN/Inf there reaches q
      * (and normalising reports it); the diagonal enters through the clamped pivot, which
      * would hide a NaN: the trace catches any non-finite diagonal entry. */

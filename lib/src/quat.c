@@ -38,16 +38,16 @@ float qo_quat_norm_f32(qo_quat_f32 q)
 
 qo_status qo_quat_normalize_full_f32(qo_quat_f32 q, qo_quat_f32 *out)
 {
-    float n, inv, m;
+    float n, r, inv, m;
     if (out == NULL) return QO_E_NULL;
-    /* Fast path (every quaternion in ordinary use): a sum of squares in [1e-30, 1e30] is
-     * finite, so every component is finite (a NaN or Inf would make it NaN or Inf), the
-     * largest component lies in (5e-16, 1e15), well inside the range where the general path
-     * below takes qo_quat_norm_f32's unscaled sqrt - so the result is bit for bit the same,
-     * without the finiteness and scaling passes (measured: 130 -> ~30 instructions, x86-64). */
-    n = q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z;
-    if (n >= 1e-30f && n <= 1e30f) {
-        inv = 1.0f / sqrtf(n);
+    /* The inline fast path's case first, the same expressions and test (every quaternion in
+     * ordinary use): r = sqrt(n) and r / n both >= 1e-15 mean a sum of squares n in ~[1e-30,
+     * 1e30], finite, so every component is finite, and large enough that no square that
+     * matters lost bits to underflow. */
+    n = qo_quat_internal_sumsq_f32(q);
+    r = sqrtf(n);
+    inv = r / n;
+    if (r >= 1e-15f && inv >= 1e-15f) {
         out->w = q.w * inv; out->x = q.x * inv; out->y = q.y * inv; out->z = q.z * inv;
         return QO_OK;
     }

@@ -15,7 +15,8 @@
  *    in registers) against lib/src/convert.c compiled once more with QO_NO_SIMD (nosimd_*), bit
  *    for bit with the status, on rotations of every pivot, half turns, drifted, reflected,
  *    scaled and random matrices, signed zeros and bad entries; rotations also against double;
- *    qo_mat3_to_quat_trusted_f32 (its SSE2 finiteness test and store) on the same matrices.
+ *    qo_mat3_to_quat_trusted_f32 (its SSE2 body: the pivot rows as shuffles of D, S and c, the
+ *    finiteness test and store) on the same matrices.
  * Where SSE2 is not used both sides are the scalar code and only the double check can fail.
  * Linux only (make test, aarch64 and armhf under make test-qemu): it includes private files
  * of lib/src, which keeps it off the Cortex-M list (tests/qemu/run-target.sh is_core).
@@ -81,6 +82,7 @@ qo_status qo_interp_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32
 #define qo_mat3_from_quat_f32 nosimd_quat_to_mat3_f32
 #define qo_mat3_to_quat_f32 nosimd_quat_from_mat3_f32
 #define qo_mat3_to_quat_trusted_f32 nosimd_quat_from_mat3_trusted_f32
+#define qo_mat3_to_quat_trusted_full_f32 nosimd_quat_from_mat3_trusted_full_f32
 #define qo_mat3_orthonormalize_f32 nosimd_mat3_orthonormalize_f32
 #define qo_mat3_to_quat_ortho_f32 nosimd_quat_from_mat3_ortho_f32
 #include "../lib/src/convert.c"
@@ -97,6 +99,7 @@ qo_status qo_interp_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32
 #undef qo_mat3_from_quat_f32
 #undef qo_mat3_to_quat_f32
 #undef qo_mat3_to_quat_trusted_f32
+#undef qo_mat3_to_quat_trusted_full_f32
 #undef qo_mat3_orthonormalize_f32
 #undef qo_mat3_to_quat_ortho_f32
 qo_status qo_mat3_to_quat_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);

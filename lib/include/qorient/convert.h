@@ -7,6 +7,7 @@
  *   convert.mat3_from_quat        qo_mat3_from_quat_full_f32 (its out-of-line path)
  *   convert.mat3_to_quat          qo_mat3_to_quat_f32
  *   convert.mat3_to_quat_trusted  qo_mat3_to_quat_trusted_f32
+ *   convert.mat3_to_quat_trusted  qo_mat3_to_quat_trusted_full_f32 (its out-of-line path)
  *   convert.mat3_to_quat_ortho    qo_mat3_to_quat_ortho_f32
  *   mat3.identity                 qo_mat3_identity_f32
  *   mat3.transpose                qo_mat3_transpose_f32
@@ -35,7 +36,9 @@
  *   qo_mat3_to_quat_f32          rotation matrix -> canonical unit quaternion (strict check)
  *   qo_mat3_orthonormalize_f32   nearest rotation matrix (orthogonal polar factor)
  *   qo_mat3_to_quat_ortho_f32    orthonormalise, then convert (for drifted matrices)
- *   qo_mat3_to_quat_trusted_f32 no rotation check (for matrices known to be rotations)
+ *   qo_mat3_to_quat_trusted_f32  no rotation check (for matrices known to be rotations;
+ *                                static inline fast path)
+ *   qo_mat3_to_quat_trusted_full_f32  its out-of-line complete path
  *   qo_mat3_mul_vec3_f32         M v
  *   qo_mat3_mul_f32              A B
  *   qo_mat3_transpose_f32        M^T
@@ -175,26 +178,9 @@ qo_status qo_mat3_orthonormalize_f32(const qo_mat3_f32 *m, qo_mat3_f32 *out);
  */
 qo_status qo_mat3_to_quat_ortho_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 
-/*
- * Canonical quaternion (w >= 0) of *m for callers whose matrix is KNOWN to be a rotation (built
- * from a quaternion or from rotations, to float rounding), without the rotation check
- * (orthogonality, determinant) of qo_mat3_to_quat_f32. Shepperd's method with one square
- * root and one divide: the pivot is the trace when it is >= 0, else the largest diagonal
- * entry, and q = v / (2 sqrt(c)) for that pivot's vector v and c = 4 p^2 (|v| = 2 sqrt(c) for
- * a rotation, so the pivot vector is not normalised by its own length).
- * Defined for rotation matrices within QO_MAT3_ROTATION_TOL_F32 (max |M^T M - I|): for a
- * float-rounded rotation the result is the same rotation within 1e-6 rad, w >= 0
- * (tests/core/test_convert.c: test_f32_mat3_to_quat_trusted; the worst measured by
- * bench/accuracy_convert.c: docs/FIGURES.md, accuracy); off a rotation by e, |q| is off 1
- * by about e. For any other
- * finite matrix the quaternion is unspecified (not unit, possibly not near any rotation of
- * it), but finite, never NaN, with w >= 0 - use qo_mat3_to_quat_f32 or _ortho_f32 when
- * that can happen.
- * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NONFINITE for a NaN/Inf entry (or
- * entries so large that the formula overflows: not a rotation). *out is the identity on every
- * error.
- */
-qo_status qo_mat3_to_quat_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
+/* qo_mat3_to_quat_trusted_f32's complete path, out of line: the same contract and, for every
+ * input, the same result (including the inline fast path's cases). */
+qo_status qo_mat3_to_quat_trusted_full_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 
 /* M v (no checks; NaN propagates). */
 qo_vec3_f32 qo_mat3_mul_vec3_f32(const qo_mat3_f32 *m, qo_vec3_f32 v);
@@ -218,6 +204,7 @@ float qo_mat3_det_f32(const qo_mat3_f32 *m);
 #if defined(QORIENT_CONVERT_EXTERN_DEFS)
 #define QO_CONVERT_INLINE
 qo_status qo_mat3_from_quat_f32(qo_quat_f32 q, qo_mat3_f32 *out);
+qo_status qo_mat3_to_quat_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 #else
 #define QO_CONVERT_INLINE static inline
 #endif
@@ -297,6 +284,147 @@ QO_CONVERT_INLINE qo_status qo_mat3_from_quat_f32(qo_quat_f32 q, qo_mat3_f32 *ou
     out->m[2][2] = 1.0f - s * (xx + yy);
     return QO_OK;
 #endif
+}
+
+/*
+ * The trusted conversion's formula (also the common case of qo_mat3_to_quat_f32 once its
+ * rotation test passed): Shepperd's method with one square root and one divide. The trace is
+ * the pivot when t = (m00 + m11) + m22 >= 0 (then c = 1 + t = 4w^2 >= 1), else the largest
+ * diagonal entry p (c = 1 + 2 m_pp - t = 4p^2 > 1: c - 1 >= 0 exactly for any matrix that
+ * takes that pivot, so only rounding takes it below 1, and the clamp at 1 keeps |k| <= 1/2:
+ * no finite v overflows and a NaN c gives 1). v is the pivot's row of the symmetric 4x4
+ * matrix 4 q q^T (its pivot entry c, the others sums and differences of opposite
+ * off-diagonal entries) and q = k v with k = 1/(2 sqrt(c)), negative when v's w is, so w >= 0.
+ * Returns 1 with *out = q (-0.0 made +0.0); 0, *out unwritten, where it cannot answer: a
+ * non-finite q (a NaN/Inf entry - every entry reaches q: c through the trace or the pivot
+ * entry - or entries so large that a sum overflows), or w == 0 off the trace pivot (a half
+ * turn, where the canonical sign rule looks further). Internal, not API (see quat.h).
+ */
+static inline int qo_mat3_internal_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
+{
+    /* q = k v with k = 1/(2 sqrt(c)) = sqrt(c) / (c + c) (no constant to load; c + c is exact
+     * but for c above FLT_MAX/2, where k = 0 and q = 0, finite, for such a non-rotation): one
+     * divide and four multiplies (a divide costs several multiplies on a Cortex-M4F, far more
+     * in soft float), k negated when w < 0
+     * ((-k) v is exactly -(k v)); w == 0 or NaN off the trace pivot is left to the caller's
+     * general path. On the trace pivot w = c > 0. */
+#if QO_QUAT_SIMD_SSE2
+    /* The same operations in lanes: the matrix in three loads (rows 0-1 as m00..m10 and
+     * m11..m21, then m22; nothing read past it), A - B and A + B give the differences D and sums
+     * S of opposite off-diagonal entries in lanes 1-3 (w's row of 4 q q^T), and the pivot's row
+     * is two shuffles of D, S and c. The scalar body's t, c and comparisons are lane 0 here. */
+    const __m128 r0 = _mm_loadu_ps(&m->m[0][0]);                     /* m00 m01 m02 m10 */
+    const __m128 r1 = _mm_loadu_ps(&m->m[1][1]);                     /* m11 m12 m20 m21 */
+    const __m128 m22 = _mm_load_ss(&m->m[2][2]);
+    const __m128 one = _mm_set_ss(1.0f), zero = _mm_setzero_ps();
+    const __m128 t4 = _mm_add_ss(_mm_add_ss(r0, r1), m22);
+    const __m128 ab = _mm_shuffle_ps(r1, r0, _MM_SHUFFLE(1, 1, 2, 1));       /* m12 m20 m01 . */
+    const __m128 av = _mm_shuffle_ps(r1, r0, _MM_SHUFFLE(3, 2, 3, 0));       /* . m21 m02 m10 */
+    const __m128 bv = QO_QUAT_SIMD_SHUFFLE_PS(ab, _MM_SHUFFLE(2, 1, 0, 0));  /* . m12 m20 m01 */
+    const __m128 dv = _mm_sub_ps(av, bv), sv = _mm_add_ps(av, bv);
+    __m128 c4, v4, k4, d;
+    if (_mm_comige_ss(t4, zero)) {
+        c4 = _mm_add_ss(t4, one);                                     /* 1 + t */
+        v4 = _mm_move_ss(dv, c4);
+        c4 = QO_QUAT_SIMD_SHUFFLE_PS(c4, 0x00);
+        k4 = _mm_div_ps(_mm_sqrt_ps(c4), _mm_add_ps(c4, c4));
+    } else {
+        if (_mm_comige_ss(r0, r1) && _mm_comige_ss(r0, m22)) {
+            c4 = _mm_sub_ss(_mm_sub_ss(_mm_add_ss(one, r0), r1), m22);
+            v4 = _mm_shuffle_ps(_mm_move_ss(dv, c4), sv, _MM_SHUFFLE(2, 3, 0, 1));
+        } else if (_mm_comige_ss(r1, m22)) {
+            c4 = _mm_sub_ss(_mm_add_ss(_mm_sub_ss(one, r0), r1), m22);
+            v4 = _mm_shuffle_ps(_mm_shuffle_ps(dv, sv, _MM_SHUFFLE(3, 3, 2, 2)),
+                                _mm_move_ss(sv, c4), _MM_SHUFFLE(1, 0, 2, 0));
+        } else {
+            c4 = _mm_add_ss(_mm_sub_ss(_mm_sub_ss(one, r0), r1), m22);
+            v4 = _mm_shuffle_ps(_mm_shuffle_ps(dv, sv, _MM_SHUFFLE(2, 2, 3, 3)),
+                                _mm_move_ss(sv, c4), _MM_SHUFFLE(0, 1, 2, 0));
+        }
+        /* max(c, 1): maxss returns its second operand for a NaN c, as c > 1 ? c : 1 */
+        c4 = QO_QUAT_SIMD_SHUFFLE_PS(_mm_max_ss(c4, one), 0x00);
+        k4 = _mm_div_ps(_mm_sqrt_ps(c4), _mm_add_ps(c4, c4));
+        if (!_mm_comigt_ss(v4, zero)) {
+            if (!_mm_comilt_ss(v4, zero)) return 0;
+            k4 = _mm_sub_ps(zero, k4);
+        }
+    }
+    v4 = _mm_mul_ps(v4, k4);
+    d = _mm_sub_ps(v4, v4);                             /* NaN exactly where q is not finite */
+    if (_mm_movemask_ps(_mm_cmpunord_ps(d, d))) return 0;
+    _mm_storeu_ps(&out->w, _mm_add_ps(v4, zero));       /* -0.0 -> +0.0 */
+#else
+    const float (*a)[3] = m->m;
+    const float t = (a[0][0] + a[1][1]) + a[2][2];
+    float c, w, x, y, z, k;
+    if (t >= 0.0f) {
+        c = 1.0f + t;
+        w = c;
+        x = a[2][1] - a[1][2];
+        y = a[0][2] - a[2][0];
+        z = a[1][0] - a[0][1];
+        k = sqrtf(c) / (c + c);
+    } else {
+        if (a[0][0] >= a[1][1] && a[0][0] >= a[2][2]) {
+            c = ((1.0f + a[0][0]) - a[1][1]) - a[2][2];
+            w = a[2][1] - a[1][2];
+            x = c;
+            y = a[0][1] + a[1][0];
+            z = a[0][2] + a[2][0];
+        } else if (a[1][1] >= a[2][2]) {
+            c = ((1.0f - a[0][0]) + a[1][1]) - a[2][2];
+            w = a[0][2] - a[2][0];
+            x = a[0][1] + a[1][0];
+            y = c;
+            z = a[1][2] + a[2][1];
+        } else {
+            c = ((1.0f - a[0][0]) - a[1][1]) + a[2][2];
+            w = a[1][0] - a[0][1];
+            x = a[0][2] + a[2][0];
+            y = a[1][2] + a[2][1];
+            z = c;
+        }
+        if (!(c > 1.0f)) c = 1.0f;
+        k = sqrtf(c) / (c + c);
+        if (!(w > 0.0f)) {
+            if (!(w < 0.0f)) return 0;
+            k = 0.0f - k;
+        }
+    }
+    w *= k; x *= k; y *= k; z *= k;
+    if (!(isfinite(w) && isfinite(x) && isfinite(y) && isfinite(z))) return 0;
+    /* + 0.0f: -0.0 -> +0.0 as qo_quat_canonical_f32 */
+    out->w = w + 0.0f; out->x = x + 0.0f; out->y = y + 0.0f; out->z = z + 0.0f;
+#endif
+    return 1;
+}
+
+/*
+ * Canonical quaternion (w >= 0) of *m for callers whose matrix is KNOWN to be a rotation (built
+ * from a quaternion or from rotations, to float rounding), without the rotation check
+ * (orthogonality, determinant) of qo_mat3_to_quat_f32. Shepperd's method with one square
+ * root and one divide: the pivot is the trace when it is >= 0, else the largest diagonal
+ * entry, and q = v / (2 sqrt(c)) for that pivot's vector v and c = 4 p^2 (|v| = 2 sqrt(c) for
+ * a rotation, so the pivot vector is not normalised by its own length).
+ * Defined for rotation matrices within QO_MAT3_ROTATION_TOL_F32 (max |M^T M - I|): for a
+ * float-rounded rotation the result is the same rotation within 1e-6 rad, w >= 0
+ * (tests/core/test_convert.c: test_f32_mat3_to_quat_trusted; the worst measured by
+ * bench/accuracy_convert.c: docs/FIGURES.md, accuracy); off a rotation by e, |q| is off 1
+ * by about e. For any other
+ * finite matrix the quaternion is unspecified (not unit, possibly not near any rotation of
+ * it), but finite, never NaN, with w >= 0 - use qo_mat3_to_quat_f32 or _ortho_f32 when
+ * that can happen.
+ * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NONFINITE for a NaN/Inf entry (or
+ * entries so large that the formula overflows: not a rotation). *out is the identity on every
+ * error.
+ * Inline: qo_mat3_internal_trusted_f32's cases (every rotation but a half turn off the trace
+ * pivot) are handled here; the rest (NULL, non-finite, those half turns) by
+ * qo_mat3_to_quat_trusted_full_f32.
+ */
+QO_CONVERT_INLINE qo_status qo_mat3_to_quat_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
+{
+    if (m != NULL && out != NULL && qo_mat3_internal_trusted_f32(m, out)) return QO_OK;
+    return qo_mat3_to_quat_trusted_full_f32(m, out);
 }
 
 #ifdef __cplusplus

@@ -47,9 +47,10 @@
  * clang honours the #pragma STDC FP_CONTRACT OFF below; gcc ignores it, and contracts by
  * default in its GNU modes (-std=gnu99/gnu11) on FMA targets (aarch64, x86-64 with -mfma):
  * there compile with -ffp-contract=off (or -std=c99/c11) for bit-identical results.
- * On SSE2 targets (x86-64) mul, rotate, normalize and qo_mat3_from_quat_f32 have 4-wide bodies
- * with the scalar code's per-component rounding order, so the bits are the same (see
- * QO_QUAT_SIMD_SSE2 below; tests/core/test_quat.c compares both bodies on 1e6 inputs).
+ * On SSE2 targets (x86-64) mul, rotate, normalize, qo_mat3_from_quat_f32 and
+ * qo_mat3_to_quat_trusted_f32 have 4-wide bodies with the scalar code's per-component
+ * rounding order, so the bits are the same (see QO_QUAT_SIMD_SSE2 below; tests/core/test_quat.c
+ * and test_simd_bodies.c compare both bodies on random inputs).
  */
 #ifndef QORIENT_QUAT_H
 #define QORIENT_QUAT_H
@@ -172,14 +173,26 @@ static inline __m128 qo_quat_internal_cross_ps(__m128 uyzx, __m128 uzxy, __m128 
 #endif
 
 #if QO_QUAT_SIMD_SSE2
-/* The inline fast range of normalize and to_mat3, from r = sqrt(n) and inv = 1/r in lane 0
- * (n = |q|^2): 1 when both are >= 1e-15, i.e. n in ~[1e-30, 1e30] - q finite, non-zero and
- * needing no range scaling. One minss and one comparison; a NaN n gives a NaN min, which
+/* The inline fast range of normalize and to_mat3, from r = sqrt(n) and inv ~ 1/r (1/r in
+ * to_mat3, r/n in normalize) in lane 0 (n = |q|^2): 1 when both are >= 1e-15, i.e. n in
+ * ~[1e-30, 1e30] - q finite, non-zero and needing no range scaling. One minss and one comparison; a NaN n gives a NaN min, which
  * fails. The scalar bodies test r >= 1e-15f && inv >= 1e-15f: the same predicate.
  * Internal, not API (see above). */
 static inline int qo_quat_internal_fast_range_ss(__m128 r, __m128 inv)
 {
     return _mm_comige_ss(_mm_min_ss(r, inv), _mm_set_ss(1e-15f));
+}
+
+/* (ww + yy) + (xx + zz) in every lane, from q in lanes (w, x, y, z): the squared norm of
+ * qo_quat_normalize_f32 as qo_quat_internal_sumsq_f32 computes it. Two swaps and two adds;
+ * each lane adds the same two pairs (in the other order, which addition does not see), so the
+ * sum comes out broadcast and the square root, reciprocal and scaling that follow are 4-wide
+ * with no shuffle. Internal, not API (see above). */
+static inline __m128 qo_quat_internal_sumsq_ps(__m128 q4)
+{
+    const __m128 sq = _mm_mul_ps(q4, q4);
+    const __m128 h = _mm_add_ps(sq, QO_QUAT_SIMD_SHUFFLE_PS(sq, _MM_SHUFFLE(1, 0, 3, 2)));
+    return _mm_add_ps(h, QO_QUAT_SIMD_SHUFFLE_PS(h, _MM_SHUFFLE(2, 3, 0, 1)));
 }
 
 /* The quaternion in the lanes (w, x, y, z) of v, lane by lane, for the out-of-line call of a
@@ -195,6 +208,13 @@ static inline qo_quat_f32 qo_quat_internal_from_ps(__m128 v)
     return q;
 }
 #endif
+
+/* (ww + yy) + (xx + zz): the squared norm in qo_quat_normalize_f32's order (pairwise, as its
+ * SSE2 body adds). Internal, not API (see above). */
+static inline float qo_quat_internal_sumsq_f32(qo_quat_f32 q)
+{
+    return (q.w * q.w + q.y * q.y) + (q.x * q.x + q.z * q.z);
+}
 
 /* The identity rotation (1, 0, 0, 0). */
 QO_QUAT_INLINE qo_quat_f32 qo_quat_identity_f32(void)
@@ -294,26 +314,28 @@ QO_QUAT_INLINE qo_vec3_f32 qo_quat_rotate_f32(qo_quat_f32 q, qo_vec3_f32 v)
  * Returns QO_OK; QO_E_NULL if out is NULL; QO_E_NONFINITE if a component is NaN or Inf;
  * QO_E_DEGENERATE if |q| == 0 (also for subnormal-only inputs whose norm underflows).
  * On any error *out is the identity. The sign of q is kept.
- * Inline fast path: r = sqrt(sum of squares) and 1/r both >= 1e-15 (the sum in ~[1e-30, 1e30])
- * means every component is finite and no range scaling is needed, so q * (1/r) is the whole
- * answer (bit for bit what the full path computes); anything else goes to
- * qo_quat_normalize_full_f32. */
+ * Each component is q_i * inv with n = (ww + yy) + (xx + zz), r = sqrt(n) and inv = r / n
+ * (= 1/|q|, with no constant 1 to load): one divide and four multiplies (a divide costs
+ * several multiplies on a Cortex-M4F and far more in soft float).
+ * Inline fast path: r and inv both >= 1e-15 (n in ~[1e-30, 1e30]) means every component is
+ * finite and no range scaling is needed, so q * inv is the whole answer (bit for bit what the
+ * full path computes); anything else goes to qo_quat_normalize_full_f32. */
 QO_QUAT_INLINE qo_status qo_quat_normalize_f32(qo_quat_f32 q, qo_quat_f32 *out)
 {
 #if QO_QUAT_SIMD_SSE2
-    /* The same operations lane for lane: squares 4-wide, the sum in lane 0 in the scalar order,
-     * sqrtss (correctly rounded like sqrtf, and without libm's errno branch), the range test
-     * on r and 1/r as the scalar body's. */
-    const __m128 q4 = _mm_loadu_ps(&q.w);
-    const __m128 r = _mm_sqrt_ss(qo_quat_internal_sum4_ss(_mm_mul_ps(q4, q4)));
-    const __m128 inv = _mm_div_ss(_mm_set_ss(1.0f), r);
+    /* The same operations lane for lane, 4-wide on the broadcast sum: sqrtps (correctly
+     * rounded like sqrtf, and without libm's errno branch), r / n, the range test on lane 0 as
+     * the scalar body's, the scaling. */
+    const __m128 q4 = _mm_loadu_ps(&q.w), n = qo_quat_internal_sumsq_ps(q4);
+    const __m128 r = _mm_sqrt_ps(n);
+    const __m128 inv = _mm_div_ps(r, n);
     if (out != NULL && qo_quat_internal_fast_range_ss(r, inv)) {
-        _mm_storeu_ps(&out->w, _mm_mul_ps(q4, _mm_shuffle_ps(inv, inv, 0)));
+        _mm_storeu_ps(&out->w, _mm_mul_ps(q4, inv));
         return QO_OK;
     }
     return qo_quat_normalize_full_f32(qo_quat_internal_from_ps(q4), out);
 #else
-    float r = sqrtf(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z), inv = 1.0f / r;
+    float n = qo_quat_internal_sumsq_f32(q), r = sqrtf(n), inv = r / n;
     if (out != NULL && r >= 1e-15f && inv >= 1e-15f) {
         out->w = q.w * inv; out->x = q.x * inv; out->y = q.y * inv; out->z = q.z * inv;
         return QO_OK;
