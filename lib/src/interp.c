@@ -306,8 +306,8 @@ static void slerp_half_weights(float t, float x, float *wa, float *wb)
 }
 
 /* t == 0 or t == 1 in the one-pass case: the endpoints are qo_quat_normalize_f32's own result
- * (the squared norms are in its fast range, so it cannot fail), b' = -b negated after it
- * (negation is exact). */
+ * (the squared norms are in [1e-30, 1e30], finite and non-zero, so it cannot fail), b' = -b
+ * negated after it (negation is exact). */
 static qo_status slerp_end(qo_quat_f32 a, qo_quat_f32 b, float t, int flip, qo_quat_f32 *out)
 {
     (void)qo_quat_normalize_f32(t == 0.0f ? a : b, out);
@@ -317,11 +317,12 @@ static qo_status slerp_end(qo_quat_f32 a, qo_quat_f32 b, float t, int flip, qo_q
 
 qo_status qo_interp_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32 *out)
 {
-    /* The common case in one pass: both squared norms in qo_quat_normalize_f32's fast range
-     * (so finite and non-zero) and t in [0, 1]. Everything else - every error, NaN t, inputs
+    /* The common case in one pass: both squared norms in [1e-30, 1e30] (so finite, non-zero
+     * and needing no scaling) and t in [0, 1]. Everything else - every error, NaN t, inputs
      * that need scaling - takes slerp_common (same contract; its endpoints are these bits).
-     * a * ia is unit a, bit for bit as qo_quat_normalize_f32; x = cos th; b' = -b (ib < 0)
-     * for the short way. The output is normalised (its norm is 1 to a few ulp before). */
+     * a * ia is unit a (ia = 1/sqrt(a.a), the dot product summed left to right, as the SSE2
+     * body's columns); x = cos th; b' = -b (ib < 0) for the short way. The output goes
+     * through qo_quat_normalize_f32 (its norm is 1 to a few ulp before). */
     float ia, ib, x, wa, wb;
 #if QO_QUAT_SIMD_SSE2
     /* The three dot products a.a, b.b, a.b at once: the products transposed to columns and

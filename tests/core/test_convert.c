@@ -814,7 +814,9 @@ static void test_f32_mat3_to_quat_trusted_domain(void **state)
             overflow++;
             continue;
         }
-        if (st != QO_OK || !qo_quat_is_finite_f32(q) || !(q.w >= 0.0f)) {
+        /* never the zero quaternion (it is no rotation at all): k stays > 0 however large c */
+        if (st != QO_OK || !qo_quat_is_finite_f32(q) || !(q.w >= 0.0f) ||
+            !(qo_quat_dot_f32(q, q) > 0.0f)) {
             print_mf("m", &m);
             print_q("got", q);
             fail_msg("trusted finite case %d: status %d", n, (int)st);
@@ -822,6 +824,28 @@ static void test_f32_mat3_to_quat_trusted_domain(void **state)
     }
     /* both outcomes were reached */
     assert_true(overflow > 0 && overflow < 20 * N_F32);
+    {
+        /* Found by review: diag(1e38, 1e38, 0) made c + c overflow, k = 0 and q = 0 with QO_OK
+         * (c is now clamped at FLT_MAX/2 for k); and a half turn whose w only underflows to 0
+         * (a subnormal off-diagonal) came out (0, -1, 0, 0), not canonical: the sign is now
+         * decided on q, so it takes the canonical path like qo_mat3_to_quat_f32. */
+        qo_mat3_f32 m;
+        qo_quat_f32 q, qc;
+        memset(&m, 0, sizeof m);
+        m.m[0][0] = 1e38f; m.m[1][1] = 1e38f;
+        assert_int_equal(qo_mat3_to_quat_trusted_f32(&m, &q), QO_OK);
+        assert_true(qo_quat_is_finite_f32(q) && q.w >= 0.0f && qo_quat_dot_f32(q, q) > 0.0f);
+        m = qo_mat3_identity_f32();
+        m.m[1][1] = -1.0f; m.m[2][2] = -1.0f; m.m[1][2] = 0x1p-149f;
+        assert_int_equal(qo_mat3_to_quat_trusted_f32(&m, &q), QO_OK);
+        assert_int_equal(qo_mat3_to_quat_f32(&m, &qc), QO_OK);
+        if (!(q.w == 0.0f && q.x == 1.0f && q.y == 0.0f && q.z == 0.0f) ||
+            memcmp(&q, &qc, sizeof q) != 0) {
+            print_q("trusted", q);
+            print_q("checked", qc);
+            fail_msg("trusted: half turn about x with a subnormal entry is not (0, 1, 0, 0)");
+        }
+    }
     print_message("trusted: drift 1e-5 worst %.3g rad, |q| off 1 by %.3g; %d of %d random finite "
                   "matrices overflow\n", worst, worst_norm, overflow, 20 * N_F32);
 }

@@ -54,6 +54,7 @@
 #ifndef QORIENT_CONVERT_H
 #define QORIENT_CONVERT_H
 
+#include <float.h>
 #include <math.h>
 #include <stddef.h>
 
@@ -287,27 +288,26 @@ QO_CONVERT_INLINE qo_status qo_mat3_from_quat_f32(qo_quat_f32 q, qo_mat3_f32 *ou
 }
 
 /*
- * The trusted conversion's formula (also the common case of qo_mat3_to_quat_f32 once its
- * rotation test passed): Shepperd's method with one square root and one divide. The trace is
- * the pivot when t = (m00 + m11) + m22 >= 0 (then c = 1 + t = 4w^2 >= 1), else the largest
- * diagonal entry p (c = 1 + 2 m_pp - t = 4p^2 > 1: c - 1 >= 0 exactly for any matrix that
- * takes that pivot, so only rounding takes it below 1, and the clamp at 1 keeps |k| <= 1/2:
- * no finite v overflows and a NaN c gives 1). v is the pivot's row of the symmetric 4x4
- * matrix 4 q q^T (its pivot entry c, the others sums and differences of opposite
- * off-diagonal entries) and q = k v with k = 1/(2 sqrt(c)), negative when v's w is, so w >= 0.
+ * The trusted conversion's formula: Shepperd's method with one square root and one divide
+ * (qo_mat3_to_quat_f32 pivots on the largest of trace and diagonal and normalises the pivot's
+ * vector instead, lib/src/convert.c's mat3_pivot_vector). The trace is the pivot when
+ * t = (m00 + m11) + m22 >= 0 (then c = 1 + t = 4w^2 >= 1), else the largest diagonal entry p
+ * (c = 1 + 2 m_pp - t = 4p^2 > 1: c - 1 >= 0 exactly for any matrix that takes that pivot, so
+ * only rounding takes it below 1). v is the pivot's row of the symmetric 4x4 matrix 4 q q^T
+ * (its pivot entry c, the others sums and differences of opposite off-diagonal entries) and
+ * q = k v with k = 1/(2 sqrt(c)) = sqrt(c) / (c + c) (no constant to load), computed from c
+ * clamped to [1, FLT_MAX/2]: |k| <= 1/2, so no finite v overflows, c + c is exact, and k > 0
+ * (a NaN c gives 1; the pivot entry of q keeps the unclamped c). One divide and four
+ * multiplies: a divide costs several multiplies on a Cortex-M4F, far more in soft float.
+ * The sign: q negated when its w < 0 (0 - q: exact); on the trace pivot w = c k > 0.
  * Returns 1 with *out = q (-0.0 made +0.0); 0, *out unwritten, where it cannot answer: a
  * non-finite q (a NaN/Inf entry - every entry reaches q: c through the trace or the pivot
- * entry - or entries so large that a sum overflows), or w == 0 off the trace pivot (a half
- * turn, where the canonical sign rule looks further). Internal, not API (see quat.h).
+ * entry - or entries so large that a sum overflows), or q's w == 0 (a half turn, where the
+ * canonical sign rule looks further, also when w only underflowed to 0). Internal, not API
+ * (see quat.h).
  */
 static inline int qo_mat3_internal_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
-    /* q = k v with k = 1/(2 sqrt(c)) = sqrt(c) / (c + c) (no constant to load; c + c is exact
-     * but for c above FLT_MAX/2, where k = 0 and q = 0, finite, for such a non-rotation): one
-     * divide and four multiplies (a divide costs several multiplies on a Cortex-M4F, far more
-     * in soft float), k negated when w < 0
-     * ((-k) v is exactly -(k v)); w == 0 or NaN off the trace pivot is left to the caller's
-     * general path. On the trace pivot w = c > 0. */
 #if QO_QUAT_SIMD_SSE2
     /* The same operations in lanes: the matrix in three loads (rows 0-1 as m00..m10 and
      * m11..m21, then m22; nothing read past it), A - B and A + B give the differences D and sums
@@ -322,12 +322,13 @@ static inline int qo_mat3_internal_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32
     const __m128 av = _mm_shuffle_ps(r1, r0, _MM_SHUFFLE(3, 2, 3, 0));       /* . m21 m02 m10 */
     const __m128 bv = QO_QUAT_SIMD_SHUFFLE_PS(ab, _MM_SHUFFLE(2, 1, 0, 0));  /* . m12 m20 m01 */
     const __m128 dv = _mm_sub_ps(av, bv), sv = _mm_add_ps(av, bv);
-    __m128 c4, v4, k4, d;
+    const __m128 cmax = _mm_set_ss(0.5f * FLT_MAX);
+    __m128 c4, v4, d;
     if (_mm_comige_ss(t4, zero)) {
-        c4 = _mm_add_ss(t4, one);                                     /* 1 + t */
+        c4 = _mm_add_ss(t4, one);                                     /* 1 + t >= 1 */
         v4 = _mm_move_ss(dv, c4);
-        c4 = QO_QUAT_SIMD_SHUFFLE_PS(c4, 0x00);
-        k4 = _mm_div_ps(_mm_sqrt_ps(c4), _mm_add_ps(c4, c4));
+        c4 = QO_QUAT_SIMD_SHUFFLE_PS(_mm_min_ss(c4, cmax), 0x00);
+        v4 = _mm_mul_ps(v4, _mm_div_ps(_mm_sqrt_ps(c4), _mm_add_ps(c4, c4)));
     } else {
         if (_mm_comige_ss(r0, r1) && _mm_comige_ss(r0, m22)) {
             c4 = _mm_sub_ss(_mm_sub_ss(_mm_add_ss(one, r0), r1), m22);
@@ -341,29 +342,31 @@ static inline int qo_mat3_internal_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32
             v4 = _mm_shuffle_ps(_mm_shuffle_ps(dv, sv, _MM_SHUFFLE(2, 2, 3, 3)),
                                 _mm_move_ss(sv, c4), _MM_SHUFFLE(0, 1, 2, 0));
         }
-        /* max(c, 1): maxss returns its second operand for a NaN c, as c > 1 ? c : 1 */
-        c4 = QO_QUAT_SIMD_SHUFFLE_PS(_mm_max_ss(c4, one), 0x00);
-        k4 = _mm_div_ps(_mm_sqrt_ps(c4), _mm_add_ps(c4, c4));
+        /* min(max(c, 1), FLT_MAX/2) as the scalar body's comparisons: maxss returns its second
+         * operand, 1, for a NaN c */
+        c4 = QO_QUAT_SIMD_SHUFFLE_PS(_mm_min_ss(_mm_max_ss(c4, one), cmax), 0x00);
+        v4 = _mm_mul_ps(v4, _mm_div_ps(_mm_sqrt_ps(c4), _mm_add_ps(c4, c4)));
         if (!_mm_comigt_ss(v4, zero)) {
             if (!_mm_comilt_ss(v4, zero)) return 0;
-            k4 = _mm_sub_ps(zero, k4);
+            v4 = _mm_sub_ps(zero, v4);
         }
     }
-    v4 = _mm_mul_ps(v4, k4);
     d = _mm_sub_ps(v4, v4);                             /* NaN exactly where q is not finite */
     if (_mm_movemask_ps(_mm_cmpunord_ps(d, d))) return 0;
     _mm_storeu_ps(&out->w, _mm_add_ps(v4, zero));       /* -0.0 -> +0.0 */
 #else
     const float (*a)[3] = m->m;
-    const float t = (a[0][0] + a[1][1]) + a[2][2];
+    const float t = (a[0][0] + a[1][1]) + a[2][2], cmax = 0.5f * FLT_MAX;
     float c, w, x, y, z, k;
     if (t >= 0.0f) {
-        c = 1.0f + t;
+        c = 1.0f + t;                                                 /* >= 1 */
         w = c;
         x = a[2][1] - a[1][2];
         y = a[0][2] - a[2][0];
         z = a[1][0] - a[0][1];
+        c = c < cmax ? c : cmax;
         k = sqrtf(c) / (c + c);
+        w *= k; x *= k; y *= k; z *= k;
     } else {
         if (a[0][0] >= a[1][1] && a[0][0] >= a[2][2]) {
             c = ((1.0f + a[0][0]) - a[1][1]) - a[2][2];
@@ -384,14 +387,15 @@ static inline int qo_mat3_internal_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32
             y = a[1][2] + a[2][1];
             z = c;
         }
-        if (!(c > 1.0f)) c = 1.0f;
+        c = c > 1.0f ? c : 1.0f;
+        c = c < cmax ? c : cmax;
         k = sqrtf(c) / (c + c);
+        w *= k; x *= k; y *= k; z *= k;
         if (!(w > 0.0f)) {
             if (!(w < 0.0f)) return 0;
-            k = 0.0f - k;
+            w = 0.0f - w; x = 0.0f - x; y = 0.0f - y; z = 0.0f - z;
         }
     }
-    w *= k; x *= k; y *= k; z *= k;
     if (!(isfinite(w) && isfinite(x) && isfinite(y) && isfinite(z))) return 0;
     /* + 0.0f: -0.0 -> +0.0 as qo_quat_canonical_f32 */
     out->w = w + 0.0f; out->x = x + 0.0f; out->y = y + 0.0f; out->z = z + 0.0f;
