@@ -339,11 +339,8 @@ static inline int quat_from_pivot_sse2(const qo_mat3_f32 *m, qo_quat_f32 *out)
     qo_quat_f32 v;
     const int p = mat3_pivot_vector(m, &v);
     const __m128 v4 = _mm_setr_ps(v.w, v.x, v.y, v.z);
-    const __m128 n = qo_quat_internal_sumsq_ps(v4), r = _mm_sqrt_ps(n);
-    const __m128 inv = _mm_div_ps(r, n);
     __m128 q4;
-    if (!qo_quat_internal_fast_range_ss(r, inv)) return 0;
-    q4 = _mm_mul_ps(v4, inv);
+    if (!qo_quat_internal_normalize_ps(v4, &q4)) return 0;
     if (p > 0 && !_mm_comigt_ss(q4, _mm_setzero_ps())) {
         if (!_mm_comilt_ss(q4, _mm_setzero_ps())) return 0;
         q4 = _mm_sub_ps(_mm_setzero_ps(), q4);   /* -q4, a zero as +0.0 as below */

@@ -351,8 +351,8 @@ qo_status qo_interp_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32
     slerp_half_weights(t, x, &wa, &wb);
     /* comb_q and qo_quat_normalize_f32's SSE2 body (|r| ~ 1 is in its fast range) */
     r4 = _mm_add_ps(_mm_mul_ps(_mm_set1_ps(wa * ia), a4), _mm_mul_ps(_mm_set1_ps(wb * ib), b4));
-    s = qo_quat_internal_sumsq_ps(r4);
-    _mm_storeu_ps(&out->w, _mm_mul_ps(r4, _mm_div_ps(_mm_sqrt_ps(s), s)));
+    (void)qo_quat_internal_normalize_ps(r4, &r4);
+    _mm_storeu_ps(&out->w, r4);
 #else
     float na = qo_quat_dot_f32(a, a), nb = qo_quat_dot_f32(b, b);
     if (out == NULL || !(na >= 1e-30f && na <= 1e30f && nb >= 1e-30f && nb <= 1e30f &&

@@ -175,9 +175,9 @@ static inline __m128 qo_quat_internal_cross_ps(__m128 uyzx, __m128 uzxy, __m128 
 #if QO_QUAT_SIMD_SSE2
 /* The inline fast range of normalize and to_mat3, from r = sqrt(n) and inv ~ 1/r (1/r in
  * to_mat3, r/n in normalize) in lane 0 (n = |q|^2): 1 when both are >= 1e-15, i.e. n in
- * ~[1e-30, 1e30] - q finite, non-zero and needing no range scaling. One minss and one comparison; a NaN n gives a NaN min, which
- * fails. The scalar bodies test r >= 1e-15f && inv >= 1e-15f: the same predicate.
- * Internal, not API (see above). */
+ * ~[1e-30, 1e30] - q finite, non-zero and needing no range scaling. One minss and one
+ * comparison; a NaN n gives a NaN min, which fails. The scalar bodies test
+ * r >= 1e-15f && inv >= 1e-15f: the same predicate. Internal, not API (see above). */
 static inline int qo_quat_internal_fast_range_ss(__m128 r, __m128 inv)
 {
     return _mm_comige_ss(_mm_min_ss(r, inv), _mm_set_ss(1e-15f));
@@ -193,6 +193,18 @@ static inline __m128 qo_quat_internal_sumsq_ps(__m128 q4)
     const __m128 sq = _mm_mul_ps(q4, q4);
     const __m128 h = _mm_add_ps(sq, QO_QUAT_SIMD_SHUFFLE_PS(sq, _MM_SHUFFLE(1, 0, 3, 2)));
     return _mm_add_ps(h, QO_QUAT_SIMD_SHUFFLE_PS(h, _MM_SHUFFLE(2, 3, 0, 1)));
+}
+
+/* qo_quat_normalize_f32's fast path in lanes, its one home (normalize, the validating matrix
+ * conversion's pivot vector, slerp's result): n = (ww + yy) + (xx + zz) broadcast, r = sqrt(n),
+ * inv = r / n, *u = q * inv. Returns qo_quat_internal_fast_range_ss(r, inv): 1 when *u is
+ * normalize's answer; 0 when q needs its full path (*u is then meaningless). Internal, not
+ * API (see above). */
+static inline int qo_quat_internal_normalize_ps(__m128 q4, __m128 *u)
+{
+    const __m128 n = qo_quat_internal_sumsq_ps(q4), r = _mm_sqrt_ps(n), inv = _mm_div_ps(r, n);
+    *u = _mm_mul_ps(q4, inv);
+    return qo_quat_internal_fast_range_ss(r, inv);
 }
 
 /* The quaternion in the lanes (w, x, y, z) of v, lane by lane, for the out-of-line call of a
@@ -326,11 +338,10 @@ QO_QUAT_INLINE qo_status qo_quat_normalize_f32(qo_quat_f32 q, qo_quat_f32 *out)
     /* The same operations lane for lane, 4-wide on the broadcast sum: sqrtps (correctly
      * rounded like sqrtf, and without libm's errno branch), r / n, the range test on lane 0 as
      * the scalar body's, the scaling. */
-    const __m128 q4 = _mm_loadu_ps(&q.w), n = qo_quat_internal_sumsq_ps(q4);
-    const __m128 r = _mm_sqrt_ps(n);
-    const __m128 inv = _mm_div_ps(r, n);
-    if (out != NULL && qo_quat_internal_fast_range_ss(r, inv)) {
-        _mm_storeu_ps(&out->w, _mm_mul_ps(q4, inv));
+    const __m128 q4 = _mm_loadu_ps(&q.w);
+    __m128 u;
+    if (out != NULL && qo_quat_internal_normalize_ps(q4, &u)) {
+        _mm_storeu_ps(&out->w, u);
         return QO_OK;
     }
     return qo_quat_normalize_full_f32(qo_quat_internal_from_ps(q4), out);
