@@ -32,16 +32,7 @@
 #else
 #define CONV_COLD
 #endif
-/* quat_from_pivot is rare only where quat_from_pivot_sse2 answers first */
-#if QO_QUAT_SIMD_SSE2
-#define CONV_COLD_SSE2 CONV_COLD
-#else
-#define CONV_COLD_SSE2
-#endif
 
-/* Largest max|M^T M - I| that qo_mat3_to_quat_f32 converts without projecting onto the
- * nearest rotation first: ~4 float32 ulps of 1, above the ~2e-7 of a rounded rotation. */
-#define CONV_SHEPPERD_DIRECT_TOL 5e-7f
 
 static qo_vec3_f32 vec3(float x, float y, float z)
 {
@@ -328,36 +319,11 @@ static inline int mat3_pivot_vector(const qo_mat3_f32 *m, qo_quat_f32 *out)
  * that the formula overflows, is reported by the normaliser). The pivot component p of a
  * rotation's result is positive (>= 1/2), so qo_quat_canonical_f32's choice of sign only
  * looks at the components before it: none for the trace pivot (w). */
-#if QO_QUAT_SIMD_SSE2
-/* quat_from_pivot's common case in registers, the same operations: the pivot vector,
- * qo_quat_normalize_f32's SSE2 fast path, the sign flip when w < 0 off the trace pivot, -0.0
- * made +0.0. Returns 0 with *out unwritten for the rest (w == 0 off the trace pivot, NaN, a
- * vector outside the fast range), which quat_from_pivot's general code decides. Inline in
- * qo_mat3_to_quat_f32's direct path, so the common case makes no call. */
-static inline int quat_from_pivot_sse2(const qo_mat3_f32 *m, qo_quat_f32 *out)
-{
-    qo_quat_f32 v;
-    const int p = mat3_pivot_vector(m, &v);
-    const __m128 v4 = _mm_setr_ps(v.w, v.x, v.y, v.z);
-    __m128 q4;
-    if (!qo_quat_internal_normalize_ps(v4, &q4)) return 0;
-    if (p > 0 && !_mm_comigt_ss(q4, _mm_setzero_ps())) {
-        if (!_mm_comilt_ss(q4, _mm_setzero_ps())) return 0;
-        q4 = _mm_sub_ps(_mm_setzero_ps(), q4);   /* -q4, a zero as +0.0 as below */
-    }
-    _mm_storeu_ps(&out->w, _mm_add_ps(q4, _mm_setzero_ps()));
-    return 1;
-}
-#endif
-
-static CONV_COLD_SSE2 qo_status quat_from_pivot(const qo_mat3_f32 *m, qo_quat_f32 *out)
+static CONV_COLD qo_status quat_from_pivot(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     qo_quat_f32 v;
     int p, flip;
     qo_status st;
-#if QO_QUAT_SIMD_SSE2
-    if (quat_from_pivot_sse2(m, out)) return QO_OK;
-#endif
     p = mat3_pivot_vector(m, &v);
     st = qo_quat_normalize_f32(v, out);
     if (st != QO_OK) return st;
@@ -370,7 +336,8 @@ static CONV_COLD_SSE2 qo_status quat_from_pivot(const qo_mat3_f32 *m, qo_quat_f3
     return QO_OK;
 }
 
-/* The full check of qo_mat3_to_quat_f32, for the matrices the fast test below does not pass. */
+/* The full check of qo_mat3_to_quat_f32, for the matrices qo_mat3_internal_is_rotation_f32 and
+ * the direct formula do not answer. */
 static CONV_COLD qo_status quat_from_mat3_checked(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     qo_mat3_f32 r;
@@ -387,66 +354,24 @@ static CONV_COLD qo_status quat_from_mat3_checked(const qo_mat3_f32 *m, qo_quat_
      * rotation (measured). A float32-rounded rotation has e ~ 2e-7 and goes straight through;
      * anything further off (but accepted) is first projected onto the nearest rotation, which
      * takes one or two Newton steps at this distance. */
-    if (orth > CONV_SHEPPERD_DIRECT_TOL) {
+    if (orth > QO_MAT3_INTERNAL_DIRECT_TOL_F32) {
         if (qo_mat3_orthonormalize_f32(m, &r) != QO_OK) return QO_E_NOT_ROTATION;
         m = &r;
     }
     return quat_from_pivot(m, out) == QO_OK ? QO_OK : QO_E_NOT_ROTATION;
 }
 
-/* 1 when every |(M^T M - I)_ij| <= CONV_SHEPPERD_DIRECT_TOL and det M > 0 (NaN fails): the
- * matrices quat_from_mat3_checked sends straight to the pivot formula, decided with the same
- * dot products and determinant in the same rounding order, so both paths give the same bits. */
-static int mat3_is_rotation_direct(const qo_mat3_f32 *m)
-{
-#if QO_QUAT_SIMD_SSE2
-    /* Rows as lanes (x, y, z, unused): lane j of sum_i r_i * r_i is column j's squared norm,
-     * of sum_i r_i * r_i.yzx the dot of columns j and j+1 (mod 3), each summed over the rows
-     * in the scalar order. Row 2 is loaded from m[1][2] on, so no read passes the matrix. */
-    const __m128 r0 = _mm_loadu_ps(&m->m[0][0]), r1 = _mm_loadu_ps(&m->m[1][0]);
-    const __m128 r2 = QO_QUAT_SIMD_SHUFFLE_PS(_mm_loadu_ps(&m->m[1][2]), _MM_SHUFFLE(3, 3, 2, 1));
-    const __m128 r1yzx = QO_QUAT_SIMD_SHUFFLE_PS(r1, _MM_SHUFFLE(3, 0, 2, 1));
-    const __m128 r1zxy = QO_QUAT_SIMD_SHUFFLE_PS(r1, _MM_SHUFFLE(3, 1, 0, 2));
-    /* lane 3 of the constants is unused: a constant that is not four equal lanes is read from
-     * memory by the instruction that uses it, where gcc 12 builds a uniform one in two */
-    const __m128 tol = _mm_setr_ps(CONV_SHEPPERD_DIRECT_TOL, CONV_SHEPPERD_DIRECT_TOL,
-                                   CONV_SHEPPERD_DIRECT_TOL, 0.0f);
-    const __m128 abs = _mm_castsi128_ps(_mm_setr_epi32(0x7fffffff, 0x7fffffff, 0x7fffffff, 0));
-    __m128 d = _mm_add_ps(_mm_add_ps(_mm_mul_ps(r0, r0), _mm_mul_ps(r1, r1)), _mm_mul_ps(r2, r2));
-    __m128 o = _mm_add_ps(_mm_add_ps(_mm_mul_ps(r0, QO_QUAT_SIMD_SHUFFLE_PS(r0, _MM_SHUFFLE(3, 0, 2, 1))),
-                                     _mm_mul_ps(r1, r1yzx)),
-                          _mm_mul_ps(r2, QO_QUAT_SIMD_SHUFFLE_PS(r2, _MM_SHUFFLE(3, 0, 2, 1))));
-    __m128 c;
-    d = _mm_and_ps(_mm_sub_ps(d, _mm_setr_ps(1.0f, 1.0f, 1.0f, 0.0f)), abs);
-    o = _mm_and_ps(o, abs);
-    /* a lane fails when the larger of the two is above tol or NaN. max returns its second
-     * operand when either is NaN, and o is NaN wherever d is (a NaN entry of column j is in
-     * both d_j and o_j), so no NaN is lost. */
-    if (_mm_movemask_ps(_mm_cmpnle_ps(_mm_max_ps(d, o), tol)) & 7) return 0;
-    /* det = r0 . (r1 x r2), summed ((p0 + p1) + p2) as qo_mat3_det_f32 */
-    c = _mm_mul_ps(r0, qo_quat_internal_cross_ps(r1yzx, r1zxy, r2));
-    c = _mm_add_ss(_mm_add_ss(c, QO_QUAT_SIMD_SHUFFLE_PS(c, 0x55)), QO_QUAT_SIMD_SHUFFLE_PS(c, 0xaa));
-    return _mm_comigt_ss(c, _mm_setzero_ps());
-#else
-    return mat3_orthogonality_error(m) <= CONV_SHEPPERD_DIRECT_TOL && qo_mat3_det_f32(m) > 0.0f;
-#endif
-}
-
-qo_status qo_mat3_to_quat_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
+qo_status qo_mat3_to_quat_full_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
     if (out == NULL) return QO_E_NULL;
     if (m == NULL) {
         *out = qo_quat_identity_f32();
         return QO_E_NULL;
     }
-    /* A float32-rounded rotation (max |M^T M - I| ~ 2e-7) takes the direct test and the pivot
-     * formula; everything else the full check (tolerance, projection, error triage). */
-    if (mat3_is_rotation_direct(m)) {
-#if QO_QUAT_SIMD_SSE2
-        if (quat_from_pivot_sse2(m, out)) return QO_OK;
-#endif
-        if (quat_from_pivot(m, out) == QO_OK) return QO_OK;
-    }
+    /* A float32-rounded rotation takes the trusted formula (as the inline function); the rest
+     * (its half turns off the trace pivot, everything further off) the full check. */
+    if (qo_mat3_internal_is_rotation_f32(m) && qo_mat3_internal_shepperd_f32(m, out, 1))
+        return QO_OK;
     return quat_from_mat3_checked(m, out);
 }
 
@@ -457,7 +382,7 @@ qo_status qo_mat3_to_quat_trusted_full_f32(const qo_mat3_f32 *m, qo_quat_f32 *ou
         *out = qo_quat_identity_f32();
         return QO_E_NULL;
     }
-    if (qo_mat3_internal_trusted_f32(m, out)) return QO_OK;
+    if (qo_mat3_internal_shepperd_f32(m, out, 0)) return QO_OK;
     /* Each pivot branch combines all six off-diagonal entries, so a NaN/Inf there reaches q
      * (and normalising reports it); the diagonal enters through the clamped pivot, which
      * would hide a NaN: the trace catches any non-finite diagonal entry. */

@@ -11,12 +11,12 @@
  *    once, 4-wide on SSE2) against qo_fm_atan2_f32 lane by lane, on random pairs of every
  *    octant and scale, both sides of each branch of the scalar kernel, and groups holding a
  *    special value (zero, subnormal, Inf, NaN) that take the per-lane path.
- *  - qo_mat3_to_quat_f32's SSE2 paths (the direct rotation test, the pivot vector normalised
- *    in registers) against lib/src/convert.c compiled once more with QO_NO_SIMD (nosimd_*), bit
- *    for bit with the status, on rotations of every pivot, half turns, drifted, reflected,
- *    scaled and random matrices, signed zeros and bad entries; rotations also against double;
- *    qo_mat3_to_quat_trusted_f32 (its SSE2 body: the pivot rows as shuffles of D, S and c, the
- *    finiteness test and store) on the same matrices.
+ *  - qo_mat3_to_quat_f32's SSE2 paths (the rotation test qo_mat3_internal_is_rotation_f32,
+ *    the Shepperd formula's pivot rows as shuffles of D, S and c) against lib/src/convert.c
+ *    compiled once more with QO_NO_SIMD (nosimd_*), bit for bit with the status, on rotations
+ *    of every pivot, half turns, drifted, reflected, scaled and random matrices, signed zeros
+ *    and bad entries; rotations also against double; qo_mat3_to_quat_trusted_f32 (the same
+ *    formula with its finiteness test) on the same matrices.
  * Where SSE2 is not used both sides are the scalar code and only the double check can fail.
  * Linux only (make test, aarch64 and armhf under make test-qemu): it includes private files
  * of lib/src, which keeps it off the Cortex-M list (tests/qemu/run-target.sh is_core).
@@ -81,6 +81,7 @@ qo_status qo_interp_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32
 #define qo_mat3_from_quat_full_f32 nosimd_quat_to_mat3_full_f32
 #define qo_mat3_from_quat_f32 nosimd_quat_to_mat3_f32
 #define qo_mat3_to_quat_f32 nosimd_quat_from_mat3_f32
+#define qo_mat3_to_quat_full_f32 nosimd_quat_from_mat3_full_f32
 #define qo_mat3_to_quat_trusted_f32 nosimd_quat_from_mat3_trusted_f32
 #define qo_mat3_to_quat_trusted_full_f32 nosimd_quat_from_mat3_trusted_full_f32
 #define qo_mat3_orthonormalize_f32 nosimd_mat3_orthonormalize_f32
@@ -98,12 +99,15 @@ qo_status qo_interp_slerp_f32(qo_quat_f32 a, qo_quat_f32 b, float t, qo_quat_f32
 #undef qo_mat3_from_quat_full_f32
 #undef qo_mat3_from_quat_f32
 #undef qo_mat3_to_quat_f32
+#undef qo_mat3_to_quat_full_f32
 #undef qo_mat3_to_quat_trusted_f32
 #undef qo_mat3_to_quat_trusted_full_f32
 #undef qo_mat3_orthonormalize_f32
 #undef qo_mat3_to_quat_ortho_f32
 qo_status qo_mat3_to_quat_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
+qo_status qo_mat3_to_quat_full_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 qo_status qo_mat3_to_quat_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
+qo_status qo_mat3_to_quat_trusted_full_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 #include "qorient/fmath.h"
 #include "../lib/src/fmath_internal.h"
 
@@ -207,9 +211,10 @@ static void test_slerp_simd_same_bits(void **state)
 /* A 3x3 matrix of a random kind around qo_mat3_to_quat_f32's branches: a float-rounded
  * rotation (every Shepperd pivot), one with every entry moved by up to eps (eps on both sides
  * of the direct test's 5e-7 and of the tolerance 1e-4), a half turn (w == 0, axes with zero
- * components: the sign rule's ties), a reflection, a scaled rotation, random entries, signed
- * zeros, huge, NaN and Inf entries. *rot gets the double rotation it came from (identity for
- * the non-rotations). */
+ * components: the sign rule's ties), a reflection (one row negated, or -R: half of those of a
+ * 120 degree rotation, so trace 0, where the determinant's sign is all that tells them from
+ * rotations), a scaled rotation, random entries, signed zeros, huge, NaN and Inf entries.
+ * *rot gets the double rotation it came from (identity for the non-rotations). */
 static qo_mat3_f32 m2q_input(ref_rng *rng, int kind, ref_quat *rot)
 {
     static const double eps[] = { 1e-7, 3e-7, 5e-7, 7e-7, 1e-6, 1e-5, 4e-5, 1e-4, 2e-4 };
@@ -223,6 +228,11 @@ static qo_mat3_f32 m2q_input(ref_rng *rng, int kind, ref_quat *rot)
         uint64_t k = ref_rng_next(rng) % 3u;
         v.x = k == 0; v.y = k == 1; v.z = k == 2;
         q = ref_quat_from_axis_angle(v, ref_rng_range(rng, -2 * REF_PI, 2 * REF_PI));
+    }
+    if (kind == 11 && (ref_rng_next(rng) & 1u)) {         /* -R of a 120 degree turn */
+        ref_vec3 v;
+        v.x = ref_rng_range(rng, -1, 1); v.y = ref_rng_range(rng, -1, 1); v.z = ref_rng_range(rng, -1, 1);
+        q = ref_quat_from_axis_angle(v, 2 * REF_PI / 3);
     }
     if (kind == 1 || kind == 2) {                         /* half turns: w = 0 */
         static const double ax[][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 1, 1, 0 },
@@ -259,6 +269,10 @@ static qo_mat3_f32 m2q_input(ref_rng *rng, int kind, ref_quat *rot)
             for (j = 0; j < 3; j++)
                 if (m.m[i][j] == 0.0f) m.m[i][j] = (ref_rng_next(rng) & 1u) ? -0.0f : 0.0f;
         break;
+    case 11:                                                /* -R: a reflection */
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 3; j++) m.m[i][j] = -m.m[i][j];
+        break;
     case 10:                                                /* a bad entry */
         m.m[ref_rng_next(rng) % 3u][ref_rng_next(rng) % 3u] =
             bad[ref_rng_next(rng) % (sizeof bad / sizeof bad[0])];
@@ -291,10 +305,10 @@ static qo_status m2q_same_bits(const char *what, long n, int kind, const qo_mat3
     return s1;
 }
 
-/* qo_mat3_to_quat_f32's SSE2 paths (the direct rotation test, the pivot vector normalised
- * in registers) against the scalar body (convert.c with QO_NO_SIMD), bit for bit with the
- * status, on every kind of m2q_input; each rotation's result also against the double
- * quaternion it came from. */
+/* qo_mat3_to_quat_f32's SSE2 paths (the rotation test, the Shepperd formula) against the
+ * scalar body (convert.c with QO_NO_SIMD), bit for bit with the status, on every kind of
+ * m2q_input, and against its out-of-line path (the same for the trusted variant); every
+ * reflection refused; each rotation's result also against the double quaternion it came from. */
 static void test_from_mat3_simd_same_bits(void **state)
 {
     ref_rng rng = { 0x3A7F0E11 };
@@ -311,12 +325,20 @@ static void test_from_mat3_simd_same_bits(void **state)
         /* the trusted variant: its SSE2 store and finiteness test, on the same matrices */
         (void)m2q_same_bits("from_mat3_trusted", n, kind, &m, qo_mat3_to_quat_trusted_f32,
                             nosimd_quat_from_mat3_trusted_f32, &q3);
+        /* the inline functions and their out-of-line paths: the same result for every input */
+        (void)m2q_same_bits("from_mat3 inline/full", n, kind, &m, qo_mat3_to_quat_f32,
+                            qo_mat3_to_quat_full_f32, &q3);
+        (void)m2q_same_bits("from_mat3_trusted inline/full", n, kind, &m,
+                            qo_mat3_to_quat_trusted_f32, qo_mat3_to_quat_trusted_full_f32, &q3);
+        if ((kind == 6 || kind == 11) && s1 != QO_E_NOT_ROTATION)
+            fail_msg("from_mat3 case %ld (kind %d): a reflection not refused (status %d)", n, kind,
+                     (int)s1);
         if (s1 != QO_OK) {
             refused++;
             continue;
         }
         ok++;
-        if (kind <= 2 || kind == 9 || kind > 10) {          /* rotations to float rounding */
+        if (kind <= 2 || kind == 9 || kind > 11) {          /* rotations to float rounding */
             double err = ref_quat_angle_between(ref_quat_from_f32(q1), rq);
             if (err > worst) worst = err;
             if (err > 1e-6 || q1.w < 0.0f)

@@ -6,6 +6,7 @@
  *   convert.mat3_from_quat        qo_mat3_from_quat_f32
  *   convert.mat3_from_quat        qo_mat3_from_quat_full_f32 (its out-of-line path)
  *   convert.mat3_to_quat          qo_mat3_to_quat_f32
+ *   convert.mat3_to_quat          qo_mat3_to_quat_full_f32 (its out-of-line path)
  *   convert.mat3_to_quat_trusted  qo_mat3_to_quat_trusted_f32
  *   convert.mat3_to_quat_trusted  qo_mat3_to_quat_trusted_full_f32 (its out-of-line path)
  *   convert.mat3_to_quat_ortho    qo_mat3_to_quat_ortho_f32
@@ -33,7 +34,9 @@
  *   qo_rotvec_from_quat_f32      quaternion -> rotation vector, |rv| in [0, pi]
  *   qo_mat3_from_quat_f32        quaternion -> rotation matrix (static inline fast path)
  *   qo_mat3_from_quat_full_f32   its out-of-line complete path
- *   qo_mat3_to_quat_f32          rotation matrix -> canonical unit quaternion (strict check)
+ *   qo_mat3_to_quat_f32          rotation matrix -> canonical unit quaternion (strict check;
+ *                                static inline fast path)
+ *   qo_mat3_to_quat_full_f32     its out-of-line complete path
  *   qo_mat3_orthonormalize_f32   nearest rotation matrix (orthogonal polar factor)
  *   qo_mat3_to_quat_ortho_f32    orthonormalise, then convert (for drifted matrices)
  *   qo_mat3_to_quat_trusted_f32  no rotation check (for matrices known to be rotations;
@@ -130,22 +133,10 @@ qo_status qo_rotvec_from_quat_f32(qo_quat_f32 q, qo_vec3_f32 *out);
 qo_status qo_mat3_from_quat_full_f32(qo_quat_f32 q, qo_mat3_f32 *out);
 
 /*
- * Canonical unit quaternion (w >= 0) of the rotation matrix *m (row-major, v' = M v).
- * The matrix must already be a rotation within QO_MAT3_ROTATION_TOL_F32 (max entry of
- * |M^T M - I|) with det M > 0. The result is the rotation nearest M (within 1e-6 rad,
- * tests/core/test_convert.c: test_f32_quat_from_mat3_edges, test_f32_quat_from_mat3_drifted):
- * a matrix off by more than float32 rounding (max |M^T M - I| > 5e-7) is first projected with
- * qo_mat3_orthonormalize_f32, since the direct formula would carry that error into the
- * result. Robust at every angle: the pivot is the largest of trace, m00, m11, m22 (Shepperd),
- * so 180-degree rotations, where the trace is -1, lose no precision; the result is the
- * normalised pivot vector (e.g. (1 + trace, m21 - m12, m02 - m20, m10 - m01) / its length:
- * one square root, one divide). A matrix within ~4 ulps of orthonormal (max |M^T M - I|
- * <= 5e-7, det > 0) takes a fast path that decides with the same arithmetic.
- * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NONFINITE for a NaN/Inf entry;
- * QO_E_NOT_ROTATION for a matrix that is scaled, sheared, a reflection (det < 0) or singular.
- * *out is the identity on every error.
+ * qo_mat3_to_quat_f32's complete path, out of line: the same contract and, for every input, the
+ * same result (including the inline fast path's cases).
  */
-qo_status qo_mat3_to_quat_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
+qo_status qo_mat3_to_quat_full_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 
 /*
  * The rotation matrix nearest *m in the Frobenius norm: the orthogonal factor R of the polar
@@ -205,6 +196,7 @@ float qo_mat3_det_f32(const qo_mat3_f32 *m);
 #if defined(QORIENT_CONVERT_EXTERN_DEFS)
 #define QO_CONVERT_INLINE
 qo_status qo_mat3_from_quat_f32(qo_quat_f32 q, qo_mat3_f32 *out);
+qo_status qo_mat3_to_quat_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 qo_status qo_mat3_to_quat_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out);
 #else
 #define QO_CONVERT_INLINE static inline
@@ -287,32 +279,59 @@ QO_CONVERT_INLINE qo_status qo_mat3_from_quat_f32(qo_quat_f32 q, qo_mat3_f32 *ou
 #endif
 }
 
+/* k = 1/(2 sqrt(c)) of the trusted formula as sqrt(c) / (c + c): one square root and one
+ * divide, no constant to load, and rounds closer than 0.5 / sqrt(c) (measured: bench acc
+ * lines). Unless bounded (then c <= 4), c is first clamped at FLT_MAX/2 so that c + c cannot
+ * overflow to a zero k (the pivot entry keeps the unclamped c, so a NaN c, which the clamp
+ * turns into FLT_MAX/2 as minss does, still makes q NaN). */
+static inline float qo_mat3_internal_shepperd_k_f32(float c, int bounded)
+{
+    const float cmax = 0.5f * FLT_MAX;
+    if (!bounded) c = c < cmax ? c : cmax;
+    return sqrtf(c) / (c + c);
+}
+#if QO_QUAT_SIMD_SSE2
+/* The same k broadcast to four lanes, from lane 0 of c4. */
+static inline __m128 qo_mat3_internal_shepperd_k_ps(__m128 c4, int bounded)
+{
+    if (!bounded) c4 = _mm_min_ss(c4, _mm_set_ss(0.5f * FLT_MAX));
+    c4 = QO_QUAT_SIMD_SHUFFLE_PS(c4, 0x00);
+    return _mm_div_ps(_mm_sqrt_ps(c4), _mm_add_ps(c4, c4));
+}
+#endif
+
 /*
- * The trusted conversion's formula: Shepperd's method with one square root and one divide
- * (qo_mat3_to_quat_f32 pivots on the largest of trace and diagonal and normalises the pivot's
- * vector instead, lib/src/convert.c's mat3_pivot_vector). The trace is the pivot when
- * t = (m00 + m11) + m22 >= 0 (then c = 1 + t = 4w^2 >= 1), else the largest diagonal entry p
- * (c = 1 + 2 m_pp - t = 4p^2 > 1: c - 1 >= 0 exactly for any matrix that takes that pivot, so
- * only rounding takes it below 1). v is the pivot's row of the symmetric 4x4 matrix 4 q q^T
- * (its pivot entry c, the others sums and differences of opposite off-diagonal entries) and
- * q = k v with k = 1/(2 sqrt(c)) = sqrt(c) / (c + c) (no constant to load), computed from c
- * clamped to [1, FLT_MAX/2]: |k| <= 1/2, so no finite v overflows, c + c is exact, and k > 0
- * (a NaN c gives 1; the pivot entry of q keeps the unclamped c). One divide and four
- * multiplies: a divide costs several multiplies on a Cortex-M4F, far more in soft float.
+ * The conversion formula of qo_mat3_to_quat_trusted_f32, and of qo_mat3_to_quat_f32 for the
+ * matrices its rotation test passes (its checked path, for everything else, pivots on the
+ * largest of trace and diagonal and normalises the pivot's vector: lib/src/convert.c's
+ * mat3_pivot_vector). Shepperd's method with one square root and one divide. The trace is the
+ * pivot when t = (m00 + m11) + m22 has its sign bit clear (t >= +0, tested as one bit; then
+ * c = 1 + t = 4w^2 >= 1), else the largest diagonal entry p (c = 1 + 2 m_pp - t = 4p^2 > 1
+ * for every matrix that takes that pivot, only rounding takes it lower; t = -0.0 needs a
+ * diagonal of -0.0, and any pivot serves there). v is the pivot's row of the symmetric 4x4
+ * matrix 4 q q^T (its pivot entry c, the others sums and differences of opposite off-diagonal
+ * entries) and q = k v with k = 1/(2 sqrt(c)) (qo_mat3_internal_shepperd_k_f32): one square
+ * root, one divide and four multiplies (a divide costs several multiplies on a Cortex-M4F, far
+ * more in soft float). Where c is Inf, or so small or negative (rounding of huge entries) that
+ * k v is not finite, q is not finite and the complete path answers.
  * The sign: q negated when its w < 0 (0 - q: exact); on the trace pivot w = c k > 0.
  * Returns 1 with *out = q (-0.0 made +0.0); 0, *out unwritten, where it cannot answer: a
  * non-finite q (a NaN/Inf entry - every entry reaches q: c through the trace or the pivot
- * entry - or entries so large that a sum overflows), or q's w == 0 (a half turn, where the
- * canonical sign rule looks further, also when w only underflowed to 0). Internal, not API
- * (see quat.h).
+ * entry - or entries so large that the formula overflows), or q's w == 0 (a half turn, where
+ * the canonical sign rule looks further, also when w only underflowed to 0). bounded != 0
+ * (a constant: the caller has established that every |entry| <= ~1, e.g. by
+ * qo_mat3_internal_is_rotation_f32) skips the finiteness test, which cannot fail then.
+ * Internal, not API (see quat.h).
  */
-static inline int qo_mat3_internal_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
+static inline int qo_mat3_internal_shepperd_f32(const qo_mat3_f32 *m, qo_quat_f32 *out,
+                                                int bounded)
 {
 #if QO_QUAT_SIMD_SSE2
     /* The same operations in lanes: the matrix in three loads (rows 0-1 as m00..m10 and
      * m11..m21, then m22; nothing read past it), A - B and A + B give the differences D and sums
      * S of opposite off-diagonal entries in lanes 1-3 (w's row of 4 q q^T), and the pivot's row
-     * is two shuffles of D, S and c. The scalar body's t, c and comparisons are lane 0 here. */
+     * is two shuffles of D, S and c. The scalar body's t, c, k and comparisons are lane 0
+     * (t's sign bit is bit 0 of movmskps, signbit(t) there). */
     const __m128 r0 = _mm_loadu_ps(&m->m[0][0]);                     /* m00 m01 m02 m10 */
     const __m128 r1 = _mm_loadu_ps(&m->m[1][1]);                     /* m11 m12 m20 m21 */
     const __m128 m22 = _mm_load_ss(&m->m[2][2]);
@@ -321,15 +340,14 @@ static inline int qo_mat3_internal_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32
     const __m128 ab = _mm_shuffle_ps(r1, r0, _MM_SHUFFLE(1, 1, 2, 1));       /* m12 m20 m01 . */
     const __m128 av = _mm_shuffle_ps(r1, r0, _MM_SHUFFLE(3, 2, 3, 0));       /* . m21 m02 m10 */
     const __m128 bv = QO_QUAT_SIMD_SHUFFLE_PS(ab, _MM_SHUFFLE(2, 1, 0, 0));  /* . m12 m20 m01 */
-    const __m128 dv = _mm_sub_ps(av, bv), sv = _mm_add_ps(av, bv);
-    const __m128 cmax = _mm_set_ss(0.5f * FLT_MAX);
-    __m128 c4, v4, d;
-    if (_mm_comige_ss(t4, zero)) {
+    const __m128 dv = _mm_sub_ps(av, bv);
+    __m128 c4, v4, e;
+    if (!(_mm_movemask_ps(t4) & 1)) {
         c4 = _mm_add_ss(t4, one);                                     /* 1 + t >= 1 */
         v4 = _mm_move_ss(dv, c4);
-        c4 = QO_QUAT_SIMD_SHUFFLE_PS(_mm_min_ss(c4, cmax), 0x00);
-        v4 = _mm_mul_ps(v4, _mm_div_ps(_mm_sqrt_ps(c4), _mm_add_ps(c4, c4)));
+        v4 = _mm_mul_ps(v4, qo_mat3_internal_shepperd_k_ps(c4, bounded));
     } else {
+        const __m128 sv = _mm_add_ps(av, bv);
         if (_mm_comige_ss(r0, r1) && _mm_comige_ss(r0, m22)) {
             c4 = _mm_sub_ss(_mm_sub_ss(_mm_add_ss(one, r0), r1), m22);
             v4 = _mm_shuffle_ps(_mm_move_ss(dv, c4), sv, _MM_SHUFFLE(2, 3, 0, 1));
@@ -342,31 +360,31 @@ static inline int qo_mat3_internal_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32
             v4 = _mm_shuffle_ps(_mm_shuffle_ps(dv, sv, _MM_SHUFFLE(2, 2, 3, 3)),
                                 _mm_move_ss(sv, c4), _MM_SHUFFLE(0, 1, 2, 0));
         }
-        /* min(max(c, 1), FLT_MAX/2) as the scalar body's comparisons: maxss returns its second
-         * operand, 1, for a NaN c */
-        c4 = QO_QUAT_SIMD_SHUFFLE_PS(_mm_min_ss(_mm_max_ss(c4, one), cmax), 0x00);
-        v4 = _mm_mul_ps(v4, _mm_div_ps(_mm_sqrt_ps(c4), _mm_add_ps(c4, c4)));
+        v4 = _mm_mul_ps(v4, qo_mat3_internal_shepperd_k_ps(c4, bounded));
         if (!_mm_comigt_ss(v4, zero)) {
             if (!_mm_comilt_ss(v4, zero)) return 0;
             v4 = _mm_sub_ps(zero, v4);
         }
     }
-    d = _mm_sub_ps(v4, v4);                             /* NaN exactly where q is not finite */
-    if (_mm_movemask_ps(_mm_cmpunord_ps(d, d))) return 0;
-    _mm_storeu_ps(&out->w, _mm_add_ps(v4, zero));       /* -0.0 -> +0.0 */
+    if (bounded) {
+        v4 = _mm_add_ps(v4, zero);                      /* -0.0 -> +0.0 */
+    } else {
+        e = _mm_sub_ps(v4, v4);                         /* 0, or NaN where q is not finite */
+        v4 = _mm_add_ps(v4, e);                         /* -0.0 -> +0.0, non-finite -> NaN */
+        if (_mm_movemask_ps(_mm_cmpunord_ps(e, v4))) return 0;
+    }
+    _mm_storeu_ps(&out->w, v4);
 #else
     const float (*a)[3] = m->m;
-    const float t = (a[0][0] + a[1][1]) + a[2][2], cmax = 0.5f * FLT_MAX;
+    const float t = (a[0][0] + a[1][1]) + a[2][2];
     float c, w, x, y, z, k;
-    if (t >= 0.0f) {
+    if (!signbit(t)) {
         c = 1.0f + t;                                                 /* >= 1 */
-        w = c;
-        x = a[2][1] - a[1][2];
-        y = a[0][2] - a[2][0];
-        z = a[1][0] - a[0][1];
-        c = c < cmax ? c : cmax;
-        k = sqrtf(c) / (c + c);
-        w *= k; x *= k; y *= k; z *= k;
+        k = qo_mat3_internal_shepperd_k_f32(c, bounded);
+        w = c * k;
+        x = (a[2][1] - a[1][2]) * k;
+        y = (a[0][2] - a[2][0]) * k;
+        z = (a[1][0] - a[0][1]) * k;
     } else {
         if (a[0][0] >= a[1][1] && a[0][0] >= a[2][2]) {
             c = ((1.0f + a[0][0]) - a[1][1]) - a[2][2];
@@ -387,20 +405,105 @@ static inline int qo_mat3_internal_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32
             y = a[1][2] + a[2][1];
             z = c;
         }
-        c = c > 1.0f ? c : 1.0f;
-        c = c < cmax ? c : cmax;
-        k = sqrtf(c) / (c + c);
+        k = qo_mat3_internal_shepperd_k_f32(c, bounded);
         w *= k; x *= k; y *= k; z *= k;
         if (!(w > 0.0f)) {
             if (!(w < 0.0f)) return 0;
             w = 0.0f - w; x = 0.0f - x; y = 0.0f - y; z = 0.0f - z;
         }
     }
-    if (!(isfinite(w) && isfinite(x) && isfinite(y) && isfinite(z))) return 0;
+    if (!bounded && !(isfinite(w) && isfinite(x) && isfinite(y) && isfinite(z))) return 0;
     /* + 0.0f: -0.0 -> +0.0 as qo_quat_canonical_f32 */
     out->w = w + 0.0f; out->x = x + 0.0f; out->y = y + 0.0f; out->z = z + 0.0f;
 #endif
     return 1;
+}
+
+/* max |entry| of M^T M - I and of r0 x r1 - r2 up to which qo_mat3_to_quat_f32 converts with
+ * the direct formula: ~4 float32 ulps of 1, above the ~2e-7 of a rounded rotation. */
+#define QO_MAT3_INTERNAL_DIRECT_TOL_F32 5e-7f
+
+/*
+ * 1 when *m is a rotation to float32 rounding: every |(M^T M - I)_ij| <= 5e-7 (the columns
+ * orthonormal) and every -(r0 x r1)_j r2_j <= 5e-7 for its rows r0, r1, r2 (the sign of the
+ * determinant: orthonormal rows have r0 x r1 = det M r2, so the products are r2_j^2 >= 0 for a
+ * rotation, and for a reflection -r2_j^2, at most -1/3 in its largest lane); 0 otherwise, NaN
+ * and Inf included. Sums in the order ((row 0 + row 1) + row 2); both bodies decide alike.
+ * Internal, not API (see quat.h).
+ */
+static inline int qo_mat3_internal_is_rotation_f32(const qo_mat3_f32 *m)
+{
+#if QO_QUAT_SIMD_SSE2
+    /* Rows as lanes (x, y, z, unused): lane j of sum_i r_i * r_i is column j's squared norm,
+     * of sum_i r_i * r_i.yzx the dot of columns j and j+1 (mod 3), and r0.zxy * r1.yzx -
+     * r0.yzx * r1.zxy is -(r0 x r1). Row 2 is loaded from m[1][2] on, so no read passes the
+     * matrix. */
+    const __m128 r0 = _mm_loadu_ps(&m->m[0][0]), r1 = _mm_loadu_ps(&m->m[1][0]);
+    const __m128 r2 = QO_QUAT_SIMD_SHUFFLE_PS(_mm_loadu_ps(&m->m[1][2]), _MM_SHUFFLE(3, 3, 2, 1));
+    const __m128 r0yzx = QO_QUAT_SIMD_SHUFFLE_PS(r0, _MM_SHUFFLE(3, 0, 2, 1));
+    const __m128 r1yzx = QO_QUAT_SIMD_SHUFFLE_PS(r1, _MM_SHUFFLE(3, 0, 2, 1));
+    const __m128 r0zxy = QO_QUAT_SIMD_SHUFFLE_PS(r0, _MM_SHUFFLE(3, 1, 0, 2));
+    const __m128 r1zxy = QO_QUAT_SIMD_SHUFFLE_PS(r1, _MM_SHUFFLE(3, 1, 0, 2));
+    /* lane 3 of the constants is unused: a constant that is not four equal lanes is read from
+     * memory by the instruction that uses it, where gcc 12 builds a uniform one in two */
+    const __m128 tol = _mm_setr_ps(QO_MAT3_INTERNAL_DIRECT_TOL_F32, QO_MAT3_INTERNAL_DIRECT_TOL_F32,
+                                   QO_MAT3_INTERNAL_DIRECT_TOL_F32, 0.0f);
+    const __m128 abs = _mm_castsi128_ps(_mm_setr_epi32(0x7fffffff, 0x7fffffff, 0x7fffffff, 0));
+    __m128 d = _mm_add_ps(_mm_add_ps(_mm_mul_ps(r0, r0), _mm_mul_ps(r1, r1)), _mm_mul_ps(r2, r2));
+    __m128 o = _mm_add_ps(_mm_add_ps(_mm_mul_ps(r0, r0yzx), _mm_mul_ps(r1, r1yzx)),
+                          _mm_mul_ps(r2, QO_QUAT_SIMD_SHUFFLE_PS(r2, _MM_SHUFFLE(3, 0, 2, 1))));
+    const __m128 x = _mm_mul_ps(_mm_sub_ps(_mm_mul_ps(r0zxy, r1yzx), _mm_mul_ps(r0yzx, r1zxy)), r2);
+    d = _mm_and_ps(_mm_sub_ps(d, _mm_setr_ps(1.0f, 1.0f, 1.0f, 0.0f)), abs);
+    o = _mm_and_ps(o, abs);
+    /* A lane fails when the largest of the three is above tol or NaN. max returns its second
+     * operand when either is NaN: o is NaN wherever d is (a NaN entry of column j is in both
+     * d_j and o_j) and Inf or NaN wherever d is Inf, so max(d, o) loses no non-finite entry;
+     * x can only be NaN when an entry is not finite or its products overflow, and then
+     * max(d, o) fails. Lane 3 is not tested (x is not masked there). */
+    return !(_mm_movemask_ps(_mm_cmpnle_ps(_mm_max_ps(x, _mm_max_ps(d, o)), tol)) & 7);
+#else
+    const float (*a)[3] = m->m;
+    const float tol = QO_MAT3_INTERNAL_DIRECT_TOL_F32;
+    int j;
+    for (j = 0; j < 3; j++) {
+        const int k = j < 2 ? j + 1 : 0, l = k < 2 ? k + 1 : 0;
+        const float d = ((a[0][j] * a[0][j] + a[1][j] * a[1][j]) + a[2][j] * a[2][j]) - 1.0f;
+        const float o = (a[0][j] * a[0][k] + a[1][j] * a[1][k]) + a[2][j] * a[2][k];
+        const float x = (a[0][l] * a[1][k] - a[0][k] * a[1][l]) * a[2][j];
+        if (!(fabsf(d) <= tol && fabsf(o) <= tol && x <= tol)) return 0;
+    }
+    return 1;
+#endif
+}
+
+/*
+ * Canonical unit quaternion (w >= 0) of the rotation matrix *m (row-major, v' = M v).
+ * The matrix must already be a rotation within QO_MAT3_ROTATION_TOL_F32 (max entry of
+ * |M^T M - I|) with det M > 0. The result is the rotation nearest M (within 1e-6 rad,
+ * tests/core/test_convert.c: test_f32_quat_from_mat3_edges, test_f32_quat_from_mat3_drifted):
+ * a matrix off by more than float32 rounding (max |M^T M - I| > 5e-7) is first projected with
+ * qo_mat3_orthonormalize_f32, since the direct formula would carry that error into the
+ * result. Robust at every angle (Shepperd: the pivot is never a component smaller than 1/2,
+ * so 180-degree rotations, where the trace is -1, lose no precision).
+ * A matrix within ~4 ulps of a rotation (qo_mat3_internal_is_rotation_f32: max |M^T M - I|
+ * <= 5e-7, det > 0) takes the trusted conversion's formula (the trace as pivot when it is
+ * >= 0, else the largest diagonal entry; q = v / (2 sqrt(c)) for the pivot's row v of 4 q q^T
+ * and c = 4 p^2): there |v| = 2 sqrt(c) to the same 4 ulps, so |q| is 1 within ~3e-7, and
+ * the bits are qo_mat3_to_quat_trusted_f32's. The others (drifted, and half turns off the
+ * trace pivot) take the largest of trace, m00, m11, m22 as pivot and normalise its row.
+ * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NONFINITE for a NaN/Inf entry;
+ * QO_E_NOT_ROTATION for a matrix that is scaled, sheared, a reflection (det < 0) or singular.
+ * *out is the identity on every error.
+ * Inline: the matrices of that test (every such rotation but a half turn off the trace pivot)
+ * are handled here; the rest (NULL, the half turns, everything the test refuses) by
+ * qo_mat3_to_quat_full_f32.
+ */
+QO_CONVERT_INLINE qo_status qo_mat3_to_quat_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
+{
+    if (m != NULL && out != NULL && qo_mat3_internal_is_rotation_f32(m) &&
+        qo_mat3_internal_shepperd_f32(m, out, 1))
+        return QO_OK;
+    return qo_mat3_to_quat_full_f32(m, out);
 }
 
 /*
@@ -421,13 +524,13 @@ static inline int qo_mat3_internal_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32
  * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NONFINITE for a NaN/Inf entry (or
  * entries so large that the formula overflows: not a rotation). *out is the identity on every
  * error.
- * Inline: qo_mat3_internal_trusted_f32's cases (every rotation but a half turn off the trace
+ * Inline: qo_mat3_internal_shepperd_f32's cases (every rotation but a half turn off the trace
  * pivot) are handled here; the rest (NULL, non-finite, those half turns) by
  * qo_mat3_to_quat_trusted_full_f32.
  */
 QO_CONVERT_INLINE qo_status qo_mat3_to_quat_trusted_f32(const qo_mat3_f32 *m, qo_quat_f32 *out)
 {
-    if (m != NULL && out != NULL && qo_mat3_internal_trusted_f32(m, out)) return QO_OK;
+    if (m != NULL && out != NULL && qo_mat3_internal_shepperd_f32(m, out, 0)) return QO_OK;
     return qo_mat3_to_quat_trusted_full_f32(m, out);
 }
 
