@@ -298,6 +298,20 @@ static inline __m128 qo_mat3_internal_shepperd_k_ps(__m128 c4, int bounded)
     c4 = QO_QUAT_SIMD_SHUFFLE_PS(c4, 0x00);
     return _mm_div_ps(_mm_sqrt_ps(c4), _mm_add_ps(c4, c4));
 }
+/* The formula's last step: *out = q with -0.0 made +0.0, returning 1; unless bounded, 0 and
+ * *out unwritten when q is not finite. */
+static inline int qo_mat3_internal_shepperd_store_ps(__m128 q4, qo_quat_f32 *out, int bounded)
+{
+    if (bounded) {
+        q4 = _mm_add_ps(q4, _mm_setzero_ps());          /* -0.0 -> +0.0 */
+    } else {
+        const __m128 e = _mm_sub_ps(q4, q4);            /* 0, or NaN where q is not finite */
+        q4 = _mm_add_ps(q4, e);                         /* -0.0 -> +0.0, non-finite -> NaN */
+        if (_mm_movemask_ps(_mm_cmpunord_ps(e, q4))) return 0;
+    }
+    _mm_storeu_ps(&out->w, q4);
+    return 1;
+}
 #endif
 
 /*
@@ -341,11 +355,12 @@ static inline int qo_mat3_internal_shepperd_f32(const qo_mat3_f32 *m, qo_quat_f3
     const __m128 av = _mm_shuffle_ps(r1, r0, _MM_SHUFFLE(3, 2, 3, 0));       /* . m21 m02 m10 */
     const __m128 bv = QO_QUAT_SIMD_SHUFFLE_PS(ab, _MM_SHUFFLE(2, 1, 0, 0));  /* . m12 m20 m01 */
     const __m128 dv = _mm_sub_ps(av, bv);
-    __m128 c4, v4, e;
+    __m128 c4, v4;
     if (!(_mm_movemask_ps(t4) & 1)) {
         c4 = _mm_add_ss(t4, one);                                     /* 1 + t >= 1 */
         v4 = _mm_move_ss(dv, c4);
         v4 = _mm_mul_ps(v4, qo_mat3_internal_shepperd_k_ps(c4, bounded));
+        return qo_mat3_internal_shepperd_store_ps(v4, out, bounded);
     } else {
         const __m128 sv = _mm_add_ps(av, bv);
         if (_mm_comige_ss(r0, r1) && _mm_comige_ss(r0, m22)) {
@@ -366,14 +381,7 @@ static inline int qo_mat3_internal_shepperd_f32(const qo_mat3_f32 *m, qo_quat_f3
             v4 = _mm_sub_ps(zero, v4);
         }
     }
-    if (bounded) {
-        v4 = _mm_add_ps(v4, zero);                      /* -0.0 -> +0.0 */
-    } else {
-        e = _mm_sub_ps(v4, v4);                         /* 0, or NaN where q is not finite */
-        v4 = _mm_add_ps(v4, e);                         /* -0.0 -> +0.0, non-finite -> NaN */
-        if (_mm_movemask_ps(_mm_cmpunord_ps(e, v4))) return 0;
-    }
-    _mm_storeu_ps(&out->w, v4);
+    return qo_mat3_internal_shepperd_store_ps(v4, out, bounded);
 #else
     const float (*a)[3] = m->m;
     const float t = (a[0][0] + a[1][1]) + a[2][2];
@@ -415,8 +423,8 @@ static inline int qo_mat3_internal_shepperd_f32(const qo_mat3_f32 *m, qo_quat_f3
     if (!bounded && !(isfinite(w) && isfinite(x) && isfinite(y) && isfinite(z))) return 0;
     /* + 0.0f: -0.0 -> +0.0 as qo_quat_canonical_f32 */
     out->w = w + 0.0f; out->x = x + 0.0f; out->y = y + 0.0f; out->z = z + 0.0f;
-#endif
     return 1;
+#endif
 }
 
 /* max |entry| of M^T M - I and of r0 x r1 - r2 up to which qo_mat3_to_quat_f32 converts with
