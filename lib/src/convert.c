@@ -350,10 +350,10 @@ static CONV_COLD qo_status quat_from_mat3_checked(const qo_mat3_f32 *m, qo_quat_
         return mat3_is_finite(m) ? QO_E_NOT_ROTATION : QO_E_NONFINITE;
     /* Orthonormal within tolerance means det is +-1 +- 2e-4: the sign test is reliable. */
     if (!(qo_mat3_det_f32(m) > 0.0f)) return QO_E_NOT_ROTATION;
-    /* Shepperd on a matrix off by e = max|M^T M - I| lands up to ~1.6 e rad from the nearest
-     * rotation (measured). A float32-rounded rotation has e ~ 2e-7 and goes straight through;
-     * anything further off (but accepted) is first projected onto the nearest rotation, which
-     * takes one or two Newton steps at this distance. */
+    /* Shepperd on a matrix off by e = max|M^T M - I| lands up to 2.16 e rad from the nearest
+     * rotation (QO_MAT3_INTERNAL_DIRECT_TOL_F32). A float32-rounded rotation has e ~ 2e-7 and
+     * goes straight through; anything further off (but accepted) is first projected onto the
+     * nearest rotation, which takes one or two Newton steps at this distance. */
     if (orth > QO_MAT3_INTERNAL_DIRECT_TOL_F32) {
         if (qo_mat3_orthonormalize_f32(m, &r) != QO_OK) return QO_E_NOT_ROTATION;
         m = &r;

@@ -427,16 +427,22 @@ static inline int qo_mat3_internal_shepperd_f32(const qo_mat3_f32 *m, qo_quat_f3
 #endif
 }
 
-/* max |entry| of M^T M - I and of r0 x r1 - r2 up to which qo_mat3_to_quat_f32 converts with
- * the direct formula: ~4 float32 ulps of 1, above the ~2e-7 of a rounded rotation. */
-#define QO_MAT3_INTERNAL_DIRECT_TOL_F32 5e-7f
+/* max |entry| of M^T M - I up to which qo_mat3_to_quat_f32 converts with the direct formula
+ * (no projection first): ~3 float32 ulps of 1, above the ~2e-7 of a rounded rotation (every
+ * rotation rounded from double passes, and all but ~0.4 % of those computed in float32 by
+ * qo_mat3_from_quat_f32). Why not more: the formula carries the non-rotation part of M into
+ * the result, up to 2.16 e rad for e = max |M^T M - I| (first order, the worst over rotations
+ * and over symmetric errors M = R (I + S), at w = 1/2 where the trace stops being the pivot),
+ * so 3.6e-7 keeps the result within 1e-6 rad of the nearest rotation with float rounding
+ * (worst found 9.0e-7: tests/core/test_float_speed.c, test_from_mat3_direct_worst). */
+#define QO_MAT3_INTERNAL_DIRECT_TOL_F32 3.6e-7f
 
 /*
- * 1 when *m is a rotation to float32 rounding: every |(M^T M - I)_ij| <= 5e-7 (the columns
- * orthonormal) and every -(r0 x r1)_j r2_j <= 5e-7 for its rows r0, r1, r2 (the sign of the
- * determinant: orthonormal rows have r0 x r1 = det M r2, so the products are r2_j^2 >= 0 for a
- * rotation, and for a reflection -r2_j^2, at most -1/3 in its largest lane); 0 otherwise, NaN
- * and Inf included. Sums in the order ((row 0 + row 1) + row 2); both bodies decide alike.
+ * 1 when *m is a rotation to float32 rounding: every |(M^T M - I)_ij| <= 3.6e-7 (the columns
+ * orthonormal) and every -(r0 x r1)_j r2_j <= 3.6e-7 for its rows r0, r1, r2 (the sign of the
+ * determinant: orthonormal rows have r0 x r1 = det M r2, so the tested products are
+ * -r2_j^2 <= 0 for a rotation, and r2_j^2 for a reflection, at least 1/3 in its largest
+ * lane); 0 otherwise, NaN and Inf included. Sums in the order ((row 0 + row 1) + row 2); both bodies decide alike.
  * Internal, not API (see quat.h).
  */
 static inline int qo_mat3_internal_is_rotation_f32(const qo_mat3_f32 *m)
@@ -489,14 +495,14 @@ static inline int qo_mat3_internal_is_rotation_f32(const qo_mat3_f32 *m)
  * The matrix must already be a rotation within QO_MAT3_ROTATION_TOL_F32 (max entry of
  * |M^T M - I|) with det M > 0. The result is the rotation nearest M (within 1e-6 rad,
  * tests/core/test_convert.c: test_f32_quat_from_mat3_edges, test_f32_quat_from_mat3_drifted):
- * a matrix off by more than float32 rounding (max |M^T M - I| > 5e-7) is first projected with
- * qo_mat3_orthonormalize_f32, since the direct formula would carry that error into the
- * result. Robust at every angle (Shepperd: the pivot is never a component smaller than 1/2,
+ * a matrix off by more than float32 rounding (max |M^T M - I| > 3.6e-7) is first projected
+ * with qo_mat3_orthonormalize_f32, since the direct formula would carry that error into the
+ * result (up to 2.16 times it, in rad). Robust at every angle (Shepperd: the pivot is never a component smaller than 1/2,
  * so 180-degree rotations, where the trace is -1, lose no precision).
- * A matrix within ~4 ulps of a rotation (qo_mat3_internal_is_rotation_f32: max |M^T M - I|
- * <= 5e-7, det > 0) takes the trusted conversion's formula (the trace as pivot when it is
+ * A matrix within ~3 ulps of a rotation (qo_mat3_internal_is_rotation_f32: max |M^T M - I|
+ * <= 3.6e-7, det > 0) takes the trusted conversion's formula (the trace as pivot when it is
  * >= 0, else the largest diagonal entry; q = v / (2 sqrt(c)) for the pivot's row v of 4 q q^T
- * and c = 4 p^2): there |v| = 2 sqrt(c) to the same 4 ulps, so |q| is 1 within ~3e-7, and
+ * and c = 4 p^2): there |v| = 2 sqrt(c) to the same 3 ulps, so |q| is 1 within ~3e-7, and
  * the bits are qo_mat3_to_quat_trusted_f32's. The others (drifted, and half turns off the
  * trace pivot) take the largest of trace, m00, m11, m22 as pivot and normalise its row.
  * Returns QO_OK; QO_E_NULL if m or out is NULL; QO_E_NONFINITE for a NaN/Inf entry;
