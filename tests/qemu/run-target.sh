@@ -23,7 +23,8 @@
 # non-zero without a cmocka report counts as one failure. Logs: build/qemu-TARGET/logs/.
 # Exit status 0 only if nothing failed and something passed.
 #
-# Environment: QEMU_TIMEOUT (seconds per program; default 1800 on m0, 600 elsewhere: wall time on a possibly shared machine),
+# Environment: QEMU_TIMEOUT (seconds per program; default 1800 on m0 and armhf, 600 elsewhere: wall time on a possibly
+# shared machine; test_motion_oracle takes ~600 s CPU under qemu-arm, ~500 under qemu-aarch64),
 # QEMU_SKIP (space-separated test names to skip on purpose, reported as skipped),
 # QEMU_SYSROOT (default build/qemu-sysroot-ARCH, made by tools/test-qemu.sh).
 set -u
@@ -185,6 +186,7 @@ m0|m4f|m7)
     ;;
 aarch64|armhf)
     TMO=${QEMU_TIMEOUT:-600}
+    [ "$T" = armhf ] && TMO=${QEMU_TIMEOUT:-1800}
     if [ "$T" = aarch64 ]; then
         GCC=aarch64-linux-gnu-gcc; TRIPLE=aarch64-linux-gnu; DEB=arm64; QEMU=qemu-aarch64; QCPU=cortex-a72
     else
