@@ -33,7 +33,6 @@
 #define CONV_COLD
 #endif
 
-
 static qo_vec3_f32 vec3(float x, float y, float z)
 {
     qo_vec3_f32 v;

@@ -136,7 +136,9 @@ static void test_from_mat3_direct_worst(void **state)
         ref_vec3 a;
         ref_quat q;
         double S[3][3], T[3][3], best;
-        a.x = ref_rng_range(&rng, -1, 1); a.y = ref_rng_range(&rng, -1, 1); a.z = ref_rng_range(&rng, -1, 1);
+        a.x = ref_rng_range(&rng, -1, 1);
+        a.y = ref_rng_range(&rng, -1, 1);
+        a.z = ref_rng_range(&rng, -1, 1);
         q = ref_quat_from_axis_angle(a, 2.0 * REF_PI / 3.0 - ref_rng_range(&rng, 0.0, 0.05));
         for (i = 0; i < 3; i++)
             for (j = i; j < 3; j++) S[i][j] = S[j][i] = ref_rng_range(&rng, -1, 1);
@@ -147,7 +149,8 @@ static void test_from_mat3_direct_worst(void **state)
             qq.w += ref_rng_range(&rng, -5e-4, 5e-4); qq.x += ref_rng_range(&rng, -5e-4, 5e-4);
             qq.y += ref_rng_range(&rng, -5e-4, 5e-4); qq.z += ref_rng_range(&rng, -5e-4, 5e-4);
             for (i = 0; i < 3; i++)
-                for (j = i; j < 3; j++) T[i][j] = T[j][i] = S[i][j] + ref_rng_range(&rng, -0.05, 0.05);
+                for (j = i; j < 3; j++)
+                    T[i][j] = T[j][i] = S[i][j] + ref_rng_range(&rng, -0.05, 0.05);
             e = direct_edge_error(qq, T);
             if (e > best) {
                 best = e;

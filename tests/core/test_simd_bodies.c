@@ -231,7 +231,9 @@ static qo_mat3_f32 m2q_input(ref_rng *rng, int kind, ref_quat *rot)
     }
     if (kind == 11 && (ref_rng_next(rng) & 1u)) {         /* -R of a 120 degree turn */
         ref_vec3 v;
-        v.x = ref_rng_range(rng, -1, 1); v.y = ref_rng_range(rng, -1, 1); v.z = ref_rng_range(rng, -1, 1);
+        v.x = ref_rng_range(rng, -1, 1);
+        v.y = ref_rng_range(rng, -1, 1);
+        v.z = ref_rng_range(rng, -1, 1);
         q = ref_quat_from_axis_angle(v, 2 * REF_PI / 3);
     }
     if (kind == 1 || kind == 2) {                         /* half turns: w = 0 */

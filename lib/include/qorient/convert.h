@@ -442,8 +442,8 @@ static inline int qo_mat3_internal_shepperd_f32(const qo_mat3_f32 *m, qo_quat_f3
  * orthonormal) and every -(r0 x r1)_j r2_j <= 3.6e-7 for its rows r0, r1, r2 (the sign of the
  * determinant: orthonormal rows have r0 x r1 = det M r2, so the tested products are
  * -r2_j^2 <= 0 for a rotation, and r2_j^2 for a reflection, at least 1/3 in its largest
- * lane); 0 otherwise, NaN and Inf included. Sums in the order ((row 0 + row 1) + row 2); both bodies decide alike.
- * Internal, not API (see quat.h).
+ * lane); 0 otherwise, NaN and Inf included. Sums in the order ((row 0 + row 1) + row 2);
+ * both bodies decide alike. Internal, not API (see quat.h).
  */
 static inline int qo_mat3_internal_is_rotation_f32(const qo_mat3_f32 *m)
 {
@@ -497,8 +497,9 @@ static inline int qo_mat3_internal_is_rotation_f32(const qo_mat3_f32 *m)
  * tests/core/test_convert.c: test_f32_quat_from_mat3_edges, test_f32_quat_from_mat3_drifted):
  * a matrix off by more than float32 rounding (max |M^T M - I| > 3.6e-7) is first projected
  * with qo_mat3_orthonormalize_f32, since the direct formula would carry that error into the
- * result (up to 2.16 times it, in rad). Robust at every angle (Shepperd: the pivot is never a component smaller than 1/2,
- * so 180-degree rotations, where the trace is -1, lose no precision).
+ * result (up to 2.16 times it, in rad). Robust at every angle (Shepperd: the pivot is never
+ * a component smaller than 1/2, so 180-degree rotations, where the trace is -1, lose no
+ * precision).
  * A matrix within ~3 ulps of a rotation (qo_mat3_internal_is_rotation_f32: max |M^T M - I|
  * <= 3.6e-7, det > 0) takes the trusted conversion's formula (the trace as pivot when it is
  * >= 0, else the largest diagonal entry; q = v / (2 sqrt(c)) for the pivot's row v of 4 q q^T

@@ -195,11 +195,10 @@ static inline __m128 qo_quat_internal_sumsq_ps(__m128 q4)
     return _mm_add_ps(h, QO_QUAT_SIMD_SHUFFLE_PS(h, _MM_SHUFFLE(2, 3, 0, 1)));
 }
 
-/* qo_quat_normalize_f32's fast path in lanes, its one home (normalize, the validating matrix
- * conversion's pivot vector, slerp's result): n = (ww + yy) + (xx + zz) broadcast, r = sqrt(n),
- * inv = r / n, *u = q * inv. Returns qo_quat_internal_fast_range_ss(r, inv): 1 when *u is
- * normalize's answer; 0 when q needs its full path (*u is then meaningless). Internal, not
- * API (see above). */
+/* qo_quat_normalize_f32's fast path in lanes, its one home (normalize and slerp's result):
+ * n = (ww + yy) + (xx + zz) broadcast, r = sqrt(n), inv = r / n, *u = q * inv. Returns
+ * qo_quat_internal_fast_range_ss(r, inv): 1 when *u is normalize's answer; 0 when q needs its
+ * full path (*u is then meaningless). Internal, not API (see above). */
 static inline int qo_quat_internal_normalize_ps(__m128 q4, __m128 *u)
 {
     const __m128 n = qo_quat_internal_sumsq_ps(q4), r = _mm_sqrt_ps(n), inv = _mm_div_ps(r, n);
