@@ -16,8 +16,8 @@
 #
 # Prints per-target "TARGET: N passed, M failed", a table (also in build/qemu-results.md) and a
 # final "N passed, M failed". Exit 0 if all passed, 1 on any failure, 77 if a prerequisite is
-# missing and cannot be installed (installs with apt-get when run as root). See run-target.sh
-# for QEMU_TIMEOUT and QEMU_SKIP.
+# missing and cannot be installed (installs with apt-get when run as root). QEMU_JOBS: targets
+# run at once (default: the machine's cores). See run-target.sh for QEMU_TIMEOUT and QEMU_SKIP.
 set -u
 cd "$(dirname "$0")/.." || exit 2
 TARGETS=${*:-${QEMU_TARGETS:-m0 m4f m7 aarch64 armhf}}
@@ -92,19 +92,54 @@ make_sysroot() { # DEBARCH
 for a in $need_linux; do make_sysroot "$a"; done
 
 mkdir -p build
+# The Linux targets compare their command's outputs with the host's build/qorient: made once
+# here, before the lanes below could start two makes of the same files at once.
+if [ -n "$need_linux" ]; then
+    make -s -j2 build/qorient >build/qemu-host-qorient.log 2>&1 ||
+        echo "test-qemu: the host's build/qorient did not build (see build/qemu-host-qorient.log)"
+fi
+
+# The targets run in QEMU_JOBS lanes at once (default: the machine's cores, at most 5): every
+# program is one single-threaded emulator, so one lane per core is what the machine can give.
+# Each lane takes the next target from a queue, longest first (the soft-float M0, then the two
+# Linux suites), and prints its target's report when the target is done.
+JOBS=${QEMU_JOBS:-$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)}
+case $JOBS in ''|*[!0-9]*|0) JOBS=1;; esac
+[ "$JOBS" -gt 5 ] && JOBS=5
+Q=build/qemu-queue
+rm -rf "$Q"; mkdir -p "$Q/todo" "$Q/done"
+i=10
+for t in m0 armhf aarch64 m4f m7; do
+    case " $TARGETS " in *" $t "*) i=$((i + 1)); echo "$t" >"$Q/todo/$i";; esac
+done
+lane() {
+    for f in "$Q"/todo/*; do
+        [ -e "$f" ] || continue
+        # rename is atomic: the lane whose mv succeeds runs the target
+        mv "$f" "$f.$1" 2>/dev/null || continue
+        t=$(cat "$f.$1")
+        s=$(date +%s)
+        sh tests/qemu/run-target.sh "$t" >"$Q/done/$t.out" 2>&1
+        echo "$? $(( $(date +%s) - s ))" >"$Q/done/$t.rc"
+        cat "$Q/done/$t.out"
+    done
+}
+T0=$(date +%s)
+echo "test-qemu: $(echo $TARGETS | wc -w) targets in $JOBS lanes"
+l=1
+while [ "$l" -le "$JOBS" ]; do lane "$l" & l=$((l + 1)); done
+wait
+
 RES=build/qemu-results.md
 {
     echo "| target | emulator | programs | tests passed | tests failed | programs skipped | time: target total wall / tests' CPU |"
     echo "|---|---|---|---|---|---|---|"
 } >"$RES"
 total_p=0; total_f=0; bad=""
-T0=$(date +%s)
 for t in $TARGETS; do
-    s=$(date +%s)
-    sh tests/qemu/run-target.sh "$t"
-    rc=$?
-    dt=$(( $(date +%s) - s ))
+    if [ -f "$Q/done/$t.rc" ]; then read -r rc dt <"$Q/done/$t.rc"; else rc=2; dt=0; fi
     sum=build/qemu-$t/summary.txt
+    [ -f "$sum" ] || : >"$sum"
     p=$(awk '$2 != "skipped" { s += $2 } END { print s + 0 }' "$sum")
     f=$(awk '$2 != "skipped" { s += $3 } END { print s + 0 }' "$sum")
     n=$(awk '$2 != "skipped"' "$sum" | wc -l)

@@ -19,6 +19,12 @@
 #include "common/ref.h"
 
 #define NJ 6
+/* Random S-curve starts in motion checked against the family's grid search (test_scurve_moving):
+ * the emulated Cortex-M targets run the first cases of the same sequence (tests/qemu/cortexm.mk;
+ * the double-precision grid runs in software there, ~100x slower). */
+#ifndef QO_MOTION_MOVING_CASES
+#define QO_MOTION_MOVING_CASES 240
+#endif
 
 /* ---- deterministic PRNG: the shared splitmix64 of tests/common/ref.c ---- */
 static ref_rng rng;
@@ -357,7 +363,7 @@ static void test_scurve_moving(void **state)
         check_plan(&pl, "two-stage regression", 0, 2000);
     }
     rng_seed(3);
-    for (cs = 0; cs < 240; cs++) {
+    for (cs = 0; cs < QO_MOTION_MOVING_CASES; cs++) {
         qo_motion_planner_f32 pl;
         qo_motion_joint_f32 jts[1];
         qo_motion_settings_f32 st = { QO_MOTION_SCURVE, QO_MOTION_SYNC_NONE };

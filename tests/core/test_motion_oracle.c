@@ -1176,7 +1176,7 @@ static void test_line_checks_fail(void **state)
     int n = 0;
     (void)state;
     g.s = 1109;
-    while (n < 20) {
+    while (n < ORACLE_GROUPS(20)) {
         qo_motion_planner_f32 pl, bad;
         qo_motion_joint_f32 jts[NJ], jb[NJ];
         jcase c[NJ];

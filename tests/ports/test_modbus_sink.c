@@ -1021,7 +1021,7 @@ static void test_settle_matches_drive(void **state)
 }
 
 /* TCP: replies later than the response timeout cost no connection. 5% of the replies come
- * 40 ms late (timeout 20 ms): each is matched by its transaction id in a later tick and
+ * 200 ms late (timeout 100 ms): each is matched by its transaction id in a later tick and
  * accepted; that slave's ticks in between are skipped (never queued); no reconnection, no
  * protocol error, no step above max_step, final targets exact. */
 static void test_tcp_late_replies_accepted(void **state)
@@ -1029,11 +1029,16 @@ static void test_tcp_late_replies_accepted(void **state)
     struct rig g;
     qo_sim_settings ss = rig_logged(&g, 0.0);
     qo_modbus_sink *s;
-    qo_sim_fault late = { QO_SIM_FAULT_DELAY, 40, 0.05, 0, 0 };
+    qo_sim_fault late = { QO_SIM_FAULT_DELAY, 200, 0.05, 0, 0 };
     qo_sim_fault none = { QO_SIM_FAULT_NONE, 0, 0.0, 0, 0 };
     unsigned k, ok = 0;
     (void)state;
-    g.set.response_timeout_us = 20000;
+    /* Every timeout must be a delayed reply (timeouts == faults below), so an undelayed reply
+     * must never take the timeout: 100 ms, not 20 ms, because under qemu-user with ASan, on a
+     * machine shared with another emulator, a plain reply once took over 20 ms (the first
+     * run of a code path is translated then). The delay keeps its 2:1 ratio to the timeout;
+     * the silence (automatic, >= 1 s) stays far above both. */
+    g.set.response_timeout_us = 100000;
     g.set.fail_threshold = 3; /* would end the link at once if late replies counted as failures */
     s = rig_tcp(&g, &ss);
     assert_int_equal(qo_sim_set_fault(g.sim, &late), QO_OK);

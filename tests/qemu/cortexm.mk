@@ -37,12 +37,14 @@ OPT       := -O2 -g -ffunction-sections -fdata-sections
 SPECS     := --specs=rdimon.specs
 # As on the host (the top Makefile builds tests with these): M_PI and friends from newlib math.h.
 TEST_DEFS := -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
-# The motion oracle's reference is double precision: software double on these cores runs it
-# about a thousand times slower than the host, so a sample of the host's random joints (the
-# same seed, the first ORACLE_JOINTS per sync mode) checks the target's float32 planner here;
-# the host and the Linux targets run the full 10,500.
-ORACLE_JOINTS ?= 70
-TEST_DEFS += -DQO_MOTION_ORACLE_JOINTS=$(ORACLE_JOINTS)
+# The motion tests' references are double precision: software double on these cores runs them
+# about a thousand times slower than the host, so a sample of the host's random cases (the same
+# seeds, the first ORACLE_JOINTS joints per sync mode of test_motion_oracle, the first
+# MOVING_CASES starts of test_motion's test_scurve_moving) checks the target's float32 planner
+# here; the host runs them all (10,500 and 240), the Linux targets a tenth of the oracle's.
+ORACLE_JOINTS ?= 40
+MOVING_CASES ?= 60
+TEST_DEFS += -DQO_MOTION_ORACLE_JOINTS=$(ORACLE_JOINTS) -DQO_MOTION_MOVING_CASES=$(MOVING_CASES)
 
 CORE_SRC   := $(sort $(wildcard lib/src/*.c))
 COMMON_SRC := $(sort $(wildcard tests/common/*.c))
