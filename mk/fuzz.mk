@@ -2,7 +2,8 @@
 #
 #   make fuzz                  builds every fuzz/fuzz_*.c and runs each for FUZZ_SECONDS (default 10)
 #   make fuzz FUZZ_SECONDS=600 FUZZ_TARGETS="quat regmap"   a long run of some targets
-#   make fuzz-ci               the short run of .ci/run: FUZZ_CI_SECONDS (default 15) per target
+#   make fuzz-ci               the short run of .ci/run: FUZZ_CI_SECONDS (default 15) per target,
+#                              FUZZ_JOBS (default: the machine's cores) targets at a time
 #   make fuzz-build            build only (build/fuzz/fuzz_NAME)
 #
 # Each target runs on a working corpus build/fuzz/corpus/NAME (new units land there) seeded
@@ -21,6 +22,8 @@ FUZZ_CC       ?= clang
 FUZZ_SECONDS  ?= 10
 FUZZ_CI_SECONDS ?= 15
 FUZZ_TARGETS  ?=
+FUZZ_CORES    := $(shell getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)
+FUZZ_JOBS     ?= $(FUZZ_CORES)
 FUZZ_BUILD    := $(BUILD)/fuzz
 FUZZ_SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 FUZZ_CFLAGS   := $(STD) $(WARN) $(FPFLAGS) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link
@@ -38,13 +41,13 @@ FUZZ_LIB_OBJ  := $(FUZZ_LIB_SRC:%.c=$(FUZZ_BUILD)/obj/%.o)
 # The packages first (tools/deps.sh fuzz: clang and its libclang-rt-N-dev), then the build.
 fuzz-build:
 	@sh tools/deps.sh fuzz
-	@$(MAKE) -s --no-print-directory $(FUZZ_BIN)
+	@$(MAKE) -s -j$(FUZZ_CORES) --no-print-directory $(FUZZ_BIN)
 
 fuzz: fuzz-build
 	@FUZZ_BUILD=$(FUZZ_BUILD) sh fuzz/run.sh $(FUZZ_SECONDS) $(or $(FUZZ_TARGETS),$(FUZZ_NAMES))
 
 fuzz-ci: fuzz-build
-	@FUZZ_BUILD=$(FUZZ_BUILD) sh fuzz/run.sh $(FUZZ_CI_SECONDS) $(or $(FUZZ_TARGETS),$(FUZZ_NAMES))
+	@FUZZ_BUILD=$(FUZZ_BUILD) FUZZ_JOBS=$(FUZZ_JOBS) sh fuzz/run.sh $(FUZZ_CI_SECONDS) $(or $(FUZZ_TARGETS),$(FUZZ_NAMES))
 
 $(FUZZ_BUILD)/obj/lib/%.o: lib/%.c
 	@mkdir -p $(@D)
