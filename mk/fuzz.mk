@@ -22,7 +22,7 @@ FUZZ_CC       ?= clang
 FUZZ_SECONDS  ?= 10
 FUZZ_CI_SECONDS ?= 15
 FUZZ_TARGETS  ?=
-FUZZ_CORES    := $(shell getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)
+FUZZ_CORES    := $(shell nproc 2>/dev/null || echo 1)
 FUZZ_JOBS     ?= $(FUZZ_CORES)
 FUZZ_BUILD    := $(BUILD)/fuzz
 FUZZ_SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer

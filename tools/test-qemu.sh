@@ -99,13 +99,15 @@ if [ -n "$need_linux" ]; then
         echo "test-qemu: the host's build/qorient did not build (see build/qemu-host-qorient.log)"
 fi
 
-# The targets run in QEMU_JOBS lanes at once (default: the machine's cores, at most 5): every
-# program is one single-threaded emulator, so one lane per core is what the machine can give.
-# Each lane takes the next target from a queue, longest first (the soft-float M0, then the two
-# Linux suites), and prints its target's report when the target is done.
-JOBS=${QEMU_JOBS:-$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)}
+# The targets run in QEMU_JOBS lanes at once (default: the cores this process may use, as
+# nproc counts them; never more lanes than targets): every program is one single-threaded
+# emulator, so one lane per core is what the machine can give. Each lane takes the next target
+# from a queue, longest first (the soft-float M0, then the two Linux suites), and prints its
+# target's report when the target is done.
+JOBS=${QEMU_JOBS:-$(nproc 2>/dev/null || echo 1)}
 case $JOBS in ''|*[!0-9]*|0) JOBS=1;; esac
-[ "$JOBS" -gt 5 ] && JOBS=5
+NT=$(echo $TARGETS | wc -w)
+[ "$JOBS" -gt "$NT" ] && JOBS=$NT
 Q=build/qemu-queue
 rm -rf "$Q"; mkdir -p "$Q/todo" "$Q/done"
 i=10
@@ -125,7 +127,7 @@ lane() {
     done
 }
 T0=$(date +%s)
-echo "test-qemu: $(echo $TARGETS | wc -w) targets in $JOBS lanes"
+echo "test-qemu: $NT targets in $JOBS lanes"
 l=1
 while [ "$l" -le "$JOBS" ]; do lane "$l" & l=$((l + 1)); done
 wait
