@@ -328,7 +328,9 @@ static inline int qo_mat3_internal_shepperd_store_ps(__m128 q4, qo_quat_f32 *out
  * root, one divide and four multiplies (a divide costs several multiplies on a Cortex-M4F, far
  * more in soft float). Where c is Inf, or so small or negative (rounding of huge entries) that
  * k v is not finite, q is not finite and the complete path answers.
- * The sign: q negated when its w < 0 (0 - q: exact); on the trace pivot w = c k > 0.
+ * The sign: q negated when its w < 0 (0 - q in the scalar body; the SSE2 body multiplies by
+ * -k instead, without a branch: both exact, the same bits once -0.0 is made +0.0); on the
+ * trace pivot w = c k > 0.
  * Returns 1 with *out = q (-0.0 made +0.0); 0, *out unwritten, where it cannot answer: a
  * non-finite q (a NaN/Inf entry - every entry reaches q: c through the trace or the pivot
  * entry - or entries so large that the formula overflows), or q's w == 0 (a half turn, where
@@ -375,11 +377,13 @@ static inline int qo_mat3_internal_shepperd_f32(const qo_mat3_f32 *m, qo_quat_f3
             v4 = _mm_shuffle_ps(_mm_shuffle_ps(dv, sv, _MM_SHUFFLE(2, 2, 3, 3)),
                                 _mm_move_ss(sv, c4), _MM_SHUFFLE(0, 1, 2, 0));
         }
-        v4 = _mm_mul_ps(v4, qo_mat3_internal_shepperd_k_ps(c4, bounded));
-        if (!_mm_comigt_ss(v4, zero)) {
-            if (!_mm_comilt_ss(v4, zero)) return 0;
-            v4 = _mm_sub_ps(zero, v4);
-        }
+        /* w >= 0 without a branch on its sign (random on random input, so a mispredicted
+         * branch half the time): k takes the sign of w's entry (lane 0 of v; k > 0), the
+         * -0.0 this makes of +0.0 lanes is undone by the store. */
+        v4 = _mm_mul_ps(v4, _mm_xor_ps(qo_mat3_internal_shepperd_k_ps(c4, bounded),
+                                       _mm_and_ps(QO_QUAT_SIMD_SHUFFLE_PS(v4, 0x00),
+                                                  _mm_set1_ps(-0.0f))));
+        if (!_mm_comigt_ss(v4, zero)) return 0;
     }
     return qo_mat3_internal_shepperd_store_ps(v4, out, bounded);
 #else
